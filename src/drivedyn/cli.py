@@ -1,0 +1,167 @@
+"""The ``drivedyn`` command: a thin layer over drivedyn.run / check / plot / study.
+
+Every user mistake ends with one line on stderr and exit status 2; a failed solve writes what
+was computed, says where it stopped, and exits with status 1.
+"""
+from __future__ import annotations
+
+import shutil
+import sys
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from .errors import DrivedynError, ModelError, SolverError
+
+app = typer.Typer(add_completion=False, no_args_is_help=True, pretty_exceptions_enable=False,
+                  help="Dynamics and geometry of belt drives and gear trains.")
+
+
+def _fail(message: str, code: int = 2):
+    typer.echo(f"drivedyn: error: {message}", err=True)
+    raise typer.Exit(code)
+
+
+def _progress_bar(console):
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+
+    return Progress(TextColumn("[bold]{task.description}"), BarColumn(), TextColumn("{task.percentage:>5.1f}%"),
+                    TimeElapsedColumn(), TimeRemainingColumn(), TextColumn("{task.fields[info]}"),
+                    console=console, transient=False)
+
+
+@app.command()
+def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
+        out: Path = typer.Option(Path("out"), "-o", "--out", help="Output folder."),
+        plots: bool = typer.Option(True, help="Write the standard PNG plots."),
+        quiet: bool = typer.Option(False, "-q", "--quiet", help="No progress bar.")):
+    """Run a model; write results.nc, summary.json and plots into OUT."""
+    from rich.console import Console
+
+    from . import api
+    from .model import load
+
+    console = Console(stderr=True)
+    try:
+        m = load(model)
+    except ModelError as exc:
+        _fail(str(exc))
+    result, failure = None, None
+    with _progress_bar(console) as bar:
+        task = bar.add_task(f"{m.kind}", total=1.0, info="")
+
+        def progress(frac, info=""):
+            bar.update(task, completed=min(max(frac, 0.0), 1.0), info=info)
+
+        try:
+            result = api.run(m, progress=None if quiet else progress)
+        except SolverError as exc:
+            failure = exc
+            result = exc.partial
+        except ModelError as exc:
+            _fail(f"{model}: {exc}")
+    if result is not None:
+        result.save(out)
+        written = api.plot(result, out) if plots else []
+        console.print(f"wrote {out / 'results.nc'}, {out / 'summary.json'} and {len(written)} plot(s)")
+        _print_summary(console, result)
+    if failure is not None:
+        _fail(f"solve failed: {failure}" + ("; partial results kept in " + str(out) if result is not None else ""), code=1)
+
+
+def _print_summary(console, result):
+    from rich.table import Table
+
+    from .results import flatten
+
+    table = Table(title="summary", show_header=True)
+    table.add_column("key")
+    table.add_column("value", justify="right")
+    for k, v in flatten(result.summary).items():
+        if isinstance(v, float):
+            v = f"{v:.6g}"
+        elif isinstance(v, list) and len(v) > 6:
+            v = f"[{len(v)} values]"
+        table.add_row(k, str(v))
+    console.print(table)
+
+
+@app.command()
+def check(model: Path = typer.Argument(..., help="Model file (TOML).")):
+    """Validate a model and print what is known without running it."""
+    from . import api
+
+    try:
+        typer.echo(api.check(model))
+    except ModelError as exc:
+        _fail(str(exc))
+
+
+@app.command()
+def plot(outdir: Path = typer.Argument(..., help="Folder written by 'drivedyn run'.")):
+    """(Re)draw the standard plots of a finished run."""
+    from . import api
+    from .results import open_result
+
+    if not (outdir / "results.nc").exists():
+        _fail(f"{outdir}: no results.nc here (run 'drivedyn run MODEL -o {outdir}' first)")
+    files = api.plot(open_result(outdir), outdir)
+    typer.echo("\n".join(str(f) for f in files))
+
+
+@app.command()
+def examples(name: Optional[str] = typer.Argument(None, help="Example to copy out."),
+             to: Path = typer.Option(Path("."), "--to", help="Folder to copy the example into.")):
+    """List the shipped example models, or copy one out."""
+    from . import api
+
+    if name is None:
+        for stem, path in api.examples().items():
+            first = next((ln.lstrip("# ").strip() for ln in path.read_text().splitlines() if ln.startswith("#")), "")
+            typer.echo(f"{stem:28s} {first}")
+        return
+    try:
+        src = api.example_path(name)
+    except ModelError as exc:
+        _fail(str(exc))
+    to.mkdir(parents=True, exist_ok=True)
+    dest = to / src.name
+    shutil.copyfile(src, dest)
+    typer.echo(str(dest))
+
+
+@app.command()
+def study(study_file: Path = typer.Argument(..., help="Study file (TOML)."),
+          out: Optional[Path] = typer.Option(None, "-o", "--out", help="Output folder (default: from the study file)."),
+          scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Address of a running Dask scheduler."),
+          workers: Optional[int] = typer.Option(None, "--workers", help="Local workers (default: one per core).")):
+    """Run a parameter study on Dask (local cluster by default)."""
+    try:
+        from . import study as study_mod
+    except ImportError:
+        _fail("parameter studies are not available in this build")
+    try:
+        study_mod.main(study_file, out=out, scheduler=scheduler, workers=workers)
+    except ModelError as exc:
+        _fail(str(exc))
+
+
+def main(argv=None):
+    """Entry point; ``main(["run", "model.toml"])`` runs in-process (tests)."""
+    try:
+        app(args=argv, prog_name="drivedyn", standalone_mode=True)
+    except SystemExit as exc:
+        if argv is None:
+            raise
+        return exc.code or 0
+    except DrivedynError as exc:  # last resort: never a traceback for a drivedyn error
+        typer.echo(f"drivedyn: error: {exc}", err=True)
+        if argv is None:
+            sys.exit(2)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    main()

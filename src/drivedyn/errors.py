@@ -1,0 +1,30 @@
+"""Exceptions of drivedyn.
+
+A ``ModelError`` is the user's mistake (bad file, bad value): the command line prints its
+message on one line and exits with status 2. A ``SolverError`` is a failed computation: it
+carries whatever was computed up to the failure in ``partial`` (a Result or None).
+"""
+
+
+class DrivedynError(Exception):
+    """Base class of all drivedyn errors."""
+
+
+class ModelError(DrivedynError, ValueError):
+    """Invalid model input. The message names the field and the problem, on one line."""
+
+    def __init__(self, message: str, field: str | None = None):
+        self.field = field
+        super().__init__(f"{field}: {message}" if field else message)
+
+
+class SolverError(DrivedynError, RuntimeError):
+    """A solve that could not finish; ``partial`` holds the results computed so far."""
+
+    def __init__(self, message: str, partial=None):
+        self.partial = partial
+        super().__init__(message)
+
+
+class DrivedynWarning(UserWarning):
+    """Warnings about questionable but admissible input or results."""
