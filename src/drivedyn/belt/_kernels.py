@@ -1,0 +1,377 @@
+"""Compiled kernels of the belt-drive model (Kubas, seed 000). Contract:
+
+- float64 arrays, int64 index arrays, scalars; no Python objects; nothing compiled at import
+  (``@njit(cache=True)`` without signatures).
+- Belt state, n segments (index base 0, segment i joined to i-1 by joint i; joint 0 closes the loop
+  between n-1 and 0): x, y, phi (unwrapped), c = cos(phi), s = sin(phi), vx, vy, w.
+  Pulley state, nk pulleys: th, om.
+- Notation (seed): joint force F = c_L * Delta_l^e_L + b_L * dDelta_l/dt along the gap vector d
+  from the end of segment i-1 to the start of segment i (eqs. 18, 20); bending moment
+  M = c_B (dphi)^e_B + b_B dw (eq. 19); contact N = c1 p^2 + c2 p + delta(p) b pdot (eqs. 9-10);
+  friction T = mu(v_T) N (eqs. 11-17, Threlfall's law: cubic step from -mu to +mu over |v| < dv).
+  Arrays: kax = c_L, bax = b_L, kb = c_B, bb = b_B per joint; c1, c2, bc per segment.
+- The friction acts at the contact radius r_j (pulley surface speed om_j r_j, moment -r_j T on the
+  pulley), so that friction power is exactly T * slip (energy-consistent reading of eqs. 12, 22).
+
+Scheme ``step_chunk``: symplectic (semi-implicit) Euler. Elastic and bending forces and gravity
+explicit; for each segment in contact, the contact damping and the regularised friction are solved
+implicitly in the segment's new velocity (a scalar monotone equation per contact, pulley speeds
+frozen during the step), which makes the stiff friction law (slope mu N / dv) unconditionally
+stable; the step is limited only by the elastic chain, h < 2 / sqrt(12 k / m).
+"""
+import math
+
+import numpy as np
+from numba import njit
+
+# integer parameter slots (ip)
+I_N, I_NK, I_LAW, I_NSPAN, I_NTRACK, I_NEXP, I_LINEAR = range(7)
+# float parameter slots (fp)
+F_EAX, F_EB, F_PMAX, F_DV, F_DMAX, F_G, F_TURN, F_HL = range(8)
+
+
+@njit(cache=True)
+def smoothstep(x):
+    """delta of eq. 10 on x = p / p_max: 0 below 0, x^2 (3 - 2x) inside, 1 above 1."""
+    if x <= 0.0:
+        return 0.0
+    if x >= 1.0:
+        return 1.0
+    return x * x * (3.0 - 2.0 * x)
+
+
+@njit(cache=True)
+def threlfall(s, dv):
+    """mu / mu_k for slip velocity s: cubic from -1 at -dv to +1 at +dv (seed fig. 4)."""
+    x = s / dv
+    if x >= 1.0:
+        return 1.0
+    if x <= -1.0:
+        return -1.0
+    return 0.5 * x * (3.0 - x * x)
+
+
+@njit(cache=True)
+def solve_threlfall(w, a, dv):
+    """Slip s solving s + a * mu(s) = w (a = h N mu / m >= 0): the implicit friction update."""
+    if w >= dv + a:
+        return w - a
+    if w <= -dv - a:
+        return w + a
+    # inside the regularisation band: dv x + a (3x - x^3)/2 = w, monotone on (-1, 1).
+    x = w / (dv + 1.5 * a)
+    for _ in range(60):
+        f = dv * x + 0.5 * a * x * (3.0 - x * x) - w
+        fp = dv + 1.5 * a * (1.0 - x * x)
+        dx = f / fp
+        x -= dx
+        if abs(dx) < 1e-13:
+            break
+    if x > 1.0:
+        x = 1.0
+    elif x < -1.0:
+        x = -1.0
+    return x * dv
+
+
+@njit(cache=True)
+def table(xs, ys, o0, o1, x, extrapolate):
+    """Piecewise-linear y(x) from rows o0..o1-1; held constant (or extrapolated) beyond the ends."""
+    m = o1 - o0
+    if m == 0:
+        return 0.0
+    if m == 1:
+        return ys[o0]
+    if x <= xs[o0]:
+        if extrapolate:
+            return ys[o0] + (ys[o0 + 1] - ys[o0]) * (x - xs[o0]) / (xs[o0 + 1] - xs[o0])
+        return ys[o0]
+    if x >= xs[o1 - 1]:
+        if extrapolate:
+            return ys[o1 - 1] + (ys[o1 - 1] - ys[o1 - 2]) * (x - xs[o1 - 1]) / (xs[o1 - 1] - xs[o1 - 2])
+        return ys[o1 - 1]
+    lo, hi = o0, o1 - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if xs[mid] <= x:
+            lo = mid
+        else:
+            hi = mid
+    return ys[lo] + (ys[hi] - ys[lo]) * (x - xs[lo]) / (xs[hi] - xs[lo])
+
+
+@njit(cache=True)
+def external_torque(j, t, th, om, tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y,
+                    hm_off, hm_order, hm_amp, hm_phase):
+    """Applied torque on pulley j (N m): constant + table(t) + table(omega) - c omega + harmonics."""
+    M = tq_const[j] - tq_visc[j] * om
+    M += table(tt_x, tt_y, tt_off[j], tt_off[j + 1], t, False)
+    M += table(ts_x, ts_y, ts_off[j], ts_off[j + 1], om, True)
+    for k in range(hm_off[j], hm_off[j + 1]):
+        M += hm_amp[k] * math.sin(hm_order[k] * th + hm_phase[k])
+    return M
+
+
+@njit(cache=True)
+def joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy):
+    """Elastic + damping forces of all joints into fx, fy, mz (zeroed here).
+
+    Stores per joint the gap vector (jdx, jdy) and jfk with force vector = jfk * d (tension
+    = jfk |d|). Returns (dissipated power in axial dampers, in bending dampers).
+    """
+    n = ip[I_N]
+    eax = fp[F_EAX]
+    eb = fp[F_EB]
+    hl = fp[F_HL]
+    turn = fp[F_TURN]
+    linear = ip[I_LINEAR] == 1
+    pax = 0.0
+    pb = 0.0
+    for i in range(n):
+        fx[i] = 0.0
+        fy[i] = 0.0
+        mz[i] = 0.0
+    for i in range(n):
+        k = i - 1 if i > 0 else n - 1
+        # end of segment k (+ end) and start of segment i (- end), and their velocities
+        ax = hl * c[k]
+        ay = hl * s[k]
+        bx = hl * c[i]
+        by = hl * s[i]
+        dx = (x[i] - bx) - (x[k] + ax)
+        dy = (y[i] - by) - (y[k] + ay)
+        dvx = (vx[i] + w[i] * by) - (vx[k] - w[k] * ay)
+        dvy = (vy[i] - w[i] * bx) - (vy[k] + w[k] * ax)
+        dd = dx * dx + dy * dy
+        if dd > 1e-30:
+            rate = (dx * dvx + dy * dvy) / dd        # dDelta_l/dt / Delta_l
+        else:
+            rate = 0.0
+        if linear:
+            fk = kax[i] + bax[i] * rate
+        else:
+            fk = kax[i] * dd ** (0.5 * (eax - 1.0)) + bax[i] * rate
+        pax += bax[i] * rate * rate * dd
+        jfk[i] = fk
+        jdx[i] = dx
+        jdy[i] = dy
+        Fx = fk * dx
+        Fy = fk * dy
+        # force on k pulls its + end toward i; force on i pulls its - end toward k
+        fx[k] += Fx
+        fy[k] += Fy
+        fx[i] -= Fx
+        fy[i] -= Fy
+        mz[k] += ax * Fy - ay * Fx
+        mz[i] += bx * Fy - by * Fx          # arm (-b) x (-F) = b x F
+        # bending (eq. 19); joint 0 closes the loop, where phi jumps by the total turn
+        dphi = phi[i] - phi[k]
+        if i == 0:
+            dphi += turn
+        if eb == 1.0:
+            M = kb[i] * dphi
+        else:
+            M = kb[i] * math.copysign(abs(dphi) ** eb, dphi)
+        dw = w[i] - w[k]
+        M += bb[i] * dw
+        pb += bb[i] * dw * dw
+        mz[i] -= M
+        mz[k] += M
+    return pax, pb
+
+
+@njit(cache=True)
+def step_chunk(nsteps, t, h, ip, fp,
+               x, y, phi, c, s, vx, vy, w, th, om, z,
+               m, inertia, mu, kax, bax, kb, bb, c1, c2, bc,
+               pcx, pcy, pr, pinv_i, pmode,
+               tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase,
+               sp_off, sp_x, sp_y,
+               span_mx, span_my, span_joint, track_seg,
+               fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, seg_p,
+               acc_tq_ext, acc_tq_belt, acc_hubx, acc_huby, acc_pin, acc_span, acc_track, acc_diss):
+    """Advance ``nsteps`` semi-implicit Euler steps from time t; returns the new time.
+
+    Accumulators (added h * value, the caller divides by the interval): acc_tq_ext[j] applied
+    torque, acc_tq_belt[j] belt torque on the pulley, acc_hubx/y[j] belt force on the pulley,
+    acc_pin[j] power into the system through pulley j, acc_span[q] mid-span tension,
+    acc_track[q, 0:3] element force / normal force / friction force (along the segment) of tracked
+    segments, acc_diss[0:4] dissipation in axial dampers, bending dampers, contact damping,
+    friction.
+    """
+    n = ip[I_N]
+    nk = ip[I_NK]
+    law = ip[I_LAW]
+    nspan = ip[I_NSPAN]
+    ntrack = ip[I_NTRACK]
+    pmax = fp[F_PMAX]
+    dv = fp[F_DV]
+    dmax = fp[F_DMAX]
+    g = fp[F_G]
+    hl = fp[F_HL]
+    tq_belt = np.zeros(nk)
+    hubx = np.zeros(nk)
+    huby = np.zeros(nk)
+    for _ in range(nsteps):
+        pax, pb = joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy)
+        pcd = 0.0
+        pfr = 0.0
+        for j in range(nk):
+            tq_belt[j] = 0.0
+            hubx[j] = 0.0
+            huby[j] = 0.0
+        for i in range(n):
+            hm = h / m[i]
+            vxs = vx[i] + hm * fx[i]
+            vys = vy[i] + hm * fy[i] - h * g
+            Ntot = 0.0
+            Ttot = 0.0
+            pen = 0.0
+            incontact = False
+            for j in range(nk):
+                rx = x[i] - pcx[j]
+                ry = y[i] - pcy[j]
+                d2 = rx * rx + ry * ry
+                if d2 >= pr[j] * pr[j]:
+                    continue
+                incontact = True
+                dist = math.sqrt(d2)
+                nx = rx / dist
+                ny = ry / dist
+                p = pr[j] - dist
+                pen = p
+                # normal: N = c1 p^2 + c2 p - delta b vn_new, vn_new = vn* + h N / m  (implicit damping)
+                db = smoothstep(p / pmax) * bc[i]
+                vn = vxs * nx + vys * ny
+                N = (c1[i] * p * p + c2[i] * p - db * vn) / (1.0 + db * hm)
+                if N <= 0.0:
+                    continue
+                vn_new = vn + hm * N
+                pcd += db * vn_new * vn_new
+                # tangent tau = Z x n; slip of the pulley surface relative to the segment
+                tx = -ny
+                ty = nx
+                vt = vxs * tx + vys * ty
+                wslip = om[j] * pr[j] - vt
+                muN = mu[i] * N
+                if law == 0:
+                    sl = solve_threlfall(wslip, hm * muN, dv)
+                    T = muN * threlfall(sl, dv)
+                else:
+                    # elastic-plastic: T = K z, z_new = z + h slip_new, clipped at the displacement limit
+                    K = muN / dmax
+                    zn = (z[i] + h * wslip) / (1.0 + h * hm * K)
+                    T = K * zn
+                    if T > muN:
+                        T = muN
+                        zn = dmax
+                    elif T < -muN:
+                        T = -muN
+                        zn = -dmax
+                    z[i] = zn
+                    sl = wslip - hm * T
+                pfr += T * sl
+                vxs += hm * (N * nx + T * tx)
+                vys += hm * (N * ny + T * ty)
+                Ntot += N
+                Ttot += T
+                tq_belt[j] -= pr[j] * T
+                hubx[j] -= N * nx + T * tx
+                huby[j] -= N * ny + T * ty
+            if not incontact:
+                z[i] = 0.0
+            seg_n[i] = Ntot
+            seg_t[i] = Ttot
+            seg_p[i] = pen
+            vx[i] = vxs
+            vy[i] = vys
+            w[i] += h * mz[i] / inertia[i]
+            x[i] += h * vxs
+            y[i] += h * vys
+            # rotate (c, s) by a = h w exactly to round-off (series to a^5; |a| < 1e-2 here)
+            a = h * w[i]
+            phi[i] += a
+            a2 = a * a
+            ca = 1.0 - 0.5 * a2 * (1.0 - a2 / 12.0)
+            sa = a * (1.0 - a2 / 6.0 * (1.0 - a2 / 20.0))
+            cn = c[i] * ca - s[i] * sa
+            s[i] = s[i] * ca + c[i] * sa
+            c[i] = cn
+        # pulleys (explicit in the belt torque, which the implicit friction solve bounded)
+        for j in range(nk):
+            if pmode[j] == 1:
+                om_new = table(sp_x, sp_y, sp_off[j], sp_off[j + 1], t + h, False)
+                Mext = 0.0
+                acc_pin[j] += h * (-tq_belt[j]) * om[j]
+            else:
+                Mext = external_torque(j, t, th[j], om[j], tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y,
+                                       hm_off, hm_order, hm_amp, hm_phase)
+                acc_pin[j] += h * Mext * om[j]
+                om_new = om[j] + h * (Mext + tq_belt[j]) * pinv_i[j]
+            acc_tq_ext[j] += h * Mext
+            acc_tq_belt[j] += h * tq_belt[j]
+            acc_hubx[j] += h * hubx[j]
+            acc_huby[j] += h * huby[j]
+            om[j] = om_new
+            th[j] += h * om_new
+        # mid-span tension: follow the joint nearest each span's midpoint as the belt moves
+        for q in range(nspan):
+            best = span_joint[q]
+            bestd = 1e300
+            for dk in range(-2, 3):
+                jj = (span_joint[q] + dk) % n
+                kk = jj - 1 if jj > 0 else n - 1
+                px = 0.5 * (x[jj] - hl * c[jj] + x[kk] + hl * c[kk]) - span_mx[q]
+                py = 0.5 * (y[jj] - hl * s[jj] + y[kk] + hl * s[kk]) - span_my[q]
+                dd = px * px + py * py
+                if dd < bestd:
+                    bestd = dd
+                    best = jj
+            span_joint[q] = best
+            acc_span[q] += h * jfk[best] * math.sqrt(jdx[best] * jdx[best] + jdy[best] * jdy[best])
+        for q in range(ntrack):
+            i = track_seg[q]
+            jn = i + 1 if i < n - 1 else 0       # the joint after segment i
+            acc_track[q, 0] += h * jfk[jn] * math.sqrt(jdx[jn] * jdx[jn] + jdy[jn] * jdy[jn])
+            acc_track[q, 1] += h * seg_n[i]
+            acc_track[q, 2] += h * seg_t[i]
+        acc_diss[0] += h * pax
+        acc_diss[1] += h * pb
+        acc_diss[2] += h * pcd
+        acc_diss[3] += h * pfr
+        t += h
+    return t
+
+
+@njit(cache=True)
+def energy(ip, fp, x, y, phi, c, s, vx, vy, w, om, m, inertia, kax, kb, c1, c2, pcx, pcy, pr, pinertia, pmode):
+    """Kinetic + potential energy (J): belt, dynamic pulleys, joints, bending, contact, gravity."""
+    n = ip[I_N]
+    nk = ip[I_NK]
+    eax = fp[F_EAX]
+    eb = fp[F_EB]
+    hl = fp[F_HL]
+    turn = fp[F_TURN]
+    g = fp[F_G]
+    E = 0.0
+    for i in range(n):
+        E += 0.5 * m[i] * (vx[i] * vx[i] + vy[i] * vy[i]) + 0.5 * inertia[i] * w[i] * w[i] + m[i] * g * y[i]
+        k = i - 1 if i > 0 else n - 1
+        dx = (x[i] - hl * c[i]) - (x[k] + hl * c[k])
+        dy = (y[i] - hl * s[i]) - (y[k] + hl * s[k])
+        dl = math.sqrt(dx * dx + dy * dy)
+        E += kax[i] * dl ** (eax + 1.0) / (eax + 1.0)
+        dphi = phi[i] - phi[k]
+        if i == 0:
+            dphi += turn
+        E += kb[i] * abs(dphi) ** (eb + 1.0) / (eb + 1.0)
+        for j in range(nk):
+            rx = x[i] - pcx[j]
+            ry = y[i] - pcy[j]
+            p = pr[j] - math.sqrt(rx * rx + ry * ry)
+            if p > 0.0:
+                E += c1[i] * p * p * p / 3.0 + c2[i] * p * p / 2.0
+    for j in range(nk):
+        if pmode[j] == 0:
+            E += 0.5 * pinertia[j] * om[j] * om[j]
+    return E

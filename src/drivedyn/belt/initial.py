@@ -1,0 +1,137 @@
+"""Discretisation of the belt into n rigid segments, placed near static equilibrium.
+
+Segments are chords of length l whose ends lie on the path; consecutive segments are joined by a
+gap g carried by the zero-length longitudinal spring (seed eq. 18), g = l (T0/EA)^(1/e_L) at the
+pretension T0 (element law F = EA (g/l)^e_L). On an arc the segment centre (the chord midpoint)
+must sit inside the contact radius by the static penetration p0 (contact force per length
+c1 p^2 + c2 p = T0 / r, the capstan pressure), so chord ends are placed on a circle of radius
+sqrt((r - p0)^2 + (l/2)^2). Walking the closed path with alternating chords l and gaps g and
+adjusting l (pretension given) or T0 (unstretched length given) until the walk closes starts every
+element at the pretension: placing centres evenly on the arcs instead would put about three times
+the pretension into the arc elements (the chord sagitta l^2/8r exceeds p0).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..errors import ModelError
+from .layout import Layout, layout_from
+
+
+@dataclass(frozen=True)
+class InitialState:
+    layout: Layout          # the path the chord ends were placed on
+    x: np.ndarray
+    y: np.ndarray
+    phi: np.ndarray         # unwrapped along the chain; phi[n-1] ~ phi[0] + turn
+    seg_length: float       # l (m), unstretched segment length
+    tension: float          # T0 (N)
+    penetration: np.ndarray # static penetration per pulley (m)
+    turn: float             # +-2 pi: total turn of the loop (orientation)
+
+
+class _Path:
+    """Arc-length parametrised closed path (fast scalar evaluation)."""
+
+    def __init__(self, layout: Layout):
+        self.pieces = layout.pieces()
+        self.starts = np.cumsum([0.0] + [p[-1] for p in self.pieces])
+        self.length = float(self.starts[-1])
+
+    def point(self, s):
+        s = s % self.length
+        k = min(int(np.searchsorted(self.starts, s, side="right")) - 1, len(self.pieces) - 1)
+        piece, u = self.pieces[k], s - self.starts[k]
+        if piece[0] == "line":
+            _, p0, p1, L = piece
+            return p0 + (p1 - p0) * (u / L)
+        _, c, R, a0, sweep, L = piece
+        a = a0 + sweep * (u / L)
+        return c + R * np.array([math.cos(a), math.sin(a)])
+
+
+def static_penetration(tension, radius, contact):
+    """Penetration p0 (m) where c1 p^2 + c2 p = T / r (per unit length: capstan pressure)."""
+    q = tension / radius
+    c1, c2 = contact.stiffness_quadratic, contact.stiffness_linear
+    if c1 > 0:
+        return (-c2 + math.sqrt(c2 * c2 + 4 * c1 * q)) / (2 * c1)
+    return q / c2
+
+
+def _walk(path: _Path, n: int, l: float, g: float):
+    """Place n chords of length l separated by gaps g; return ends and the arc length reached."""
+    s = 0.0
+    p = path.point(0.0)
+    starts, ends = np.empty((n, 2)), np.empty((n, 2))
+    for i in range(n):
+        for kind, c in (("seg", l), ("gap", g)):
+            if c <= 0:
+                continue
+            s_new = brentq(lambda t: np.hypot(*(path.point(t) - p)) - c, s + 0.999 * c, s + c * math.pi / 2 + 1e-12,
+                           xtol=1e-14) if True else None
+            q = path.point(s_new)
+            if kind == "seg":
+                starts[i], ends[i] = p, q
+            p, s = q, s_new
+        if c <= 0:  # zero gap: next start equals this end
+            pass
+    return starts, ends, s
+
+
+def initial_state(model, layout: Layout) -> InitialState:
+    belt, n = model.belt, model.belt.segments
+    EA, e = belt.axial_stiffness, belt.axial_exponent
+    radii = np.array([p.radius for p in model.pulleys])
+    names = [p.name for p in model.pulleys]
+    sides = [p.side for p in model.pulleys]
+
+    def place(l, T):
+        p0 = np.array([static_penetration(T, r, model.contact) for r in radii])
+        if np.any(p0 >= 0.5 * radii):
+            raise ModelError(f"contact too soft: static penetration {p0.max() * 1e3:.2f} mm at the pretension", field="contact")
+        Re = np.sqrt((radii - p0) ** 2 + (l / 2) ** 2)
+        lay = layout_from(names, layout.centers, Re, sides, orientation=layout.orientation)
+        g = l * (T / EA) ** (1.0 / e)
+        return lay, _walk(_Path(lay), n, l, g), p0
+
+    if belt.pretension is not None:
+        T = belt.pretension
+        L_path = layout.length
+        guess = L_path / n / (1 + (T / EA) ** (1 / e))
+
+        def resid(l):
+            lay, (_, _, s_end), _ = place(l, T)
+            return s_end - _Path(lay).length
+
+        lo, hi = 0.97 * guess, 1.01 * guess
+        l = brentq(resid, lo, hi, xtol=1e-13)
+    else:
+        l = belt.length / n
+        if belt.length >= layout.length:
+            raise ModelError(f"belt too long to be tensioned: unstretched length {belt.length:.4f} m >= path length "
+                             f"{layout.length:.4f} m", field="belt.length")
+
+        def resid_T(T):
+            lay, (_, _, s_end), _ = place(l, T)
+            return s_end - _Path(lay).length
+
+        strain = layout.length / belt.length - 1
+        T_guess = EA * strain ** e
+        try:
+            T = brentq(resid_T, 0.2 * T_guess, 3.0 * T_guess, xtol=1e-9 * T_guess)
+        except ValueError:
+            raise ModelError("cannot place the belt on the layout at this length (too short to wrap?)", field="belt.length") from None
+    if belt.length is None and l * n < 0.5 * layout.length:
+        raise ModelError("pretension too high for the axial stiffness", field="belt.pretension")
+
+    lay, (starts, ends, _), p0 = place(l, T)
+    mid = 0.5 * (starts + ends)
+    d = ends - starts
+    phi = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+    turn = 2 * math.pi * layout.orientation
+    return InitialState(lay, mid[:, 0].copy(), mid[:, 1].copy(), phi, float(l), float(T), p0, turn)

@@ -1,0 +1,234 @@
+"""The belt-drive model file (``kind = "belt-drive"``): pure data, validated.
+
+Coefficients are belt *properties* (per unit length or EA-like), so a model means the same
+physics whatever the number of segments. The seed's per-element values (Kubas, eqs. 9, 18, 19)
+map onto them as documented in ``examples/belt-5pk.toml``:
+
+    element stiffness    c_L = axial_stiffness / l      (seed's c_L read as EA, see the example)
+    element damping      b_L = axial_damping / l
+    bending stiffness    c_B = bending_stiffness / l    (N m/rad per joint)
+    bending damping      b_B = bending_damping / l
+    contact c1, c2, b    = contact.*  x l               (per unit length of belt -> per segment)
+"""
+from __future__ import annotations
+
+from typing import Literal, Optional
+
+from pydantic import field_validator, model_validator
+
+from ..model import Spec, quantity
+
+Length = quantity("m")
+Time = quantity("s")
+
+
+def _table(value, units, field):
+    """Validate a table of rows [x, y] (numbers or unit strings) into SI floats, x increasing."""
+    from ..units import to_si
+
+    if not isinstance(value, (list, tuple)) or len(value) < 1:
+        raise ValueError(f"{field} must be a list of [{units[0]}, {units[1]}] rows")
+    rows = []
+    for k, row in enumerate(value):
+        if not isinstance(row, (list, tuple)) or len(row) != 2:
+            raise ValueError(f"row {k} of {field} must have 2 values, got {row!r}")
+        try:
+            rows.append([to_si(row[0], units[0]), to_si(row[1], units[1])])
+        except Exception as exc:
+            raise ValueError(f"row {k} of {field}: {exc}") from None
+    xs = [r[0] for r in rows]
+    if any(b <= a for a, b in zip(xs, xs[1:])):
+        raise ValueError(f"{field}: first column must increase strictly")
+    return rows
+
+
+class Harmonic(Spec):
+    """A torque component amplitude * sin(order * theta + phase), theta the pulley's own angle."""
+
+    order: float
+    amplitude: quantity("N*m")
+    phase: quantity("rad") = 0.0
+
+
+class Pulley(Spec):
+    """A pulley or idler, in belt order. Counter-clockwise is positive for angles and torques."""
+
+    name: str
+    center: tuple[Length, Length]
+    radius: quantity("m", gt=0)
+    side: Literal["inside", "back"] = "inside"
+    inertia: quantity("kg*m^2", gt=0) = 1e-3
+    torque: quantity("N*m") = 0.0
+    torque_time: Optional[list[list]] = None
+    torque_speed: Optional[list[list]] = None
+    viscous_torque: quantity("N*m*s/rad", ge=0) = 0.0
+    harmonics: list[Harmonic] = []
+    speed_time: Optional[list[list]] = None
+
+    @field_validator("name")
+    @classmethod
+    def _name(cls, v):
+        if not v or any(c in v for c in " .-/"):
+            raise ValueError(f"must be a non-empty name without spaces, dots, dashes or slashes, got {v!r}")
+        return v
+
+    @field_validator("torque_time")
+    @classmethod
+    def _tt(cls, v):
+        return None if v is None else _table(v, ("s", "N*m"), "torque_time")
+
+    @field_validator("torque_speed")
+    @classmethod
+    def _ts(cls, v):
+        if v is None:
+            return None
+        rows = _table(v, ("rad/s", "N*m"), "torque_speed")
+        if len(rows) < 2:
+            raise ValueError("torque_speed needs at least 2 rows (it is extrapolated linearly)")
+        return rows
+
+    @field_validator("speed_time")
+    @classmethod
+    def _st(cls, v):
+        return None if v is None else _table(v, ("s", "rad/s"), "speed_time")
+
+    @model_validator(mode="after")
+    def _excitation(self):
+        if self.speed_time is not None and (self.torque != 0 or self.torque_time or self.torque_speed
+                                            or self.viscous_torque or self.harmonics):
+            raise ValueError(f"pulley {self.name!r}: speed_time (prescribed speed) excludes torques")
+        return self
+
+
+class FrictionZone(Spec):
+    """A stretch of belt (arc length from the start of segment 0) with its own friction coefficient."""
+
+    start: Length
+    end: Length
+    coefficient: float
+
+    @model_validator(mode="after")
+    def _order(self):
+        if not self.end > self.start:
+            raise ValueError(f"friction zone end ({self.end}) must be after start ({self.start})")
+        if self.coefficient < 0:
+            raise ValueError("friction zone coefficient must be >= 0")
+        return self
+
+
+class Belt(Spec):
+    mass_per_length: quantity("kg/m", gt=0)
+    axial_stiffness: quantity("N", gt=0)
+    axial_damping: quantity("N*s", ge=0) = 0.0
+    bending_stiffness: quantity("N*m^2", ge=0) = 0.0
+    bending_damping: quantity("N*m^2*s", ge=0) = 0.0
+    axial_exponent: float = 1.0
+    bending_exponent: float = 1.0
+    segments: int = 150
+    pretension: Optional[quantity("N", gt=0)] = None
+    length: Optional[quantity("m", gt=0)] = None
+
+    @field_validator("segments")
+    @classmethod
+    def _n(cls, v):
+        if v < 12:
+            raise ValueError(f"must be >= 12, got {v}")
+        return v
+
+    @field_validator("axial_exponent", "bending_exponent")
+    @classmethod
+    def _e(cls, v):
+        if not 0.5 <= v <= 3.0:
+            raise ValueError(f"must lie in [0.5, 3], got {v}")
+        return v
+
+    @model_validator(mode="after")
+    def _tension(self):
+        if (self.pretension is None) == (self.length is None):
+            raise ValueError("give exactly one of belt.pretension (N) or belt.length (unstretched, m)")
+        return self
+
+
+class Contact(Spec):
+    """Penalty contact (seed eqs. 9-10), coefficients per unit length of belt."""
+
+    stiffness_linear: quantity("N/m^2", ge=0)
+    stiffness_quadratic: quantity("N/m^3", ge=0) = 0.0
+    damping: quantity("N*s/m^2", ge=0) = 0.0
+    damping_depth: quantity("m", gt=0) = 1e-3
+
+    @model_validator(mode="after")
+    def _some_stiffness(self):
+        if self.stiffness_linear <= 0 and self.stiffness_quadratic <= 0:
+            raise ValueError("contact needs stiffness_linear or stiffness_quadratic > 0")
+        return self
+
+
+class Friction(Spec):
+    law: Literal["threlfall", "elastic-plastic"] = "threlfall"
+    coefficient: float = 1.0
+    velocity_threshold: quantity("m/s", gt=0) = 1e-5
+    displacement_limit: quantity("m", gt=0) = 1e-4
+    zones: list[FrictionZone] = []
+
+    @field_validator("coefficient")
+    @classmethod
+    def _mu(cls, v):
+        if v < 0:
+            raise ValueError(f"must be >= 0, got {v}")
+        return v
+
+
+class Simulation(Spec):
+    duration: quantity("s", gt=0) = 1.0
+    method: Literal["semi-implicit", "rkf45"] = "semi-implicit"
+    step: Optional[quantity("s", gt=0)] = None
+    rtol: float = 1e-6
+    atol: float = 1e-9
+
+
+class Output(Spec):
+    interval: quantity("s", gt=0) = 1e-3
+    frames: int = 100
+    segments: list[int] = [0]
+    steady_window: Optional[tuple[Time, Time]] = None
+
+    @model_validator(mode="after")
+    def _window(self):
+        if self.steady_window is not None and not self.steady_window[1] > self.steady_window[0]:
+            raise ValueError("steady_window must be [start, end] with end > start")
+        if self.frames < 1:
+            raise ValueError("frames must be >= 1")
+        return self
+
+
+class Model(Spec):
+    """A belt drive: belt, pulleys in belt order, contact, friction, simulation and output."""
+
+    kind: Literal["belt-drive"]
+    schema_version: Literal[1] = 1
+    name: str = ""
+    belt: Belt
+    pulleys: list[Pulley]
+    contact: Contact
+    friction: Friction = Friction()
+    gravity: quantity("m/s^2") = 9.81
+    simulation: Simulation = Simulation()
+    output: Output = Output()
+
+    @model_validator(mode="after")
+    def _pulleys(self):
+        if len(self.pulleys) < 2:
+            raise ValueError("pulleys: a belt drive needs at least 2 pulleys")
+        names = [p.name for p in self.pulleys]
+        dup = {n for n in names if names.count(n) > 1}
+        if dup:
+            raise ValueError(f"pulleys: duplicate name(s) {sorted(dup)}")
+        if not any(p.side == "inside" for p in self.pulleys):
+            raise ValueError("pulleys: at least one pulley must be inside the belt loop")
+        for q in self.output.segments:
+            if not 0 <= q < self.belt.segments:
+                raise ValueError(f"output.segments: index {q} outside 0..{self.belt.segments - 1}")
+        if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
+            raise ValueError("output.steady_window ends after simulation.duration")
+        return self

@@ -1,0 +1,284 @@
+"""Time integration driver: builds the system, runs the compiled kernels sample by sample,
+keeps every sample computed (also when the solve fails) and assembles the Result."""
+from __future__ import annotations
+
+import math
+import time as _time
+
+import numpy as np
+import xarray as xr
+
+from ..errors import SolverError
+from ..model import dumps
+from ..results import Result, variable
+from . import _kernels as K
+from .system import BeltSystem, build
+
+
+class _Recorder:
+    """Preallocated sample arrays; trimmed to what was computed."""
+
+    def __init__(self, ns, nk, nspan, ntrack, nframes, n):
+        self.t = np.zeros(ns)
+        self.theta = np.zeros((ns, nk))
+        self.omega = np.zeros((ns, nk))
+        self.tq_ext = np.zeros((ns, nk))
+        self.tq_belt = np.zeros((ns, nk))
+        self.hubx = np.zeros((ns, nk))
+        self.huby = np.zeros((ns, nk))
+        self.pin = np.zeros((ns, nk))
+        self.span = np.zeros((ns, nspan))
+        self.track = np.zeros((ns, ntrack, 3))
+        self.diss = np.zeros((ns, 4))        # cumulative dissipated energy by mechanism (J)
+        self.work = np.zeros(ns)             # cumulative work in (J)
+        self.energy = np.zeros(ns)
+        self.frame_t = np.zeros(nframes)
+        self.fx = np.zeros((nframes, n))
+        self.fy = np.zeros((nframes, n))
+        self.fn = np.zeros((nframes, n))
+        self.ft = np.zeros((nframes, n))
+        self.ftension = np.zeros((nframes, n))
+        self.ns = 0
+        self.nf = 0
+
+
+def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsamples, steps_per_sample, h, frame_every):
+    init, seg, pul = sysm.init, sysm.seg, sysm.pul
+    n, nk = sysm.n, len(sysm.layout.names)
+    x, y, phi = init.x.copy(), init.y.copy(), init.phi.copy()
+    c, s = np.cos(phi), np.sin(phi)
+    vx, vy, w = np.zeros(n), np.zeros(n), np.zeros(n)
+    z = np.zeros(n)
+    th = np.zeros(nk)
+    om = np.array([K.table(pul["sp_x"], pul["sp_y"], pul["sp_off"][j], pul["sp_off"][j + 1], 0.0, False)
+                   if pul["pmode"][j] == 1 else 0.0 for j in range(nk)])
+    fx, fy, mz, jfk, jdx, jdy = (np.zeros(n) for _ in range(6))
+    seg_n, seg_t, seg_p = np.zeros(n), np.zeros(n), np.zeros(n)
+    nspan, ntrack = len(sysm.span_mid), len(sysm.track)
+    span_joint = np.zeros(nspan, dtype=np.int64)
+    # start each span tracker at the joint nearest its midpoint
+    hl = sysm.fp[K.F_HL]
+    jx = 0.5 * (x - hl * c + np.roll(x + hl * c, 1))
+    jy = 0.5 * (y - hl * s + np.roll(y + hl * s, 1))
+    for q in range(nspan):
+        span_joint[q] = int(np.argmin((jx - sysm.span_mid[q, 0]) ** 2 + (jy - sysm.span_mid[q, 1]) ** 2))
+    acc = dict(tq_ext=np.zeros(nk), tq_belt=np.zeros(nk), hubx=np.zeros(nk), huby=np.zeros(nk), pin=np.zeros(nk),
+               span=np.zeros(nspan), track=np.zeros((ntrack, 3)), diss=np.zeros(4))
+    args_e = (sysm.ip, sysm.fp)
+
+    def energy():
+        return K.energy(sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, om, seg["m"], seg["inertia"], seg["kax"], seg["kb"],
+                        seg["c1"], seg["c2"], pul["pcx"], pul["pcy"], pul["pr"], pul["pinertia"], pul["pmode"])
+
+    def capture_frame(t):
+        k = rec.nf
+        if k >= len(rec.frame_t):
+            return
+        rec.frame_t[k] = t
+        rec.fx[k], rec.fy[k], rec.fn[k], rec.ft[k] = x, y, seg_n, seg_t
+        rec.ftension[k] = jfk * np.hypot(jdx, jdy)
+        rec.nf += 1
+
+    # fill joint forces once so that frame 0 has element tensions
+    K.joint_forces(sysm.ip, sysm.fp, x, y, c, s, vx, vy, w, phi, seg["kax"], seg["bax"], seg["kb"], seg["bb"],
+                   fx, fy, mz, jfk, jdx, jdy)
+    E0 = energy()
+    t = 0.0
+    capture_frame(t)
+    interval = steps_per_sample * h
+    work = 0.0
+    diss_total = np.zeros(4)
+    last_report = -1.0
+    for k in range(nsamples):
+        for a in acc.values():
+            a[...] = 0.0
+        t = K.step_chunk(steps_per_sample, t, h, sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, th, om, z,
+                         seg["m"], seg["inertia"], seg["mu"], seg["kax"], seg["bax"], seg["kb"], seg["bb"],
+                         seg["c1"], seg["c2"], seg["bc"],
+                         pul["pcx"], pul["pcy"], pul["pr"], pul["pinv_i"], pul["pmode"],
+                         pul["tq_const"], pul["tq_visc"], pul["tt_off"], pul["tt_x"], pul["tt_y"],
+                         pul["ts_off"], pul["ts_x"], pul["ts_y"], pul["hm_off"], pul["hm_order"], pul["hm_amp"],
+                         pul["hm_phase"], pul["sp_off"], pul["sp_x"], pul["sp_y"],
+                         sysm.span_mid[:, 0].copy(), sysm.span_mid[:, 1].copy(), span_joint, sysm.track,
+                         fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, seg_p,
+                         acc["tq_ext"], acc["tq_belt"], acc["hubx"], acc["huby"], acc["pin"], acc["span"],
+                         acc["track"], acc["diss"])
+        bad = _blow_up(x, y, vx, vy, om, seg_p, sysm)
+        if bad:
+            return k, f"diverged at t = {t:.6g} s: {bad}"
+        work += float(np.sum(acc["pin"]))
+        diss_total += acc["diss"]
+        rec.t[k] = t
+        rec.theta[k], rec.omega[k] = th, om
+        rec.tq_ext[k], rec.tq_belt[k] = acc["tq_ext"] / interval, acc["tq_belt"] / interval
+        rec.hubx[k], rec.huby[k] = acc["hubx"] / interval, acc["huby"] / interval
+        rec.pin[k] = acc["pin"] / interval
+        rec.span[k] = acc["span"] / interval
+        rec.track[k] = acc["track"] / interval
+        rec.diss[k] = diss_total
+        rec.work[k] = work
+        rec.energy[k] = energy() - E0
+        rec.ns = k + 1
+        if (k + 1) % frame_every == 0:
+            capture_frame(t)
+        if progress is not None and (k + 1) / nsamples - last_report >= 0.01:
+            last_report = (k + 1) / nsamples
+            progress(last_report, f"t = {t:.3f} s")
+    return nsamples, ""
+
+
+def _blow_up(x, y, vx, vy, om, pen, sysm):
+    """Name the quantity that blew up, or return ''."""
+    v2 = vx * vx + vy * vy
+    i = int(np.argmax(v2))
+    if not np.isfinite(v2[i]) or not np.all(np.isfinite(x)) or not np.all(np.isfinite(y)):
+        return f"segment {i} state is not finite"
+    if v2[i] > 1e6:
+        return f"segment {i} speed {math.sqrt(v2[i]):.3g} m/s"
+    pr = sysm.pul["pr"]
+    j = int(np.argmax(np.abs(om) * pr))
+    if not np.isfinite(om[j]) or abs(om[j]) * pr[j] > 1e3:
+        return f"pulley {sysm.layout.names[j]} speed {om[j]:.3g} rad/s"
+    if np.max(pen) > 0.5 * np.min(pr):
+        i = int(np.argmax(pen))
+        return f"segment {i} penetration {pen[i] * 1e3:.3g} mm"
+    return ""
+
+
+def run(model, progress=None) -> Result:
+    sysm = build(model)
+    sim, out = model.simulation, model.output
+    nsamples = max(1, int(round(sim.duration / out.interval)))
+    nk, n = len(sysm.layout.names), sysm.n
+    frames = min(out.frames, nsamples)
+    frame_every = max(1, nsamples // frames)
+    rec = _Recorder(nsamples, nk, len(sysm.span_mid), len(sysm.track), nsamples // frame_every + 2, n)
+    wall0 = _time.perf_counter()
+    if sim.method == "semi-implicit":
+        steps_per_sample = max(1, int(math.ceil(out.interval / sysm.step)))
+        h = out.interval / steps_per_sample
+        done, failure = _integrate_semi_implicit(sysm, progress, rec, nsamples, steps_per_sample, h, frame_every)
+        nsteps = done * steps_per_sample
+    else:
+        from .rkf45 import integrate_rkf45
+
+        done, failure, nsteps, h = integrate_rkf45(sysm, progress, rec, nsamples, frame_every)
+    wall = _time.perf_counter() - wall0
+    result = _assemble(model, sysm, rec, wall, nsteps, h, failure)
+    if failure:
+        raise SolverError(failure + f" (results kept up to t = {rec.t[rec.ns - 1] if rec.ns else 0.0:.6g} s)", partial=result)
+    return result
+
+
+def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
+    ns, nf = rec.ns, rec.nf
+    names = list(sysm.layout.names)
+    spans = [sp.name for sp in sysm.layout.spans]
+    tr = sysm.track
+    hub = np.hypot(rec.hubx[:ns], rec.huby[:ns])
+    E, W, D = rec.energy[:ns], rec.work[:ns], rec.diss[:ns]
+    ds = xr.Dataset(
+        {
+            "angle": variable(rec.theta[:ns], ("time", "pulley"), "rad", "pulley angle (counter-clockwise positive)"),
+            "speed": variable(rec.omega[:ns], ("time", "pulley"), "rad/s", "pulley angular speed (counter-clockwise positive)"),
+            "torque_applied": variable(rec.tq_ext[:ns], ("time", "pulley"), "N m", "applied torque, interval mean"),
+            "torque_belt": variable(rec.tq_belt[:ns], ("time", "pulley"), "N m", "torque of the belt on the pulley, interval mean"),
+            "hub_force_x": variable(rec.hubx[:ns], ("time", "pulley"), "N", "belt force on the pulley, x, interval mean"),
+            "hub_force_y": variable(rec.huby[:ns], ("time", "pulley"), "N", "belt force on the pulley, y, interval mean"),
+            "hub_load": variable(hub, ("time", "pulley"), "N", "hub load magnitude"),
+            "power_in": variable(rec.pin[:ns], ("time", "pulley"), "W", "power into the belt system through the pulley"),
+            "span_tension": variable(rec.span[:ns], ("time", "span"), "N", "mid-span element force, interval mean"),
+            "element_force": variable(rec.track[:ns, :, 0], ("time", "tracked"), "N", "longitudinal element force after the segment (seed fig. 11)"),
+            "normal_force": variable(rec.track[:ns, :, 1], ("time", "tracked"), "N", "contact normal force on the segment (seed fig. 12)"),
+            "friction_force": variable(rec.track[:ns, :, 2], ("time", "tracked"), "N", "friction force on the segment, along the pulley's counter-clockwise tangent (seed fig. 13)"),
+            "energy_change": variable(E, ("time",), "J", "mechanical energy minus its initial value"),
+            "work_in": variable(W, ("time",), "J", "cumulative work done on the system by the pulleys"),
+            "dissipated": variable(D, ("time", "mechanism"), "J", "cumulative dissipated energy"),
+            "energy_residual": variable(W - D.sum(axis=1) - E, ("time",), "J", "work in - dissipated - energy change (integration error)"),
+            "belt_x": variable(rec.fx[:nf], ("frame", "segment"), "m", "segment centre x"),
+            "belt_y": variable(rec.fy[:nf], ("frame", "segment"), "m", "segment centre y"),
+            "belt_normal_force": variable(rec.fn[:nf], ("frame", "segment"), "N", "contact normal force per segment"),
+            "belt_friction_force": variable(rec.ft[:nf], ("frame", "segment"), "N", "friction force per segment"),
+            "belt_tension": variable(rec.ftension[:nf], ("frame", "joint"), "N", "element force per joint (joint i joins segment i-1 to i)"),
+            "pulley_x": variable([p.center[0] for p in model.pulleys], ("pulley",), "m", "pulley centre x"),
+            "pulley_y": variable([p.center[1] for p in model.pulleys], ("pulley",), "m", "pulley centre y"),
+            "pulley_radius": variable([p.radius for p in model.pulleys], ("pulley",), "m", "contact radius"),
+        },
+        coords={"time": rec.t[:ns], "pulley": names, "span": spans, "tracked": tr, "frame_time": ("frame", rec.frame_t[:nf]),
+                "mechanism": ["axial_damping", "bending_damping", "contact_damping", "friction"]},
+        attrs={"model_toml": dumps(model), "title": model.name or "belt drive"},
+    )
+    ds["time"].attrs["units"] = "s"
+    summary = _summary(model, sysm, ds, wall, nsteps, h, failure)
+    return Result("belt-drive", ds, summary, success=not failure, message=failure)
+
+
+def steady_window(model, t_end):
+    if model.output.steady_window is not None:
+        return tuple(model.output.steady_window)
+    return (0.75 * t_end, t_end)
+
+
+def _summary(model, sysm, ds, wall, nsteps, h, failure) -> dict:
+    t = ds["time"].values
+    t_end = float(t[-1]) if len(t) else 0.0
+    w0, w1 = steady_window(model, model.simulation.duration)
+    sel = (t > w0) & (t <= w1 + 1e-12)
+    if not np.any(sel):
+        sel = t >= 0.75 * t_end
+    mean = lambda v: ds[v].values[sel].mean(axis=0) if np.any(sel) else np.full(ds[v].shape[1:], np.nan)
+    names = list(sysm.layout.names)
+    speed, pin = mean("speed"), mean("power_in")
+    hx, hy, tq = mean("hub_force_x"), mean("hub_force_y"), mean("torque_applied")
+    radius = np.array([p.radius for p in model.pulleys])
+    d = int(np.nanargmax(pin)) if np.any(np.isfinite(pin)) else 0
+    vd = abs(speed[d] * radius[d])
+    pulleys = {}
+    for j, nm in enumerate(names):
+        pulleys[nm] = {
+            "speed_mean": float(speed[j]),
+            "slip": float(1 - abs(speed[j] * radius[j]) / vd) if vd > 0 else float("nan"),
+            "hub_load": float(math.hypot(hx[j], hy[j])),
+            "hub_force": [float(hx[j]), float(hy[j])],
+            "torque_mean": float(tq[j]),
+            "power_mean": float(pin[j]),
+        }
+    ten = mean("span_tension")
+    tsel = ds["span_tension"].values[sel] if np.any(sel) else np.zeros((0, len(ten)))
+    spans = {sp: {"tension_mean": float(ten[q]),
+                  "tension_min": float(tsel[:, q].min()) if len(tsel) else float("nan"),
+                  "tension_max": float(tsel[:, q].max()) if len(tsel) else float("nan")}
+             for q, sp in enumerate(ds["span"].values.tolist())}
+    p_in = float(np.sum(pin[pin > 0]))
+    p_out = float(-np.sum(pin[pin < 0]))
+    # mean dissipation rates over the window from the cumulative energies
+    D = ds["dissipated"].values
+    tw = t[sel]
+    if len(tw) >= 2:
+        idx = np.nonzero(sel)[0]
+        rates = (D[idx[-1]] - D[idx[0]]) / (tw[-1] - tw[0])
+        resid = ds["energy_residual"].values
+        resid_rate = (resid[idx[-1]] - resid[idx[0]]) / (tw[-1] - tw[0])
+    else:
+        rates, resid_rate = np.full(4, np.nan), float("nan")
+    mech = ds["mechanism"].values.tolist()
+    W = ds["work_in"].values
+    return {
+        "driver": names[d],
+        "steady_window": [float(w0), float(w1)],
+        "pulleys": pulleys,
+        "spans": spans,
+        "power": {
+            "input": p_in, "output": p_out,
+            "efficiency": p_out / p_in if p_in > 0 else float("nan"),
+            "losses": {m: float(r) for m, r in zip(mech, rates)},
+            "unaccounted": float(resid_rate),
+            "energy_residual_relative": float(abs(ds["energy_residual"].values[-1]) / max(abs(W[-1]), 1e-30)) if len(W) else float("nan"),
+        },
+        "belt": {"pretension": sysm.init.tension, "segment_length": sysm.init.seg_length,
+                 "segments": sysm.n, "path_length": sysm.layout.length},
+        "solver": {"method": model.simulation.method, "step": float(h), "steps": int(nsteps),
+                   "simulated_time": t_end, "wall_time": float(wall),
+                   "real_time_factor": float(t_end / wall) if wall > 0 else float("nan"),
+                   "stability_limit": float(sysm.step_limit), "status": "failed" if failure else "success"},
+    }
