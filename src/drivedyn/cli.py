@@ -48,8 +48,10 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
     except ModelError as exc:
         _fail(str(exc))
     result, failure = None, None
-    with _progress_bar(console) as bar:
-        task = bar.add_task(f"{m.kind}", total=1.0, info="")
+    import contextlib
+
+    with (contextlib.nullcontext() if quiet else _progress_bar(console)) as bar:
+        task = None if quiet else bar.add_task(f"{m.kind}", total=1.0, info="")
 
         def progress(frac, info=""):
             bar.update(task, completed=min(max(frac, 0.0), 1.0), info=info)

@@ -50,7 +50,7 @@ class Result:
         ds = self.ds.copy()
         ds.attrs.update(kind=self.kind, status="success" if self.success else "failed",
                         message=self.message, drivedyn_version=__version__)
-        ds.to_netcdf(outdir / "results.nc", engine="h5netcdf", invalid_netcdf=True)
+        ds.to_netcdf(outdir / "results.nc", engine="h5netcdf")
         (outdir / "summary.json").write_text(json.dumps(self.summary_document(), indent=2, default=_jsonable))
         return outdir
 
