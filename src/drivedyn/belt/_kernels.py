@@ -375,3 +375,186 @@ def energy(ip, fp, x, y, phi, c, s, vx, vy, w, om, m, inertia, kax, kb, c1, c2, 
         if pmode[j] == 0:
             E += 0.5 * pinertia[j] * om[j] * om[j]
     return E
+
+
+@njit(cache=True)
+def rhs(t, yv, dy, ip, fp, z, m, inertia, mu, kax, bax, kb, bb, c1, c2, bc, pcx, pcy, pr, pinv_i, pmode,
+        tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase,
+        sp_off, sp_x, sp_y, fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, out_p, out_tq):
+    """Explicit right-hand side of the seed's equations of motion (eqs. 21-22) for RKF45.
+
+    State y = [x(n), y(n), phi(n), th(nk), vx(n), vy(n), w(n), om(nk)]. Contact damping and
+    friction are evaluated at the current velocities (no implicit treatment). Fills seg_n, seg_t,
+    out_tq[0:nk] applied torque, out_tq[nk:2nk] belt torque, out_tq[2nk:4nk] hub force x/y,
+    out_p[0:4] dissipation rates, out_p[4:4+nk] power in per pulley.
+    """
+    n = ip[I_N]
+    nk = ip[I_NK]
+    pmax = fp[F_PMAX]
+    dv = fp[F_DV]
+    g = fp[F_G]
+    x = yv[0:n]
+    y = yv[n:2 * n]
+    phi = yv[2 * n:3 * n]
+    th = yv[3 * n:3 * n + nk]
+    o = 3 * n + nk
+    vx = yv[o:o + n]
+    vy = yv[o + n:o + 2 * n]
+    w = yv[o + 2 * n:o + 3 * n]
+    om = yv[o + 3 * n:o + 3 * n + nk].copy()
+    for j in range(nk):
+        if pmode[j] == 1:
+            om[j] = table(sp_x, sp_y, sp_off[j], sp_off[j + 1], t, False)
+    c = np.cos(phi)
+    s = np.sin(phi)
+    pax, pb = joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy)
+    pcd = 0.0
+    pfr = 0.0
+    for j in range(4 * nk):
+        out_tq[j] = 0.0
+    for i in range(n):
+        ax = fx[i]
+        ay = fy[i] - m[i] * g
+        Ntot = 0.0
+        Ttot = 0.0
+        for j in range(nk):
+            rx = x[i] - pcx[j]
+            ry = y[i] - pcy[j]
+            d2 = rx * rx + ry * ry
+            if d2 >= pr[j] * pr[j]:
+                continue
+            dist = math.sqrt(d2)
+            nx = rx / dist
+            ny = ry / dist
+            p = pr[j] - dist
+            db = smoothstep(p / pmax) * bc[i]
+            vn = vx[i] * nx + vy[i] * ny
+            N = c1[i] * p * p + c2[i] * p - db * vn
+            if N <= 0.0:
+                continue
+            pcd += db * vn * vn
+            tx = -ny
+            ty = nx
+            sl = om[j] * pr[j] - (vx[i] * tx + vy[i] * ty)
+            T = mu[i] * N * threlfall(sl, dv)
+            pfr += T * sl
+            ax += N * nx + T * tx
+            ay += N * ny + T * ty
+            Ntot += N
+            Ttot += T
+            out_tq[nk + j] -= pr[j] * T
+            out_tq[2 * nk + j] -= N * nx + T * tx
+            out_tq[3 * nk + j] -= N * ny + T * ty
+        seg_n[i] = Ntot
+        seg_t[i] = Ttot
+        dy[i] = vx[i]
+        dy[n + i] = vy[i]
+        dy[2 * n + i] = w[i]
+        dy[o + i] = ax / m[i]
+        dy[o + n + i] = ay / m[i]
+        dy[o + 2 * n + i] = mz[i] / inertia[i]
+    out_p[0] = pax
+    out_p[1] = pb
+    out_p[2] = pcd
+    out_p[3] = pfr
+    for j in range(nk):
+        dy[3 * n + j] = om[j]
+        if pmode[j] == 1:
+            dy[o + 3 * n + j] = 0.0
+            out_tq[j] = 0.0
+            out_p[4 + j] = -out_tq[nk + j] * om[j]
+        else:
+            M = external_torque(j, t, th[j], om[j], tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y,
+                                hm_off, hm_order, hm_amp, hm_phase)
+            out_tq[j] = M
+            out_p[4 + j] = M * om[j]
+            dy[o + 3 * n + j] = (M + out_tq[nk + j]) * pinv_i[j]
+
+
+# Runge-Kutta-Fehlberg 4(5) tableau (Fehlberg 1969), the seed's integrator
+_C = np.array([0.0, 0.25, 3 / 8, 12 / 13, 1.0, 0.5])
+_A = np.array([[0, 0, 0, 0, 0],
+               [1 / 4, 0, 0, 0, 0],
+               [3 / 32, 9 / 32, 0, 0, 0],
+               [1932 / 2197, -7200 / 2197, 7296 / 2197, 0, 0],
+               [439 / 216, -8, 3680 / 513, -845 / 4104, 0],
+               [-8 / 27, 2, -3544 / 2565, 1859 / 4104, -11 / 40]])
+_B4 = np.array([25 / 216, 0, 1408 / 2565, 2197 / 4104, -1 / 5, 0])
+_B5 = np.array([16 / 135, 0, 6656 / 12825, 28561 / 56430, -9 / 50, 2 / 55])
+
+
+@njit(cache=True)
+def rkf45_chunk(t, t_end, h, yv, rtol, atol, max_steps, ip, fp, z, m, inertia, mu, kax, bax, kb, bb, c1, c2, bc,
+                pcx, pcy, pr, pinv_i, pmode, tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y,
+                hm_off, hm_order, hm_amp, hm_phase, sp_off, sp_x, sp_y, fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t,
+                acc_p, acc_tq):
+    """Adaptive RKF45 from t to t_end (advancing with the 4th-order solution, error from the
+    embedded 5th). Accumulates h-weighted stage-1 outputs in acc_p / acc_tq.
+    Returns (t, h, accepted steps, rejected steps); t < t_end means max_steps was hit."""
+    N = yv.shape[0]
+    K = np.zeros((6, N))
+    yt = np.zeros(N)
+    out_p = np.zeros(acc_p.shape[0])
+    out_tq = np.zeros(acc_tq.shape[0])
+    acc = 0
+    rej = 0
+    while t < t_end and acc + rej < max_steps:
+        if t + h > t_end:
+            h = t_end - t
+        rhs(t, yv, K[0], ip, fp, z, m, inertia, mu, kax, bax, kb, bb, c1, c2, bc, pcx, pcy, pr, pinv_i, pmode,
+            tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase,
+            sp_off, sp_x, sp_y, fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, out_p, out_tq)
+        for st in range(1, 6):
+            for q in range(N):
+                v = yv[q]
+                for r in range(st):
+                    v += h * _A[st, r] * K[r, q]
+                yt[q] = v
+            _stage(st, t, h, yt, K, ip, fp, z, m, inertia, mu, kax, bax, kb, bb, c1, c2, bc, pcx, pcy, pr, pinv_i,
+                   pmode, tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp,
+                   hm_phase, sp_off, sp_x, sp_y, fx, fy, mz, jfk, jdx, jdy, out_p.shape[0], out_tq.shape[0])
+        err = 0.0
+        for q in range(N):
+            y4 = yv[q]
+            e5 = 0.0
+            for r in range(6):
+                y4 += h * _B4[r] * K[r, q]
+                e5 += h * (_B5[r] - _B4[r]) * K[r, q]
+            yt[q] = y4
+            sc = atol + rtol * abs(yv[q])
+            e = abs(e5) / sc
+            if e > err:
+                err = e
+        if err <= 1.0 or not np.isfinite(err):
+            if not np.isfinite(err):
+                return t, h, acc, rej
+            for q in range(acc_p.shape[0]):
+                acc_p[q] += h * out_p[q]
+            for q in range(acc_tq.shape[0]):
+                acc_tq[q] += h * out_tq[q]
+            for q in range(N):
+                yv[q] = yt[q]
+            t += h
+            acc += 1
+            fac = 5.0 if err == 0.0 else min(5.0, 0.9 * err ** -0.2)
+        else:
+            rej += 1
+            fac = max(0.1, 0.9 * err ** -0.25)
+        h *= fac
+        if h < 1e-15:
+            return t, h, acc, rej
+    return t, h, acc, rej
+
+
+@njit(cache=True)
+def _stage(st, t, h, yt, K, ip, fp, z, m, inertia, mu, kax, bax, kb, bb, c1, c2, bc, pcx, pcy, pr, pinv_i, pmode,
+           tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase,
+           sp_off, sp_x, sp_y, fx, fy, mz, jfk, jdx, jdy, np_, ntq):
+    """One RKF stage evaluation with scratch outputs (stage-1 outputs are the recorded ones)."""
+    n = ip[I_N]
+    sn = np.zeros(n)
+    stt = np.zeros(n)
+    rhs(t + _C[st] * h, yt, K[st], ip, fp, z, m, inertia, mu, kax, bax, kb, bb, c1, c2, bc, pcx, pcy, pr, pinv_i,
+        pmode, tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase,
+        sp_off, sp_x, sp_y, fx, fy, mz, jfk, jdx, jdy, sn, stt, np.zeros(np_), np.zeros(ntq))
+    return 0

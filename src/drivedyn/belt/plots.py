@@ -1,0 +1,155 @@
+"""Standard figures of a belt-drive run (seed figs. 10-17) and an animation of the belt.
+
+Functions take an ``ax`` (or create a Figure) and never touch pyplot or the backend.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from matplotlib.figure import Figure
+
+
+def _fig(nrows=1, height=3.2):
+    fig = Figure(figsize=(8, height * nrows), layout="constrained")
+    axes = fig.subplots(nrows, 1, sharex=True, squeeze=False)[:, 0]
+    return fig, axes
+
+
+def plot_speeds(ds, ax):
+    t = ds["time"].values
+    for nm in ds["pulley"].values:
+        ax.plot(t, ds["speed"].sel(pulley=nm), label=str(nm))
+    ax.set_ylabel("speed (rad/s)")
+    ax.set_title("pulley speeds (counter-clockwise positive)")
+    ax.legend(loc="best", fontsize=8)
+    ax.grid(alpha=0.3)
+
+
+def plot_slip(ds, ax, driver):
+    t = ds["time"].values
+    r = ds["pulley_radius"]
+    vd = np.abs(ds["speed"].sel(pulley=driver) * r.sel(pulley=driver)).values
+    ok = vd > 0.05 * max(np.max(vd), 1e-12)
+    for nm in ds["pulley"].values:
+        if nm == driver:
+            continue
+        v = np.abs(ds["speed"].sel(pulley=nm) * r.sel(pulley=nm)).values
+        s = np.where(ok, 1 - v / np.where(ok, vd, 1), np.nan)
+        ax.plot(t, 100 * s, label=f"{nm} vs {driver}")
+    ax.set_ylabel("slip (%)")
+    ax.set_title("slip 1 - |w r| / |w_d r_d|")
+    ax.legend(loc="best", fontsize=8)
+    ax.grid(alpha=0.3)
+
+
+def plot_lines(ds, var, dim, ax, ylabel, title):
+    t = ds["time"].values
+    for key in ds[dim].values:
+        ax.plot(t, ds[var].sel({dim: key}), label=str(key))
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
+    ax.legend(loc="best", fontsize=8)
+    ax.grid(alpha=0.3)
+
+
+def plot_energy(ds, ax):
+    t = ds["time"].values
+    ax.plot(t, ds["work_in"], label="work in", color="k")
+    D = ds["dissipated"]
+    for m in ds["mechanism"].values:
+        ax.plot(t, D.sel(mechanism=m), label=f"dissipated: {m}")
+    ax.plot(t, ds["energy_change"], label="energy change (kinetic + potential)")
+    ax.plot(t, ds["energy_residual"], label="residual (integration error)", ls="--")
+    ax.set_ylabel("energy (J)")
+    ax.set_xlabel("time (s)")
+    ax.set_title("energy balance")
+    ax.legend(loc="best", fontsize=8)
+    ax.grid(alpha=0.3)
+
+
+def draw_drive(ds, frame, ax, vmax=None):
+    """Pulleys and the belt at one frame, segments coloured by the element force."""
+    import matplotlib.patches as mpatches
+
+    for j in range(ds.sizes["pulley"]):
+        ax.add_patch(mpatches.Circle((float(ds["pulley_x"][j]), float(ds["pulley_y"][j])), float(ds["pulley_radius"][j]),
+                                     fill=False, lw=1.2, color="0.4"))
+        ax.annotate(str(ds["pulley"].values[j]), (float(ds["pulley_x"][j]), float(ds["pulley_y"][j])), ha="center",
+                    va="center", fontsize=7, color="0.3")
+    x = np.append(ds["belt_x"][frame].values, ds["belt_x"][frame].values[0])
+    y = np.append(ds["belt_y"][frame].values, ds["belt_y"][frame].values[0])
+    ten = ds["belt_tension"][frame].values
+    vmax = vmax or max(float(ds["belt_tension"].max()), 1.0)
+    sc = ax.scatter(x[:-1], y[:-1], c=ten, s=6, cmap="viridis", vmin=0, vmax=vmax)
+    ax.plot(x, y, lw=0.5, color="0.6")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_title(f"belt at t = {float(ds['frame_time'][frame]):.3f} s (colour: element force, N)")
+    return sc
+
+
+def plot_all(result, outdir) -> list[Path]:
+    ds, outdir = result.ds, Path(outdir)
+    driver = result.summary.get("driver", str(ds["pulley"].values[0]))
+    files = []
+
+    def save(fig, name):
+        p = outdir / name
+        fig.savefig(p, dpi=110)
+        files.append(p)
+
+    if ds.sizes.get("time", 0) == 0:
+        return files
+    fig, ax = _fig(2)
+    plot_speeds(ds, ax[0])
+    plot_slip(ds, ax[1], driver)
+    ax[1].set_xlabel("time (s)")
+    save(fig, "speeds.png")
+
+    fig, ax = _fig(2)
+    plot_lines(ds, "span_tension", "span", ax[0], "tension (N)", "mid-span tensions")
+    plot_lines(ds, "hub_load", "pulley", ax[1], "hub load (N)", "hub loads")
+    ax[1].set_xlabel("time (s)")
+    save(fig, "tensions.png")
+
+    fig, ax = _fig(3, 2.6)
+    plot_lines(ds, "element_force", "tracked", ax[0], "force (N)", "longitudinal element force after segment (seed fig. 11)")
+    plot_lines(ds, "normal_force", "tracked", ax[1], "force (N)", "contact normal force on segment (seed fig. 12)")
+    plot_lines(ds, "friction_force", "tracked", ax[2], "force (N)", "friction force on segment (seed fig. 13)")
+    ax[2].set_xlabel("time (s)")
+    save(fig, "segment_forces.png")
+
+    fig, ax = _fig(1, 4)
+    plot_energy(ds, ax[0])
+    save(fig, "energy.png")
+
+    if ds.sizes.get("frame", 0):
+        fig = Figure(figsize=(8, 5), layout="constrained")
+        a = fig.add_subplot()
+        sc = draw_drive(ds, ds.sizes["frame"] - 1, a)
+        fig.colorbar(sc, ax=a, label="element force (N)")
+        save(fig, "belt.png")
+        files.append(animate(ds, outdir / "belt.gif"))
+    return files
+
+
+def animate(ds, path, max_frames=60) -> Path:
+    """GIF of the belt moving, segments coloured by the element force."""
+    from matplotlib.animation import FuncAnimation, PillowWriter
+
+    nf = ds.sizes["frame"]
+    idx = np.unique(np.linspace(0, nf - 1, min(nf, max_frames)).astype(int))
+    fig = Figure(figsize=(6, 4), layout="constrained")
+    ax = fig.add_subplot()
+    vmax = max(float(ds["belt_tension"].max()), 1.0)
+
+    def draw(k):
+        ax.clear()
+        draw_drive(ds, idx[k], ax, vmax=vmax)
+        return []
+
+    anim = FuncAnimation(fig, draw, frames=len(idx), blit=False)
+    anim.save(str(path), writer=PillowWriter(fps=10), dpi=70)
+    return Path(path)
