@@ -135,18 +135,27 @@ def examples(name: Optional[str] = typer.Argument(None, help="Example to copy ou
 
 @app.command()
 def study(study_file: Path = typer.Argument(..., help="Study file (TOML)."),
-          out: Optional[Path] = typer.Option(None, "-o", "--out", help="Output folder (default: from the study file)."),
-          scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Address of a running Dask scheduler."),
-          workers: Optional[int] = typer.Option(None, "--workers", help="Local workers (default: one per core).")):
-    """Run a parameter study on Dask (local cluster by default)."""
+          out: Optional[Path] = typer.Option(None, "-o", "--out", help="Output folder (default: 'out' of the study file, else its name)."),
+          scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Address of a running Dask scheduler (tcp://host:8786)."),
+          workers: Optional[int] = typer.Option(None, "--workers", help="Local workers (default: one per core)."),
+          retry_failed: bool = typer.Option(False, "--retry-failed", help="Also re-run cases cached as failed."),
+          plots: bool = typer.Option(True, help="Draw the study plots."),
+          dry_run: bool = typer.Option(False, "--dry-run", help="List the cases without running them."),
+          quiet: bool = typer.Option(False, "-q", "--quiet", help="No progress bar.")):
+    """Run a parameter study on Dask (local cluster by default); resumes from its cache."""
     try:
         from . import study as study_mod
-    except ImportError:
-        _fail("parameter studies are not available in this build")
+    except ImportError as exc:
+        _fail(f"parameter studies are not available in this build ({exc})")
     try:
-        study_mod.main(study_file, out=out, scheduler=scheduler, workers=workers)
+        code = study_mod.main(study_file, out=out, scheduler=scheduler, workers=workers, retry_failed=retry_failed,
+                              plots=plots, quiet=quiet, dry_run=dry_run)
     except ModelError as exc:
         _fail(str(exc))
+    except KeyboardInterrupt:
+        _fail("interrupted; finished cases are kept, run the same command again to finish", code=130)
+    if code:
+        raise typer.Exit(code)
 
 
 def main(argv=None):

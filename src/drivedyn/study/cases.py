@@ -1,0 +1,218 @@
+"""Cases: resolved models, their cache, and the task a Dask worker runs for one case.
+
+Each case is the base model with the case's overrides applied, validated, and written back to
+TOML. The SHA-256 of that text is the case's key: two cases that resolve to the same model share
+one run, and a cached result is reused exactly when the model it came from is unchanged.
+
+The cache is a folder of small files per key::
+
+    <key>.json   the record: status, message, flat summary, wall time, worker
+    <key>.nc     the requested whole variables (``outputs.series``), if any
+    <key>.log    a journal, one line per event (start, end, cached) with host:pid
+
+``<key>.json`` is written last and atomically (temporary file + ``os.replace``), so its presence
+means the case is complete. That makes the task idempotent: Dask re-runs the cases of a worker
+that died, and a re-run either finds the finished record or computes it again; a half-written
+file is never read. Workers write the cache themselves when they can see the folder (local
+cluster, shared file system: the ``.study-id`` token proves it is the same folder); otherwise they
+return the record and the client writes it.
+"""
+from __future__ import annotations
+
+import datetime as _dt
+import hashlib
+import json
+import os
+import socket
+import time
+import uuid
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .. import __version__
+from ..errors import ModelError, SolverError
+from ..model import from_dict, set_path, to_dict
+
+TOKEN = ".study-id"
+#: statuses a case can end with
+STATUSES = ("success", "failed", "invalid", "error", "lost", "missing")
+
+
+@dataclass
+class Case:
+    """One case of a study.
+
+    Attributes
+    ----------
+    index : int
+        Position in the design (C order for grids).
+    values : dict
+        Parameter label -> value.
+    overrides : dict
+        Model path -> value given to :func:`drivedyn.model.set_path`.
+    toml : str or None
+        The resolved model, or None when the overrides do not validate.
+    key : str
+        Cache key: hash of ``toml`` (or of the overrides when invalid).
+    message : str
+        The validation error of an invalid case.
+    """
+
+    index: int
+    values: dict
+    overrides: dict
+    toml: str | None
+    key: str
+    message: str = ""
+    record: dict = field(default_factory=dict)
+
+
+def model_key(toml: str) -> str:
+    """Cache key of a resolved model text (first 20 hex digits of its SHA-256)."""
+    return hashlib.sha256(toml.encode("utf-8")).hexdigest()[:20]
+
+
+def resolve(study, design, overrides_of) -> list[Case]:
+    """Apply each case's overrides to the base model; invalid combinations are kept, not raised."""
+    from ..model import dumps
+
+    base = to_dict(study.base)
+    out = []
+    for i, values in enumerate(design.cases):
+        ov = overrides_of(study, values)
+        data = json.loads(json.dumps(base))  # deep copy of plain data
+        try:
+            for path, v in ov.items():
+                set_path(data, path, v)
+            model = from_dict(data, source="case")
+        except ModelError as exc:
+            msg = str(exc).removeprefix("case: ")
+            key = "invalid-" + hashlib.sha256(json.dumps(ov, sort_keys=True, default=str).encode()).hexdigest()[:12]
+            out.append(Case(i, values, ov, None, key, msg))
+            continue
+        toml = dumps(model)
+        out.append(Case(i, values, ov, toml, model_key(toml)))
+    return out
+
+
+# ---------------------------------------------------------------- the cache, on either side
+
+def _atomic_write(path: Path, data: bytes) -> None:
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
+    with open(tmp, "wb") as f:
+        f.write(data)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, path)
+
+
+def journal(cache: Path, key: str, event: str) -> None:
+    """Append one line to the case's journal (O_APPEND: lines from several processes stay whole)."""
+    line = f"{_dt.datetime.now().isoformat(timespec='milliseconds')} {event} {socket.gethostname()}:{os.getpid()}\n"
+    fd = os.open(cache / f"{key}.log", os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+    try:
+        os.write(fd, line.encode())
+    finally:
+        os.close(fd)
+
+
+def read_record(cache: Path, key: str, series=()) -> dict | None:
+    """The finished record of ``key``, or None if absent, unreadable, or lacking requested series."""
+    try:
+        rec = json.loads((cache / f"{key}.json").read_text())
+    except (OSError, ValueError):
+        return None
+    if set(series) - set(rec.get("series", [])):
+        return None  # asked for more whole variables than were kept: run again
+    if rec.get("series_file") and not (cache / rec["series_file"]).exists():
+        return None
+    return rec
+
+
+def write_record(cache: Path, key: str, record: dict, series_ds=None) -> None:
+    """Write a finished case: the series file first, then the record (its presence = done)."""
+    record = dict(record)
+    record.pop("series_data", None)
+    if series_ds is not None and len(series_ds.data_vars):
+        tmp = cache / f".{key}.{os.getpid()}.{uuid.uuid4().hex[:8]}.nc.tmp"
+        series_ds.to_netcdf(tmp, engine="h5netcdf", invalid_netcdf=True)
+        os.replace(tmp, cache / f"{key}.nc")
+        record["series_file"] = f"{key}.nc"
+    _atomic_write(cache / f"{key}.json", json.dumps(record, indent=1).encode())
+
+
+def cache_visible(cache_dir: str, token: str) -> Path | None:
+    """The cache folder if this process sees the study's own folder there, else None."""
+    try:
+        path = Path(cache_dir)
+        return path if (path / TOKEN).read_text().strip() == token else None
+    except OSError:
+        return None
+
+
+# ---------------------------------------------------------------- the task
+
+def _one_line(exc: BaseException) -> str:
+    text = str(exc).strip().splitlines()
+    return text[0] if text else type(exc).__name__
+
+
+def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str]) -> dict:
+    """Run one case on a worker and return its record (also written to the cache when visible).
+
+    Every failure of the case itself is caught and recorded, so the task only fails when the
+    worker is lost; Dask then runs it again elsewhere.
+    """
+    from ..api import run
+    from ..model import loads
+    from ..results import _clean
+
+    cache = cache_visible(cache_dir, token)
+    if cache is not None:
+        done = read_record(cache, key, series)
+        if done is not None:  # finished by an earlier attempt whose worker died before reporting
+            journal(cache, key, "cached")
+            return done
+        journal(cache, key, "start")
+    t0 = time.perf_counter()
+    status, message, summary, ds = "success", "", {}, None
+    try:
+        result = run(loads(toml, source=f"case {key}"))
+        summary, ds = result.flat_summary(), result.ds
+        if not result.success:
+            status, message = "failed", result.message
+    except SolverError as exc:
+        status, message = "failed", _one_line(exc)
+        if exc.partial is not None:
+            summary, ds = exc.partial.flat_summary(), exc.partial.ds
+    except ModelError as exc:
+        status, message = "invalid", _one_line(exc)
+    except Exception as exc:  # a bug in an analysis must not stop the other cases
+        status, message = "error", f"{type(exc).__name__}: {_one_line(exc)}"
+    record = {
+        "key": key, "status": status, "message": message, "summary": _clean(summary),
+        "wall_time": time.perf_counter() - t0, "worker": f"{socket.gethostname()}:{os.getpid()}",
+        "finished": _dt.datetime.now().isoformat(timespec="seconds"), "drivedyn_version": __version__,
+        "series": sorted(series),
+    }
+    sub = None
+    if ds is not None and series:
+        keep = [v for v in series if v in ds.variables and v not in ds.dims]
+        sub = ds[keep].copy()
+        sub.attrs = {}
+    if cache is not None:
+        write_record(cache, key, record, sub)
+        journal(cache, key, f"end {status}")
+        return read_record(cache, key, series) or record
+    record["series_data"] = sub  # the client writes it
+    return record
+
+
+def warm_worker(kind: str) -> str:
+    """Import the analysis on a worker and run its optional ``warmup()`` (numba compilation)."""
+    from ..model import analysis
+
+    pkg = analysis(kind)
+    if callable(getattr(pkg, "warmup", None)):
+        pkg.warmup()
+    return f"{socket.gethostname()}:{os.getpid()}"

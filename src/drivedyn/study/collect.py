@@ -1,0 +1,176 @@
+"""Assembling one xarray Dataset from the case records.
+
+Grid studies get one dimension per parameter; sampled designs a ``case`` dimension with the
+parameters as coordinates along it. Each collected summary key becomes a variable named by its
+dotted key (``pulleys.driven.slip``), NaN where a case has no value; lists of fixed length get an
+extra dimension ``<key>.i``. Per case: ``status``, ``message``, ``case_key`` (the cache key) and
+``wall_time``. ``attrs`` hold the study text and the base model text.
+"""
+from __future__ import annotations
+
+import datetime as _dt
+import fnmatch
+import os
+import uuid
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from .. import __version__
+
+
+def _selected(keys, patterns):
+    out = []
+    for k in keys:
+        if any(fnmatch.fnmatchcase(k, p) for p in patterns) and k not in out:
+            out.append(k)
+    return out
+
+
+def _kind_of(values):
+    """'float', 'str', ('list', n) or None for the non-None values of one summary key."""
+    vals = [v for v in values if v is not None]
+    if not vals:
+        return "float"
+    if all(isinstance(v, (bool, int, float)) for v in vals):
+        return "float"
+    if all(isinstance(v, str) for v in vals):
+        return "str"
+    if all(isinstance(v, list) for v in vals):
+        lens = {len(v) for v in vals}
+        if len(lens) == 1 and all(all(isinstance(x, (int, float)) or x is None for x in v) for v in vals):
+            return ("list", lens.pop())
+    return None
+
+
+def _safe(name: str) -> str:
+    return name.replace("/", "_")  # HDF5 reads "/" as a group separator
+
+
+def assemble(study, design, cases, records, cache) -> xr.Dataset:
+    """The study Dataset from ``records`` (key -> record) in design order."""
+    from ..model import dumps
+
+    n = len(cases)
+    recs = [records.get(c.key) or {"status": "missing", "message": "not run (interrupted?)", "summary": {}}
+            for c in cases]
+    status = np.array([r["status"] for r in recs], dtype=object)
+    keys_seen = []
+    for r in recs:
+        for k in r.get("summary", {}):
+            if k not in keys_seen:
+                keys_seen.append(k)
+    keys = _selected(keys_seen, study.spec.outputs.summary)
+
+    data_vars, summary_keys = {}, []
+    labels = set(design.labels)
+    for k in keys:
+        vals = [r.get("summary", {}).get(k) for r in recs]
+        kind = _kind_of(vals)
+        if kind is None:
+            continue
+        name = _safe(f"summary.{k}" if k in labels or k in ("case", "status", "message") else k)
+        if kind == "float":
+            arr = np.array([np.nan if v is None else float(v) for v in vals])
+            data_vars[name] = (("case",), arr, {"long_name": k})
+        elif kind == "str":
+            arr = np.array(["" if v is None else v for v in vals], dtype=object)
+            data_vars[name] = (("case",), arr, {"long_name": k})
+        else:
+            m = kind[1]
+            arr = np.array([[np.nan] * m if v is None else [np.nan if x is None else float(x) for x in v] for v in vals])
+            data_vars[name] = (("case", f"{k}.i"), arr, {"long_name": k})
+        summary_keys.append(name)
+    data_vars["status"] = (("case",), status, {"long_name": "case status: " + ", ".join(
+        ("success", "failed", "invalid", "error", "lost", "missing"))})
+    data_vars["message"] = (("case",), np.array([r.get("message", "") for r in recs], dtype=object),
+                            {"long_name": "why the case failed ('' on success)"})
+    data_vars["case_key"] = (("case",), np.array([c.key for c in cases], dtype=object),
+                             {"long_name": "cache key: SHA-256 of the resolved model TOML (first 20 hex digits)"})
+    data_vars["wall_time"] = (("case",), np.array([float(r.get("wall_time", np.nan)) for r in recs]),
+                              {"units": "s", "long_name": "wall time of the case's run"})
+    ds = xr.Dataset(data_vars)
+    _add_series(ds, study, cases, recs, cache)
+
+    for p in study.spec.parameters:
+        vals = [c.values[p.label] for c in cases]
+        ds.coords[p.label] = ("case", np.array(vals, dtype=float if all(isinstance(v, float) for v in vals) else object))
+    if design.grid:
+        ds = _to_grid(ds, design)
+    else:
+        ds = ds.assign_coords(case=np.arange(n))
+    for p in study.spec.parameters:
+        ds[p.label].attrs.update(units=study.units.get(p.label, ""), long_name=", ".join(p.paths),
+                                 paths=", ".join(p.paths))
+    counts = {s: int((status == s).sum()) for s in ("success", "failed", "invalid", "error", "lost", "missing")}
+    sp = study.spec
+    ds.attrs.update(
+        title=study.name, kind="study", base_kind=study.base.kind,
+        study_toml=study.text, base_model_toml=dumps(study.base),
+        base_model_path=str(study.base_path), sampler=sp.sampler.method,
+        samples=len(cases), seed=sp.sampler.seed, parameters=", ".join(design.labels),
+        summary_keys="\n".join(summary_keys), series=", ".join(sp.outputs.series),
+        drivedyn_version=__version__, created=_dt.datetime.now().isoformat(timespec="seconds"),
+        **{f"cases_{s}": v for s, v in counts.items()},
+    )
+    return ds
+
+
+def _add_series(ds, study, cases, recs, cache):
+    """Stack the requested whole variables of every case along ``case`` (outer join, NaN-filled)."""
+    names = study.spec.outputs.series
+    if not names:
+        return
+    parts, idx = [], []
+    opened = {}
+    for i, (c, r) in enumerate(zip(cases, recs)):
+        f = r.get("series_file")
+        if not f:
+            continue
+        if f not in opened:
+            path = Path(cache) / f
+            opened[f] = xr.load_dataset(path, engine="h5netcdf") if path.exists() else None
+        if opened[f] is not None:
+            parts.append(opened[f])
+            idx.append(i)
+    if not parts:
+        return
+    stacked = xr.concat(parts, dim="case", join="outer", data_vars="all", coords="minimal", compat="override",
+                        combine_attrs="drop_conflicts", fill_value=np.nan)
+    stacked = stacked.assign_coords(case=idx).reindex(case=np.arange(len(cases)))
+    for v in stacked.data_vars:
+        name = v if v not in ds.variables else f"series.{v}"
+        ds[_safe(name)] = stacked[v]
+    for c in stacked.coords:
+        if c != "case" and c not in ds.coords:
+            ds.coords[c] = stacked[c]
+
+
+def _to_grid(ds: xr.Dataset, design) -> xr.Dataset:
+    """Reshape the ``case`` dimension into one dimension per parameter (C order)."""
+    shape = design.shape
+    out = xr.Dataset(attrs=ds.attrs)
+    for label in design.labels:
+        vals = design.axes[label]
+        out.coords[label] = (label, np.array(vals, dtype=float if all(isinstance(v, float) for v in vals) else object))
+    for name, var in ds.variables.items():
+        if name in design.labels or name == "case":
+            continue
+        if "case" not in var.dims:
+            out.coords[name] = var
+            continue
+        assert var.dims[0] == "case"
+        data = np.asarray(var.values).reshape(shape + var.shape[1:])
+        target = out.coords if name in ds.coords else out
+        target[name] = (tuple(design.labels) + var.dims[1:], data, var.attrs)
+    return out
+
+
+def write_dataset(ds: xr.Dataset, path) -> Path:
+    """Write the study netCDF atomically (so a reader never sees half a file)."""
+    path = Path(path)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
+    ds.to_netcdf(tmp, engine="h5netcdf", invalid_netcdf=True)
+    os.replace(tmp, path)
+    return path

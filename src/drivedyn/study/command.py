@@ -1,0 +1,70 @@
+"""The ``drivedyn study`` command: a progress bar and a report around :func:`run_study`."""
+from __future__ import annotations
+
+from pathlib import Path
+
+
+def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False, plots=True, quiet=False,
+         dry_run=False) -> int:
+    """Run a study file with a progress bar (stderr) and print where everything went.
+
+    Returns 0 when every case succeeded, 1 when some did not (the study still completes).
+    Raises :class:`drivedyn.ModelError` on bad input (the command line prints it on one line).
+    """
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+
+    from .execute import prepare, run_study
+
+    console = Console(stderr=True)
+    study, design, cases, outdir = prepare(study_file, out)
+    distinct = len({c.key for c in cases if c.toml is not None})
+    shape = " x ".join(f"{n} {k}" for k, n in zip(design.labels, design.shape)) if design.grid else f"{len(cases)} samples"
+    console.print(f"study [bold]{study.name}[/]: {study.base.kind} model {study.base_path}, "
+                  f"{study.spec.sampler.method} ({shape}) = {len(cases)} cases, {distinct} distinct models")
+    if dry_run:
+        for c in cases[:50]:
+            console.print(f"  {c.index:4d} {c.key[:12]}  " + ", ".join(f"{k}={v}" for k, v in c.values.items())
+                          + (f"  [red]invalid: {c.message}[/]" if c.toml is None else ""))
+        if len(cases) > 50:
+            console.print(f"  ... and {len(cases) - 50} more")
+        return 0
+
+    bar = Progress(TextColumn("[bold]cases"), BarColumn(), MofNCompleteColumn(),
+                   TextColumn("failed [red]{task.fields[failed]}[/] running [cyan]{task.fields[running]}[/]"),
+                   TimeElapsedColumn(), TextColumn("left"), TimeRemainingColumn(), console=console,
+                   disable=quiet)
+    task = bar.add_task("cases", total=len(cases), failed=0, running=0)
+
+    def progress(c):
+        bar.update(task, completed=c["done"], failed=c["not_success"], running=c["running"])
+
+    def on_client(client):
+        link = getattr(client, "dashboard_link", None)
+        where = client.scheduler.address if getattr(client, "scheduler", None) else "?"
+        nw = len(client.scheduler_info().get("workers", {}))
+        console.print(f"dask scheduler {where} with {nw} worker(s); dashboard: "
+                      + (link if link and _has_dashboard(client) else "none (install bokeh for one)"))
+
+    with bar:
+        res = run_study(study, outdir, scheduler=scheduler, workers=workers, retry_failed=retry_failed,
+                        plots=plots, progress=progress, on_client=on_client)
+    c = res.counts
+    console.print(f"{c['total']} cases: {c['success']} succeeded, {c['total'] - c['success']} did not "
+                  f"({c['ran']} run now, {c['cached']} from the cache)")
+    bad = res.ds["status"].values.ravel() != "success"
+    if bad.any():
+        msgs = res.ds["message"].values.ravel()[bad]
+        sts = res.ds["status"].values.ravel()[bad]
+        for s, m in list(zip(sts, msgs))[:5]:
+            console.print(f"  [red]{s}[/]: {m}")
+        if bad.sum() > 5:
+            console.print(f"  ... {bad.sum() - 5} more (see the status and message variables)")
+    console.print(f"wrote {res.path}" + (f" and {len(res.plots)} plot(s) in {Path(res.path).parent / 'plots'}" if res.plots else ""))
+    return 0 if not bad.any() else 1
+
+
+def _has_dashboard(client) -> bool:
+    import importlib.util
+
+    return importlib.util.find_spec("bokeh") is not None

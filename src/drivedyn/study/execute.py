@@ -1,0 +1,252 @@
+"""Running a study on dask.distributed: a local cluster by default, any scheduler by address.
+
+The flow: resolve every case and hash it; look each key up in the cache; submit only what is
+missing (one task per distinct model, ``pure=False`` so nothing is taken from Dask's own memory);
+write each record as it arrives; assemble the Dataset from the cache at the end, also after an
+interruption. A lost worker's tasks are re-run by the scheduler (``distributed.scheduler.
+allowed-failures``); a task that exhausts those retries is recorded as ``lost`` and, not being
+cached, runs again on the next resume.
+"""
+from __future__ import annotations
+
+import os
+import time
+import uuid
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import ModelError
+from .cases import TOKEN, Case, read_record, resolve, run_case, warm_worker, write_record
+from .design import Design, make_design, overrides_of
+from .spec import Study, load_study
+
+
+@dataclass
+class StudyRun:
+    """What :func:`run_study` did.
+
+    Attributes
+    ----------
+    ds : xarray.Dataset
+        The study Dataset (also written to ``path``).
+    path : pathlib.Path
+        The netCDF file written (``<out>/study.nc``).
+    counts : dict
+        ``total`` cases, ``ran`` (distinct models executed now), ``cached`` (cases reused from the
+        cache), and one count per status (``success``, ``failed``, ``invalid``, ``error``,
+        ``lost``, ``missing``).
+    plots : list of pathlib.Path
+        The PNG files written.
+    """
+
+    ds: object
+    path: Path
+    counts: dict
+    plots: list = field(default_factory=list)
+
+
+def default_workers() -> int:
+    """One worker per usable core (single-threaded: the kernels hold the GIL)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:
+        return max(1, os.cpu_count() or 1)
+
+
+def _local_cluster(workers):
+    import importlib.util
+    import logging
+
+    from distributed import LocalCluster
+
+    # the dashboard needs bokeh; without it, do not ask for one (distributed would warn)
+    dash = ":0" if importlib.util.find_spec("bokeh") else None
+    return LocalCluster(n_workers=workers or default_workers(), threads_per_worker=1, processes=True,
+                        dashboard_address=dash, silence_logs=logging.ERROR)
+
+
+def _executing(prefix):
+    """Number of this study's tasks executing right now (runs on the scheduler)."""
+    def count(dask_scheduler=None):
+        return sum(1 for ws in dask_scheduler.workers.values() for ts in ws.executing
+                   if str(ts.key).startswith(prefix))
+    return count
+
+
+def prepare(study, out):
+    """Load, design and resolve a study; create its output folders. Returns (study, design, cases, out)."""
+    if not isinstance(study, Study):
+        study = load_study(study)
+    design = make_design(study)
+    cases = resolve(study, design, overrides_of)
+    out = Path(out) if out is not None else study.default_out()
+    cache = out / "cases"
+    cache.mkdir(parents=True, exist_ok=True)
+    if not (cache / TOKEN).exists():
+        (cache / TOKEN).write_text(uuid.uuid4().hex)
+    return study, design, cases, out
+
+
+def run_study(study, out=None, *, client=None, scheduler=None, workers=None, retry_failed=False,
+              plots=True, progress=None, on_client=None) -> StudyRun:
+    """Run a parameter study and return its Dataset.
+
+    Parameters
+    ----------
+    study : str, pathlib.Path or Study
+        The study file (or a loaded study).
+    out : path, optional
+        Output folder; default: the study's ``out``, else the study file's stem.
+        Gets ``study.nc``, ``cases/`` (the cache) and ``plots/``.
+    client : distributed.Client, optional
+        Use this client (its cluster is left running).
+    scheduler : str, optional
+        Address of a running scheduler (``tcp://host:8786``); otherwise a LocalCluster is started
+        with ``workers`` single-threaded worker processes (default: one per core).
+    retry_failed : bool
+        Also re-run cases cached as failed/invalid/error (by default only missing or changed
+        cases run).
+    plots : bool
+        Draw the study plots into ``<out>/plots``.
+    progress : callable, optional
+        ``progress(counts)`` with keys total, done, not_success, running, cached, ran; called as
+        it goes.
+    on_client : callable, optional
+        ``on_client(client)`` once the client is up (e.g. to print the dashboard address).
+
+    Returns
+    -------
+    StudyRun
+    """
+    from .collect import assemble, write_dataset
+
+    study, design, cases, out = prepare(study, out)
+    cache = out / "cases"
+    series = list(study.spec.outputs.series)
+    records: dict[str, dict] = {}
+    todo: dict[str, Case] = {}
+    for c in cases:
+        if c.toml is None:
+            records[c.key] = {"key": c.key, "status": "invalid", "message": c.message, "summary": {}}
+            continue
+        if c.key in records or c.key in todo:
+            continue
+        rec = read_record(cache, c.key, series)
+        if rec is not None and (rec["status"] == "success" or not retry_failed):
+            records[c.key] = rec
+        else:
+            todo[c.key] = c
+    cached = sum(1 for c in cases if c.toml is not None and c.key in records)
+    counts = {"total": len(cases), "cases_to_run": len(todo), "cached": cached, "done": len(cases) - len(_pending(cases, todo)),
+              "not_success": sum(1 for c in cases if c.key in records and records[c.key]["status"] != "success"),
+              "running": 0, "ran": 0}
+    if progress:
+        progress(dict(counts))
+    interrupted = None
+    if todo:
+        try:
+            _execute(study, todo, cases, cache, series, records, counts, client, scheduler, workers, progress, on_client)
+        except KeyboardInterrupt as exc:  # keep what finished; the rest stays "missing"
+            interrupted = exc
+    ds = assemble(study, design, cases, records, cache)
+    path = write_dataset(ds, out / "study.nc")
+    for s in ("success", "failed", "invalid", "error", "lost", "missing"):
+        counts[s] = int((ds["status"].values == s).sum())
+    files = []
+    if plots and study.spec.plots.enabled and interrupted is None:
+        from .plots import plot_study
+
+        files = plot_study(ds, out / "plots", keys=_plot_keys(study, ds))
+    if interrupted is not None:
+        raise interrupted
+    return StudyRun(ds, path, counts, files)
+
+
+def _pending(cases, todo):
+    return [c for c in cases if c.key in todo]
+
+
+def _plot_keys(study, ds):
+    if study.spec.plots.keys is not None:
+        return study.spec.plots.keys
+    outs = study.spec.outputs.summary
+    if outs == ["*"]:
+        return []  # everything collected would be dozens of plots: plot only what was asked for
+    return [v for v in ds.attrs.get("summary_keys", "").split("\n") if v]
+
+
+def _execute(study, todo, cases, cache, series, records, counts, client, scheduler, workers, progress, on_client):
+    from distributed import Client
+
+    own_cluster = own_client = None
+    if client is None:
+        if scheduler:
+            try:
+                client = own_client = Client(scheduler, timeout="20s")
+            except OSError as exc:
+                raise ModelError(f"--scheduler {scheduler}: cannot connect: {exc}") from None
+        else:
+            own_cluster = _local_cluster(workers)
+            client = own_client = Client(own_cluster)
+    try:
+        if on_client:
+            on_client(client)
+        client.run(warm_worker, study.base.kind)
+        prefix = f"drivedyn-case-{uuid.uuid4().hex[:8]}-"
+        cache_dir, token = str(cache.resolve()), (cache / TOKEN).read_text().strip()
+        futures = {client.submit(run_case, c.toml, k, cache_dir, token, series, key=prefix + k, pure=False): k
+                   for k, c in todo.items()}
+        weight = {k: sum(1 for c in cases if c.key == k) for k in todo}  # duplicated cases share a run
+        count_running = _executing(prefix)
+        last_poll = 0.0
+        try:
+            while futures:
+                finished = [f for f in futures if f.done()]
+                for f in finished:
+                    k = futures.pop(f)
+                    rec = _collect_one(f, k, cache, todo[k].toml)
+                    records[k] = rec
+                    counts["done"] += weight[k]
+                    counts["ran"] += 1
+                    if rec["status"] != "success":
+                        counts["not_success"] += weight[k]
+                    f.release()
+                now = time.monotonic()
+                if progress and (finished or now - last_poll > 0.5):
+                    if now - last_poll > 0.5:
+                        try:
+                            counts["running"] = client.run_on_scheduler(count_running)
+                        except Exception:  # the count is cosmetic: never fail a study for it
+                            pass
+                        last_poll = now
+                    progress(dict(counts))
+                if futures and not finished:
+                    time.sleep(0.1)
+        finally:
+            for f in futures:
+                f.cancel()
+        counts["running"] = 0
+        if progress:
+            progress(dict(counts))
+    finally:
+        if own_client is not None:
+            own_client.close()
+        if own_cluster is not None:
+            own_cluster.close()
+
+
+def _collect_one(future, key, cache, toml):
+    """Record of a finished future; written to the cache by the client if the worker could not."""
+    if future.status == "error":
+        exc = future.exception()
+        # only Dask itself fails a task (our task catches everything): a worker lost too often
+        return {"key": key, "status": "lost", "message": f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}",
+                "summary": {}}
+    if future.status == "cancelled":
+        return {"key": key, "status": "missing", "message": "cancelled", "summary": {}}
+    rec = future.result()
+    if "series_data" in rec:  # the worker could not see the cache folder
+        sub = rec.pop("series_data")
+        write_record(cache, key, rec, sub)
+        rec = read_record(cache, key, rec.get("series", [])) or rec
+    return rec

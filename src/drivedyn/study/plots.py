@@ -1,0 +1,148 @@
+"""Plots of a study: any summary key against the swept parameters.
+
+One parameter: a line (failed cases shown as gaps and marked on the axis). Two grid parameters:
+a map (``pcolormesh`` on the parameter values) with failed cases crossed out; this is the
+stability map of a span study when the key is a stability flag or margin. Sampled designs, or more
+than two grid dimensions: one scatter panel per parameter (main effects), coloured by a second
+parameter. Built on ``matplotlib.figure.Figure`` (no pyplot, no backend), so it runs headless.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+
+def _label(ds, name):
+    var = ds[name]
+    unit = var.attrs.get("units", "")
+    return f"{name} ({unit})" if unit else name
+
+
+def _numeric(ds, name):
+    return ds[name].dtype.kind in "fiub"
+
+
+def _monotonic(coord) -> bool:
+    """True for numeric axes in strictly increasing or decreasing order (else: plot by index)."""
+    if coord.dtype.kind not in "fiu":
+        return False
+    d = np.diff(coord.values.astype(float))
+    return bool(np.all(d > 0) or np.all(d < 0))
+
+
+def plot_key(ds, key, fig=None):
+    """Draw summary ``key`` of study Dataset ``ds`` against its parameters; returns the Figure.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A study Dataset (``drivedyn.study.run_study(...).ds`` or ``xr.load_dataset("study.nc")``).
+    key : str
+        A numeric variable of ``ds`` (a collected summary key).
+    fig : matplotlib.figure.Figure, optional
+        Figure to draw into (a new one otherwise).
+    """
+    from matplotlib.figure import Figure
+
+    if key not in ds.data_vars:
+        close = [v for v in ds.data_vars if key in v][:3]
+        raise KeyError(f"{key!r} is not in the study Dataset" + (f" (did you mean {', '.join(close)}?)" if close else ""))
+    if not _numeric(ds, key):
+        raise TypeError(f"{key!r} is not numeric and cannot be plotted")
+    var = ds[key]
+    params = [p.strip() for p in ds.attrs.get("parameters", "").split(",") if p.strip()]
+    fig = fig or Figure(figsize=(6.4, 4.8), layout="constrained")
+    ok = ds["status"] == "success"
+    grid = "case" not in var.dims
+    extra = [d for d in var.dims if d not in params and d != "case"]
+    if extra:  # a list-valued key: plot its first component
+        var = var.isel({d: 0 for d in extra})
+    title = ds.attrs.get("title", "study")
+    if grid and len(params) == 1:
+        p = params[0]
+        ax = fig.add_subplot()
+        x = ds[p].values
+        numeric_x = ds[p].dtype.kind in "fiu"
+        xs = x if numeric_x else np.arange(len(x))
+        ax.plot(xs, var.where(ok).values, "o-", label=key)
+        bad = ~ok.values
+        if bad.any():
+            ax.plot(xs[bad], np.full(bad.sum(), np.nanmin(var.values) if np.isfinite(var.values).any() else 0.0),
+                    "x", color="C3", label="failed")
+            ax.legend()
+        if not numeric_x:
+            ax.set_xticks(xs, [str(v) for v in x])
+        ax.set_xlabel(_label(ds, p))
+        ax.set_ylabel(key)
+        ax.grid(True, alpha=0.3)
+    elif grid and len(params) == 2:
+        py, px = params  # first parameter up the page, second across: the Dataset's (row, column) order
+        ax = fig.add_subplot()
+        z = var.where(ok).transpose(py, px).values.astype(float)
+        xv, yv = ds[px].values, ds[py].values
+        xs = xv.astype(float) if _monotonic(ds[px]) else np.arange(len(xv), dtype=float)
+        ys = yv.astype(float) if _monotonic(ds[py]) else np.arange(len(yv), dtype=float)
+        mesh = ax.pcolormesh(xs, ys, np.ma.masked_invalid(z), shading="nearest", cmap="viridis")
+        fig.colorbar(mesh, ax=ax, label=key)
+        if np.isfinite(z).sum() >= 4 and len(xs) > 1 and len(ys) > 1 and np.nanmax(z) > np.nanmin(z):
+            ax.contour(xs, ys, np.ma.masked_invalid(z), colors="white", linewidths=0.7, alpha=0.8)
+        bad = ~ok.transpose(py, px).values
+        if bad.any():
+            yy, xx = np.nonzero(bad)
+            ax.plot(xs[xx], ys[yy], "x", color="C3", ms=9, mew=2, label="failed")
+            ax.legend(loc="upper right")
+        if not _monotonic(ds[px]):
+            ax.set_xticks(xs, [f"{v:.4g}" if isinstance(v, float) else str(v) for v in xv])
+        if not _monotonic(ds[py]):
+            ax.set_yticks(ys, [f"{v:.4g}" if isinstance(v, float) else str(v) for v in yv])
+        ax.set_xlabel(_label(ds, px))
+        ax.set_ylabel(_label(ds, py))
+    else:
+        flat = ds.stack(_c=params) if grid else ds.rename({"case": "_c"})
+        fv = (var.stack(_c=params) if grid else var.rename({"case": "_c"})).values.astype(float)
+        fok = (ok.stack(_c=params) if grid else ok.rename({"case": "_c"})).values
+        axes = fig.subplots(1, len(params), sharey=True, squeeze=False)[0]
+        colour = params[1] if len(params) > 1 and flat[params[1]].dtype.kind in "fiu" else None
+        for ax, p in zip(axes, params):
+            x = flat[p].values
+            kw = {}
+            if colour is not None and p != colour:
+                kw = dict(c=flat[colour].values[fok].astype(float), cmap="viridis")
+            sc = ax.scatter(x[fok], fv[fok], s=14, **kw)
+            if (~fok).any():
+                ax.scatter(x[~fok], np.full((~fok).sum(), np.nanmin(fv) if np.isfinite(fv).any() else 0.0),
+                           marker="x", color="C3", label="failed")
+            ax.set_xlabel(_label(ds, p))
+            ax.grid(True, alpha=0.3)
+        axes[0].set_ylabel(key)
+        if colour is not None and len(params) > 1:
+            fig.colorbar(sc, ax=list(axes), label=_label(ds, colour))
+    fig.suptitle(f"{title}: {key}")
+    return fig
+
+
+def plot_study(ds, outdir, keys=None) -> list[Path]:
+    """Write one PNG per summary key into ``outdir``; returns the files written.
+
+    ``keys`` may hold glob patterns; default: the keys the study collected (``summary_keys``
+    attr), numeric ones only.
+    """
+    import fnmatch
+
+    outdir = Path(outdir)
+    available = [k for k in ds.attrs.get("summary_keys", "").split("\n") if k and k in ds and _numeric(ds, k)]
+    if keys is None:
+        chosen = available
+    else:
+        chosen = [k for k in available if any(fnmatch.fnmatchcase(k, p) for p in keys)]
+    if not chosen or not (ds["status"] == "success").any():
+        return []
+    outdir.mkdir(parents=True, exist_ok=True)
+    files = []
+    for k in chosen:
+        fig = plot_key(ds, k)
+        path = outdir / f"{k.replace('.', '_').replace('/', '_')}.png"
+        fig.savefig(path, dpi=110)
+        files.append(path)
+    return files

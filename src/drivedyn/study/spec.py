@@ -1,0 +1,421 @@
+"""The study file (TOML): what to vary in which base model, how to sample it, what to keep.
+
+A study file is pure data, validated like a model file (unknown keys are errors, one line naming
+the key). Parameter paths are checked against the base model *before* anything runs, so a typo
+in ``belt.pretension`` costs a second, not a cluster start::
+
+    base = "belt-5pk.toml"                   # relative to this file
+    [overrides]                              # fixed changes to the base model, every case
+    "simulation.duration" = "0.6 s"
+    [[parameters]]
+    path = "belt.pretension"
+    range = ["300 N", "800 N"]
+    num = 4
+    [sampler]
+    method = "grid"
+"""
+from __future__ import annotations
+
+import difflib
+import math
+import tomllib
+import typing
+from pathlib import Path
+from typing import Any, Literal, Optional, Union
+
+from pydantic import BaseModel, ValidationError, field_validator, model_validator
+
+from ..errors import ModelError
+from ..model import Spec, format_validation_error, from_dict, get_path, set_path, to_dict
+
+#: accepted sampler names -> canonical name (the aliases are what people type)
+SAMPLERS = {
+    "grid": "grid",
+    "lhs": "lhs", "latin-hypercube": "lhs", "latin_hypercube": "lhs",
+    "sobol": "sobol",
+    "montecarlo": "montecarlo", "monte-carlo": "montecarlo", "random": "montecarlo",
+}
+
+
+class Parameter(Spec):
+    """One swept parameter.
+
+    Exactly one of ``values`` (a list), ``range`` (``[low, high]``) or ``mean`` + ``std``
+    (normal distribution, sampled designs only) describes its values. ``path`` may list several
+    model paths that move together, each multiplied by its entry in ``factors``.
+    """
+
+    path: Union[str, list[str]]
+    name: Optional[str] = None
+    values: Optional[list[Any]] = None
+    range: Optional[tuple[Any, Any]] = None
+    num: Optional[int] = None
+    scale: Literal["linear", "log"] = "linear"
+    mean: Optional[Any] = None
+    std: Optional[Any] = None
+    integer: bool = False
+    factors: Optional[list[float]] = None
+
+    @field_validator("path")
+    @classmethod
+    def _paths(cls, v):
+        paths = [v] if isinstance(v, str) else list(v)
+        if not paths or any(not p or not isinstance(p, str) for p in paths):
+            raise ValueError("must be a dotted path such as 'belt.pretension' (or a list of them)")
+        return v
+
+    @field_validator("num")
+    @classmethod
+    def _num(cls, v):
+        if v is not None and v < 1:
+            raise ValueError(f"must be >= 1, got {v}")
+        return v
+
+    @model_validator(mode="after")
+    def _one_description(self):
+        given = [k for k in ("values", "range", "mean") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ValueError(f"parameter {self.label!r}: give exactly one of values, range or mean+std"
+                             + (f" (got {', '.join(given)})" if given else ""))
+        if (self.mean is None) != (self.std is None):
+            raise ValueError(f"parameter {self.label!r}: a normal distribution needs both mean and std")
+        if self.values is not None and len(self.values) == 0:
+            raise ValueError(f"parameter {self.label!r}: values is empty")
+        if self.num is not None and self.range is None:
+            raise ValueError(f"parameter {self.label!r}: num goes with range")
+        if isinstance(self.path, list) and len(self.path) > 1 and not self.name:
+            raise ValueError("a parameter that sets several paths needs a name")
+        if self.factors is not None and len(self.factors) != len(self.paths):
+            raise ValueError(f"parameter {self.label!r}: factors needs one number per path ({len(self.paths)})")
+        return self
+
+    @property
+    def paths(self) -> list[str]:
+        return [self.path] if isinstance(self.path, str) else list(self.path)
+
+    @property
+    def label(self) -> str:
+        """The dimension / coordinate name in the study Dataset."""
+        return self.name or self.paths[0]
+
+
+class Sampler(Spec):
+    """How cases are drawn: a full ``grid`` or ``samples`` points of a sampled design."""
+
+    method: str = "grid"
+    samples: Optional[int] = None
+    seed: int = 0
+
+    @field_validator("method")
+    @classmethod
+    def _method(cls, v):
+        key = str(v).strip().lower()
+        if key not in SAMPLERS:
+            close = difflib.get_close_matches(key, SAMPLERS, n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            raise ValueError(f"unknown sampler {v!r}{hint}; one of grid, lhs, sobol, montecarlo")
+        return SAMPLERS[key]
+
+    @model_validator(mode="after")
+    def _samples(self):
+        if self.method == "grid" and self.samples is not None:
+            raise ValueError("sampler.samples does not apply to a grid (its size is the product of the parameters' num)")
+        if self.method != "grid" and (self.samples is None or self.samples < 1):
+            raise ValueError(f"the {self.method} sampler needs samples = N (>= 1)")
+        return self
+
+
+class Outputs(Spec):
+    """What to keep of each case: summary keys (glob patterns) and whole Dataset variables."""
+
+    summary: list[str] = ["*"]
+    series: list[str] = []
+
+
+class Plots(Spec):
+    """Which summary keys to plot against the parameters (default: the listed outputs)."""
+
+    keys: Optional[list[str]] = None
+    enabled: bool = True
+
+
+class StudySpec(Spec):
+    """The validated content of a study file."""
+
+    kind: Literal["study"] = "study"
+    schema_version: Literal[1] = 1
+    name: str = ""
+    description: str = ""
+    base: str
+    out: Optional[str] = None
+    overrides: dict[str, Any] = {}
+    parameters: list[Parameter]
+    sampler: Sampler = Sampler()
+    outputs: Outputs = Outputs()
+    plots: Plots = Plots()
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        if not self.parameters:
+            raise ValueError("parameters: a study needs at least one parameter")
+        labels = [p.label for p in self.parameters]
+        dup = sorted({x for x in labels if labels.count(x) > 1})
+        if dup:
+            raise ValueError(f"parameters: duplicate name(s) {dup}")
+        if self.sampler.method == "grid":
+            for k, p in enumerate(self.parameters):
+                if p.mean is not None:
+                    raise ValueError(f"parameters[{k}]: a normal distribution (mean/std) needs a sampled design, not a grid")
+                if p.range is not None and p.num is None:
+                    raise ValueError(f"parameters[{k}]: a range on a grid needs num (number of points)")
+        return self
+
+
+class Study:
+    """A loaded study: the spec, its text, the base model and each parameter's SI unit.
+
+    Attributes
+    ----------
+    spec : StudySpec
+        The validated study file.
+    text : str
+        The study file as written (kept in the results' attrs).
+    path : pathlib.Path or None
+        Where the study file is (None when built from a dict).
+    base_path : pathlib.Path
+        The base model file.
+    base : pydantic model
+        The base model with the study's ``overrides`` applied.
+    units : dict
+        Parameter label -> SI unit of its values ("" when unknown or dimensionless).
+    """
+
+    def __init__(self, spec: StudySpec, text: str, path: Path | None, base_path: Path, base, units: dict):
+        self.spec, self.text, self.path, self.base_path, self.base, self.units = spec, text, path, base_path, base, units
+
+    @property
+    def name(self) -> str:
+        return self.spec.name or (self.path.stem if self.path else "study")
+
+    def default_out(self) -> Path:
+        """Output folder: ``out`` of the study file, else the study file's stem (both relative to cwd)."""
+        if self.spec.out:
+            return Path(self.spec.out)
+        return Path(self.path.stem if self.path else "study")
+
+
+def load_study(path) -> Study:
+    """Read and check a study file: schema, base model, parameter paths and values.
+
+    Raises
+    ------
+    drivedyn.ModelError
+        With one line naming the file, the field and the problem.
+    """
+    path = Path(path)
+    if not path.exists():
+        raise ModelError(f"{path}: file not found")
+    if path.is_dir():
+        raise ModelError(f"{path}: is a directory, expected a study file")
+    text = path.read_text(encoding="utf-8")
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ModelError(f"{path}: not valid TOML: {exc}") from None
+    return study_from_dict(data, source=str(path), root=path.parent, text=text, path=path)
+
+
+def study_from_dict(data: dict, source: str = "study", root=".", text: str | None = None, path=None) -> Study:
+    """Validate a study given as a dict; ``base`` is resolved relative to ``root``."""
+    import tomli_w
+
+    if isinstance(data, dict) and data.get("kind") not in (None, "study"):
+        raise ModelError(f"{source}: kind {data.get('kind')!r} is a model, not a study (a study has kind = \"study\" or none)")
+    try:
+        spec = StudySpec.model_validate(data)
+    except ValidationError as exc:
+        raise ModelError(f"{source}: {format_validation_error(exc, StudySpec)}") from None
+    base_path = Path(root) / spec.base
+    if not base_path.exists():
+        raise ModelError(f"{source}: base: model file {str(base_path)!r} not found (base is relative to the study file)")
+    from ..model import load
+
+    try:
+        base = load(base_path)
+    except ModelError as exc:
+        raise ModelError(f"{source}: base model: {exc}") from None
+    model_cls = type(base)
+    if spec.overrides:
+        raw = to_dict(base)
+        for key, value in spec.overrides.items():
+            check_path(base, key, source=f"{source}: overrides")
+            set_path(raw, key, value)
+        try:
+            base = from_dict(raw, source=f"{source}: overrides")
+        except ModelError as exc:
+            raise ModelError(str(exc)) from None
+    units = {}
+    for k, p in enumerate(spec.parameters):
+        unit = None
+        for q in p.paths:
+            check_path(base, q, source=f"{source}: parameters[{k}].path")
+            unit = unit if unit is not None else field_unit(model_cls, q)
+        units[p.label] = unit or ""
+        # read every given value now, so a bad unit fails before the cluster starts
+        for what in ("values", "range", "mean", "std"):
+            v = getattr(p, what)
+            vals = v if isinstance(v, (list, tuple)) else ([] if v is None else [v])
+            for x in vals:
+                try:
+                    to_number(x, unit)
+                except ModelError as exc:
+                    raise ModelError(f"{source}: parameters[{k}].{what}: {exc}") from None
+        if p.factors is not None or p.range is not None or p.mean is not None:
+            for x in (p.range or ()) + tuple(v for v in (p.mean, p.std) if v is not None):
+                if not isinstance(to_number(x, unit), float):
+                    raise ModelError(f"{source}: parameters[{k}]: range, mean and std must be numbers, got {x!r}")
+        if p.scale == "log" and p.range is not None:
+            lo, hi = (to_number(x, unit) for x in p.range)
+            if not (lo > 0 and hi > 0):
+                raise ModelError(f"{source}: parameters[{k}].range: a log scale needs positive bounds, got [{lo}, {hi}]")
+    if text is None:
+        text = tomli_w.dumps(data)
+    return Study(spec, text, path, base_path, base, units)
+
+
+def check_path(model, path: str, source: str = "study") -> None:
+    """Raise a one-line ModelError unless ``path`` names a field of ``model`` (data or schema)."""
+    node: Any = to_dict(model)
+    cls: Any = type(model)
+    parts = path.split(".")
+    for i, part in enumerate(parts):
+        here = ".".join(parts[: i + 1])
+        if isinstance(node, list):
+            try:
+                node = node[_index(node, part)]
+            except (ValueError, IndexError):
+                names = [str(x.get("name")) for x in node if isinstance(x, dict) and "name" in x]
+                close = difflib.get_close_matches(part, names, n=1)
+                hint = f" (did you mean {close[0]!r}?)" if close else (f" (items: {', '.join(names)})" if names else "")
+                raise ModelError(f"{source}: {path!r}: no item {part!r} at {here!r}{hint}") from None
+            cls = _item_class(cls)
+            continue
+        core = _unwrap(cls)[0] if cls is not None else None
+        fields = list(getattr(core, "model_fields", {}) or {}) if isinstance(core, type) else []
+        if isinstance(node, dict) and part in node:
+            node = node[part]
+        elif part in fields:
+            node = None  # an optional field left unset in the base model: still a valid path
+        else:
+            keys = sorted(set(fields) | (set(node) if isinstance(node, dict) else set()))
+            close = difflib.get_close_matches(part, keys, n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            raise ModelError(f"{source}: {path!r} is not a field of the base model: no {part!r} at {here!r}{hint}")
+        cls = _field_class(cls, part)
+    if isinstance(node, (dict,)) and node:
+        raise ModelError(f"{source}: {path!r} is a whole table, not a value; name one of its fields")
+
+
+def _index(node: list, part: str) -> int:
+    for k, item in enumerate(node):
+        if isinstance(item, dict) and item.get("name") == part:
+            return k
+    k = int(part)
+    if not -len(node) <= k < len(node):
+        raise IndexError(k)
+    return k
+
+
+def _unwrap(ann):
+    """Strip Optional and Annotated layers; returns (core annotation, unit found or None)."""
+    import types
+
+    unit = None
+    while True:
+        origin = typing.get_origin(ann)
+        if origin is typing.Annotated:
+            for meta in ann.__metadata__:
+                extra = getattr(meta, "json_schema_extra", None)
+                if isinstance(extra, dict) and extra.get("unit"):
+                    unit = extra["unit"]
+            ann = typing.get_args(ann)[0]
+        elif origin is Union or origin is types.UnionType:
+            args = [a for a in typing.get_args(ann) if a is not type(None)]
+            if len(args) != 1:
+                return ann, unit
+            ann = args[0]
+        else:
+            return ann, unit
+
+
+class _Unit:
+    """Annotated marker carrying a field's unit down into list/tuple items."""
+
+    def __init__(self, unit):
+        self.json_schema_extra = {"unit": unit}
+
+
+def _step(ann, part):
+    """Annotation one path step below ``ann`` (a model class, list or tuple), or None."""
+    core, unit = _unwrap(ann)
+    if isinstance(core, type) and issubclass(core, BaseModel):
+        f = core.model_fields.get(part)
+        if f is None:
+            return None
+        extra = f.json_schema_extra if isinstance(f.json_schema_extra, dict) else {}
+        sub = f.annotation
+        # quantity() as a whole field annotation is merged by pydantic into the FieldInfo
+        return typing.Annotated[sub, _Unit(extra["unit"])] if extra.get("unit") else sub
+    if typing.get_origin(core) in (list, tuple):
+        args = [a for a in typing.get_args(core) if a is not Ellipsis]
+        if not args:
+            return None
+        item = args[int(part)] if typing.get_origin(core) is tuple and part.isdigit() and int(part) < len(args) else args[0]
+        return typing.Annotated[item, _Unit(unit)] if unit else item
+    return None
+
+
+def _field_class(cls, part):
+    return _step(cls, part) if cls is not None else None
+
+
+def _item_class(ann):
+    return _step(ann, "0") if ann is not None else None
+
+
+def field_unit(model_cls, path: str) -> str | None:
+    """SI unit of the model field at ``path`` (declared with ``quantity``), or None."""
+    ann: Any = model_cls
+    for part in path.split("."):
+        ann = _step(ann, part)
+        if ann is None:
+            return None
+    return _unwrap(ann)[1]
+
+
+def to_number(value, unit: str | None):
+    """A parameter value as the model will receive it: SI float for quantities, else unchanged.
+
+    With a known field ``unit``, strings like "550 N" become 550.0. For fields without a declared
+    unit (tables, plain floats) a string that starts like a number ("15 N*m") is converted to SI
+    base units; any other string (an option such as "rkf45") is kept as it is.
+    """
+    from ..units import registry, to_si
+
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, (int, float)):
+        return float(value)
+    if isinstance(value, str) and unit:
+        return to_si(value, unit)
+    if isinstance(value, str) and value.strip()[:1] in set("0123456789+-."):
+        try:
+            q = registry().Quantity(value.strip())
+            return float(q.to_base_units().magnitude)
+        except Exception:
+            raise ModelError(f"cannot read {value!r} as a number with a unit") from None
+    return value
+
+
+def is_number(x) -> bool:
+    return isinstance(x, float) and not isinstance(x, bool) and math.isfinite(x)
