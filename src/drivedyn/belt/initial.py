@@ -121,6 +121,9 @@ def initial_state(model, layout: Layout) -> InitialState:
             return s_end - _Path(lay).length
 
         strain = layout.length / belt.length - 1
+        if (strain > 0.05 and e == 1.0) or EA * strain ** e > 0.05 * EA:
+            raise ModelError(f"belt too short to wrap the pulleys: unstretched length {belt.length:.4f} m against a path of "
+                             f"{layout.length:.4f} m would need {strain * 100:.1f} % strain", field="belt.length")
         T_guess = EA * strain ** e
         try:
             T = brentq(resid_T, 0.2 * T_guess, 3.0 * T_guess, xtol=1e-9 * T_guess)

@@ -1,0 +1,52 @@
+"""Bad input: one line naming the field, exit status 2; a diverging solve keeps its results."""
+import pytest
+
+import drivedyn
+from drivedyn.cli import main
+
+GOOD = drivedyn.example_path("belt-5pk").read_text()
+
+
+def run_cli(tmp_path, text, capsys, cmd="check"):
+    f = tmp_path / "m.toml"
+    f.write_text(text)
+    code = main([cmd, str(f)])
+    err = capsys.readouterr().err.strip()
+    return code, err
+
+
+@pytest.mark.parametrize("edit, expect", [
+    (('radius = "27 mm"', 'radius = "-27 mm"', 1), "pulleys[0].radius"),
+    (('center = ["515 mm", "0 mm"]', 'center = ["40 mm", "0 mm"]', 1), "overlap"),
+    (('pretension = "550 N"', 'length = "1.0 m"', 1), "too short"),
+    (('segments = 150', 'segments = 150\nsegmnets = 3', 1), "did you mean 'segments'"),
+    (('[contact]', '[contact\n', 1), "not valid TOML"),
+    (('inertia = "0.02 kg*m^2"', 'inertia = "0.02 kg"', 1), "inertia"),
+])
+def test_bad_input_one_line_exit_2(tmp_path, capsys, edit, expect):
+    old, new, count = edit
+    code, err = run_cli(tmp_path, GOOD.replace(old, new, count), capsys)
+    assert code == 2
+    assert len(err.splitlines()) == 1, err
+    assert expect in err
+
+
+def test_missing_file(capsys):
+    assert main(["run", "/nonexistent/model.toml"]) == 2
+    assert "file not found" in capsys.readouterr().err
+
+
+def test_diverging_solve_keeps_results(model_factory, tmp_path):
+    m = model_factory(simulation__step=2e-5, simulation__duration=0.05)   # ~5x the stability limit
+    with pytest.raises(drivedyn.SolverError, match=r"diverged at t = .* s: ") as info:
+        drivedyn.run(m)
+    part = info.value.partial
+    assert part is not None and not part.success
+    assert part.ds.sizes["time"] >= 0
+    part.save(tmp_path)                    # what was computed can be written
+
+
+def test_roundtrip_of_examples():
+    for name in ("belt-5pk", "belt-accessory", "belt-verification"):
+        m = drivedyn.load(drivedyn.example_path(name))
+        assert drivedyn.loads(drivedyn.dumps(m)) == m

@@ -1,0 +1,65 @@
+"""Layout and statics against closed forms (open-belt length, hub load = vector sum of tensions)."""
+import math
+
+import numpy as np
+import pytest
+
+import drivedyn
+from drivedyn.belt.initial import initial_state
+from drivedyn.belt.layout import compute_layout, layout_from
+from drivedyn.belt.statics import capstan_torque, span_frequencies
+
+
+def test_open_belt_length_formula():
+    # L = 2C cos(phi) + pi (D + d)/2 + phi (D - d), sin(phi) = (D - d) / 2C
+    C, D, d = 0.5, 0.2, 0.1
+    lay = layout_from(["a", "b"], [(0, 0), (C, 0)], [d / 2, D / 2], ["inside", "inside"])
+    phi = math.asin((D - d) / (2 * C))
+    assert lay.length == pytest.approx(2 * C * math.cos(phi) + math.pi * (D + d) / 2 + phi * (D - d), rel=1e-12)
+    assert lay.wrap.sum() == pytest.approx(2 * math.pi)
+    assert lay.wrap[0] == pytest.approx(math.pi - 2 * phi)
+
+
+def test_clockwise_order_and_back_idler():
+    names = ["crank", "alt", "pump", "idler"]
+    C = [(0.04, -0.30), (0.16, -0.10), (0, 0), (-0.02, -0.13)]
+    lay = layout_from(names, C, [0.08, 0.056, 0.027, 0.031], ["inside", "inside", "inside", "back"])
+    rev = layout_from(names[::-1], C[::-1], [0.031, 0.027, 0.056, 0.08],
+                      ["back", "inside", "inside", "inside"])
+    assert lay.orientation == -rev.orientation
+    assert lay.length == pytest.approx(rev.length, rel=1e-12)
+    assert np.sum(np.sign(lay.rho) * lay.wrap) == pytest.approx(2 * math.pi * lay.orientation)
+
+
+def test_static_hub_load_is_vector_sum(model_factory):
+    m = model_factory()
+    lay = compute_layout(m)
+    H = lay.hub_load_static(500.0)
+    # 180 degree wraps: 2 T along the centre line
+    assert H[0] == pytest.approx([1000.0, 0.0], abs=1e-9)
+    for j, w in enumerate(lay.wrap):
+        assert np.hypot(*H[j]) == pytest.approx(2 * 500 * math.sin(w / 2))
+
+
+def test_initial_state_at_pretension(model_factory):
+    for n in (60, 150, 400):
+        m = model_factory(belt__segments=n)
+        init = initial_state(m, compute_layout(m))
+        e = np.stack([np.cos(init.phi), np.sin(init.phi)], 1)
+        P = np.stack([init.x, init.y], 1)
+        d = (P - init.seg_length / 2 * e) - np.roll(P + init.seg_length / 2 * e, 1, axis=0)
+        T = np.hypot(d[:, 0], d[:, 1]) * m.belt.axial_stiffness / init.seg_length
+        assert T == pytest.approx(550.0, rel=1e-4)
+
+
+def test_capstan_and_string_formulas():
+    assert capstan_torque(300, 0.027, math.pi, 0.3) == pytest.approx(2 * 300 * 0.027 * math.tanh(0.3 * math.pi / 2))
+    f = span_frequencies(550, 0.096, 0.515)
+    assert f[0] == pytest.approx(math.sqrt(550 / 0.096) / (2 * 0.515))
+    assert f[1] == pytest.approx(2 * f[0])
+
+
+def test_check_report_lists_everything():
+    text = drivedyn.check(drivedyn.example_path("belt-accessory"))
+    for word in ("crankshaft", "idler", "wrap", "hub load", "f1 Hz", "alternator-idler"):
+        assert word in text
