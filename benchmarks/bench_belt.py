@@ -1,0 +1,38 @@
+"""Belt-drive speed: wall time per simulated second and cost per step, and its growth with n.
+
+Run: python benchmarks/bench_belt.py   (not a timed test; numbers depend on the machine)
+"""
+import statistics
+import time
+
+import drivedyn
+
+
+def timed(model, repeat=3):
+    walls, steps = [], 0
+    for _ in range(repeat):
+        r = drivedyn.run(model)
+        walls.append(r.summary["solver"]["wall_time"])
+        steps = r.summary["solver"]["steps"]
+    return walls, steps, r
+
+
+def main():
+    base = drivedyn.load(drivedyn.example_path("belt-5pk"))
+    drivedyn.run(drivedyn.replace(base, {"simulation.duration": 0.01}))      # compile once
+    m = drivedyn.replace(base, {"simulation.duration": 1.0, "output.steady_window": [0.75, 1.0]})
+    walls, steps, r = timed(m)
+    med = statistics.median(walls)
+    print(f"5PK seed case, 150 segments, Delta_v = 1e-5 m/s, 1 s simulated: wall min/median/max "
+          f"{min(walls):.3f}/{med:.3f}/{max(walls):.3f} s, real-time factor {1 / med:.2f}, {steps} steps of "
+          f"{r.summary['solver']['step'] * 1e6:.3f} us, {med / steps * 1e6:.2f} us per step")
+    print(f"{'n':>5s} {'step us':>8s} {'steps/s sim':>12s} {'us/step':>8s} {'wall s per sim s':>17s}")
+    for n in (50, 100, 150, 300, 600):
+        mn = drivedyn.replace(base, {"belt.segments": n, "simulation.duration": 0.1, "output.segments": [0]})
+        walls, steps, r = timed(mn, repeat=2)
+        w = min(walls)
+        print(f"{n:5d} {r.summary['solver']['step'] * 1e6:8.3f} {steps / 0.1:12.0f} {w / steps * 1e6:8.2f} {w / 0.1:17.2f}")
+
+
+if __name__ == "__main__":
+    main()
