@@ -135,7 +135,7 @@ def write_record(cache: Path, key: str, record: dict, series_ds=None) -> None:
     record.pop("series_data", None)
     if series_ds is not None and len(series_ds.data_vars):
         tmp = cache / f".{key}.{os.getpid()}.{uuid.uuid4().hex[:8]}.nc.tmp"
-        series_ds.to_netcdf(tmp, engine="h5netcdf", invalid_netcdf=True)
+        series_ds.to_netcdf(tmp, engine="h5netcdf")
         os.replace(tmp, cache / f"{key}.nc")
         record["series_file"] = f"{key}.nc"
     _atomic_write(cache / f"{key}.json", json.dumps(record, indent=1).encode())

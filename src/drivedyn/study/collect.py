@@ -171,6 +171,6 @@ def write_dataset(ds: xr.Dataset, path) -> Path:
     """Write the study netCDF atomically (so a reader never sees half a file)."""
     path = Path(path)
     tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
-    ds.to_netcdf(tmp, engine="h5netcdf", invalid_netcdf=True)
+    ds.to_netcdf(tmp, engine="h5netcdf")
     os.replace(tmp, path)
     return path

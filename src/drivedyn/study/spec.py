@@ -407,14 +407,20 @@ def to_number(value, unit: str | None):
     if isinstance(value, (int, float)):
         return float(value)
     if isinstance(value, str) and unit:
-        return to_si(value, unit)
+        return _tidy(to_si(value, unit))
     if isinstance(value, str) and value.strip()[:1] in set("0123456789+-."):
         try:
             q = registry().Quantity(value.strip())
-            return float(q.to_base_units().magnitude)
+            return _tidy(float(q.to_base_units().magnitude))
         except Exception:
             raise ModelError(f"cannot read {value!r} as a number with a unit") from None
     return value
+
+
+def _tidy(x: float) -> float:
+    """Drop the last-digit noise of unit conversion ("20 us" -> 2e-05, not 1.9999999999999998e-05),
+    so that coordinates select as written."""
+    return float(f"{x:.14g}")
 
 
 def is_number(x) -> bool:

@@ -1,0 +1,63 @@
+"""A worker killed mid-study: every case still ends exactly once, with its result."""
+from __future__ import annotations
+
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+
+from drivedyn.study import run_study
+
+STUDY = """
+base = "{belt}"
+[overrides]
+"simulation.duration" = "0.35 s"
+[[parameters]]
+path = "belt.pretension"
+values = [450.0, 500.0, 550.0, 600.0, 650.0, 700.0, 750.0, 800.0]
+[outputs]
+summary = ["pulleys.driven.slip", "spans.*.tension_mean"]
+"""
+
+
+def _journal(cache, key):
+    lines = (cache / f"{key}.log").read_text().splitlines()
+    return [ln.split()[1] for ln in lines]
+
+
+def test_killed_worker_loses_nothing(client, write_study, tmp_path):
+    path = write_study(STUDY)
+    out = tmp_path / "out"
+    cache = out / "cases"
+    killed = []
+
+    def killer():
+        # wait until the study is under way (a first case finished), then kill a busy worker
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline and not list(cache.glob("*.json")):
+            time.sleep(0.02)
+        pids = client.run(os.getpid)
+        busy = client.processing()
+        addr = next((a for a, tasks in busy.items() if tasks), next(iter(pids)))
+        os.kill(pids[addr], signal.SIGKILL)
+        killed.append(pids[addr])
+
+    t = threading.Thread(target=killer, daemon=True)
+    t.start()
+    res = run_study(path, out=out, client=client, plots=False)
+    t.join(5)
+    assert killed, "the worker was not killed"
+    ds = res.ds
+    assert (ds["status"] == "success").all(), ds["message"].values
+    assert np.isfinite(ds["pulleys.driven.slip"].values).all()
+    keys = ds["case_key"].values.tolist()
+    assert len(set(keys)) == 8
+    events = {k: _journal(cache, k) for k in keys}
+    # exactly one finished run per case, whichever worker ran it
+    assert all(ev.count("end") == 1 for ev in events.values()), events
+    # the kill interrupted a running case, which was started again elsewhere
+    assert sum(ev.count("start") for ev in events.values()) > len(keys), events
+    assert not list(cache.glob("*.json.tmp"))
+    client.wait_for_workers(2, timeout=30)  # the nanny restarts the worker for the next tests

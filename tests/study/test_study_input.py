@@ -1,0 +1,96 @@
+"""Bad study files give one-line ModelErrors before anything runs; designs are what they claim."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from drivedyn import ModelError
+from drivedyn.cli import main as cli_main
+from drivedyn.study import load_study, make_design
+
+OK = """
+base = "{belt}"
+[[parameters]]
+path = "belt.pretension"
+values = [500.0, 600.0]
+"""
+
+
+@pytest.mark.parametrize("text, expect", [
+    (OK.replace("belt.pretension", "belt.pretensoin"), "did you mean 'pretension'"),
+    (OK.replace("belt.pretension", "pulleys.idler.radius"), "no item 'idler'"),
+    (OK.replace("belt.pretension", "belt"), "whole table"),
+    (OK + '[sampler]\nmethod = "latin"\n', "unknown sampler 'latin'"),
+    (OK + '[sampler]\nmethod = "sobl"\nsamples = 4\n', "did you mean 'sobol'"),
+    (OK.replace('base = "{belt}"', 'base = "nowhere.toml"'), "not found"),
+    (OK.replace("values = [500.0, 600.0]", 'values = ["500 m"]'), "not compatible"),
+    (OK.replace("values = [500.0, 600.0]", 'range = [400.0, 500.0]'), "needs num"),
+    (OK + "colour = 1\n", "unknown key"),
+    (OK + '[sampler]\nmethod = "lhs"\n', "needs samples"),
+])
+def test_bad_study_input_is_one_line_model_error(write_study, text, expect):
+    path = write_study(text)
+    with pytest.raises(ModelError) as err:
+        load_study(path)
+    msg = str(err.value)
+    assert expect in msg and "\n" not in msg and str(path) in msg
+
+
+def test_cli_reports_bad_study_on_one_line(write_study, capsys):
+    path = write_study(OK.replace("belt.pretension", "belt.pretensoin"))
+    assert cli_main(["study", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("drivedyn: error:") and len(err.splitlines()) == 1
+    assert cli_main(["study", str(path.with_name("missing.toml"))]) == 2
+
+
+def test_grid_design_and_units(write_study):
+    study = load_study(write_study("""
+        base = "{belt}"
+        [[parameters]]
+        path = "belt.pretension"
+        range = ["0.4 kN", "0.7 kN"]
+        num = 4
+        [[parameters]]
+        path = "friction.law"
+        values = ["threlfall", "elastic-plastic"]
+    """))
+    d = make_design(study)
+    assert d.grid and d.shape == (4, 2)
+    assert d.axes["belt.pretension"] == [400.0, 500.0, 600.0, 700.0]
+    assert d.cases[1] == {"belt.pretension": 400.0, "friction.law": "elastic-plastic"}  # last varies fastest
+    assert study.units == {"belt.pretension": "N", "friction.law": ""}
+
+
+@pytest.mark.parametrize("method", ["lhs", "sobol", "montecarlo"])
+def test_sampled_designs_are_seeded_and_in_range(write_study, method):
+    text = f"""
+        base = "{{belt}}"
+        [[parameters]]
+        path = "belt.pretension"
+        range = [400.0, 800.0]
+        [[parameters]]
+        path = "pulleys.driven.inertia"
+        mean = 0.02
+        std = 0.001
+        [[parameters]]
+        path = "belt.segments"
+        values = [120, 150]
+        integer = true
+        [sampler]
+        method = "{method}"
+        samples = 64
+        seed = 3
+    """
+    d1 = make_design(load_study(write_study(text)))
+    d2 = make_design(load_study(write_study(text, "again.toml")))
+    assert d1.cases == d2.cases and not d1.grid and d1.shape == (64,)
+    pre = np.array([c["belt.pretension"] for c in d1.cases])
+    inertia = np.array([c["pulleys.driven.inertia"] for c in d1.cases])
+    assert ((pre >= 400) & (pre <= 800)).all()
+    assert abs(inertia.mean() - 0.02) < 0.0006 and 0.0005 < inertia.std() < 0.0015
+    assert {c["belt.segments"] for c in d1.cases} == {120.0, 150.0}
+    if method == "lhs":  # one point per stratum
+        assert np.array_equal(np.sort(np.floor((pre - 400) / (400 / 64))), np.arange(64))
+    d3 = make_design(load_study(write_study(text.replace("seed = 3", "seed = 4"), "other.toml")))
+    assert d3.cases != d1.cases
