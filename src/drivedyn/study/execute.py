@@ -54,15 +54,13 @@ def default_workers() -> int:
 
 
 def _local_cluster(workers):
-    import importlib.util
     import logging
 
     from distributed import LocalCluster
 
-    # the dashboard needs bokeh; without it, do not ask for one (distributed would warn)
-    dash = ":0" if importlib.util.find_spec("bokeh") else None
+    # ":0": a free port, so two studies (or a notebook's cluster) never fight over 8787
     return LocalCluster(n_workers=workers or default_workers(), threads_per_worker=1, processes=True,
-                        dashboard_address=dash, silence_logs=logging.ERROR)
+                        dashboard_address=":0", silence_logs=logging.ERROR)
 
 
 def _executing(prefix):

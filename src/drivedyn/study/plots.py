@@ -85,7 +85,8 @@ def plot_key(ds, key, fig=None):
         ys = yv.astype(float) if _monotonic(ds[py]) else np.arange(len(yv), dtype=float)
         mesh = ax.pcolormesh(xs, ys, np.ma.masked_invalid(z), shading="nearest", cmap="viridis")
         fig.colorbar(mesh, ax=ax, label=key)
-        if np.isfinite(z).sum() >= 4 and len(xs) > 1 and len(ys) > 1 and np.nanmax(z) > np.nanmin(z):
+        # contours only where the grid is fine enough for them to mean something
+        if min(len(xs), len(ys)) >= 6 and np.isfinite(z).all() and np.nanmax(z) > np.nanmin(z):
             ax.contour(xs, ys, np.ma.masked_invalid(z), colors="white", linewidths=0.7, alpha=0.8)
         bad = ~ok.transpose(py, px).values
         if bad.any():

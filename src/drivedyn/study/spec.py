@@ -55,6 +55,7 @@ class Parameter(Spec):
     std: Optional[Any] = None
     integer: bool = False
     factors: Optional[list[float]] = None
+    unit: Optional[str] = None
 
     @field_validator("path")
     @classmethod
@@ -260,6 +261,14 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
         for q in p.paths:
             check_path(base, q, source=f"{source}: parameters[{k}].path")
             unit = unit if unit is not None else field_unit(model_cls, q)
+        if unit is None and p.unit:
+            # fields without a declared unit (table entries, plain floats) take SI values: the
+            # study's unit reads strings and labels the coordinate
+            try:
+                to_number(f"1 {p.unit}", None)
+            except ModelError:
+                raise ModelError(f"{source}: parameters[{k}].unit: cannot read {p.unit!r} as a unit") from None
+            unit = p.unit
         units[p.label] = unit or ""
         # read every given value now, so a bad unit fails before the cluster starts
         for what in ("values", "range", "mean", "std"):
