@@ -5,6 +5,7 @@ import os
 import signal
 import threading
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -61,3 +62,25 @@ def test_killed_worker_loses_nothing(client, write_study, tmp_path):
     assert sum(ev.count("start") for ev in events.values()) > len(keys), events
     assert not list(cache.glob("*.json.tmp"))
     client.wait_for_workers(2, timeout=30)  # the nanny restarts the worker for the next tests
+
+
+def test_worker_without_the_cache_folder_returns_the_record(tmp_path):
+    # a remote worker cannot see the client's folder: it returns the record and the series, and the
+    # client writes them (same files, same reading)
+    import drivedyn
+    from drivedyn.study.cases import TOKEN, model_key, read_record, run_case, write_record
+
+    BELT = Path(__file__).resolve().parents[2] / "examples" / "belt-5pk.toml"
+    toml = drivedyn.dumps(drivedyn.replace(drivedyn.load(BELT), {"simulation.duration": 0.005}))
+    key = model_key(toml)
+    rec = run_case(toml, key, str(tmp_path / "elsewhere"), "token", ["speed"])
+    assert rec["status"] == "success" and rec["series_data"]["speed"].dims == ("time", "pulley")
+    cache = tmp_path / "cases"
+    cache.mkdir()
+    (cache / TOKEN).write_text("another-token")
+    assert run_case(toml, key, str(cache), "token", []).get("series_data", 0) is None  # wrong token: not written
+    assert read_record(cache, key) is None
+    write_record(cache, key, {k: v for k, v in rec.items() if k != "series_data"}, rec["series_data"])
+    back = read_record(cache, key, ["speed"])
+    assert back["summary"] == rec["summary"] and (cache / f"{key}.nc").exists()
+    assert read_record(cache, key, ["speed", "angle"]) is None  # more series asked for: run again

@@ -237,9 +237,11 @@ def _collect_one(future, key, cache, toml):
     """Record of a finished future; written to the cache by the client if the worker could not."""
     if future.status == "error":
         exc = future.exception()
-        # only Dask itself fails a task (our task catches everything): a worker lost too often
-        return {"key": key, "status": "lost", "message": f"{type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}",
-                "summary": {}}
+        first = str(exc).splitlines()[0] if str(exc) else ""
+        # the task catches every failure of the case, so this is Dask's: a worker lost too often
+        # (KilledWorker), or the task could not even start there (drivedyn missing on a worker)
+        status = "lost" if type(exc).__name__ == "KilledWorker" else "error"
+        return {"key": key, "status": status, "message": f"{type(exc).__name__}: {first}", "summary": {}}
     if future.status == "cancelled":
         return {"key": key, "status": "missing", "message": "cancelled", "summary": {}}
     rec = future.result()
