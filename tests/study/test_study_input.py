@@ -94,3 +94,23 @@ def test_sampled_designs_are_seeded_and_in_range(write_study, method):
         assert np.array_equal(np.sort(np.floor((pre - 400) / (400 / 64))), np.arange(64))
     d3 = make_design(load_study(write_study(text.replace("seed = 3", "seed = 4"), "other.toml")))
     assert d3.cases != d1.cases
+
+
+def test_cli_runs_a_small_study_end_to_end(write_study, tmp_path, capsys):
+    path = write_study("""
+        base = "{belt}"
+        [overrides]
+        "simulation.duration" = "5 ms"
+        [[parameters]]
+        path = "belt.pretension"
+        values = ["500 N", "600 N"]
+        [outputs]
+        summary = ["pulleys.driven.slip", "no.such.key"]
+    """)
+    out = tmp_path / "cli-out"
+    assert cli_main(["study", str(path), "-o", str(out), "--workers", "2", "-q"]) == 0
+    err = capsys.readouterr().err
+    assert "2 cases: 2 succeeded" in err and "no.such.key" in err
+    assert (out / "study.nc").exists() and len(list((out / "plots").glob("*.png"))) == 1
+    assert cli_main(["study", str(path), "-o", str(out), "-q"]) == 0
+    assert "0 run now, 2 from the cache" in capsys.readouterr().err

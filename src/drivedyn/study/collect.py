@@ -62,6 +62,9 @@ def assemble(study, design, cases, records, cache) -> xr.Dataset:
             if k not in keys_seen:
                 keys_seen.append(k)
     keys = _selected(keys_seen, study.spec.outputs.summary)
+    # patterns that matched no key of any finished case: most likely a typo in the study file
+    unmatched = [p for p in study.spec.outputs.summary
+                 if keys_seen and not any(fnmatch.fnmatchcase(k, p) for k in keys_seen)]
 
     data_vars, summary_keys = {}, []
     labels = set(design.labels)
@@ -111,6 +114,7 @@ def assemble(study, design, cases, records, cache) -> xr.Dataset:
         base_model_path=str(study.base_path), sampler=sp.sampler.method,
         samples=len(cases), seed=sp.sampler.seed, parameters=", ".join(design.labels),
         summary_keys="\n".join(summary_keys), series=", ".join(sp.outputs.series),
+        unmatched_outputs=", ".join(unmatched),
         drivedyn_version=__version__, created=_dt.datetime.now().isoformat(timespec="seconds"),
         **{f"cases_{s}": v for s, v in counts.items()},
     )

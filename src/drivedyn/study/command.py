@@ -50,6 +50,8 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
         res = run_study(study, outdir, scheduler=scheduler, workers=workers, retry_failed=retry_failed,
                         plots=plots, progress=progress, on_client=on_client)
     c = res.counts
+    if res.ds.attrs.get("unmatched_outputs"):
+        console.print(f"[yellow]warning:[/] outputs.summary pattern(s) matching no summary key: {res.ds.attrs['unmatched_outputs']}")
     console.print(f"{c['total']} cases: {c['success']} succeeded, {c['total'] - c['success']} did not "
                   f"({c['ran']} run now, {c['cached']} from the cache)")
     bad = res.ds["status"].values.ravel() != "success"
