@@ -17,7 +17,7 @@ from pathlib import Path
 
 from ..errors import ModelError
 from .cases import TOKEN, Case, read_record, resolve, run_case, warm_worker, write_record
-from .design import Design, make_design, overrides_of
+from .design import make_design, overrides_of
 from .spec import Study, load_study
 
 

@@ -17,7 +17,6 @@ in ``belt.pretension`` costs a second, not a cluster start::
 from __future__ import annotations
 
 import difflib
-import math
 import tomllib
 import typing
 from pathlib import Path
@@ -26,7 +25,7 @@ from typing import Any, Literal, Optional, Union
 from pydantic import BaseModel, ValidationError, field_validator, model_validator
 
 from ..errors import ModelError
-from ..model import Spec, format_validation_error, from_dict, get_path, set_path, to_dict
+from ..model import Spec, format_validation_error, from_dict, set_path, to_dict
 
 #: accepted sampler names -> canonical name (the aliases are what people type)
 SAMPLERS = {
@@ -279,10 +278,9 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
                     to_number(x, unit)
                 except ModelError as exc:
                     raise ModelError(f"{source}: parameters[{k}].{what}: {exc}") from None
-        if p.factors is not None or p.range is not None or p.mean is not None:
-            for x in (p.range or ()) + tuple(v for v in (p.mean, p.std) if v is not None):
-                if not isinstance(to_number(x, unit), float):
-                    raise ModelError(f"{source}: parameters[{k}]: range, mean and std must be numbers, got {x!r}")
+        for x in tuple(p.range or ()) + tuple(v for v in (p.mean, p.std) if v is not None):
+            if not isinstance(to_number(x, unit), float):
+                raise ModelError(f"{source}: parameters[{k}]: range, mean and std must be numbers, got {x!r}")
         if p.scale == "log" and p.range is not None:
             lo, hi = (to_number(x, unit) for x in p.range)
             if not (lo > 0 and hi > 0):
@@ -430,7 +428,3 @@ def _tidy(x: float) -> float:
     """Drop the last-digit noise of unit conversion ("20 us" -> 2e-05, not 1.9999999999999998e-05),
     so that coordinates select as written."""
     return float(f"{x:.14g}")
-
-
-def is_number(x) -> bool:
-    return isinstance(x, float) and not isinstance(x, bool) and math.isfinite(x)
