@@ -114,3 +114,15 @@ def test_cli_runs_a_small_study_end_to_end(write_study, tmp_path, capsys):
     assert (out / "study.nc").exists() and len(list((out / "plots").glob("*.png"))) == 1
     assert cli_main(["study", str(path), "-o", str(out), "-q"]) == 0
     assert "0 run now, 2 from the cache" in capsys.readouterr().err
+
+
+def test_relative_file_references_in_the_base_model_become_absolute(tmp_path):
+    # a case runs from its TOML text alone: a model's reference to another file must not depend
+    # on the worker's folder
+    from drivedyn.study.spec import _absolute_files
+
+    (tmp_path / "drive.toml").write_text("")
+    data = {"span": {"belt_model": "drive.toml", "note": "drive"}, "rows": [["missing.csv", 1.0]]}
+    assert _absolute_files(data, tmp_path)
+    assert data["span"]["belt_model"] == str((tmp_path / "drive.toml").resolve())
+    assert data["span"]["note"] == "drive" and data["rows"][0][0] == "missing.csv"

@@ -136,7 +136,7 @@ def plot_study(ds, outdir, keys=None) -> list[Path]:
     if keys is None:
         chosen = available
     else:
-        chosen = [k for k in available if any(fnmatch.fnmatchcase(k, p) for p in keys)]
+        chosen = [k for k in available if any(fnmatch.fnmatchcase(k.lower(), p.lower()) for p in keys)]
     if not chosen or not (ds["status"] == "success").any():
         return []
     outdir.mkdir(parents=True, exist_ok=True)

@@ -245,11 +245,13 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
     except ModelError as exc:
         raise ModelError(f"{source}: base model: {exc}") from None
     model_cls = type(base)
-    if spec.overrides:
-        raw = to_dict(base)
-        for key, value in spec.overrides.items():
-            check_path(base, key, source=f"{source}: overrides")
-            set_path(raw, key, value)
+    raw = to_dict(base)
+    for key, value in spec.overrides.items():
+        check_path(base, key, source=f"{source}: overrides")
+        set_path(raw, key, value)
+    # a case travels as TOML text to a worker that knows nothing of the base model's folder
+    moved = _absolute_files(raw, base_path.parent)
+    if spec.overrides or moved:
         try:
             base = from_dict(raw, source=f"{source}: overrides")
         except ModelError as exc:
@@ -288,6 +290,29 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
     if text is None:
         text = tomli_w.dumps(data)
     return Study(spec, text, path, base_path, base, units)
+
+
+FILE_SUFFIXES = (".toml", ".csv", ".txt", ".json", ".nc", ".dat")
+
+
+def _absolute_files(node, root: Path) -> bool:
+    """Make relative file references in model data absolute (in place); True if any changed.
+
+    Models may name other files (a span model its belt-drive model, a CSV of forces), relative to
+    the model file. A case is run from its TOML text alone, possibly in another folder, so such
+    strings (a known file suffix and an existing file beside the base model) are made absolute.
+    """
+    changed = False
+    items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else ()
+    for k, v in list(items):
+        if isinstance(v, (dict, list)):
+            changed |= _absolute_files(v, root)
+        elif isinstance(v, str) and v.lower().endswith(FILE_SUFFIXES) and not Path(v).is_absolute():
+            cand = (root / v)
+            if cand.is_file():
+                node[k] = str(cand.resolve())
+                changed = True
+    return changed
 
 
 def check_path(model, path: str, source: str = "study") -> None:
