@@ -212,6 +212,13 @@ def step_chunk(nsteps, t, h, ip, fp,
     tq_belt = np.zeros(nk)
     hubx = np.zeros(nk)
     huby = np.zeros(nk)
+    # reciprocals once per chunk: divisions cost more than the rest of a segment's update
+    hm_ = np.empty(n)
+    hi_ = np.empty(n)
+    for i in range(n):
+        hm_[i] = h / m[i]
+        hi_[i] = h / inertia[i]
+    hg = h * g
     for _ in range(nsteps):
         pax, pb = joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy)
         pcd = 0.0
@@ -221,9 +228,9 @@ def step_chunk(nsteps, t, h, ip, fp,
             hubx[j] = 0.0
             huby[j] = 0.0
         for i in range(n):
-            hm = h / m[i]
+            hm = hm_[i]
             vxs = vx[i] + hm * fx[i]
-            vys = vy[i] + hm * fy[i] - h * g
+            vys = vy[i] + hm * fy[i] - hg
             Ntot = 0.0
             Ttot = 0.0
             pen = 0.0
@@ -236,8 +243,9 @@ def step_chunk(nsteps, t, h, ip, fp,
                     continue
                 incontact = True
                 dist = math.sqrt(d2)
-                nx = rx / dist
-                ny = ry / dist
+                inv = 1.0 / dist
+                nx = rx * inv
+                ny = ry * inv
                 p = pr[j] - dist
                 pen = p
                 # normal: N = c1 p^2 + c2 p - delta b vn_new, vn_new = vn* + h N / m  (implicit damping)
@@ -285,7 +293,7 @@ def step_chunk(nsteps, t, h, ip, fp,
             seg_p[i] = pen
             vx[i] = vxs
             vy[i] = vys
-            w[i] += h * mz[i] / inertia[i]
+            w[i] += hi_[i] * mz[i]
             x[i] += h * vxs
             y[i] += h * vys
             # rotate (c, s) by a = h w exactly to round-off (series to a^5; |a| < 1e-2 here)
