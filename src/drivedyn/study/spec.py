@@ -146,7 +146,8 @@ class StudySpec(Spec):
     schema_version: Literal[1] = 1
     name: str = ""
     description: str = ""
-    base: str
+    base: Optional[str] = None
+    model: Optional[dict[str, Any]] = None
     out: Optional[str] = None
     overrides: dict[str, Any] = {}
     parameters: list[Parameter]
@@ -156,6 +157,8 @@ class StudySpec(Spec):
 
     @model_validator(mode="after")
     def _consistent(self):
+        if (self.base is None) == (self.model is None):
+            raise ValueError("give exactly one of base (a model file) or [model] (the base model inline)")
         if not self.parameters:
             raise ValueError("parameters: a study needs at least one parameter")
         labels = [p.label for p in self.parameters]
@@ -183,7 +186,7 @@ class Study:
     path : pathlib.Path or None
         Where the study file is (None when built from a dict).
     base_path : pathlib.Path
-        The base model file.
+        The base model file (the study file itself for an inline ``[model]``).
     base : pydantic model
         The base model with the study's ``overrides`` applied.
     units : dict
@@ -235,15 +238,21 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
         spec = StudySpec.model_validate(data)
     except ValidationError as exc:
         raise ModelError(f"{source}: {format_validation_error(exc, StudySpec)}") from None
-    base_path = Path(root) / spec.base
-    if not base_path.exists():
-        raise ModelError(f"{source}: base: model file {str(base_path)!r} not found (base is relative to the study file)")
     from ..model import load
 
-    try:
-        base = load(base_path)
-    except ModelError as exc:
-        raise ModelError(f"{source}: base model: {exc}") from None
+    if spec.base is not None:
+        base_path = Path(root) / spec.base
+        if not base_path.exists():
+            raise ModelError(f"{source}: base: model file {str(base_path)!r} not found (base is relative to the study file)")
+        try:
+            base = load(base_path)
+        except ModelError as exc:
+            raise ModelError(f"{source}: base model: {exc}") from None
+    else:  # the base model written inline; file references in it are relative to the study file
+        base_path = Path(path) if path is not None else Path(root) / "study.toml"
+        inline = dict(spec.model)
+        _absolute_files(inline, Path(root))
+        base = from_dict(inline, source=f"{source}: model")
     model_cls = type(base)
     raw = to_dict(base)
     for key, value in spec.overrides.items():
