@@ -1,0 +1,150 @@
+"""``run`` for span-stability models: quantities, chart, bands, frequencies, measurement, response."""
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from ..errors import ModelError, SolverError
+from ..model import dumps
+from ..results import Result, variable
+from . import fourier
+from .chart import bands, chart_variables, floquet_band, zoom_ranges
+from .frequencies import estimate_tension, span_frequencies
+from .quantities import critical_speed, effective_tension, excitation_coefficient, excitation_frequency, natural_frequency
+from .source import resolve
+
+KIND = "span-stability"
+
+
+def tooth_force_harmonics(model, setup) -> fourier.Harmonics:
+    """Harmonics of the model's tooth force (the series is analysed at the model's period)."""
+    tf, n = model.tooth_force, model.excitation.harmonics
+    if tf.polynomial is not None:
+        return fourier.from_polynomial(tf.polynomial, n)
+    if tf.samples is not None:
+        s = np.asarray(tf.samples, dtype=float)
+        return fourier.from_samples(s[:, 0], s[:, 1], n)
+    if tf.series is not None:
+        if setup.speed <= 0:
+            raise ModelError("must be > 0 to analyse a time series at the tooth period", field="operation.speed")
+        period = 2 * np.pi / float(excitation_frequency(setup.speed, setup.teeth, setup.pitch, setup.convention))
+        return fourier.from_series(*fourier.read_series(tf.series), period, n)
+    return fourier.Harmonics(0.0, np.array([tf.amplitude]), np.array([0.0]))
+
+
+def operating_point(setup, harm) -> dict:
+    """Span quantities at the model's F0 and V; ModelError if V is at or above V_cr."""
+    sp, F0, V = setup.span, setup.pretension, setup.speed
+    vcr = float(critical_speed(F0, sp))
+    if V >= vcr:
+        raise ModelError(f"{V:.4g} m/s is at or above the critical speed {vcr:.4g} m/s at pretension {F0:.4g} N: "
+                         "the span diverges and has no natural frequency", field="operation.speed")
+    w = float(excitation_frequency(V, setup.teeth, setup.pitch, setup.convention))
+    Om = float(natural_frequency(F0, V, sp))
+    return {
+        "pretension": F0, "speed": V, "v_critical": vcr, "euler_load": sp.euler_load, "omega": Om,
+        "natural_frequency_hz": Om / (2 * np.pi), "mu": float(excitation_coefficient(F0, V, harm.f1, sp)),
+        "effective_tension": float(effective_tension(F0, V, sp)), "excitation_frequency": w,
+        "frequency_ratio": w / Om if Om > 0 else None,
+    }
+
+
+def run(model, progress=None) -> Result:
+    """Run a span-stability model.
+
+    Returns
+    -------
+    drivedyn.Result
+        ``ds`` holds the chart on (pretension, speed), the zoomed tongue on
+        (pretension_zoom, speed_zoom), tongue boundaries, frequency-vs-tension curves, the tooth
+        force and its harmonics (and the modal response if asked); ``summary`` the headline numbers.
+    """
+    report = progress or (lambda f, t="": None)
+    setup = resolve(model)
+    harm = tooth_force_harmonics(model, setup)
+    op = operating_point(setup, harm)
+    sp, ch = setup.span, model.chart
+    report(0.05, "chart")
+
+    F0 = np.linspace(*ch.pretension, ch.points[0])
+    V = np.linspace(*ch.speed, ch.points[1])
+    data, coords = chart_variables(F0, V, setup, harm, ch.tongues, ch.floquet, ch.steps_per_oscillation)
+    report(0.5, "zoomed tongue")
+    zp, zs = zoom_ranges(model, setup, harm)
+    zd, zc = chart_variables(np.linspace(*zp, ch.zoom.points[0]), np.linspace(*zs, ch.zoom.points[1]),
+                             setup, harm, 1, ch.floquet, ch.steps_per_oscillation, suffix="_zoom")
+    data.update(zd)
+    coords.update(zc)
+    report(0.8, "bands and frequencies")
+
+    exact, first = bands(setup, harm, ch.tongues)
+    fl = floquet_band(setup.pretension, exact[0], setup, harm, ch.steps_per_oscillation) if exact[0] else None
+    modes = np.arange(1, 4)
+    freqs = span_frequencies(setup.pretension, sp.mass_per_length, sp.length, sp.bending_stiffness, setup.speed, 3)
+
+    # frequency-vs-tension curves at the model's speed (NaN where the span diverges)
+    curves = {k: np.full(len(F0), np.nan) for k in ("string", "beam", "moving_beam")}
+    for i, T in enumerate(F0):
+        if T > 0 and setup.speed < critical_speed(T, sp):
+            f = span_frequencies(T, sp.mass_per_length, sp.length, sp.bending_stiffness, setup.speed, 1)
+            for k in curves:
+                curves[k][i] = f[k][0]
+    for k, v in curves.items():
+        data[f"frequency_{k}"] = variable(v, ("pretension",), "Hz", f"first span frequency ({k.replace('_', ' ')} model) at the model's speed")
+
+    phase = np.linspace(0, 2 * np.pi, 361)
+    data["tooth_force_series"] = variable(harm.evaluate(phase), ("phase",), "N", "tooth force, truncated Fourier series")
+    if model.tooth_force.polynomial is not None:
+        data["tooth_force"] = variable(np.polyval(model.tooth_force.polynomial, phase), ("phase",), "N", "tooth force (polynomial)")
+    coords["phase"] = variable(phase, ("phase",), "rad", "phase over one tooth")
+    kk = np.arange(1, len(harm.amplitudes) + 1)
+    coords["harmonic"] = variable(kk, ("harmonic",), "1", "harmonic order of the tooth frequency")
+    data["harmonic_amplitude"] = variable(harm.amplitudes, ("harmonic",), "N", "tooth force harmonic amplitude c_k")
+    data["harmonic_phase"] = variable(harm.phases, ("harmonic",), "rad", "tooth force harmonic phase theta_k")
+
+    summary = dict(op)
+    summary.update({
+        "f1": harm.f1, "tooth_force_mean": harm.mean, "tooth_force_harmonics": harm.amplitudes[:5].tolist(),
+        "period_convention": setup.convention, "pitch": setup.pitch, "teeth": setup.teeth,
+        "span_length": sp.length, "span_source": sp.source, "mass_per_length": sp.mass_per_length,
+        "bending_stiffness": sp.bending_stiffness, "damping_ratio": sp.damping_ratio,
+        "resonance_bands": [b for b in exact[:1] if b],
+        "resonance_bands_first_order": [first] if first else [],
+        "resonance_bands_floquet": [fl] if fl else [],
+        "tongues": [{"order": n + 1, "band": b} for n, b in enumerate(exact)],
+        "in_resonance": bool(exact[0] and exact[0][0] <= setup.speed <= exact[0][1]),
+        "frequencies": {k: np.asarray(v).tolist() for k, v in freqs.items()},
+    })
+    if model.measurement is not None:
+        summary["measurement"] = measurement_summary(model, setup)
+
+    result_ds = xr.Dataset(data, coords=coords, attrs={"model_toml": dumps(model), "title": model.name or KIND})
+    result_ds.coords["mode"] = variable(modes, ("mode",), "1", "mode number")
+    result = Result(KIND, result_ds, summary)
+    if model.response is not None:
+        report(0.9, "modal response")
+        from .response import modal_response
+
+        r = model.response
+        try:
+            t, q = modal_response(setup, harm, r.duration, r.moment_amplitude, r.initial_displacement, r.points)
+        except SolverError as exc:
+            raise SolverError(str(exc), partial=Result(KIND, result_ds, summary, success=False, message=str(exc))) from None
+        result_ds["modal_coordinate"] = xr.DataArray(q, dims=("time",), attrs={"units": "m", "long_name": "modal coordinate q (mid-span deflection)"})
+        result_ds.coords["time"] = variable(t, ("time",), "s", "time")
+        summary["response"] = {"max_deflection": float(np.max(np.abs(q))), "final_deflection": float(abs(q[-1]))}
+    report(1.0, "done")
+    return result
+
+
+def measurement_summary(model, setup) -> dict:
+    """Tension from the measured frequency, with corrections and uncertainty (summary block)."""
+    me, sp = model.measurement, setup.span
+    try:
+        e = estimate_tension(me.frequency, sp.mass_per_length, sp.length, sp.bending_stiffness, me.speed, me.mode,
+                             me.frequency_uncertainty, me.length_uncertainty, me.mass_uncertainty, me.bending_uncertainty)
+    except ModelError as exc:
+        raise ModelError(str(exc).split(": ", 1)[-1], field=f"measurement.{exc.field or 'frequency'}") from None
+    return {"frequency": me.frequency, "mode": me.mode, "speed": me.speed, "tension": e.tension,
+            "tension_string": e.tension_string, "bending_correction": e.bending_correction,
+            "speed_correction": e.speed_correction, "uncertainty": e.uncertainty, "contributions": e.contributions}

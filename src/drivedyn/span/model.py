@@ -1,0 +1,245 @@
+"""The span-stability model file (``kind = "span-stability"``): pure data, validated.
+
+Tables (every quantity SI or a string with a unit):
+
+    [span]         the free span: length (or a belt-drive model and a span name), mass per metre
+                   (or density and area), bending stiffness, modal damping ratio
+    [operation]    pretension F0 and belt speed V of the installation
+    [excitation]   tooth-passing excitation: pulley teeth and radius (or pitch), period convention
+    [tooth_force]  the tooth-force signal over one tooth: polynomial, samples, a CSV time series,
+                   or a given first-harmonic amplitude
+    [chart]        the (F0, V) stability chart: ranges, points, tongues, Floquet, zoomed tongue
+    [measurement]  optional: a measured span frequency -> tension (with uncertainties)
+    [response]     optional: time response of the modal coordinate to the end-moment rate
+"""
+from __future__ import annotations
+
+from typing import Literal, Optional
+
+from pydantic import field_validator, model_validator
+
+from ..model import Spec, quantity
+
+Force = quantity("N")
+Speed = quantity("m/s")
+
+
+def _check_range(v, what):
+    if v is not None and not v[1] > v[0]:
+        raise ValueError(f"must be [low, high] with high > low, got {list(v)}")
+    if v is not None and v[0] < 0:
+        raise ValueError(f"{what} must be >= 0, got {v[0]}")
+    return v
+
+
+class Span(Spec):
+    """The free span, modelled as a simply supported moving beam (seed eq. 1-2)."""
+
+    length: Optional[quantity("m", gt=0)] = None
+    belt_model: Optional[str] = None
+    span_name: Optional[str] = None
+    mass_per_length: Optional[quantity("kg/m", gt=0)] = None
+    density: Optional[quantity("kg/m^3", gt=0)] = None
+    area: Optional[quantity("m^2", gt=0)] = None
+    bending_stiffness: Optional[quantity("N*m^2", ge=0)] = None
+    damping_ratio: float = 0.0
+
+    @field_validator("damping_ratio")
+    @classmethod
+    def _zeta(cls, v):
+        if not 0.0 <= v < 1.0:
+            raise ValueError(f"must lie in [0, 1), got {v}")
+        return v
+
+    @model_validator(mode="after")
+    def _sources(self):
+        if (self.length is None) == (self.belt_model is None):
+            raise ValueError("give exactly one of span.length or span.belt_model (with span.span_name)")
+        if self.belt_model is not None and not self.span_name:
+            raise ValueError("span.belt_model needs span.span_name (e.g. \"driver-driven\")")
+        if self.mass_per_length is not None and (self.density is not None or self.area is not None):
+            raise ValueError("give span.mass_per_length or span.density with span.area, not both")
+        if (self.density is None) != (self.area is None):
+            raise ValueError("span.density and span.area go together")
+        if self.belt_model is None:
+            if self.mass_per_length is None and self.density is None:
+                raise ValueError("span.mass_per_length (or span.density and span.area) is required")
+            if self.bending_stiffness is None:
+                raise ValueError("span.bending_stiffness is required")
+        return self
+
+
+class Operation(Spec):
+    """The installation: static tension F0 and belt speed V."""
+
+    pretension: Optional[quantity("N", gt=0)] = None   # None: taken from the belt-drive model
+    speed: quantity("m/s", ge=0) = 0.0
+
+
+class Excitation(Spec):
+    """Tooth-passing excitation of the span tension."""
+
+    teeth: int = 16
+    pulley_radius: Optional[quantity("m", gt=0)] = None
+    pitch: Optional[quantity("m", gt=0)] = None
+    period: Literal["tooth-passing", "seed"] = "tooth-passing"
+    harmonics: int = 10
+
+    @field_validator("teeth")
+    @classmethod
+    def _z(cls, v):
+        if v < 1:
+            raise ValueError(f"must be >= 1, got {v}")
+        return v
+
+    @field_validator("harmonics")
+    @classmethod
+    def _h(cls, v):
+        if not 1 <= v <= 64:
+            raise ValueError(f"must lie in 1..64, got {v}")
+        return v
+
+    @model_validator(mode="after")
+    def _geometry(self):
+        if (self.pulley_radius is None) == (self.pitch is None):
+            raise ValueError("give exactly one of excitation.pulley_radius or excitation.pitch")
+        return self
+
+
+class ToothForce(Spec):
+    """The tooth force over one tooth (phase 0..2 pi), or its first-harmonic amplitude."""
+
+    polynomial: Optional[list[float]] = None     # N, coefficients highest power first, in phi (rad)
+    samples: Optional[list[list[float]]] = None  # [[phi (rad), force (N)], ...] over one tooth
+    series: Optional[str] = None                 # CSV file: time (s), force (N)
+    amplitude: Optional[quantity("N", ge=0)] = None
+
+    @field_validator("polynomial")
+    @classmethod
+    def _poly(cls, v):
+        if v is not None and len(v) < 1:
+            raise ValueError("needs at least one coefficient")
+        return v
+
+    @field_validator("samples")
+    @classmethod
+    def _samples(cls, v):
+        if v is None:
+            return v
+        if len(v) < 4 or any(len(r) != 2 for r in v):
+            raise ValueError("needs at least 4 rows [phi (rad), force (N)]")
+        phi = [r[0] for r in v]
+        if any(b <= a for a, b in zip(phi, phi[1:])) or phi[-1] - phi[0] > 6.2832:
+            raise ValueError("phi must increase strictly and span at most one tooth (2 pi)")
+        return v
+
+    @model_validator(mode="after")
+    def _one(self):
+        given = [k for k in ("polynomial", "samples", "series", "amplitude") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of tooth_force.polynomial, .samples, .series or .amplitude"
+                             + (f" (got {', '.join(given)})" if given else ""))
+        return self
+
+
+class Zoom(Spec):
+    """The zoomed principal tongue (seed fig. 3b); ranges default to around the tongue."""
+
+    pretension: Optional[tuple[Force, Force]] = None
+    speed: Optional[tuple[Speed, Speed]] = None
+    points: tuple[int, int] = (120, 120)
+
+    _pr = field_validator("pretension")(classmethod(lambda cls, v: _check_range(v, "pretension")))
+    _sp = field_validator("speed")(classmethod(lambda cls, v: _check_range(v, "speed")))
+
+
+class Chart(Spec):
+    """The stability chart in the (F0, V) plane (seed fig. 3a)."""
+
+    pretension: tuple[Force, Force] = (0.0, 300.0)
+    speed: tuple[Speed, Speed] = (0.0, 70.0)
+    points: tuple[int, int] = (200, 200)
+    tongues: int = 3
+    floquet: bool = True
+    steps_per_oscillation: int = 48
+    zoom: Zoom = Zoom()
+
+    _pr = field_validator("pretension")(classmethod(lambda cls, v: _check_range(v, "pretension")))
+    _sp = field_validator("speed")(classmethod(lambda cls, v: _check_range(v, "speed")))
+
+    @field_validator("points")
+    @classmethod
+    def _pts(cls, v):
+        if min(v) < 2 or max(v) > 2000:
+            raise ValueError(f"each must lie in 2..2000, got {list(v)}")
+        return v
+
+    @field_validator("tongues")
+    @classmethod
+    def _tg(cls, v):
+        if not 1 <= v <= 8:
+            raise ValueError(f"must lie in 1..8, got {v}")
+        return v
+
+    @field_validator("steps_per_oscillation")
+    @classmethod
+    def _spo(cls, v):
+        if not 8 <= v <= 1000:
+            raise ValueError(f"must lie in 8..1000, got {v}")
+        return v
+
+
+class Measurement(Spec):
+    """A measured span frequency, to be turned into the span tension (the field method)."""
+
+    frequency: quantity("Hz", gt=0)
+    mode: int = 1
+    speed: quantity("m/s", ge=0) = 0.0
+    frequency_uncertainty: quantity("Hz", ge=0) = 0.0
+    length_uncertainty: quantity("m", ge=0) = 0.0
+    mass_uncertainty: quantity("kg/m", ge=0) = 0.0
+    bending_uncertainty: quantity("N*m^2", ge=0) = 0.0
+
+    @field_validator("mode")
+    @classmethod
+    def _mode(cls, v):
+        if not 1 <= v <= 10:
+            raise ValueError(f"must lie in 1..10, got {v}")
+        return v
+
+
+class Response(Spec):
+    """Time response of the modal coordinate q(t) (seed eq. 4) to M(t) = M0 + M1 Phi(t)."""
+
+    duration: quantity("s", gt=0) = 0.5
+    moment_amplitude: quantity("N*m", ge=0) = 0.0
+    initial_displacement: quantity("m") = 1e-4
+    points: int = 2000
+
+    @field_validator("points")
+    @classmethod
+    def _pts(cls, v):
+        if not 10 <= v <= 200000:
+            raise ValueError(f"must lie in 10..200000, got {v}")
+        return v
+
+
+class Model(Spec):
+    """A belt span: its stability chart, frequencies and (optionally) tension from a frequency."""
+
+    kind: Literal["span-stability"]
+    schema_version: Literal[1] = 1
+    name: str = ""
+    span: Span
+    operation: Operation = Operation()
+    excitation: Excitation
+    tooth_force: ToothForce
+    chart: Chart = Chart()
+    measurement: Optional[Measurement] = None
+    response: Optional[Response] = None
+
+    @model_validator(mode="after")
+    def _pretension(self):
+        if self.span.belt_model is None and self.operation.pretension is None:
+            raise ValueError("operation.pretension is required (or take it from span.belt_model)")
+        return self

@@ -1,0 +1,101 @@
+"""Resolve a span model into SI numbers: the span itself, or one span of a belt-drive model.
+
+A span may give ``span.length`` directly, or name a belt-drive model file (``span.belt_model``)
+and one of its spans (``span.span_name``, e.g. "driver-driven"): the length then comes from
+``drivedyn.belt.layout.compute_layout(model).spans``, and the mass per metre, bending stiffness
+and pretension default to the belt's when the span model leaves them out. The path is tried as
+given (relative to the working directory), then as a shipped example name.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import ModelError
+from .quantities import SpanProperties
+
+
+@dataclass(frozen=True)
+class Setup:
+    """Everything the analysis needs, SI floats.
+
+    Attributes
+    ----------
+    span : SpanProperties
+    pretension, speed : float
+        Model's operating point F0 (N) and V (m/s).
+    teeth : int
+    pitch : float
+        Tooth pitch p = 2 pi r / z (m).
+    convention : str
+        Excitation period convention ("tooth-passing" or "seed").
+    """
+
+    span: SpanProperties
+    pretension: float
+    speed: float
+    teeth: int
+    pitch: float
+    convention: str
+
+
+def _belt_model_path(name: str) -> Path:
+    p = Path(name)
+    if p.exists():
+        return p
+    from ..api import examples
+
+    shipped = examples().get(p.name.removesuffix(".toml"))
+    if shipped is not None:
+        return shipped
+    raise ModelError(f"belt-drive model {name!r} not found (relative to the working directory, or a shipped example)",
+                     field="span.belt_model")
+
+
+def belt_span(name: str, span_name: str):
+    """(span length, belt model) of the span ``span_name`` of the belt-drive model file ``name``."""
+    from ..model import load
+
+    path = _belt_model_path(name)
+    try:
+        belt = load(path)
+    except ModelError as exc:
+        raise ModelError(f"cannot read belt-drive model: {exc}", field="span.belt_model") from None
+    if belt.kind != "belt-drive":
+        raise ModelError(f"{name!r} is a {belt.kind!r} model, not a belt-drive", field="span.belt_model")
+    try:  # imported lazily: the belt-drive analysis is optional for the span analysis
+        from ..belt.layout import compute_layout
+    except ImportError as exc:
+        raise ModelError(f"the belt-drive layout is not available in this build ({exc})", field="span.belt_model") from None
+    spans = getattr(compute_layout(belt), "spans", None)
+    if spans is None:
+        raise ModelError("the belt-drive layout gives no spans", field="span.belt_model")
+    for sp in spans:
+        if getattr(sp, "name", None) == span_name:
+            return float(sp.length), belt
+    names = ", ".join(str(getattr(sp, "name", "?")) for sp in spans)
+    raise ModelError(f"no span named {span_name!r} in {name!r} (has: {names})", field="span.span_name")
+
+
+def resolve(model) -> Setup:
+    """The model's numbers, taking the span from a belt-drive model where asked."""
+    s = model.span
+    m, EI, F0, source = s.mass_per_length, s.bending_stiffness, model.operation.pretension, "model"
+    if s.density is not None:
+        m = s.density * s.area
+    L = s.length
+    if s.belt_model is not None:
+        L, belt = belt_span(s.belt_model, s.span_name)
+        source = f"{s.belt_model}:{s.span_name}"
+        m = belt.belt.mass_per_length if m is None else m
+        EI = belt.belt.bending_stiffness if EI is None else EI
+        if F0 is None:
+            if belt.belt.pretension is None:
+                raise ModelError("required: the belt-drive model gives no pretension", field="operation.pretension")
+            F0 = belt.belt.pretension
+    ex = model.excitation
+    pitch = ex.pitch if ex.pitch is not None else 2.0 * np.pi * ex.pulley_radius / ex.teeth
+    return Setup(SpanProperties(float(L), float(m), float(EI), model.span.damping_ratio, source),
+                 float(F0), float(model.operation.speed), ex.teeth, float(pitch), ex.period)
