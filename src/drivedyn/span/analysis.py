@@ -8,7 +8,7 @@ from ..errors import ModelError, SolverError
 from ..model import dumps
 from ..results import Result, variable
 from . import fourier
-from .chart import bands, chart_variables, floquet_band, zoom_ranges
+from .chart import bands, chart_variables, floquet_band, tongue_curves, zoom_ranges
 from .frequencies import estimate_tension, span_frequencies
 from .quantities import critical_speed, effective_tension, excitation_coefficient, excitation_frequency, natural_frequency
 from .source import resolve
@@ -69,6 +69,9 @@ def run(model, progress=None) -> Result:
     F0 = np.linspace(*ch.pretension, ch.points[0])
     V = np.linspace(*ch.speed, ch.points[1])
     data, coords = chart_variables(F0, V, setup, harm, ch.tongues, ch.floquet, ch.steps_per_oscillation)
+    fine, fine_coords = tongue_curves(F0[-1], setup, harm, ch.tongues)
+    data.update(fine)
+    coords.update(fine_coords)
     report(0.5, "zoomed tongue")
     zp, zs = zoom_ranges(model, setup, harm)
     zd, zc = chart_variables(np.linspace(*zp, ch.zoom.points[0]), np.linspace(*zs, ch.zoom.points[1]),

@@ -51,6 +51,26 @@ def chart_variables(F0, V, setup, harm, tongues: int, floquet: bool, steps: int,
     return out, coords
 
 
+def tongue_curves(F0_max, setup, harm, tongues: int, points: int = 600):
+    """Exact and first-order boundaries on a fine speed axis covering the tongues up to F0_max.
+
+    The chart's own speed grid is too coarse for the thin low-speed tongues (seed fig. 3a).
+    """
+    sp, args = setup.span, (setup.teeth, setup.pitch, setup.convention)
+    vtop = 1.25 * float(tongue_centre_speed(F0_max, 1, sp, *args))
+    V = np.linspace(vtop / points, vtop, points)
+    lo, hi = zip(*(exact_boundaries(V, n, sp, harm.f1, *args) for n in range(1, tongues + 1)))
+    a, b = first_order_boundaries(V, sp, harm.f1, *args)
+    S = "speed_tongues"
+    data = {
+        "tongue_low_fine": variable(np.array(lo), ("tongue", S), "N", "exact tongue, lower pretension (fine speed axis)"),
+        "tongue_high_fine": variable(np.array(hi), ("tongue", S), "N", "exact tongue, upper pretension (fine speed axis)"),
+        "first_order_low_fine": variable(a, (S,), "N", "first-order tongue, lower pretension (fine speed axis)"),
+        "first_order_high_fine": variable(b, (S,), "N", "first-order tongue, upper pretension (fine speed axis)"),
+    }
+    return data, {S: variable(V, (S,), "m/s", "belt speed on the tongues' axis")}
+
+
 def zoom_ranges(model, setup, harm):
     """Default zoom window (seed fig. 3b): F0 within +- 6 F1 of the model's, V around the tongue."""
     z = model.chart.zoom

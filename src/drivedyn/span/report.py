@@ -1,0 +1,51 @@
+"""``check`` for span-stability models: the span quantities, bands and frequencies as text."""
+from __future__ import annotations
+
+import numpy as np
+
+from .analysis import measurement_summary, operating_point, tooth_force_harmonics
+from .chart import bands
+from .frequencies import span_frequencies
+from .source import resolve
+
+
+def _band(b):
+    return f"{b[0]:.4g} .. {b[1]:.4g} m/s" if b else "none"
+
+
+def report(model) -> str:
+    """Human-readable report of what is known without the chart (no Floquet map)."""
+    st = resolve(model)
+    harm = tooth_force_harmonics(model, st)
+    op = operating_point(st, harm)
+    sp = st.span
+    exact, first = bands(st, harm, model.chart.tongues)
+    f = span_frequencies(st.pretension, sp.mass_per_length, sp.length, sp.bending_stiffness, st.speed, 3)
+    period = 2 * np.pi / op["excitation_frequency"] if op["excitation_frequency"] > 0 else float("inf")
+    lines = [
+        f"span-stability: {model.name or '(unnamed)'}",
+        f"  span            l = {sp.length:.4g} m ({sp.source}), rhoA = {sp.mass_per_length:.4g} kg/m, "
+        f"EI = {sp.bending_stiffness:.4g} N m^2, zeta = {sp.damping_ratio:.3g}",
+        f"  operation       F0 = {st.pretension:.4g} N, V = {st.speed:.4g} m/s",
+        f"  Euler load      F* = {op['euler_load']:.4g} N",
+        f"  critical speed  V_cr = {op['v_critical']:.4g} m/s (divergence above)",
+        f"  loaded freq.    Omega = {op['omega']:.4g} rad/s ({op['natural_frequency_hz']:.4g} Hz)",
+        f"  tooth force     mean {harm.mean:.4g} N, F1 = {harm.f1:.4g} N, "
+        f"c2..c4 = {', '.join(f'{c:.3g}' for c in harm.amplitudes[1:4])} N",
+        f"  excitation      mu = {op['mu']:.4g}, pitch {1e3 * st.pitch:.4g} mm, {st.convention} period "
+        f"{1e3 * period:.4g} ms, omega = {op['excitation_frequency']:.4g} rad/s (omega/Omega = {op['frequency_ratio']:.4g})",
+        f"  principal band  exact {_band(exact[0])}; first order (seed) {_band(first)}",
+    ]
+    for n, b in enumerate(exact[1:], start=2):
+        lines.append(f"  tongue n = {n}    {_band(b)}")
+    inside = bool(exact[0] and exact[0][0] <= st.speed <= exact[0][1])
+    lines.append(f"  at the model's speed: {'INSIDE the principal resonance band' if inside else 'outside the principal band'}")
+    lines.append("  span frequencies (Hz, modes 1-3):")
+    for k, v in f.items():
+        lines.append(f"    {k:14s} " + "  ".join(f"{x:8.4g}" for x in np.atleast_1d(v)))
+    if model.measurement is not None:
+        m = measurement_summary(model, st)
+        lines.append(f"  measurement     {m['frequency']:.4g} Hz (mode {m['mode']}, V = {m['speed']:.3g} m/s) -> "
+                     f"T = {m['tension']:.4g} +- {m['uncertainty']:.3g} N (string formula {m['tension_string']:.4g} N, "
+                     f"bending {m['bending_correction']:+.3g} N, speed {m['speed_correction']:+.3g} N)")
+    return "\n".join(lines)
