@@ -1,0 +1,324 @@
+"""The gear-train model file (``kind = "gear-train"``): pure data, validated.
+
+A gear train is a set of spur gears (rigid bodies turning about fixed axes), meshes between pairs
+of them (spring-damper along the line of action with a time-varying stiffness), torsional shafts
+joining gears on one axis, and external torques. Sign convention (seed 003, eq. 9-11): every gear's
+angle and speed are positive in its own nominal direction of rotation; a torque is positive when it
+drives the gear in that direction (loads are negative).
+"""
+from __future__ import annotations
+
+from typing import Literal, Optional
+
+from pydantic import field_validator, model_validator
+
+from ..model import Spec, quantity
+
+Length = quantity("m")
+Time = quantity("s")
+
+
+def _name(v):
+    if not v or any(c in v for c in " ./"):
+        raise ValueError(f"must be a non-empty name without spaces, dots or slashes, got {v!r}")
+    return v
+
+
+def _table(value, units, field):
+    """Rows [x, y] (numbers or unit strings) to SI floats, x strictly increasing."""
+    from ..units import to_si
+
+    if not isinstance(value, (list, tuple)) or len(value) < 2:
+        raise ValueError(f"{field} must be a list of at least 2 [{units[0]}, {units[1]}] rows")
+    rows = []
+    for k, row in enumerate(value):
+        if not isinstance(row, (list, tuple)) or len(row) != 2:
+            raise ValueError(f"row {k} of {field} must have 2 values, got {row!r}")
+        try:
+            rows.append([to_si(row[0], units[0]), to_si(row[1], units[1])])
+        except Exception as exc:
+            raise ValueError(f"row {k} of {field}: {exc}") from None
+    xs = [r[0] for r in rows]
+    if any(b <= a for a, b in zip(xs, xs[1:])):
+        raise ValueError(f"{field}: first column must increase strictly")
+    return rows
+
+
+class Gear(Spec):
+    """A spur gear: tooth data (basic rack in modules), blank and external torque."""
+
+    name: str
+    teeth: int
+    module: quantity("m", gt=0)
+    pressure_angle: quantity("rad", gt=0, lt=0.8) = 0.3490658503988659  # 20 deg
+    profile_shift: float = 0.0
+    face_width: quantity("m", gt=0)
+    inertia: quantity("kg*m^2", gt=0)
+    tip_diameter: Optional[quantity("m", gt=0)] = None
+    addendum: float = 1.0      # h_aP / m of the basic rack
+    dedendum: float = 1.25     # h_fP / m of the basic rack
+    bore_diameter: Optional[quantity("m", gt=0)] = None
+    youngs_modulus: quantity("Pa", gt=0) = 206e9
+    poisson: float = 0.3
+    torque: quantity("N*m") = 0.0
+    torque_speed: Optional[list[list]] = None
+    torque_time: Optional[list[list]] = None
+    load_fraction: float = 0.0
+
+    @field_validator("name")
+    @classmethod
+    def _n(cls, v):
+        return _name(v)
+
+    @field_validator("teeth")
+    @classmethod
+    def _z(cls, v):
+        if v < 5:
+            raise ValueError(f"must be >= 5 (an involute gear needs at least 5 teeth), got {v}")
+        return v
+
+    @field_validator("poisson")
+    @classmethod
+    def _nu(cls, v):
+        if not 0.0 <= v < 0.5:
+            raise ValueError(f"must lie in [0, 0.5), got {v}")
+        return v
+
+    @field_validator("addendum", "dedendum")
+    @classmethod
+    def _rack(cls, v):
+        if not 0.0 < v < 3.0:
+            raise ValueError(f"must lie in (0, 3) modules, got {v}")
+        return v
+
+    @field_validator("load_fraction")
+    @classmethod
+    def _lf(cls, v):
+        if not 0.0 <= v <= 1.0:
+            raise ValueError(f"must lie in [0, 1], got {v}")
+        return v
+
+    @field_validator("torque_speed")
+    @classmethod
+    def _ts(cls, v):
+        return None if v is None else _table(v, ("rad/s", "N*m"), "torque_speed")
+
+    @field_validator("torque_time")
+    @classmethod
+    def _tt(cls, v):
+        return None if v is None else _table(v, ("s", "N*m"), "torque_time")
+
+
+class Stiffness(Spec):
+    """Time-varying mesh stiffness: its shape and where its magnitude comes from.
+
+    ``model``: ``cai`` (Cai's parabola per tooth pair, normalised by the mean mesh stiffness),
+    ``rectangular`` (single/double-contact wave), ``potential-energy`` (from the tooth geometry),
+    ``constant`` (the mean only). The magnitude of cai/rectangular/constant is ``mean`` if given,
+    else ISO 6336-1 c_gamma_alpha * b; a rectangular wave may instead give ``single`` and ``double``.
+    """
+
+    model: Literal["cai", "rectangular", "potential-energy", "constant"] = "cai"
+    mean: Optional[quantity("N/m", gt=0)] = None
+    single: Optional[quantity("N/m", gt=0)] = None
+    double: Optional[quantity("N/m", gt=0)] = None
+    engagement: float = 0.0
+
+    @field_validator("engagement")
+    @classmethod
+    def _eng(cls, v):
+        if not 0.0 <= v <= 0.45:
+            raise ValueError(f"must lie in [0, 0.45] mesh periods, got {v}")
+        return v
+
+    @model_validator(mode="after")
+    def _given(self):
+        if (self.single is None) != (self.double is None):
+            raise ValueError("give both single and double (N/m), or neither")
+        if self.single is not None and self.model != "rectangular":
+            raise ValueError(f"single/double are values of the rectangular wave, not of model {self.model!r}")
+        if self.single is not None and self.mean is not None:
+            raise ValueError("give either mean or single/double, not both")
+        if self.model == "potential-energy" and self.mean is not None:
+            raise ValueError("the potential-energy stiffness is computed from the teeth; remove mean")
+        return self
+
+
+class Mesh(Spec):
+    """A mesh between two external spur gears: ``gears = [driving, driven]``."""
+
+    name: str
+    gears: tuple[str, str]
+    stiffness: Stiffness = Stiffness()
+    damping: Optional[quantity("N*s/m", ge=0)] = None
+    damping_ratio: Optional[float] = None
+    friction: float = 0.0
+    position_angle: quantity("rad") = 0.0
+    phase: Optional[float] = None
+    center_distance: Optional[quantity("m", gt=0)] = None
+    separation: bool = False
+    backlash: quantity("m", ge=0) = 0.0
+
+    @field_validator("name")
+    @classmethod
+    def _n(cls, v):
+        return _name(v)
+
+    @field_validator("friction")
+    @classmethod
+    def _mu(cls, v):
+        if not 0.0 <= v < 1.0:
+            raise ValueError(f"must lie in [0, 1), got {v}")
+        return v
+
+    @field_validator("damping_ratio")
+    @classmethod
+    def _zeta(cls, v):
+        if v is not None and not 0.0 <= v < 1.0:
+            raise ValueError(f"must lie in [0, 1), got {v}")
+        return v
+
+    @field_validator("phase")
+    @classmethod
+    def _phase(cls, v):
+        if v is not None and not 0.0 <= v < 1.0:
+            raise ValueError(f"must lie in [0, 1) mesh periods, got {v}")
+        return v
+
+    @model_validator(mode="after")
+    def _checks(self):
+        if self.gears[0] == self.gears[1]:
+            raise ValueError(f"gears: a mesh needs two different gears, got {list(self.gears)}")
+        if self.damping is not None and self.damping_ratio is not None:
+            raise ValueError("give damping (N s/m) or damping_ratio, not both")
+        return self
+
+
+class Shaft(Spec):
+    """A torsional shaft joining two gears on the same axis (they turn the same way)."""
+
+    name: str
+    gears: tuple[str, str]
+    stiffness: quantity("N*m/rad", gt=0)
+    damping: quantity("N*m*s/rad", ge=0) = 0.0
+
+    @field_validator("name")
+    @classmethod
+    def _n(cls, v):
+        return _name(v)
+
+
+class Drive(Spec):
+    """Operating point: the input gear, its nominal speed and the input power or torque."""
+
+    input: str
+    speed: quantity("rad/s", gt=0)
+    power: Optional[quantity("W", gt=0)] = None
+    torque: Optional[quantity("N*m", gt=0)] = None
+
+    @model_validator(mode="after")
+    def _load(self):
+        if (self.power is None) == (self.torque is None):
+            raise ValueError("give exactly one of drive.power (W) or drive.torque (N m)")
+        return self
+
+
+class Simulation(Spec):
+    """Time integration: the seed's fixed-step RK4 or adaptive Dormand-Prince 5(4)."""
+
+    method: Literal["rk4", "dopri5"] = "rk4"
+    step: quantity("s", gt=0) = 5e-6
+    duration: quantity("s", gt=0) = 0.05
+    start: Literal["static", "ramp", "rest"] = "static"
+    ramp_time: quantity("s", ge=0) = 0.0
+    steady_window: Optional[tuple[Time, Time]] = None
+    output_interval: Optional[quantity("s", gt=0)] = None
+    rtol: float = 1e-8
+    atol: quantity("m", gt=0) = 1e-12
+
+    @model_validator(mode="after")
+    def _window(self):
+        w = self.steady_window
+        if w is not None and not (0 <= w[0] < w[1] <= self.duration * (1 + 1e-9)):
+            raise ValueError(f"steady_window must be [start, end] with 0 <= start < end <= duration, got {list(w)}")
+        if self.start == "ramp" and self.ramp_time <= 0:
+            raise ValueError("start = 'ramp' needs ramp_time > 0")
+        if self.step > self.duration:
+            raise ValueError("step is longer than duration")
+        return self
+
+
+class Sweep(Spec):
+    """K_v against input speed at the nominal torques (a run per speed, in compiled code)."""
+
+    enabled: bool = False
+    speed_min: Optional[quantity("rad/s", gt=0)] = None
+    speed_max: Optional[quantity("rad/s", gt=0)] = None
+    count: int = 200
+    settle: Optional[quantity("s", gt=0)] = None
+    window_cycles: int = 20
+    steps_per_cycle: int = 64
+
+    @model_validator(mode="after")
+    def _range(self):
+        if self.count < 2:
+            raise ValueError(f"count must be >= 2, got {self.count}")
+        if self.window_cycles < 2 or self.steps_per_cycle < 16:
+            raise ValueError("window_cycles must be >= 2 and steps_per_cycle >= 16")
+        if self.speed_min is not None and self.speed_max is not None and not self.speed_max > self.speed_min:
+            raise ValueError("speed_max must be > speed_min")
+        return self
+
+
+class Iso(Spec):
+    """ISO 6336-1:2006 inputs for c', c_gamma and the method B dynamic factor."""
+
+    application_factor: float = 1.0
+    low_load: bool = True
+    blank_factor: float = 1.0
+    pitch_deviation: quantity("m", ge=0) = 7e-6
+    profile_deviation: quantity("m", ge=0) = 7e-6
+    material: Literal["St", "Eh", "GG"] = "Eh"
+    sigma_hlim: quantity("Pa", gt=0) = 1500e6
+    tip_relief: Optional[quantity("m", ge=0)] = None
+
+    @field_validator("application_factor", "blank_factor")
+    @classmethod
+    def _pos(cls, v):
+        if not v > 0:
+            raise ValueError(f"must be > 0, got {v}")
+        return v
+
+
+class Model(Spec):
+    """A gear train: gears, meshes, shafts, operating point, integration, sweep, ISO data."""
+
+    kind: Literal["gear-train"]
+    schema_version: Literal[1] = 1
+    name: str = ""
+    gears: list[Gear]
+    meshes: list[Mesh]
+    shafts: list[Shaft] = []
+    drive: Drive
+    simulation: Simulation = Simulation()
+    sweep: Sweep = Sweep()
+    iso: Iso = Iso()
+
+    @model_validator(mode="after")
+    def _topology(self):
+        names = [g.name for g in self.gears]
+        for what, items in (("gears", self.gears), ("meshes", self.meshes), ("shafts", self.shafts)):
+            seen = [i.name for i in items]
+            dup = sorted({n for n in seen if seen.count(n) > 1})
+            if dup:
+                raise ValueError(f"{what}: duplicate name(s) {dup}")
+        if not self.meshes:
+            raise ValueError("meshes: a gear train needs at least one mesh")
+        for k, link in enumerate([*self.meshes, *self.shafts]):
+            where = f"meshes[{k}]" if k < len(self.meshes) else f"shafts[{k - len(self.meshes)}]"
+            for g in link.gears:
+                if g not in names:
+                    raise ValueError(f"{where}.gears: no gear named {g!r} (gears: {', '.join(names)})")
+        if self.drive.input not in names:
+            raise ValueError(f"drive.input: no gear named {self.drive.input!r}")
+        return self

@@ -1,0 +1,261 @@
+"""Run a gear-train model: initial state, compiled integration, K_v and the Result."""
+from __future__ import annotations
+
+import math
+import time
+import warnings
+
+import numpy as np
+import xarray as xr
+
+from ..errors import DrivedynWarning, SolverError
+from ..results import Result, variable
+from . import _kernels
+from .train import System, assemble
+
+
+def params(sys_: System, ramp: float = 0.0, tables: bool = True) -> tuple:
+    """The kernel parameter tuple (order: see the contract of ``_kernels``)."""
+    fa, fb = sys_.friction_tables()
+    empty_i, empty_f = np.zeros(sys_.n + 1, dtype=np.int64), np.zeros(0)
+    ts = (sys_.ts_off, sys_.ts_x, sys_.ts_y) if tables else (empty_i, empty_f, empty_f)
+    tt = (sys_.tt_off, sys_.tt_x, sys_.tt_y) if tables else (empty_i, empty_f, empty_f)
+    return (sys_.inertia.astype(float), sys_.torque_const.astype(float), float(ramp), *ts, *tt,
+            sys_.mesh_a, sys_.mesh_b, sys_.rb_a, sys_.rb_b, sys_.z_a, sys_.phase, sys_.damping, sys_.separation,
+            sys_.backlash, sys_.ktab(), fa, fb, sys_.shaft_a, sys_.shaft_b, sys_.shaft_k, sys_.shaft_c)
+
+
+def stiffness_at(sys_: System, theta_a) -> np.ndarray:
+    """Mesh stiffness (N/m) of every mesh at driving-gear angles ``theta_a`` (..., m) by the tables."""
+    kt = sys_.ktab()
+    N = kt.shape[1]
+    u = (sys_.z_a * np.asarray(theta_a) / (2 * math.pi) + sys_.phase) % 1.0
+    x = u * N
+    i0 = np.minimum(x.astype(int), N - 1)
+    w = x - i0
+    i1 = (i0 + 1) % N
+    cols = np.arange(sys_.m)
+    return kt[cols, i0] * (1 - w) + kt[cols, i1] * w
+
+
+def static_start(sys_: System) -> np.ndarray:
+    """Deflections (rad) in static equilibrium with the stiffness at the start position (theta = 0)."""
+    q = np.zeros(sys_.n)
+    for _ in range(3):      # the stiffness depends (weakly) on the deflected angle: a few fixed-point passes
+        q, _, _ = sys_.static(k_mesh=stiffness_at(sys_, q[sys_.mesh_a]))
+    return q
+
+
+def default_window(sim) -> tuple[float, float]:
+    """The steady window: as given, else the second half of the run."""
+    if sim.steady_window is not None:
+        return tuple(sim.steady_window)
+    return 0.5 * sim.duration, sim.duration
+
+
+def run(model, progress=None) -> Result:
+    """Simulate a gear-train model; K_v per mesh over the steady window; optional speed sweep."""
+    t0 = time.perf_counter()
+    sys_ = assemble(model)
+    sim = model.simulation
+    n, m = sys_.n, sys_.m
+    if sim.start == "static":
+        q0 = static_start(sys_)
+    else:
+        q0 = np.zeros(n)
+    y0 = np.concatenate([q0, sys_.ratio * sys_.omega_in])
+    ramp = sim.ramp_time if sim.start == "ramp" else 0.0
+    p = params(sys_, ramp)
+    w0, w1 = default_window(sim)
+    h = sim.step
+    interval = sim.output_interval or h
+    every = max(1, int(round(interval / h)))
+    nsteps = int(math.ceil(sim.duration / h - 1e-9))
+    nout = nsteps // every + 1
+    out_y = np.full((nout, 2 * n), np.nan)
+    out_f = np.full((nout, m), np.nan)
+    out_d = np.full((nout, m), np.nan)
+    stats = np.zeros((m, 4))
+    if progress:
+        progress(0.0, "compiling / integrating")
+    if sim.method == "rk4":
+        done = _kernels.run_rk4(y0, h, nsteps, every, p, w0, w1, out_y, out_f, out_d, stats)
+        ok = done == nsteps
+        t_fail = done * h
+        t = np.arange(nout) * every * h
+        solver = {"method": "rk4", "step": h, "steps": int(done)}
+    else:
+        dt_out = interval if sim.output_interval else max(h, sim.duration / 20000)
+        nout = int(math.floor(sim.duration / dt_out + 1e-9)) + 1
+        out_y = np.full((nout, 2 * n), np.nan)
+        out_f = np.full((nout, m), np.nan)
+        out_d = np.full((nout, m), np.nan)
+        atol = np.concatenate([np.full(n, sim.atol / sys_.rb_a.min()), np.full(n, sim.atol / sys_.rb_a.min() * 1e4)])
+        counts = np.zeros(3, dtype=np.int64)
+        t_mesh = 1.0 / sys_.mesh_frequency(sys_.omega_in).max()
+        tend = _kernels.run_dopri5(y0, sim.duration, h, t_mesh / 20, sim.rtol, atol, p, dt_out, w0, w1,
+                                   out_y, out_f, out_d, stats, counts)
+        ok = tend >= sim.duration * (1 - 1e-12)
+        t_fail = tend
+        t = np.arange(nout) * dt_out
+        solver = {"method": "dopri5", "rtol": sim.rtol, "steps": int(counts[0]), "rejected": int(counts[1]),
+                  "rhs_evaluations": int(counts[2]), "max_step": t_mesh / 20}
+    solver["wall_time"] = time.perf_counter() - t0
+    if progress:
+        progress(0.9, "results")
+    result = _result(model, sys_, t, out_y, out_f, out_d, stats, (w0, w1), solver)
+    if not ok:
+        result.success = False
+        result.message = f"the state stopped being finite at t = {t_fail:.6g} s (mesh forces diverged); try a smaller step"
+        raise SolverError(result.message, partial=result)
+    if model.sweep.enabled:
+        from .sweep import run_sweep
+
+        sw = run_sweep(sys_, model, progress=progress)
+        _add_sweep(result, sys_, sw)
+    result.summary["solver"]["wall_time"] = time.perf_counter() - t0
+    if progress:
+        progress(1.0, "done")
+    return result
+
+
+def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Result:
+    from .. import dumps
+    from .iso6336 import MethodB
+    from .train import reduced_mass_per_mesh
+
+    n, m = sys_.n, sys_.m
+    th, om = out_y[:, :n], out_y[:, n:]
+    F = sys_.force_nominal
+    k_t = stiffness_at(sys_, th[:, sys_.mesh_a])
+    share = np.full_like(out_f, np.nan)
+    for j in range(m):
+        same = sys_.mesh_a == sys_.mesh_a[j]
+        share[:, j] = out_f[:, j] / out_f[:, same].sum(axis=1)
+    fmax, fmin = stats[:, 0], stats[:, 1]
+    fmean = stats[:, 2] / np.maximum(stats[:, 3], 1)
+    freqs, shapes, zeta = sys_.modes()
+    f_mesh = sys_.mesh_frequency(sys_.omega_in)
+    win = (t >= window[0]) & (t <= window[1]) & np.isfinite(out_f[:, 0])
+    spec_f, spec = _spectrum(t[win], out_f[win])
+    mred = reduced_mass_per_mesh(sys_)
+    meshes, warn = {}, []
+    iso_b = []
+    for j, name in enumerate(sys_.mesh_names):
+        p_ = sys_.pairs[j]
+        iso = sys_.iso[j]
+        mb = _method_b(model, sys_, j, mred[j])
+        iso_b.append(mb)
+        kv_iso, n_ratio, region = mb.kv(sys_.ratio[sys_.mesh_a[j]] * sys_.omega_in / (2 * math.pi))
+        c1, cg = iso.si(min(p_.g1.b, p_.g2.b))
+        meshes[name] = {
+            "kv": fmax[j] / F[j], "force_nominal": F[j], "force_max": fmax[j], "force_min": fmin[j],
+            "force_mean": fmean[j], "load_share": fmean[j] / fmean[sys_.mesh_a == sys_.mesh_a[j]].sum(),
+            "kv_iso_method_b": kv_iso, "iso_speed_ratio_N": n_ratio, "iso_region": region,
+            "iso_resonance_speed_rpm": mb.resonance_speed * 60.0,
+            "contact_ratio": p_.contact_ratio, "mesh_frequency": f_mesh[j], "phase": sys_.phase[j],
+            "stiffness_model": model.meshes[j].stiffness.model, "stiffness_mean": sys_.tables[j].mean,
+            "stiffness_min": float(sys_.tables[j].stiffness.min()), "stiffness_max": float(sys_.tables[j].stiffness.max()),
+            "iso_c_single": c1, "iso_c_gamma": cg, "damping": sys_.damping[j],
+        }
+        if not model.meshes[j].separation and fmin[j] < 0:
+            msg = (f"mesh {name!r}: the mesh force goes negative ({fmin[j]:.4g} N) in the steady window: the teeth "
+                   f"would separate; switch on tooth separation (meshes[{j}].separation = true)")
+            warnings.warn(msg, DrivedynWarning, stacklevel=3)
+            warn.append(msg)
+    start = model.simulation.start
+    how = {"static": "static equilibrium at the start position (no start-up step)",
+           "ramp": f"load ramped smoothly over {model.simulation.ramp_time:g} s",
+           "rest": "undeflected, full load at t = 0 (start-up transient present)"}[start]
+    summary = {
+        "meshes": meshes,
+        "natural_frequencies_hz": [float(x) for x in freqs],
+        "modal_damping_ratios": [float(x) for x in zeta],
+        "steady_window": [float(window[0]), float(window[1])],
+        "start": how,
+        "input": {"gear": sys_.names[sys_.input_index], "speed": sys_.omega_in, "torque": sys_.torque_input},
+        "gears": {nm: {"speed_nominal": sys_.ratio[i] * sys_.omega_in,
+                       "speed_mean": float(np.nanmean(om[win, i])) if win.any() else None,
+                       "torque": sys_.torque_const[i]} for i, nm in enumerate(sys_.names)},
+        "solver": solver,
+        "warnings": warn,
+    }
+    T0 = 1.0 / f_mesh[0]
+    ds = xr.Dataset(
+        {
+            "angle": variable(th, ("time", "gear"), "rad", "rotation angle (own direction of rotation positive)"),
+            "speed": variable(om, ("time", "gear"), "rad/s", "angular speed"),
+            "vibration": variable(th - np.outer(t, sys_.ratio * sys_.omega_in), ("time", "gear"), "rad",
+                                  "torsional vibration: angle minus the nominal rigid rotation"),
+            "mesh_force": variable(out_f, ("time", "mesh"), "N", "dynamic mesh force along the line of action"),
+            "dte": variable(out_d, ("time", "mesh"), "m", "dynamic transmission error r_ba theta_a - r_bb theta_b"),
+            "mesh_stiffness": variable(k_t, ("time", "mesh"), "N/m", "time-varying mesh stiffness"),
+            "kv_t": variable(out_f / F, ("time", "mesh"), "1", "mesh force over the nominal force"),
+            "load_share": variable(share, ("time", "mesh"), "1", "share of the driving gear's mesh forces"),
+            "force_nominal": variable(F, ("mesh",), "N", "nominal (static, mean stiffness) mesh force"),
+            "kv": variable(fmax / F, ("mesh",), "1", "dynamic factor: max force in the steady window / nominal"),
+            "stiffness_table": variable(sys_.ktab().T, ("mesh_position", "mesh"), "N/m",
+                                        "mesh stiffness over one mesh period"),
+            "pairs_in_contact": variable(np.array([tb.pairs for tb in sys_.tables]).T, ("mesh_position", "mesh"), "1",
+                                         "number of tooth pairs in contact"),
+            "natural_frequency": variable(freqs, ("mode",), "Hz", "natural frequency (mean stiffness)"),
+            "mode_shape": variable(shapes, ("gear", "mode"), "1", "mass-normalised mode shape"),
+            "force_spectrum": variable(spec, ("frequency", "mesh"), "N", "amplitude spectrum of the mesh force (steady window)"),
+        },
+        coords={"time": ("time", t, {"units": "s", "long_name": "time"}),
+                "gear": sys_.names, "mesh": sys_.mesh_names,
+                "mesh_position": ("mesh_position", sys_.tables[0].u, {"units": "1", "long_name": "mesh position (periods)"}),
+                "mode": np.arange(len(freqs)),
+                "frequency": ("frequency", spec_f, {"units": "Hz", "long_name": "frequency"}),
+                "order": ("frequency", spec_f * T0, {"units": "1", "long_name": f"order of the mesh frequency of {sys_.mesh_names[0]}"})},
+        attrs={"model_toml": dumps(model), "steady_window": list(window), "start": how,
+               "mesh_frequency_hz": list(map(float, f_mesh)), "title": model.name or "gear train"},
+    )
+    for j, name in enumerate(sys_.mesh_names):
+        ds.attrs[f"pair_s_{name}"] = list(map(float, sys_.tables[j].pair_s[::8]))
+        ds.attrs[f"pair_k_{name}"] = list(map(float, sys_.tables[j].pair_k[::8]))
+        ds.attrs[f"contact_ratio_{name}"] = float(sys_.pairs[j].contact_ratio)
+        ds.attrs[f"pitch_s_{name}"] = float((sys_.pairs[j].rho_pitch - sys_.pairs[j].rho_start) / sys_.pairs[j].base_pitch)
+    return Result(kind="gear-train", ds=ds, summary=summary)
+
+
+def _method_b(model, sys_, j, m_red):
+    from .iso6336 import MethodB
+
+    p_ = sys_.pairs[j]
+    iso = sys_.iso[j]
+    b_mm = min(p_.g1.b, p_.g2.b) * 1e3
+    return MethodB(z1=p_.g1.z, c_single=iso.c_single, c_gamma=iso.c_gamma, m_red=m_red / b_mm,
+                   eps_gamma=p_.contact_ratio, load_per_width=iso.load_per_width,
+                   f_pb=model.iso.pitch_deviation * 1e6, f_falpha=model.iso.profile_deviation * 1e6,
+                   material=model.iso.material, sigma_hlim=model.iso.sigma_hlim / 1e6,
+                   c_a=None if model.iso.tip_relief is None else model.iso.tip_relief * 1e6, pitch_radius=p_.g1.r)
+
+
+def _spectrum(t, f):
+    """Single-sided amplitude spectrum (Hann window, amplitude-corrected) of each column of f."""
+    if len(t) < 8:
+        return np.zeros(1), np.zeros((1, f.shape[1]))
+    dt = t[1] - t[0]
+    w = np.hanning(len(t))
+    x = (f - f.mean(axis=0)) * w[:, None]
+    X = np.abs(np.fft.rfft(x, axis=0)) * 2 / w.sum()
+    return np.fft.rfftfreq(len(t), dt), X
+
+
+def _add_sweep(result, sys_, sw):
+    ds = result.ds
+    ds["sweep_speed"] = variable(sw["speeds"], ("sweep_speed",), "rad/s", "input speed of the sweep")
+    ds = ds.assign_coords(sweep_speed=("sweep_speed", sw["speeds"], {"units": "rad/s", "long_name": "input speed"}))
+    ds["kv_sweep"] = variable(sw["kv"], ("sweep_speed", "mesh"), "1", "simulated K_v against input speed")
+    ds["kv_min_sweep"] = variable(sw["kv_min"], ("sweep_speed", "mesh"), "1", "min force / nominal against input speed")
+    ds["kv_iso_sweep"] = variable(sw["kv_iso"], ("sweep_speed", "mesh"), "1", "ISO 6336-1 method B K_v")
+    result.ds = ds
+    result.summary["sweep"] = {
+        "speed_min": float(sw["speeds"][0]), "speed_max": float(sw["speeds"][-1]), "count": len(sw["speeds"]),
+        "settle": sw["settle"], "window_cycles": sw["window_cycles"], "wall_time": sw["wall_time"],
+        "meshes": {name: {"kv_max": float(np.nanmax(sw["kv"][:, j])),
+                          "speed_at_kv_max": float(sw["speeds"][np.nanargmax(sw["kv"][:, j])]),
+                          "kv_iso_max": float(np.nanmax(sw["kv_iso"][:, j]))}
+                   for j, name in enumerate(sys_.mesh_names)},
+    }
