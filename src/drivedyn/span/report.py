@@ -10,7 +10,7 @@ from .source import resolve
 
 
 def _band(b):
-    return f"{b[0]:.4g} .. {b[1]:.4g} m/s" if b else "none"
+    return f"{b[0]:.5g} .. {b[1]:.5g} m/s" if b else "none"
 
 
 def report(model) -> str:
