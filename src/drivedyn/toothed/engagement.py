@@ -87,8 +87,8 @@ def comparison(model, progress=None) -> list[dict]:
         rows.append({"label": pair.label or "model", "belt": g["belt_profile"], "pulley": g["pulley_profile"],
                      "teeth": pair.teeth, "pitch_error_mm": g["pitch_error_mm"],
                      "max_overlap_area_mm2": h["max_overlap_area_mm2"], "max_penetration_mm": h["max_penetration_mm"],
-                     "leading_max_penetration_mm": h["flanks"]["leading"]["max_penetration_mm"],
-                     "trailing_max_penetration_mm": h["flanks"]["trailing"]["max_penetration_mm"],
+                     "leading_max_penetration_mm": float(h["flanks"]["leading"]["max_penetration_mm"]),
+                     "trailing_max_penetration_mm": float(h["flanks"]["trailing"]["max_penetration_mm"]),
                      "seated_tip_clearance_mm": h["seated"]["tip_clearance_mm"],
                      "seated_clearance_mm": h["seated"]["clearance_mm"],
                      "groove_depth_used": h["groove_depth_used"]})

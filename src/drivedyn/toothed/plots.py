@@ -1,0 +1,236 @@
+"""Figures of a toothed-mesh run, drawn from the Result alone (so ``drivedyn plot`` can redraw).
+
+Superposed contours like the seed's figs. 6-8 (mm, pulley frame, height from the outside
+circle), interference against the pulley angle, a flank colour map, the maps and comparison
+table, and an animation (GIF, matplotlib's PillowWriter). Matplotlib ``Figure`` only, no pyplot.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import shapely
+from matplotlib.figure import Figure
+
+from .kinematics import to_pulley
+
+MM = 1e3
+
+
+def _geometry(ds):
+    uv = np.column_stack([ds["tooth_u"].values, ds["tooth_v"].values])
+    ring = np.column_stack([ds["pulley_x"].values, ds["pulley_y"].values])
+    return uv, ring, float(ds.attrs["belt_radius"]), float(ds.attrs["tooth_offset"]), float(ds.attrs["outside_radius"])
+
+
+def _tooth_at(ds, phi):
+    uv, _, rb, off, _ = _geometry(ds)
+    return to_pulley(uv, np.array([phi]), rb, off)[0]
+
+
+def _draw_pulley(ax, ds):
+    _, ring, _, _, r_o = _geometry(ds)
+    ax.fill(ring[:, 0] * MM, (ring[:, 1] - r_o) * MM, color="0.88", lw=0)
+    return ax.plot(ring[:, 0] * MM, (ring[:, 1] - r_o) * MM, color="k", lw=1.0)
+
+
+def _draw_tooth(ax, ds, phi, color, pulley=None, lw=1.0):
+    """Tooth contour (with a stretch of land) at ``phi``, overlap with the pulley in red."""
+    uv, ring, rb, off, r_o = _geometry(ds)
+    pts = _tooth_at(ds, phi)
+    land = float(ds.attrs["tooth_land"])
+    half = 0.5 * float(np.ptp(uv[:, 0])) + 1e-3
+    ext = to_pulley(np.array([[-half, land], [uv[0, 0], land]]), np.array([phi]), rb, off)[0]
+    ext2 = to_pulley(np.array([[uv[-1, 0], land], [half, land]]), np.array([phi]), rb, off)[0]
+    arts = ax.plot(pts[:, 0] * MM, (pts[:, 1] - r_o) * MM, color=color, lw=lw)
+    for e in (ext, ext2):
+        arts += ax.plot(e[:, 0] * MM, (e[:, 1] - r_o) * MM, color=color, lw=lw, ls=":")
+    if pulley is None:
+        pulley = shapely.Polygon(ring)
+    ov = shapely.intersection(shapely.Polygon(pts), pulley)
+    for g in getattr(ov, "geoms", [ov]):
+        if g.geom_type == "Polygon" and not g.is_empty:
+            x, y = np.asarray(g.exterior.coords).T
+            arts += ax.fill(x * MM, (y - r_o) * MM, facecolor="red", edgecolor="red", lw=2.0)  # edge: slivers stay visible
+    return arts
+
+
+def _contact_range(ds):
+    """Angles from the approach (clearance under a tooth height) to seating."""
+    phi = ds["angle"].values
+    near = np.nan_to_num(ds["clearance"].values, nan=np.inf) < float(ds.attrs["tooth_land"] - ds.attrs["tooth_tip"])
+    start = phi[np.argmax(near)] if near.any() else phi[0]
+    return min(start, -1e-9)
+
+
+def plot_contours(ds, axes=None):
+    """Superposed contours for a sequence of angles, entry and exit (seed figs. 6-8)."""
+    fig = None
+    if axes is None:
+        fig = Figure(figsize=(11, 4.6), layout="constrained")
+        axes = fig.subplots(1, 2, sharey=True)
+    from matplotlib import colormaps
+
+    pulley = shapely.Polygon(np.column_stack([ds["pulley_x"].values, ds["pulley_y"].values]))
+    start = _contact_range(ds)
+    uv, _, _, _, _ = _geometry(ds)
+    width = float(np.ptp(uv[:, 0]))
+    for ax, sign, title in ((axes[0], 1, "entry (pulley angle < 0)"), (axes[1], -1, "exit (pulley angle > 0)")):
+        _draw_pulley(ax, ds)
+        phis = sign * np.linspace(start, 0.0, 7)
+        cmap = colormaps["viridis"]
+        for k, phi in enumerate(phis):
+            _draw_tooth(ax, ds, phi, cmap(k / (len(phis) - 1)), pulley)
+        ax.set_title(f"{title}: {abs(np.degrees(start)):.1f} deg to seating")
+        ax.set_xlim(-1.6 * width * MM, 1.6 * width * MM)
+        ax.set_ylim((ds.attrs["tooth_tip"] - 0.6 * width) * MM, 1.0 * width * MM)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x (mm)")
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("height above the outside circle (mm)")
+    if fig is not None:
+        fig.suptitle(f"{ds.attrs.get('title', '')}: tooth contours (viridis: first to last), overlap in red",
+                     fontsize=10)
+    return fig
+
+
+def plot_interference(ds):
+    """Overlap area, penetration and clearance per flank against the pulley angle."""
+    fig = Figure(figsize=(8, 8), layout="constrained")
+    axes = fig.subplots(3, 1, sharex=True)
+    deg = np.degrees(ds["angle"].values)
+    axes[0].plot(deg, ds["overlap_area"] * 1e6, color="k")
+    axes[0].set_ylabel("overlap area (mm$^2$)")
+    for key, c in (("leading", "C0"), ("trailing", "C3")):
+        axes[1].plot(deg, ds[f"penetration_{key}"] * MM, color=c, label=f"{key} flank")
+        axes[2].plot(deg, ds[f"clearance_{key}"] * MM, color=c, label=f"{key} flank")
+    axes[1].set_ylabel("max penetration (mm)")
+    axes[2].set_ylabel("clearance (mm)")
+    axes[2].set_ylim(0, min(1.0, float(np.nanmax(ds["clearance"].values * MM, initial=0.1)) * 1.05 + 1e-3))
+    axes[2].set_xlabel("pulley angle from full seating (deg): entry < 0 < exit")
+    for ax in axes:
+        ax.grid(alpha=0.3)
+        ax.axvline(0, color="0.5", lw=0.8)
+    axes[1].legend(fontsize=8)
+    axes[0].set_title(ds.attrs.get("title", ""))
+    return fig
+
+
+def plot_flank_map(ds):
+    """The tooth contour coloured by its largest penetration over the engagement, and the
+    penetration along the contour against the angle."""
+    from matplotlib.collections import LineCollection
+
+    fig = Figure(figsize=(11, 4.4), layout="constrained")
+    ax0, ax1 = fig.subplots(1, 2, width_ratios=[1, 1.3])
+    u, v = ds["tooth_u"].values * MM, ds["tooth_v"].values * MM
+    depth = ds["flank_depth"].values * MM
+    worst = depth.max(axis=0)
+    segs = np.stack([np.column_stack([u[:-1], v[:-1]]), np.column_stack([u[1:], v[1:]])], axis=1)
+    vmax = max(float(worst.max()), 1e-6)
+    lc = LineCollection(segs, array=0.5 * (worst[:-1] + worst[1:]), cmap="inferno_r", linewidths=5,
+                        norm=None)
+    lc.set_clim(0, vmax)
+    ax0.add_collection(lc)
+    ax0.plot(u, v, color="0.6", lw=0.5)
+    ax0.set_xlim(u.min() - 0.5, u.max() + 0.5)
+    ax0.set_ylim(v.min() - 0.5, v.max() + 0.5)
+    ax0.set_aspect("equal")
+    ax0.set_xlabel("along the belt (mm), leading flank > 0")
+    ax0.set_ylabel("from the pitch line (mm)")
+    ax0.set_title("largest penetration on the flank")
+    fig.colorbar(lc, ax=ax0, label="penetration (mm)", shrink=0.8)
+    deg = np.degrees(ds["angle"].values)
+    s = ds["tooth_s"].values * MM
+    im = ax1.pcolormesh(deg, s, depth.T, cmap="inferno_r", vmin=0, vmax=vmax, shading="nearest")
+    tip = s[np.argmin(np.abs(u))]
+    ax1.axhline(tip, color="0.5", lw=0.8, ls="--")
+    ax1.text(deg[0], tip, " tip", va="bottom", fontsize=8)
+    ax1.set_ylabel("contour length from the trailing land (mm)\ntrailing flank below the tip, leading above")
+    ax1.set_xlabel("pulley angle (deg)")
+    ax1.set_title("penetration along the contour")
+    fig.colorbar(im, ax=ax1, label="penetration (mm)")
+    return fig
+
+
+def plot_maps(ds):
+    """Maximum overlap area and penetration over tooth count x pitch error."""
+    fig = Figure(figsize=(11, 4.2), layout="constrained")
+    axes = fig.subplots(1, 2)
+    z = ds["map_teeth"].values
+    e = ds["map_pitch_error"].values * MM
+    for ax, var, scale, label in ((axes[0], "map_overlap_area", 1e6, "max overlap area (mm$^2$)"),
+                                  (axes[1], "map_penetration", MM, "max penetration (mm)")):
+        val = ds[var].values * scale
+        im = ax.imshow(val, origin="lower", aspect="auto", cmap="magma_r")
+        ax.set_xticks(range(len(e)), [f"{x:g}" for x in e])
+        ax.set_yticks(range(len(z)), [str(k) for k in z])
+        for i in range(len(z)):
+            for j in range(len(e)):
+                ax.text(j, i, f"{val[i, j]:.3g}", ha="center", va="center", fontsize=7,
+                        color="w" if val[i, j] > 0.6 * val.max() else "k")
+        ax.set_xlabel("pitch error / tooth offset (mm)")
+        ax.set_ylabel("pulley teeth z")
+        fig.colorbar(im, ax=ax, label=label)
+    return fig
+
+
+def plot_comparison(ds):
+    """Bar chart of the comparison table."""
+    fig = Figure(figsize=(9, 1.2 + 0.5 * ds.sizes["pair"]), layout="constrained")
+    axes = fig.subplots(1, 2, sharey=True)
+    labels = [str(x) for x in ds["pair"].values]
+    y = np.arange(len(labels))
+    axes[0].barh(y, ds["compare_max_overlap_area"] * 1e6, color="C3")
+    axes[1].barh(y, ds["compare_max_penetration"] * MM, color="C0")
+    axes[0].set_yticks(y, labels)
+    axes[0].invert_yaxis()
+    axes[0].set_xlabel("max overlap area (mm$^2$)")
+    axes[1].set_xlabel("max penetration (mm)")
+    for ax in axes:
+        ax.grid(alpha=0.3, axis="x")
+    return fig
+
+
+def animate(ds, path, frames=48, fps=12):
+    """GIF of the tooth entering, seating and leaving the groove."""
+    from matplotlib.animation import FuncAnimation, PillowWriter
+
+    fig = Figure(figsize=(5, 4), dpi=80, layout="constrained")
+    ax = fig.subplots()
+    start = _contact_range(ds)
+    phis = np.linspace(start, -start, frames)
+    pulley = shapely.Polygon(np.column_stack([ds["pulley_x"].values, ds["pulley_y"].values]))
+    uv = np.column_stack([ds["tooth_u"].values, ds["tooth_v"].values])
+    width = float(np.ptp(uv[:, 0]))
+
+    def frame(k):
+        ax.clear()
+        _draw_pulley(ax, ds)
+        _draw_tooth(ax, ds, phis[k], "C0", pulley, lw=1.5)
+        ax.set_xlim(-1.6 * width * MM, 1.6 * width * MM)
+        ax.set_ylim((ds.attrs["tooth_tip"] - 0.6 * width) * MM, 0.8 * width * MM)
+        ax.set_aspect("equal")
+        ax.set_title(f"pulley angle {np.degrees(phis[k]):+.2f} deg", fontsize=9)
+        ax.set_xlabel("x (mm)")
+        return []
+
+    FuncAnimation(fig, frame, frames=frames, blit=False).save(path, writer=PillowWriter(fps=fps))
+    return path
+
+
+def plot_all(result, outdir) -> list[Path]:
+    """Write the standard figures into ``outdir``; returns the paths."""
+    ds, outdir = result.ds, Path(outdir)
+    figs = {"mesh-contours.png": plot_contours(ds), "mesh-interference.png": plot_interference(ds),
+            "mesh-flank-map.png": plot_flank_map(ds)}
+    if "map_overlap_area" in ds:
+        figs["mesh-maps.png"] = plot_maps(ds)
+    if "pair" in ds.dims and ds.sizes["pair"] > 1:
+        figs["mesh-comparison.png"] = plot_comparison(ds)
+    paths = []
+    for name, fig in figs.items():
+        fig.savefig(outdir / name, dpi=110)
+        paths.append(outdir / name)
+    paths.append(animate(ds, outdir / "mesh-animation.gif"))
+    return paths
