@@ -82,18 +82,30 @@ def from_polynomial(coefficients, n: int = 10) -> Harmonics:
 
 
 def from_samples(phi, force, n: int = 10) -> Harmonics:
-    """Harmonics of samples over one tooth, joined linearly (and periodically, last to first).
+    """Harmonics of samples over one tooth.
 
-    The piecewise-linear periodic interpolant is resampled on a fine uniform grid and
-    transformed by FFT; for smooth signals the harmonics converge as the samples are refined.
+    Uniform samples over the period (with or without the closing point phi[0] + 2 pi, which is
+    then averaged with the first, trapezoidal rule) are transformed directly by FFT: exact for
+    trigonometric polynomials of degree below half the sample count. Other samples are joined
+    linearly (periodically, last to first) and resampled finely before the FFT.
     """
     phi = np.asarray(phi, dtype=float)
     force = np.asarray(force, dtype=float)
     if phi.ndim != 1 or phi.shape != force.shape or len(phi) < 4:
         raise ModelError("needs at least 4 samples [phi, force]", field="tooth_force.samples")
-    m = max(4096, 16 * n)
-    grid = phi[0] + 2 * np.pi * np.arange(m) / m
-    f = np.interp(grid, phi, force, period=2 * np.pi)
+    d = np.diff(phi)
+    uniform = np.allclose(d, d.mean(), rtol=1e-6, atol=0.0)
+    if uniform and abs(phi[-1] - phi[0] - 2 * np.pi) < 1e-6 * d.mean():
+        f = np.r_[0.5 * (force[0] + force[-1]), force[1:-1]]
+    elif uniform and abs(phi[-1] + d.mean() - phi[0] - 2 * np.pi) < 1e-6 * d.mean():
+        f = force
+    else:
+        m = max(4096, 16 * n)
+        f = np.interp(phi[0] + 2 * np.pi * np.arange(m) / m, phi, force, period=2 * np.pi)
+    m = len(f)
+    if n > (m - 1) // 2:
+        raise ModelError(f"{m} samples resolve at most {(m - 1) // 2} harmonics, {n} asked (excitation.harmonics)",
+                         field="tooth_force.samples")
     spectrum = np.fft.rfft(f) / m
     # the grid starts at phi[0]: shift the phase origin back to phi = 0
     X = 2.0 * spectrum[1:n + 1] * np.exp(-1j * np.arange(1, n + 1) * phi[0])
