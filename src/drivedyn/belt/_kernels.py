@@ -113,11 +113,18 @@ def external_torque(j, t, th, om, tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off,
 
 
 @njit(cache=True)
-def joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy):
+def joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy, h, inv_m, inv_i):
     """Elastic + damping forces of all joints into fx, fy, mz (zeroed here).
 
     Stores per joint the gap vector (jdx, jdy) and jfk with force vector = jfk * d (tension
     = jfk |d|). Returns (dissipated power in axial dampers, in bending dampers).
+
+    With h > 0 the axial damper is integrated implicitly for its own joint: its force
+    b v_n / (1 + h b w_eff), w_eff the inverse effective mass of the two segment ends along the
+    gap (translation and rotation). The damper acts along the gap vector (eq. 18), which at low
+    tension need not be along the belt, and then damps the segments' stiff rotation; explicitly
+    that limits the step below the elastic limit, implicitly it does not. h = 0 gives eq. 18 as
+    written (used by RKF45).
     """
     n = ip[I_N]
     eax = fp[F_EAX]
@@ -145,13 +152,21 @@ def joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, m
         dd = dx * dx + dy * dy
         if dd > 1e-30:
             rate = (dx * dvx + dy * dvy) / dd        # dDelta_l/dt / Delta_l
+            if h > 0.0:
+                cak = ax * dy - ay * dx
+                cbi = bx * dy - by * dx
+                weff = inv_m[k] + inv_m[i] + (cak * cak * inv_i[k] + cbi * cbi * inv_i[i]) / dd
+                bd = bax[i] / (1.0 + h * bax[i] * weff)
+            else:
+                bd = bax[i]
         else:
             rate = 0.0
+            bd = 0.0
         if linear:
-            fk = kax[i] + bax[i] * rate
+            fk = kax[i] + bd * rate
         else:
-            fk = kax[i] * dd ** (0.5 * (eax - 1.0)) + bax[i] * rate
-        pax += bax[i] * rate * rate * dd
+            fk = kax[i] * dd ** (0.5 * (eax - 1.0)) + bd * rate
+        pax += bd * rate * rate * dd
         jfk[i] = fk
         jdx[i] = dx
         jdy[i] = dy
@@ -215,12 +230,17 @@ def step_chunk(nsteps, t, h, ip, fp,
     # reciprocals once per chunk: divisions cost more than the rest of a segment's update
     hm_ = np.empty(n)
     hi_ = np.empty(n)
+    inv_m = np.empty(n)
+    inv_i = np.empty(n)
     for i in range(n):
-        hm_[i] = h / m[i]
-        hi_[i] = h / inertia[i]
+        inv_m[i] = 1.0 / m[i]
+        inv_i[i] = 1.0 / inertia[i]
+        hm_[i] = h * inv_m[i]
+        hi_[i] = h * inv_i[i]
     hg = h * g
     for _ in range(nsteps):
-        pax, pb = joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy)
+        pax, pb = joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy,
+                               h, inv_m, inv_i)
         pcd = 0.0
         pfr = 0.0
         for j in range(nk):
@@ -415,7 +435,8 @@ def rhs(t, yv, dy, ip, fp, z, m, inertia, mu, kax, bax, kb, bb, c1, c2, bc, pcx,
             om[j] = table(sp_x, sp_y, sp_off[j], sp_off[j + 1], t, False)
     c = np.cos(phi)
     s = np.sin(phi)
-    pax, pb = joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy)
+    pax, pb = joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy,
+                           0.0, m, inertia)
     pcd = 0.0
     pfr = 0.0
     for j in range(4 * nk):
