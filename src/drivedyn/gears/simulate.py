@@ -209,7 +209,7 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
                 "frequency": ("frequency", spec_f, {"units": "Hz", "long_name": "frequency"}),
                 "order": ("frequency", spec_f * T0, {"units": "1", "long_name": f"order of the mesh frequency of {sys_.mesh_names[0]}"})},
         attrs={"model_toml": dumps(model), "steady_window": list(window), "start": how,
-               "mesh_frequency_hz": list(map(float, f_mesh)), "title": model.name or "gear train"},
+               "mesh_frequency_hz": list(map(float, f_mesh)), "input_speed": float(sys_.omega_in), "title": model.name or "gear train"},
     )
     for j, name in enumerate(sys_.mesh_names):
         ds.attrs[f"pair_s_{name}"] = list(map(float, sys_.tables[j].pair_s[::8]))

@@ -196,7 +196,6 @@ def assemble(model) -> System:
 
     ma = np.array([index[ms.gears[0]] for ms in model.meshes], dtype=np.int64)
     mb = np.array([index[ms.gears[1]] for ms in model.meshes], dtype=np.int64)
-    mesh_count = np.bincount(np.concatenate([ma, mb]), minlength=len(names))
     sys_ = System(
         model=model, names=names, inertia=np.array([g.inertia for g in model.gears]), gears=geos, ratio=ratio,
         omega_in=w_in, input_index=i_in, torque_input=T_in, torque_const=Tc,
@@ -247,10 +246,11 @@ def assemble(model) -> System:
         else:
             zeta = 0.05 if ms.damping_ratio is None else ms.damping_ratio
             sys_.damping[j] = 2 * zeta * math.sqrt(tab.mean * m_a * m_b / (m_a + m_b))
-    _, f, _ = sys_.static()
-    _absorb_friction_loss(sys_, model, f)
+    # nominal force: static, mean stiffness, before the friction loss is taken off the loads
+    # (for the split path F = T1 / (2 r_b1), seed 003 eq. 13)
     _, f, _ = sys_.static()
     sys_.force_nominal = f
+    _absorb_friction_loss(sys_, model, f)
     for j, fj in enumerate(f):
         if fj <= 0:
             raise ModelError(f"the nominal mesh force is {fj:.4g} N: gear {model.meshes[j].gears[0]!r} does not "

@@ -1,0 +1,232 @@
+"""Standard plots of a gear-train Result (matplotlib Figure objects only, no pyplot).
+
+Each ``plot_*`` takes the Result's Dataset and an optional Axes and returns the artists drawn;
+``plot_all`` writes the PNG files: stiffness (seed fig. 5 and roll angle with contact zones),
+torsional vibration (fig. 7), K_v in time (fig. 8), forces/DTE/load sharing, spectrum in mesh
+orders, and, after a sweep, K_v against speed with ISO method B and a Campbell diagram.
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+
+def _figure(nrows=1, ncols=1, size=(8, 4.5)):
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=size, dpi=100, layout="constrained")
+    axes = fig.subplots(nrows, ncols, squeeze=False)
+    return fig, axes
+
+
+def _ax(ax):
+    if ax is None:
+        _, axes = _figure()
+        return axes[0, 0]
+    return ax
+
+
+def _window(ds):
+    w0, w1 = ds.attrs["steady_window"]
+    return ds.sel(time=slice(w0, w1))
+
+
+def plot_stiffness_time(ds, ax=None, periods=2.5):
+    """Mesh stiffness against time over a few mesh periods, each mesh with its phase (seed fig. 5)."""
+    ax = _ax(ax)
+    t0 = float(ds.time[0])
+    sel = ds.sel(time=slice(t0, t0 + periods / ds.attrs["mesh_frequency_hz"][0]))
+    arts = [ax.plot(sel.time * 1e3, sel.mesh_stiffness.sel(mesh=m) / 1e6, label=f"mesh {m}")[0] for m in ds.mesh.values]
+    ax.set_xlabel("time [ms]")
+    ax.set_ylabel("mesh stiffness [N/um]")
+    ax.set_title("time-varying mesh stiffness")
+    ax.legend(loc="lower right")
+    ax.grid(alpha=0.3)
+    return arts
+
+
+def plot_stiffness_roll(ds, mesh=None, ax=None):
+    """Mesh and single-pair stiffness against mesh position, double-contact zones shaded."""
+    ax = _ax(ax)
+    mesh = str(ds.mesh.values[0]) if mesh is None else mesh
+    u = ds.mesh_position.values
+    k = ds.stiffness_table.sel(mesh=mesh).values / 1e6
+    npairs = ds.pairs_in_contact.sel(mesh=mesh).values
+    uu = np.concatenate([u, u + 1])
+    kk = np.concatenate([k, k])
+    nn = np.concatenate([npairs, npairs])
+    arts = [ax.plot(uu, kk, "k", lw=1.6, label="mesh")[0]]
+    ps = np.array(ds.attrs[f"pair_s_{mesh}"])
+    pk = np.array(ds.attrs[f"pair_k_{mesh}"]) / 1e6
+    arts.append(ax.plot(ps, pk, "C1--", label="one tooth pair")[0])
+    double = nn >= 2
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], double.astype(int), [0]])))
+    for a, b in zip(edges[::2], edges[1::2]):
+        arts.append(ax.axvspan(uu[a], uu[min(b, len(uu) - 1)], color="C0", alpha=0.12, lw=0))
+    pitch = ds.attrs[f"pitch_s_{mesh}"]
+    arts.append(ax.axvline(pitch, color="C3", lw=0.8, ls=":", label="pitch point (pair 0)"))
+    ax.set_xlabel("mesh position [mesh periods = pinion roll through one base pitch]")
+    ax.set_ylabel("stiffness [N/um]")
+    ax.set_title(f"mesh {mesh}: stiffness over roll angle (shaded: two pairs in contact)")
+    ax.set_ylim(bottom=0)
+    ax.legend(loc="lower right")
+    ax.grid(alpha=0.3)
+    return arts
+
+
+def plot_vibration(ds, ax=None):
+    """Torsional vibration of every gear: angle minus nominal rigid rotation (seed fig. 7)."""
+    ax = _ax(ax)
+    arts = [ax.plot(ds.time, ds.vibration.sel(gear=g) * 1e3, lw=0.7, label=str(g))[0] for g in ds.gear.values]
+    w0, w1 = ds.attrs["steady_window"]
+    arts.append(ax.axvspan(w0, w1, color="0.85", zorder=0, label="steady window"))
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("angle - nominal rotation [mrad]")
+    ax.set_title("torsional vibration")
+    ax.legend(loc="best")
+    ax.grid(alpha=0.3)
+    return arts
+
+
+def plot_kv_time(ds, ax=None):
+    """Mesh force over the nominal force in the steady window, and K_v (seed fig. 8)."""
+    ax = _ax(ax)
+    w = _window(ds)
+    arts = []
+    for j, m in enumerate(ds.mesh.values):
+        arts.append(ax.plot(w.time, w.kv_t.sel(mesh=m), lw=0.8, label=f"mesh {m}: K_v = {float(ds.kv.sel(mesh=m)):.3f}")[0])
+        arts.append(ax.axhline(float(ds.kv.sel(mesh=m)), color=f"C{j}", ls="--", lw=0.8))
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("F / F_nominal")
+    ax.set_title("dynamic factor in the steady window")
+    ax.legend(loc="lower right")
+    ax.grid(alpha=0.3)
+    return arts
+
+
+def plot_forces(ds, axes=None):
+    """Dynamic mesh force, transmission error and load sharing in the steady window (3 axes)."""
+    if axes is None:
+        _, a = _figure(3, 1, (8, 8))
+        axes = a[:, 0]
+    w = _window(ds)
+    arts = []
+    for m in ds.mesh.values:
+        arts.append(axes[0].plot(w.time, w.mesh_force.sel(mesh=m), lw=0.7, label=str(m))[0])
+        arts.append(axes[1].plot(w.time, w.dte.sel(mesh=m) * 1e6, lw=0.7, label=str(m))[0])
+        arts.append(axes[2].plot(w.time, w.load_share.sel(mesh=m), lw=0.7, label=str(m))[0])
+    for ax, lab in zip(axes, ("mesh force [N]", "DTE [um]", "load share [-]")):
+        ax.set_ylabel(lab)
+        ax.grid(alpha=0.3)
+        ax.legend(loc="lower right")
+    axes[0].set_title("mesh forces, dynamic transmission error, load sharing")
+    axes[2].set_xlabel("time [s]")
+    return arts
+
+
+def plot_spectrum(ds, ax=None, max_order=25):
+    """Amplitude spectrum of the mesh forces against orders of the first mesh frequency."""
+    ax = _ax(ax)
+    keep = ds.order.values <= max_order
+    arts = [ax.semilogy(ds.order.values[keep], ds.force_spectrum.sel(mesh=m).values[keep] + 1e-3, lw=0.8, label=str(m))[0]
+            for m in ds.mesh.values]
+    f_mesh = ds.attrs["mesh_frequency_hz"][0]
+    for f in ds.natural_frequency.values:
+        if f / f_mesh <= max_order:
+            arts.append(ax.axvline(f / f_mesh, color="0.5", ls=":", lw=0.8))
+    ax.set_xlabel(f"order of the mesh frequency ({f_mesh:.1f} Hz); dotted: natural frequencies")
+    ax.set_ylabel("force amplitude [N]")
+    ax.set_title("mesh-force spectrum (steady window)")
+    ax.legend(loc="upper right")
+    ax.grid(alpha=0.3, which="both")
+    return arts
+
+
+def plot_sweep(ds, ax=None):
+    """K_v against input speed: simulated per mesh and ISO 6336-1 method B."""
+    ax = _ax(ax)
+    rpm = ds.sweep_speed.values * 30 / math.pi
+    arts = []
+    for j, m in enumerate(ds.mesh.values):
+        arts.append(ax.plot(rpm, ds.kv_sweep.sel(mesh=m), f"C{j}", lw=1, label=f"simulated, mesh {m}")[0])
+        arts.append(ax.plot(rpm, ds.kv_iso_sweep.sel(mesh=m), f"C{j}--", lw=1.2, label=f"ISO 6336-1 method B, mesh {m}")[0])
+    op = ds.attrs["input_speed"] * 30 / math.pi
+    arts.append(ax.axvline(op, color="k", lw=0.8, ls=":", label=f"operating speed {op:.0f} rpm"))
+    finite = ds.kv_sweep.values[np.isfinite(ds.kv_sweep.values)]
+    top = min(np.nanmax(finite) if finite.size else 3, 6.0)
+    ax.set_ylim(0.8, max(top * 1.05, 2.8))
+    ax.set_xlabel("input speed [rpm]")
+    ax.set_ylabel("K_v")
+    ax.set_title("dynamic factor against speed (values above the frame: parametric instability of the linear model)")
+    ax.legend(loc="upper left", fontsize=8)
+    ax.grid(alpha=0.3)
+    return arts
+
+
+def plot_campbell(ds, ax=None, orders=(1, 2, 3, 4, 5)):
+    """Natural frequencies against input speed with the mesh-order lines k f_mesh(n)."""
+    ax = _ax(ax)
+    w_in = ds.attrs["input_speed"]
+    n_max = float(ds.sweep_speed.values[-1]) if "sweep_speed" in ds else 2 * w_in
+    rpm = np.linspace(0, n_max * 30 / math.pi, 200)
+    arts = []
+    fmax = float(ds.natural_frequency.max()) * 1.3 if ds.sizes["mode"] else 1.0
+    for f in ds.natural_frequency.values:
+        arts.append(ax.axhline(f, color="k", lw=1))
+        arts.append(ax.text(rpm[-1], f, f" {f:.0f} Hz", va="bottom", ha="right", fontsize=8))
+    for fm, m in zip(sorted(set(np.round(ds.attrs["mesh_frequency_hz"], 6))), ds.mesh.values):
+        per_rpm = fm / (w_in * 30 / math.pi)
+        for k in orders:
+            arts.append(ax.plot(rpm, k * per_rpm * rpm, lw=0.8, label=f"{k} x mesh frequency")[0])
+            for f in ds.natural_frequency.values:
+                n_cross = f / (k * per_rpm)
+                if n_cross <= rpm[-1]:
+                    arts.append(ax.plot(n_cross, f, "o", mfc="none", color="C3")[0])
+    arts.append(ax.axvline(w_in * 30 / math.pi, color="0.4", ls=":", lw=0.8, label="operating speed"))
+    ax.set_xlim(0, rpm[-1])
+    ax.set_ylim(0, fmax)
+    ax.set_xlabel("input speed [rpm]")
+    ax.set_ylabel("frequency [Hz]")
+    ax.set_title("Campbell diagram: natural frequencies and mesh orders (circles: resonances)")
+    ax.legend(loc="upper left", fontsize=8)
+    ax.grid(alpha=0.3)
+    return arts
+
+
+def plot_all(result, outdir) -> list[Path]:
+    """Write the standard PNGs into ``outdir``; returns their paths."""
+    ds = result.ds
+    outdir = Path(outdir)
+    files = []
+
+    def save(fig, name):
+        path = outdir / f"gears-{name}.png"
+        fig.savefig(path)
+        files.append(path)
+
+    fig, ax = _figure(2, 1, (8, 7.5))
+    plot_stiffness_time(ds, ax[0, 0])
+    plot_stiffness_roll(ds, ax=ax[1, 0])
+    save(fig, "stiffness")
+    fig, ax = _figure()
+    plot_vibration(ds, ax[0, 0])
+    save(fig, "vibration")
+    fig, ax = _figure()
+    plot_kv_time(ds, ax[0, 0])
+    save(fig, "kv")
+    fig, ax = _figure(3, 1, (8, 8))
+    plot_forces(ds, ax[:, 0])
+    save(fig, "forces")
+    fig, ax = _figure()
+    plot_spectrum(ds, ax[0, 0])
+    save(fig, "spectrum")
+    if "kv_sweep" in ds:
+        fig, ax = _figure()
+        plot_sweep(ds, ax[0, 0])
+        save(fig, "sweep")
+    fig, ax = _figure()
+    plot_campbell(ds, ax[0, 0])
+    save(fig, "campbell")
+    return files

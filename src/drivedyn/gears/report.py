@@ -1,0 +1,53 @@
+"""The ``check`` report: geometry, ISO stiffness, stiffness tables, statics and natural frequencies."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .train import assemble, reduced_mass_per_mesh
+
+
+def report(model) -> str:
+    """Text report of what is known without integrating: per gear, per mesh, and the train's modes."""
+    from .simulate import _method_b
+
+    s = assemble(model)
+    out = [f"gear train: {model.name or '(unnamed)'}", ""]
+    out.append(f"{'gear':10s} {'z':>4s} {'m mm':>6s} {'x':>6s} {'b mm':>6s} {'d mm':>8s} {'d_b mm':>8s} "
+               f"{'d_a mm':>8s} {'d_f mm':>8s} {'n rpm':>9s} {'T N m':>9s}")
+    for i, (g, geo) in enumerate(zip(model.gears, s.gears)):
+        out.append(f"{g.name:10s} {g.teeth:4d} {g.module * 1e3:6.3f} {g.profile_shift:6.3f} {g.face_width * 1e3:6.1f} "
+                   f"{2 * geo.r * 1e3:8.3f} {2 * geo.rb * 1e3:8.3f} {2 * geo.ra * 1e3:8.3f} {2 * geo.rf * 1e3:8.3f} "
+                   f"{s.ratio[i] * s.omega_in * 30 / math.pi:9.2f} {s.torque_const[i]:9.3f}")
+    mred = reduced_mass_per_mesh(s)
+    f_mesh = s.mesh_frequency(s.omega_in)
+    for j, ms in enumerate(model.meshes):
+        p, iso, tab = s.pairs[j], s.iso[j], s.tables[j]
+        b = min(p.g1.b, p.g2.b)
+        c1, cg = iso.si(b)
+        mb = _method_b(model, s, j, mred[j])
+        kv, N, region = mb.kv(s.ratio[s.mesh_a[j]] * s.omega_in / (2 * math.pi))
+        out += ["", f"mesh {ms.name}: {ms.gears[0]} drives {ms.gears[1]}",
+                f"  working pressure angle {math.degrees(p.alpha_w):.4f} deg, centre distance {p.a_w * 1e3:.4f} mm "
+                f"(zero backlash {p.a_zero_backlash * 1e3:.4f} mm)",
+                f"  base pitch p_bt {p.base_pitch * 1e3:.4f} mm, path of contact g_alpha {p.path_of_contact * 1e3:.4f} mm, "
+                f"contact ratio eps_alpha {p.contact_ratio:.4f}",
+                f"  T1A {p.rho_start * 1e3:.4f} mm, T1C (pitch point) {p.rho_pitch * 1e3:.4f} mm, T1E {p.rho_end * 1e3:.4f} mm, "
+                f"T1T2 {p.tangent_length * 1e3:.4f} mm",
+                f"  ISO 6336-1: q' {iso.q_prime:.5f}, c'_th {iso.c_th:.3f}, C_M {iso.c_m}, C_R {iso.c_r}, C_B {iso.c_b:.4f}, "
+                f"E factor {iso.e_factor:.3f}, low-load factor {iso.low_load_factor:.4f} (K_A F_t/b = {iso.load_per_width:.1f} N/mm)",
+                f"    c' = {iso.c_single:.3f} N/(mm um) = {c1:.4g} N/m, c_gamma_alpha = {iso.c_gamma:.3f} N/(mm um) = {cg:.4g} N/m"
+                + ("" if iso.valid else "  (x1 + x2 outside the ISO range -0.5..2)"),
+                f"  stiffness model {ms.stiffness.model}: mean {tab.mean:.4g} N/m, min {tab.stiffness.min():.4g}, "
+                f"max {tab.stiffness.max():.4g}, phase {s.phase[j]:.4f} mesh periods",
+                f"  nominal force {s.force_nominal[j]:.2f} N, mesh frequency {f_mesh[j]:.2f} Hz, damping {s.damping[j]:.4g} N s/m, "
+                f"friction mu {s.mu[j]:g}",
+                f"  ISO method B: n_E1 {mb.resonance_speed * 60:.0f} rpm, N {N:.4f} ({region}), K_v {kv:.4f}"]
+    freqs, shapes, zeta = s.modes()
+    out += ["", "natural frequencies (mean mesh stiffness, rigid-body mode removed):"]
+    for r, (f, z) in enumerate(zip(freqs, zeta)):
+        orders = ", ".join(f"{f / fm:.2f}" for fm in sorted(set(np.round(f_mesh, 6))))
+        shape = " ".join(f"{v:+.3f}" for v in shapes[:, r] / np.abs(shapes[:, r]).max())
+        out.append(f"  {f:10.2f} Hz  zeta {z:.4f}  = {orders} x mesh frequency  shape [{shape}]")
+    return "\n".join(out)
