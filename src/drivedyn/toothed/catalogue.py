@@ -112,7 +112,9 @@ _ENTRIES = [
              "any accessible source; define the tooth and groove in the model file"),
     #     name      p   ht    hs   a      R     fillet  groove (w at OD, depth, R, rt)
     _htd("HTD3M", 3, 1.21, 2.4, 0.381, 0.89, 0.26, (1.90, 1.22, 0.91, 0.30)),
-    _htd("HTD5M", 5, 2.08, 3.8, 0.572, 1.49, 0.43, (3.25, 2.06, 1.56, 0.48)),
+    # 5M: CS depth 2.06 is below the TB tooth height 2.08 (Gates 2.06): NS depth 2.16 is used.
+    _htd("HTD5M", 5, 2.08, 3.8, 0.572, 1.49, 0.43, (3.25, 2.16, 1.56, 0.48),
+         note="; depth NS 2.16 (CS 2.06 is below the tooth height 2.08)"),
     _htd("HTD8M", 8, 3.38, 6.0, 0.686, 2.46, 0.70, (5.35, 3.451, 2.57, 0.80),
          note="; depth 3.451 (CS) rather than NS 3.54"),
     # 14M: arc radius and fillet not published (n/f): scaled from 8M by 14/8 (assumption).

@@ -165,7 +165,7 @@ class Mesh(Spec):
     angles: int = 181
     half_range: Optional[quantity("rad", gt=0)] = None  # default: from first possible contact
     tooth_offset: Length = 0.0  # belt tooth ahead (+) of its groove when seated (pitch error)
-    chord_tolerance: quantity("m", gt=0) = 5e-7
+    chord_tolerance: quantity("m", gt=0) = 2e-7
     flank_spacing: quantity("m", gt=0) = 2e-5
 
     @field_validator("angles")

@@ -1,0 +1,26 @@
+"""End to end: run a seed example, save, plot, and read it back."""
+import json
+
+import drivedyn
+from drivedyn.results import open_result
+
+
+def test_run_save_plot_htd8m(tmp_path):
+    m = drivedyn.load(drivedyn.example_path("mesh-htd8m"))
+    m = drivedyn.model.replace(m, {"mesh.angles": 61, "maps.teeth": [20, 32], "maps.angles": 21})
+    r = drivedyn.run(m)
+    r.save(tmp_path)
+    doc = json.loads((tmp_path / "summary.json").read_text())
+    for key in ("max_overlap_area_mm2", "max_penetration_mm"):
+        assert doc[key] > 0
+    assert doc["flanks"]["leading"]["max_penetration_mm"] > 0
+    assert doc["flanks"]["trailing"]["max_penetration_mm"] > 0
+    assert len(doc["comparison"]) == 5
+    from drivedyn import api
+
+    files = api.plot(open_result(tmp_path), tmp_path)
+    names = {f.name for f in files}
+    assert {"mesh-contours.png", "mesh-interference.png", "mesh-flank-map.png", "mesh-maps.png",
+            "mesh-comparison.png", "mesh-animation.gif"} <= names
+    assert all(f.stat().st_size > 1000 for f in files)
+    assert "pair geometry" not in drivedyn.check(m) and "pitch error" in drivedyn.check(m)
