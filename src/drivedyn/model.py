@@ -121,32 +121,38 @@ def format_validation_error(exc: ValidationError, model_cls=None) -> str:
     return f"{field}: {msg}{more}" if field else f"{msg}{more}"
 
 
-def from_dict(data: dict, source: str = "model"):
-    """Validate a dict (as read from TOML) into the model object of its ``kind``."""
+def from_dict(data: dict, source: str = "model", base_dir=None):
+    """Validate a dict (as read from TOML) into the model object of its ``kind``.
+
+    ``base_dir`` (the model file's folder) reaches validators as ``info.context["base_dir"]``, so
+    that file references inside a model resolve relative to the model file.
+    """
     if not isinstance(data, dict):
         raise ModelError("a model must be a table of keys", field=source)
     kind = data.get("kind")
     if kind is None:
         raise ModelError(f"{source}: missing top-level 'kind' (one of {', '.join(KINDS)})")
+    if kind == "study":
+        raise ModelError(f"{source}: this is a study file: run it with 'drivedyn study {source}'")
     version = data.get("schema_version", SCHEMA_VERSION)
     if version != SCHEMA_VERSION:
         raise ModelError(f"{source}: schema_version {version!r} is not supported (this drivedyn reads {SCHEMA_VERSION})")
     pkg = analysis(kind)
     try:
-        return pkg.Model.model_validate(data)
+        return pkg.Model.model_validate(data, context={"base_dir": Path(base_dir) if base_dir else Path.cwd()})
     except ValidationError as exc:
         raise ModelError(f"{source}: {format_validation_error(exc, pkg.Model)}") from None
     except ModelError as exc:
         raise ModelError(f"{source}: {exc}") from None
 
 
-def loads(text: str, source: str = "model"):
+def loads(text: str, source: str = "model", base_dir=None):
     """Parse TOML text into a model object."""
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ModelError(f"{source}: not valid TOML: {exc}") from None
-    return from_dict(data, source)
+    return from_dict(data, source, base_dir=base_dir)
 
 
 def load(path):
@@ -164,7 +170,7 @@ def load(path):
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise ModelError(f"{path}: cannot read: {exc}") from None
-    return loads(text, source=str(path))
+    return loads(text, source=str(path), base_dir=path.parent)
 
 
 def to_dict(model) -> dict:

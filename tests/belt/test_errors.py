@@ -4,7 +4,7 @@ import pytest
 import drivedyn
 from drivedyn.cli import main
 
-GOOD = drivedyn.example_path("belt-5pk").read_text()
+GOOD = drivedyn.example_path("belt-5pk").read_text().replace("segments = [107]", "segments = [10]")
 
 
 def run_cli(tmp_path, text, capsys, cmd="check"):
@@ -22,6 +22,9 @@ def run_cli(tmp_path, text, capsys, cmd="check"):
     (('segments = 150', 'segments = 150\nsegmnets = 3', 1), "did you mean 'segments'"),
     (('[contact]', '[contact\n', 1), "not valid TOML"),
     (('inertia = "0.02 kg*m^2"', 'inertia = "0.02 kg"', 1), "inertia"),
+    (('segments = 150', 'segments = 30', 1), "too coarse"),
+    (('kind = "belt-drive"', 'kind = "belt_drive"', 1), "did you mean 'belt-drive'"),
+    (('kind = "belt-drive"', 'kind = "study"', 1), "study file"),
 ])
 def test_bad_input_one_line_exit_2(tmp_path, capsys, edit, expect):
     old, new, count = edit

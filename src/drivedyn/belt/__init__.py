@@ -18,10 +18,17 @@ def check(model) -> str:
     return report(model)
 
 
+def warmup():
+    """Load (or compile) the numba kernels once, e.g. on each Dask worker before its first case."""
+    from .simulate import warm
+
+    warm()
+
+
 def plot(result, outdir):
     from .plots import plot_all
 
     return plot_all(result, outdir)
 
 
-__all__ = ["Model", "run", "check", "plot"]
+__all__ = ["Model", "run", "check", "plot", "warmup"]

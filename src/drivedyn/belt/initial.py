@@ -70,21 +70,48 @@ def _walk(path: _Path, n: int, l: float, g: float):
     starts, ends = np.empty((n, 2)), np.empty((n, 2))
     for i in range(n):
         for kind, c in (("seg", l), ("gap", g)):
-            if c <= 0:
-                continue
-            s_new = brentq(lambda t: np.hypot(*(path.point(t) - p)) - c, s + 0.999 * c, s + c * math.pi / 2 + 1e-12,
-                           xtol=1e-14) if True else None
-            q = path.point(s_new)
+            if c > 0:
+                s = _next(path, s, p, c)
+                q = path.point(s)
+            else:
+                q = p
             if kind == "seg":
                 starts[i], ends[i] = p, q
-            p, s = q, s_new
-        if c <= 0:  # zero gap: next start equals this end
-            pass
+            p = q
     return starts, ends, s
+
+
+def _next(path: _Path, s: float, p, c: float) -> float:
+    """Smallest arc length beyond s where the path is at distance c from p (chord c <= arc)."""
+    f = lambda t: float(np.hypot(*(path.point(t) - p))) - c
+    hi = s + c * math.pi / 2 + 1e-12          # a chord of a circle is at least 2/pi of its arc
+    for _ in range(8):
+        if f(hi) > 0:
+            return brentq(f, s + 0.999 * c, hi, xtol=1e-14)
+        hi += c
+    raise ModelError("cannot place the belt segments on the path", field="belt.segments")
+
+
+def _bracketed_root(f, guess):
+    """Root of f near guess (f increasing): widen the bracket until it changes sign."""
+    lo, hi = 0.98 * guess, 1.01 * guess
+    for _ in range(20):
+        flo, fhi = f(lo), f(hi)
+        if flo < 0 < fhi:
+            return brentq(f, lo, hi, xtol=1e-13 * guess)
+        if flo >= 0:
+            lo *= 0.97
+        if fhi <= 0:
+            hi *= 1.03
+    raise ModelError("cannot close the belt on the path with these segments", field="belt.segments")
 
 
 def initial_state(model, layout: Layout) -> InitialState:
     belt, n = model.belt, model.belt.segments
+    r_min = min(p.radius for p in model.pulleys)
+    if layout.length / n > r_min:
+        raise ModelError(f"{n} segments of about {layout.length / n * 1e3:.1f} mm are too coarse for the "
+                         f"{r_min * 1e3:.1f} mm pulley: use at least {math.ceil(layout.length / r_min)}", field="belt.segments")
     EA, e = belt.axial_stiffness, belt.axial_exponent
     radii = np.array([p.radius for p in model.pulleys])
     names = [p.name for p in model.pulleys]
@@ -108,8 +135,7 @@ def initial_state(model, layout: Layout) -> InitialState:
             lay, (_, _, s_end), _ = place(l, T)
             return s_end - _Path(lay).length
 
-        lo, hi = 0.97 * guess, 1.01 * guess
-        l = brentq(resid, lo, hi, xtol=1e-13)
+        l = _bracketed_root(resid, guess)
     else:
         l = belt.length / n
         if belt.length >= layout.length:

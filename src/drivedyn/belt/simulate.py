@@ -213,6 +213,19 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
     return Result("belt-drive", ds, summary, success=not failure, message=failure)
 
 
+def warm():
+    """Run a tiny drive for a few steps so that every kernel is loaded from numba's cache."""
+    from ..model import from_dict
+
+    m = from_dict({"kind": "belt-drive", "belt": {"mass_per_length": 0.1, "axial_stiffness": 1e5, "pretension": 100.0,
+                                                   "segments": 24},
+                   "contact": {"stiffness_linear": 1e8}, "simulation": {"duration": 2e-4},
+                   "output": {"interval": 1e-4, "frames": 1},
+                   "pulleys": [{"name": "a", "center": [0, 0], "radius": 0.03},
+                               {"name": "b", "center": [0.2, 0], "radius": 0.03}]})
+    run(m)
+
+
 def steady_window(model, t_end):
     if model.output.steady_window is not None:
         return tuple(model.output.steady_window)
