@@ -152,3 +152,21 @@ def test_bad_input_one_line_naming_the_field(tmp_path, capsys, old, new, expect)
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1, err
     assert expect in err, err
+
+
+def test_growth_rate_floquet_vs_response_vs_first_order_theory(span_model):
+    """At the tongue centre, the undamped growth rate is mu Omega / 2 (Nayfeh & Mook 1979, sec. 5.2);
+    the Floquet multiplier and the integrated response (no moment forcing) must agree with it."""
+    from drivedyn.span.mathieu import tongue_centre_speed
+    from drivedyn.span.quantities import SpanProperties
+
+    vc = float(tongue_centre_speed(100.0, 1, SpanProperties(0.3, 0.084, 0.045), 16, 2 * np.pi * 0.024 / 16))
+    m = span_model(operation__speed=vc, tooth_force__polynomial=None, tooth_force__amplitude=3.058,
+                   chart__floquet=False, response={"duration": 1.0, "points": 4000})
+    s = drivedyn.run(m).summary
+    theory = s["mu"] * s["omega"] / 2
+    assert s["growth_rate"] == pytest.approx(theory, rel=0.02)
+    r = drivedyn.run(m)
+    q, t = r.ds["modal_coordinate"].values, r.ds["time"].values
+    env = [np.abs(q[(t >= a) & (t < a + 0.1)]).max() for a in (0.1, 0.8)]
+    assert np.log(env[1] / env[0]) / 0.7 == pytest.approx(s["growth_rate"], rel=0.05)

@@ -114,7 +114,8 @@ def run(model, progress=None) -> Result:
         "resonance_bands": [b for b in exact[:1] if b],
         "resonance_bands_first_order": [first] if first else [],
         "resonance_bands_floquet": [fl] if fl else [],
-        "tongues": [{"order": n + 1, "band": b} for n, b in enumerate(exact)],
+        "tongue_bands": exact,
+        **point_floquet(setup, harm, ch.steps_per_oscillation),
         "in_resonance": bool(exact[0] and exact[0][0] <= setup.speed <= exact[0][1]),
         "frequencies": {k: np.asarray(v).tolist() for k, v in freqs.items()},
     })
@@ -135,9 +136,23 @@ def run(model, progress=None) -> Result:
             raise SolverError(str(exc), partial=Result(KIND, result_ds, summary, success=False, message=str(exc))) from None
         result_ds["modal_coordinate"] = xr.DataArray(q, dims=("time",), attrs={"units": "m", "long_name": "modal coordinate q (mid-span deflection)"})
         result_ds.coords["time"] = variable(t, ("time",), "s", "time")
-        summary["response"] = {"max_deflection": float(np.max(np.abs(q))), "final_deflection": float(abs(q[-1]))}
+        tail = t >= 0.9 * t[-1]
+        summary["response"] = {"max_deflection": float(np.max(np.abs(q))), "final_amplitude": float(np.max(np.abs(q[tail])))}
     report(1.0, "done")
     return result
+
+
+def point_floquet(setup, harm, steps) -> dict:
+    """Largest Floquet multiplier and growth rate ln|lambda| / T (1/s) at the model's F0 and V."""
+    from .floquet import hill_parameters, multipliers
+
+    if setup.speed <= 0:
+        return {"floquet_multiplier": 1.0, "growth_rate": 0.0}
+    al, be, ga = hill_parameters(setup.pretension, setup.speed, setup.span, harm.f1, setup.teeth, setup.pitch,
+                                 setup.convention)
+    rho = float(multipliers(al, be, ga, *harm.shape(), steps)[2])
+    period = 2 * np.pi / float(excitation_frequency(setup.speed, setup.teeth, setup.pitch, setup.convention))
+    return {"floquet_multiplier": rho, "growth_rate": float(np.log(rho) / period)}
 
 
 def measurement_summary(model, setup) -> dict:

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .analysis import measurement_summary, operating_point, tooth_force_harmonics
+from .analysis import measurement_summary, operating_point, point_floquet, tooth_force_harmonics
 from .chart import bands
 from .frequencies import span_frequencies
 from .source import resolve
@@ -39,7 +39,9 @@ def report(model) -> str:
     for n, b in enumerate(exact[1:], start=2):
         lines.append(f"  tongue n = {n}    {_band(b)}")
     inside = bool(exact[0] and exact[0][0] <= st.speed <= exact[0][1])
-    lines.append(f"  at the model's speed: {'INSIDE the principal resonance band' if inside else 'outside the principal band'}")
+    pf = point_floquet(st, harm, model.chart.steps_per_oscillation)
+    lines.append(f"  at the model's speed: {'INSIDE the principal resonance band' if inside else 'outside the principal band'}; "
+                 f"Floquet |lambda| = {pf['floquet_multiplier']:.6g}, growth rate {pf['growth_rate']:.4g} 1/s")
     lines.append("  span frequencies (Hz, modes 1-3):")
     for k, v in f.items():
         lines.append(f"    {k:14s} " + "  ".join(f"{x:8.4g}" for x in np.atleast_1d(v)))
