@@ -1,0 +1,44 @@
+import warnings
+
+import pytest
+
+import drivedyn
+
+EXAMPLE = drivedyn.example_path("gears-split-path")
+
+
+def seed_model(**changes):
+    """The seed 003 split-path example without its sweep, with dotted-path changes."""
+    m = drivedyn.load(EXAMPLE)
+    over = {"sweep.enabled": False}
+    over.update({k.replace("__", "."): v for k, v in changes.items()})
+    return drivedyn.replace(m, over)
+
+
+def pair_model(**changes):
+    """One seed pinion driving one seed wheel (57 teeth), constant torques, no friction."""
+    data = {
+        "kind": "gear-train",
+        "gears": [
+            {"name": "p", "teeth": 21, "module": 2.5e-3, "profile_shift": 0.29, "face_width": 0.024,
+             "tip_diameter": 0.058712, "inertia": 1.47e-4},
+            {"name": "g", "teeth": 57, "module": 2.5e-3, "profile_shift": 0.29, "face_width": 0.024,
+             "tip_diameter": 0.148712, "inertia": 7.81e-3, "load_fraction": 1.0},
+        ],
+        "meshes": [{"name": "m", "gears": ["p", "g"], "damping_ratio": 0.05,
+                    "stiffness": {"model": "cai", "mean": 449.9e6}}],
+        "drive": {"input": "p", "speed": 151.84, "torque": 24.7},
+        "simulation": {"duration": 0.02, "step": 5e-6},
+    }
+    from drivedyn.model import from_dict, set_path
+
+    for k, v in changes.items():
+        set_path(data, k.replace("__", "."), v)
+    return from_dict(data)
+
+
+@pytest.fixture
+def quiet():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        yield

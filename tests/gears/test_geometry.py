@@ -1,0 +1,52 @@
+"""Involute geometry of the seed pair (seed 003, table 1) against values worked by hand.
+
+Hand values (ISO 21771 formulas, worked with a calculator):
+  r_b1 = 26.25 cos 20 deg = 24.6669 mm (seed: 24.667), r_b2 = 71.25 cos 20 deg = 66.9531 mm
+  p_bt = pi 2.5 cos 20 deg = 7.3803 mm (seed: 7.380)
+  inv a_w = inv 20 deg + 2 tan 20 deg (0.29 + 0.29)/78 = 0.0149044 + 0.0054130 = 0.0203174 -> a_w = 22.092 deg
+  a_w = 97.5 cos 20 deg / cos a_w = 98.880 mm
+  standard tips r_a = r + m (1 + x): 29.475 / 74.475 mm:
+  g_a = sqrt(29.475^2 - 24.6669^2) + sqrt(74.475^2 - 66.9531^2) - 98.8797 sin a_w
+      = sqrt(260.3196) + sqrt(1063.8081) - 37.1881 = 16.1344 + 32.6161 - 37.1881 = 11.5624 mm
+  eps = 11.5624 / 7.3803 = 1.5667
+"""
+import math
+
+import pytest
+
+from drivedyn.gears.geometry import GearGeometry, inv, inv_inverse, pair
+from drivedyn.gears.train import assemble
+
+from .conftest import seed_model
+
+
+def geo(model, name):
+    return GearGeometry.of(next(g for g in model.gears if g.name == name))
+
+
+def test_inv_roundtrip():
+    for a in (0.1, 0.35, 0.6):
+        assert inv_inverse(inv(a)) == pytest.approx(a, rel=1e-12)
+
+
+def test_seed_pair_hand_values():
+    m = seed_model(**{"gears.pinion.tip_diameter": None, "gears.gear2.tip_diameter": None})
+    p = pair(geo(m, "pinion"), geo(m, "gear2"))
+    assert p.g1.rb * 1e3 == pytest.approx(24.6669, abs=1e-4)
+    assert p.g2.rb * 1e3 == pytest.approx(66.9531, abs=1e-4)
+    assert p.base_pitch * 1e3 == pytest.approx(7.3803, abs=1e-4)
+    assert math.degrees(p.alpha_w) == pytest.approx(22.092, abs=1e-3)
+    assert p.a_w * 1e3 == pytest.approx(98.880, abs=1e-3)
+    assert p.path_of_contact * 1e3 == pytest.approx(11.5624, abs=2e-4)
+    assert p.contact_ratio == pytest.approx(1.5667, abs=1e-4)
+    assert p.g1.ra * 1e3 == pytest.approx(29.475) and p.g1.rf * 1e3 == pytest.approx(26.25 - 2.5 * 0.96)
+
+
+def test_seed_table_with_the_examples_tips():
+    """With the example's shortened tips the seed's printed eps_alpha 1.500 and g_alpha 11.068 mm."""
+    s = assemble(seed_model())
+    p = s.pairs[0]
+    assert p.contact_ratio == pytest.approx(1.500, abs=1e-3)
+    assert p.path_of_contact * 1e3 == pytest.approx(11.068, abs=0.01)
+    # nominal force per path, seed eq. 13: 0.5 T1 / (r_w1 cos a) = 1001.27 N (seed rounds T1)
+    assert s.force_nominal[0] == pytest.approx(1001.27, rel=2e-4)
