@@ -170,3 +170,19 @@ def test_growth_rate_floquet_vs_response_vs_first_order_theory(span_model):
     q, t = r.ds["modal_coordinate"].values, r.ds["time"].values
     env = [np.abs(q[(t >= a) & (t < a + 0.1)]).max() for a in (0.1, 0.8)]
     assert np.log(env[1] / env[0]) / 0.7 == pytest.approx(s["growth_rate"], rel=0.05)
+
+
+def test_tooth_force_from_samples_and_series_files(span_model, tmp_path):
+    """The three tooth-force inputs of a model give the same F1 for the same signal."""
+    phi = np.linspace(0, 2 * np.pi, 401)
+    rows = [[float(p), float(np.polyval(SEED_POLY, p))] for p in phi]
+    a = drivedyn.check(span_model(tooth_force__polynomial=None, tooth_force__samples=rows))
+    period = 2 * np.pi * 0.024 / 16 / 5.0          # tooth-passing period at 5 m/s
+    t = np.arange(0, 20 * period, period / 500)
+    csv = tmp_path / "force.csv"
+    np.savetxt(csv, np.c_[t, np.polyval(SEED_POLY, 2 * np.pi * ((t / period) % 1.0))], delimiter=",",
+               header="time (s), force (N)")
+    b = drivedyn.check(span_model(tooth_force__polynomial=None, tooth_force__series=str(csv)))
+    assert "F1 = 3.058 N" in a and "F1 = 3.058 N" in b
+    with pytest.raises(drivedyn.ModelError, match=r"^tooth_force.series: file"):
+        drivedyn.check(span_model(tooth_force__polynomial=None, tooth_force__series=str(tmp_path / "none.csv")))
