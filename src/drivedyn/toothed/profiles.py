@@ -19,8 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .contour import (arc, arc_angles, circle_circle, fillet_line_circle, fillet_lines, join, line_circle,
-                      unit)
+from .contour import arc, arc_angles, circle_circle, fillet_line_circle, fillet_lines, join, line_circle
 
 _DOWN = np.array([0.0, -1.0])
 _RIGHT = np.array([1.0, 0.0])
@@ -235,6 +234,3 @@ def tooth_outline(tooth, tol):
 
     return mirror_half(tooth.half(tol))
 
-
-def unit_flank_normal(angle):  # pragma: no cover - small helper kept for plots
-    return unit([np.cos(angle), -np.sin(angle)])
