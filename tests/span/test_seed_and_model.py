@@ -135,7 +135,7 @@ def _good():
 @pytest.mark.parametrize("old, new, expect", [
     ('pretension = "100 N"', 'pretension = "-100 N"', "operation.pretension: Input should be greater than 0"),
     ('length = "0.3 m"', 'length = "0 m"', "span.length: Input should be greater than 0"),
-    ('speed = "1.11 m/s"', 'speed = "40 m/s"', "operation.speed: 40 m/s is at or above the critical speed"),
+    ('speed = "1.11 m/s"', 'speed = "40 m/s"\n[response]', "operation.speed: 40 m/s is at or above the critical speed"),
     ('frequency = "58 Hz"', 'frequency = "5 Hz"', "measurement.frequency: 5 Hz is below"),
     ('teeth = 16', 'teeth = 0', "excitation.teeth: must be >= 1"),
     ('area = "2.8e-5 m^2"', 'area = "2.8e-5 m"', "span.area"),
@@ -186,3 +186,14 @@ def test_tooth_force_from_samples_and_series_files(span_model, tmp_path):
     assert "F1 = 3.058 N" in a and "F1 = 3.058 N" in b
     with pytest.raises(drivedyn.ModelError, match=r"^tooth_force.series: file"):
         drivedyn.check(span_model(tooth_force__polynomial=None, tooth_force__series=str(tmp_path / "none.csv")))
+
+
+def test_diverged_operating_point_is_reported_not_an_error(span_model):
+    s = drivedyn.run(span_model(operation__speed=40.0, chart__floquet=False)).summary
+    assert s["stability"] == "divergence" and not s["stable"]
+    assert s["omega"] is None and s["frequencies"] is None
+    assert s["critical_speed_margin"] == pytest.approx(s["v_critical"] - 40.0)
+    assert s["floquet_multiplier"] > 1
+    assert "DIVERGES" in drivedyn.check(span_model(operation__speed=40.0))
+    ok = drivedyn.run(span_model(chart__floquet=False)).summary
+    assert ok["stability"] == "stable" and ok["stable"]

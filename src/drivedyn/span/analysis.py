@@ -8,7 +8,7 @@ from ..errors import ModelError, SolverError
 from ..model import dumps
 from ..results import Result, variable
 from . import fourier
-from .chart import bands, chart_variables, floquet_band, tongue_curves, zoom_ranges
+from .chart import UNSTABLE, bands, chart_variables, floquet_band, tongue_curves, zoom_ranges
 from .frequencies import estimate_tension, span_frequencies
 from .quantities import critical_speed, effective_tension, excitation_coefficient, excitation_frequency, natural_frequency
 from .source import resolve
@@ -33,20 +33,28 @@ def tooth_force_harmonics(model, setup) -> fourier.Harmonics:
 
 
 def operating_point(setup, harm) -> dict:
-    """Span quantities at the model's F0 and V; ModelError if V is at or above V_cr."""
+    """Span quantities at the model's F0 and V (omega, mu None once the span has diverged)."""
     sp, F0, V = setup.span, setup.pretension, setup.speed
     vcr = float(critical_speed(F0, sp))
-    if V >= vcr:
-        raise ModelError(f"{V:.4g} m/s is at or above the critical speed {vcr:.4g} m/s at pretension {F0:.4g} N: "
-                         "the span diverges and has no natural frequency", field="operation.speed")
     w = float(excitation_frequency(V, setup.teeth, setup.pitch, setup.convention))
-    Om = float(natural_frequency(F0, V, sp))
+    diverged = V >= vcr
+    Om = None if diverged else float(natural_frequency(F0, V, sp))
     return {
-        "pretension": F0, "speed": V, "v_critical": vcr, "euler_load": sp.euler_load, "omega": Om,
-        "natural_frequency_hz": Om / (2 * np.pi), "mu": float(excitation_coefficient(F0, V, harm.f1, sp)),
+        "pretension": F0, "speed": V, "v_critical": vcr, "critical_speed_margin": vcr - V,
+        "euler_load": sp.euler_load, "omega": Om,
+        "natural_frequency_hz": None if diverged else Om / (2 * np.pi),
+        "mu": None if diverged else float(excitation_coefficient(F0, V, harm.f1, sp)),
         "effective_tension": float(effective_tension(F0, V, sp)), "excitation_frequency": w,
-        "frequency_ratio": w / Om if Om > 0 else None,
+        "frequency_ratio": w / Om if Om else None,
     }
+
+
+def require_stable_speed(op, what: str):
+    """ModelError naming operation.speed when ``what`` needs a frequency of a diverged span."""
+    if op["omega"] is None:
+        raise ModelError(f"{op['speed']:.4g} m/s is at or above the critical speed {op['v_critical']:.4g} m/s at "
+                         f"pretension {op['pretension']:.4g} N: the span diverges and has no natural frequency "
+                         f"({what} needs one)", field="operation.speed")
 
 
 def run(model, progress=None) -> Result:
@@ -63,6 +71,8 @@ def run(model, progress=None) -> Result:
     setup = resolve(model)
     harm = tooth_force_harmonics(model, setup)
     op = operating_point(setup, harm)
+    if model.response is not None:
+        require_stable_speed(op, "[response]")
     sp, ch = setup.span, model.chart
     report(0.05, "chart")
 
@@ -83,7 +93,8 @@ def run(model, progress=None) -> Result:
     exact, first = bands(setup, harm, ch.tongues)
     fl = floquet_band(setup.pretension, exact[0], setup, harm, ch.steps_per_oscillation) if exact[0] else None
     modes = np.arange(1, 4)
-    freqs = span_frequencies(setup.pretension, sp.mass_per_length, sp.length, sp.bending_stiffness, setup.speed, 3)
+    freqs = None if op["omega"] is None else span_frequencies(setup.pretension, sp.mass_per_length, sp.length,
+                                                               sp.bending_stiffness, setup.speed, 3)
 
     # frequency-vs-tension curves at the model's speed (NaN where the span diverges)
     curves = {k: np.full(len(F0), np.nan) for k in ("string", "beam", "moving_beam")}
@@ -117,8 +128,11 @@ def run(model, progress=None) -> Result:
         "tongue_bands": exact,
         **point_floquet(setup, harm, ch.steps_per_oscillation),
         "in_resonance": bool(exact[0] and exact[0][0] <= setup.speed <= exact[0][1]),
-        "frequencies": {k: np.asarray(v).tolist() for k, v in freqs.items()},
+        "frequencies": None if freqs is None else {k: np.asarray(v).tolist() for k, v in freqs.items()},
     })
+    summary["stability"] = ("divergence" if op["omega"] is None else
+                            "parametric resonance" if summary["floquet_multiplier"] > UNSTABLE else "stable")
+    summary["stable"] = summary["stability"] == "stable"
     if model.measurement is not None:
         summary["measurement"] = measurement_summary(model, setup)
 

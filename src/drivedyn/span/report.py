@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .analysis import measurement_summary, operating_point, point_floquet, tooth_force_harmonics
+from .analysis import measurement_summary, operating_point, point_floquet, require_stable_speed, tooth_force_harmonics
 from .chart import bands
 from .frequencies import span_frequencies
 from .source import resolve
@@ -18,9 +18,12 @@ def report(model) -> str:
     st = resolve(model)
     harm = tooth_force_harmonics(model, st)
     op = operating_point(st, harm)
+    if model.response is not None:
+        require_stable_speed(op, "[response]")
     sp = st.span
     exact, first = bands(st, harm, model.chart.tongues)
-    f = span_frequencies(st.pretension, sp.mass_per_length, sp.length, sp.bending_stiffness, st.speed, 3)
+    f = None if op["omega"] is None else span_frequencies(st.pretension, sp.mass_per_length, sp.length,
+                                                          sp.bending_stiffness, st.speed, 3)
     period = 2 * np.pi / op["excitation_frequency"] if op["excitation_frequency"] > 0 else float("inf")
     lines = [
         f"span-stability: {model.name or '(unnamed)'}",
@@ -29,11 +32,12 @@ def report(model) -> str:
         f"  operation       F0 = {st.pretension:.4g} N, V = {st.speed:.4g} m/s",
         f"  Euler load      F* = {op['euler_load']:.4g} N",
         f"  critical speed  V_cr = {op['v_critical']:.4g} m/s (divergence above)",
-        f"  loaded freq.    Omega = {op['omega']:.4g} rad/s ({op['natural_frequency_hz']:.4g} Hz)",
+        (f"  loaded freq.    Omega = {op['omega']:.4g} rad/s ({op['natural_frequency_hz']:.4g} Hz)" if op["omega"]
+         else f"  loaded freq.    none: V = {st.speed:.4g} m/s is above V_cr, the span DIVERGES"),
         f"  tooth force     mean {harm.mean:.4g} N, F1 = {harm.f1:.4g} N, "
         f"c2..c4 = {', '.join(f'{c:.3g}' for c in harm.amplitudes[1:4])} N",
-        f"  excitation      mu = {op['mu']:.4g}, pitch {1e3 * st.pitch:.4g} mm, {st.convention} period "
-        f"{1e3 * period:.4g} ms, omega = {op['excitation_frequency']:.4g} rad/s (omega/Omega = {op['frequency_ratio']:.4g})",
+        f"  excitation      mu = {op['mu'] if op['mu'] is not None else float('nan'):.4g}, pitch {1e3 * st.pitch:.4g} mm, {st.convention} period "
+        f"{1e3 * period:.4g} ms, omega = {op['excitation_frequency']:.4g} rad/s (omega/Omega = {op['frequency_ratio'] or float('nan'):.4g})",
         f"  principal band  exact {_band(exact[0])}; first order (seed) {_band(first)}",
     ]
     for n, b in enumerate(exact[1:], start=2):
@@ -42,8 +46,8 @@ def report(model) -> str:
     pf = point_floquet(st, harm, model.chart.steps_per_oscillation)
     lines.append(f"  at the model's speed: {'INSIDE the principal resonance band' if inside else 'outside the principal band'}; "
                  f"Floquet |lambda| = {pf['floquet_multiplier']:.6g}, growth rate {pf['growth_rate']:.4g} 1/s")
-    lines.append("  span frequencies (Hz, modes 1-3):")
-    for k, v in f.items():
+    lines.append("  span frequencies (Hz, modes 1-3):" + (" none (diverged)" if f is None else ""))
+    for k, v in (f or {}).items():
         lines.append(f"    {k:14s} " + "  ".join(f"{x:8.4g}" for x in np.atleast_1d(v)))
     if model.measurement is not None:
         m = measurement_summary(model, st)
