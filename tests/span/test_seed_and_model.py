@@ -197,3 +197,13 @@ def test_diverged_operating_point_is_reported_not_an_error(span_model):
     assert "DIVERGES" in drivedyn.check(span_model(operation__speed=40.0))
     ok = drivedyn.run(span_model(chart__floquet=False)).summary
     assert ok["stability"] == "stable" and ok["stable"]
+
+
+def test_belt_model_path_relative_to_the_model_file(tmp_path):
+    pytest.importorskip("drivedyn.belt.layout")
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub" / "mybelt.toml").write_text(drivedyn.example_path("belt-5pk").read_text())
+    f = tmp_path / "sub" / "span.toml"
+    f.write_text('kind = "span-stability"\n[span]\nbelt_model = "mybelt.toml"\nspan_name = "driver-driven"\n'
+                 '[excitation]\npulley_radius = "27 mm"\n[tooth_force]\namplitude = 5.0\n')
+    assert "l = 0.515 m" in drivedyn.check(f)

@@ -16,12 +16,23 @@ from __future__ import annotations
 
 from typing import Literal, Optional
 
-from pydantic import field_validator, model_validator
+from pydantic import ValidationInfo, field_validator, model_validator
 
 from ..model import Spec, quantity
 
 Force = quantity("N")
 Speed = quantity("m/s")
+
+
+def _relative_to_model(v, info: ValidationInfo):
+    """A relative path that exists next to the model file is made absolute (else kept as given)."""
+    from pathlib import Path
+
+    base = (info.context or {}).get("base_dir")
+    if v is None or base is None or Path(v).is_absolute():
+        return v
+    cand = Path(base) / v
+    return str(cand.resolve()) if cand.exists() else v
 
 
 def _check_range(v, what):
@@ -43,6 +54,8 @@ class Span(Spec):
     area: Optional[quantity("m^2", gt=0)] = None
     bending_stiffness: Optional[quantity("N*m^2", ge=0)] = None
     damping_ratio: float = 0.0
+
+    _belt_path = field_validator("belt_model")(classmethod(lambda cls, v, info: _relative_to_model(v, info)))
 
     @field_validator("damping_ratio")
     @classmethod
@@ -113,6 +126,8 @@ class ToothForce(Spec):
     samples: Optional[list[list[float]]] = None  # [[phi (rad), force (N)], ...] over one tooth
     series: Optional[str] = None                 # CSV file: time (s), force (N)
     amplitude: Optional[quantity("N", ge=0)] = None
+
+    _series_path = field_validator("series")(classmethod(lambda cls, v, info: _relative_to_model(v, info)))
 
     @field_validator("polynomial")
     @classmethod

@@ -3,8 +3,9 @@
 A span may give ``span.length`` directly, or name a belt-drive model file (``span.belt_model``)
 and one of its spans (``span.span_name``, e.g. "driver-driven"): the length then comes from
 ``drivedyn.belt.layout.compute_layout(model).spans``, and the mass per metre, bending stiffness
-and pretension default to the belt's when the span model leaves them out. The path is tried as
-given (relative to the working directory), then as a shipped example name.
+and pretension default to the belt's when the span model leaves them out. The path is taken
+relative to the model file (made absolute at load), then the working directory, then as a
+shipped example name.
 """
 from __future__ import annotations
 
