@@ -29,7 +29,7 @@ import numpy as np
 from .geometry import PairGeometry
 from .potential_energy import pair_stiffness as pe_pair_stiffness
 
-N_TABLE = 2048
+N_TABLE = 2048   # minimum points per mesh period
 CAI_MEAN = 0.85   # mean of -1.8 s^2 + 1.8 s + 0.55 over [0, 1]
 
 
@@ -66,13 +66,15 @@ def pair_positions(u, eps):
 
 
 def build(geo: PairGeometry, spec, iso_single: float, iso_mean: float, *, b: float, E=(206e9, 206e9),
-          nu=(0.3, 0.3), r_int=(None, None)) -> MeshTable:
+          nu=(0.3, 0.3), r_int=(None, None), n_table: int = N_TABLE) -> MeshTable:
     """The mesh table of one mesh from its stiffness spec (``Stiffness`` model object).
 
     ``iso_single`` and ``iso_mean`` are ISO c' b and c_gamma b (N/m), used when no value is given.
+    ``n_table`` points per period: a jump is spread over one cell, so a cell must not last longer
+    than an integration step, or a stiffness jump acts like a ramp (and K_v is underestimated).
     """
     eps = geo.contact_ratio
-    u = np.arange(N_TABLE) / N_TABLE
+    u = np.arange(n_table) / n_table
     s = pair_positions(u, eps)
     inside = ~np.isnan(s)
     npairs = inside.sum(axis=1)
@@ -92,12 +94,14 @@ def build(geo: PairGeometry, spec, iso_single: float, iso_mean: float, *, b: flo
         kp = np.where(inside, share[:, None], 0.0)
     elif spec.model == "constant":
         mean = spec.mean if spec.mean is not None else iso_mean
-        kp = np.where(inside, (mean / eps), 0.0)
+        kp = np.where(inside, (mean / np.maximum(npairs, 1))[:, None], 0.0)   # shared equally, sum = mean
     else:
         grid = np.linspace(0.0, eps, 161)
         rho = geo.rho_start + grid * geo.base_pitch
         kg = pe_pair_stiffness(geo, rho, b, E, nu, r_int)
         kp = np.where(inside, np.interp(ss, grid, kg), 0.0)
+    if spec.model in ("cai", "constant"):
+        kp *= mean / kp.sum(axis=1).mean()       # exact mean on the table grid (pair count varies on it)
     mean0 = kp.sum(axis=1).mean()
     if spec.engagement > 0:
         e = spec.engagement

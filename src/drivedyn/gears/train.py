@@ -221,6 +221,19 @@ def assemble(model) -> System:
                                                pair_s=None, pair_k=None, mean=1e8))
     _, f0, _ = sys_.static()
     ka = model.iso.application_factor
+    # one table size for all meshes, independent of the step: at the slowest speed run (nominal or
+    # sweep) a cell lasts under 1/64 of the shortest free period (estimated with twice the ISO or
+    # given mean stiffness), so a stiffness jump stays a jump for the dynamics
+    w_low = min(w_in, model.sweep.speed_min or w_in) if model.sweep.enabled else w_in
+    t_mesh = max(2 * math.pi / (p.g1.z * ratio[ma[j]] * w_low) for j, p in enumerate(pairs))
+    count = np.bincount(np.concatenate([ma, mb]), minlength=len(names))
+    inert = np.array([g.inertia for g in model.gears])
+    f_est = 0.0
+    for j, (ms, p) in enumerate(zip(model.meshes, pairs)):
+        k = ms.stiffness.mean or ms.stiffness.double or 1e9 * 30.0 * min(p.g1.b, p.g2.b) * 1.4
+        f_est = max(f_est, math.sqrt(2 * k * (count[ma[j]] * p.g1.rb ** 2 / inert[ma[j]]
+                                              + count[mb[j]] * p.g2.rb ** 2 / inert[mb[j]])) / (2 * math.pi))
+    n_tab = int(min(max(stiffness.N_TABLE, math.ceil(64 * t_mesh * f_est)), 2 ** 18))
     for j, (ms, p) in enumerate(zip(model.meshes, pairs)):
         ga, gb = model.gears[ma[j]], model.gears[mb[j]]
         b = min(p.g1.b, p.g2.b)
@@ -235,7 +248,7 @@ def assemble(model) -> System:
                       for g, geo in ((ga, p.g1), (gb, p.g2)))
         try:
             tab = stiffness.build(p, ms.stiffness, c1, cg, b=b, E=(ga.youngs_modulus, gb.youngs_modulus),
-                                  nu=(ga.poisson, gb.poisson), r_int=r_int)
+                                  nu=(ga.poisson, gb.poisson), r_int=r_int, n_table=n_tab)
         except ValueError as exc:
             raise ModelError(str(exc), field=f"meshes[{j}].stiffness") from None
         sys_.tables[j] = tab
