@@ -159,7 +159,7 @@ def plot_sweep(ds, ax=None):
     ax.set_ylim(0.8, max(top * 1.05, 2.8))
     ax.set_xlabel("input speed [rpm]")
     ax.set_ylabel("K_v")
-    ax.set_title("dynamic factor against speed (values above the frame: parametric instability of the linear model)")
+    ax.set_title("K_v against input speed (off the top: parametric instability of the linear model)")
     ax.legend(loc="upper left", fontsize=8)
     ax.grid(alpha=0.3)
     return arts
