@@ -27,7 +27,7 @@ from numba import njit
 # integer parameter slots (ip)
 I_N, I_NK, I_LAW, I_NSPAN, I_NTRACK, I_NEXP, I_LINEAR = range(7)
 # float parameter slots (fp)
-F_EAX, F_EB, F_PMAX, F_DV, F_DMAX, F_G, F_TURN, F_HL = range(8)
+F_EAX, F_EB, F_PMAX, F_DV, F_DMAX, F_G, F_TURN, F_HL, F_ISCALE = range(9)
 
 
 @njit(cache=True)
@@ -236,7 +236,8 @@ def step_chunk(nsteps, t, h, ip, fp,
         inv_m[i] = 1.0 / m[i]
         inv_i[i] = 1.0 / inertia[i]
         hm_[i] = h * inv_m[i]
-        hi_[i] = h * inv_i[i]
+        # selective mass scaling of the segments' rotation: inertia x F_ISCALE (see system.py)
+        hi_[i] = h / (inertia[i] * fp[F_ISCALE])
     hg = h * g
     for _ in range(nsteps):
         pax, pb = joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy,

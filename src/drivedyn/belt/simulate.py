@@ -12,7 +12,7 @@ from ..errors import SolverError
 from ..model import dumps
 from ..results import Result, variable
 from . import _kernels as K
-from .system import BeltSystem, build
+from .system import BeltSystem, build, effective_inertia
 
 
 class _Recorder:
@@ -66,8 +66,10 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
                span=np.zeros(nspan), track=np.zeros((ntrack, 3)), diss=np.zeros(4))
     args_e = (sysm.ip, sysm.fp)
 
+    inertia = effective_inertia(sysm, h)
+
     def energy():
-        return K.energy(sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, om, seg["m"], seg["inertia"], seg["kax"], seg["kb"],
+        return K.energy(sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, om, seg["m"], inertia, seg["kax"], seg["kb"],
                         seg["c1"], seg["c2"], pul["pcx"], pul["pcy"], pul["pr"], pul["pinertia"], pul["pmode"])
 
     def capture_frame(t):
