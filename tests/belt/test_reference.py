@@ -156,12 +156,14 @@ def test_converged_in_segments(loaded):
     assert runs[300]["pulleys"]["driven"]["slip"] == pytest.approx(dT[300] / 1.52e5, rel=0.25)
 
 
-def test_rotation_mass_scaling_changes_nothing_that_matters(loaded):
-    """Scaling the segments' rotational inertia (I + h^2 K_rot) lets the step grow from the
-    rotation-mode limit to the zig-zag limit; the drive's response must not change."""
-    m, r = loaded
-    r0 = drivedyn.run(drivedyn.replace(m, {"simulation.rotation_scaling": False}))
-    assert r.summary["solver"]["step"] > 1.5 * r0.summary["solver"]["step"]
+def test_rotation_mass_scaling_at_low_belt_speed(loaded):
+    """Opt-in: scaling the segments' rotational inertia by 3.3 lets the step grow from the
+    rotation-mode limit to the zig-zag limit. At this belt speed (1.1 m/s) the drive's response
+    must not change by more than 0.5 % (at 11 m/s, in the accessory drive, the contact losses do:
+    hence off by default)."""
+    m, r0 = loaded
+    r = drivedyn.run(drivedyn.replace(m, {"simulation.rotation_scaling": True}))
+    assert r.summary["solver"]["step"] > 1.4 * r0.summary["solver"]["step"]
     for sp in ("driver-driven", "driven-driver"):
         assert r.summary["spans"][sp]["tension_mean"] == pytest.approx(r0.summary["spans"][sp]["tension_mean"], rel=5e-3)
     assert r.summary["pulleys"]["driven"]["slip"] == pytest.approx(r0.summary["pulleys"]["driven"]["slip"], abs=1e-4)

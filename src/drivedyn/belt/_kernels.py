@@ -150,23 +150,19 @@ def joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, m
         dvx = (vx[i] + w[i] * by) - (vx[k] - w[k] * ay)
         dvy = (vy[i] - w[i] * bx) - (vy[k] + w[k] * ax)
         dd = dx * dx + dy * dy
-        if dd > 1e-30:
-            rate = (dx * dvx + dy * dvy) / dd        # dDelta_l/dt / Delta_l
-            if h > 0.0:
-                cak = ax * dy - ay * dx
-                cbi = bx * dy - by * dx
-                weff = inv_m[k] + inv_m[i] + (cak * cak * inv_i[k] + cbi * cbi * inv_i[i]) / dd
-                bd = bax[i] / (1.0 + h * bax[i] * weff)
-            else:
-                bd = bax[i]
-        else:
-            rate = 0.0
-            bd = 0.0
+        num = dx * dvx + dy * dvy                     # Delta_l * dDelta_l/dt
+        # damper force per unit gap, b (dDelta_l/dt) / Delta_l, with the implicit factor
+        # 1 / (1 + h b w_eff) folded into the one division
+        hb = h * bax[i]
+        cak = ax * dy - ay * dx
+        cbi = bx * dy - by * dx
+        den = dd * (1.0 + hb * (inv_m[k] + inv_m[i])) + hb * (cak * cak * inv_i[k] + cbi * cbi * inv_i[i])
+        fd = bax[i] * num / den if den > 1e-300 else 0.0
         if linear:
-            fk = kax[i] + bd * rate
+            fk = kax[i] + fd
         else:
-            fk = kax[i] * dd ** (0.5 * (eax - 1.0)) + bd * rate
-        pax += bd * rate * rate * dd
+            fk = kax[i] * dd ** (0.5 * (eax - 1.0)) + fd
+        pax += fd * num
         jfk[i] = fk
         jdx[i] = dx
         jdy[i] = dy
@@ -348,7 +344,11 @@ def step_chunk(nsteps, t, h, ip, fp,
             best = span_joint[q]
             bestd = 1e300
             for dk in range(-2, 3):
-                jj = (span_joint[q] + dk) % n
+                jj = span_joint[q] + dk
+                if jj < 0:
+                    jj += n
+                elif jj >= n:
+                    jj -= n
                 kk = jj - 1 if jj > 0 else n - 1
                 px = 0.5 * (x[jj] - hl * c[jj] + x[kk] + hl * c[kk]) - span_mx[q]
                 py = 0.5 * (y[jj] - hl * s[jj] + y[kk] + hl * s[kk]) - span_my[q]

@@ -183,7 +183,7 @@ class Simulation(Spec):
     duration: quantity("s", gt=0) = 1.0
     method: Literal["semi-implicit", "rkf45"] = "semi-implicit"
     step: Optional[quantity("s", gt=0)] = None
-    rotation_scaling: bool = True
+    rotation_scaling: bool = False
     rtol: float = 1e-6
     atol: float = 1e-9
 
