@@ -104,7 +104,7 @@ def test_seed_mixed_pair_interferes_little_using_part_of_the_groove_depth(htd_sw
 
 @pytest.mark.xfail(strict=True, reason="not reproduced: with the ISO 5296/5294 nominal dimensions the L "
                    "tooth has 0.16 mm flank and 0.76 mm tip clearance and never touches an unloaded "
-                   "groove in the exact rack/wrap kinematics, while HTD (0.07 mm) does; see docs/toothed.md")
+                   "groove in the exact rack/wrap kinematics, while HTD (0.07 mm) does; see the README, timing-belt meshing")
 def test_seed_l_interferes_much_more_than_htd(htd_sweep):
     l_pair = headline(sweep(make_pair("L", z=20), 121))
     assert l_pair["max_overlap_area_mm2"] > 2 * headline(htd_sweep)["max_overlap_area_mm2"]

@@ -1,7 +1,7 @@
 """The profile catalogue: belt teeth and standard pulley grooves with the source of every number.
 
 Numbers are the ones gathered in shared/design/toothed-profiles.md (mm there, metres here).
-Source keys (full references in that note and in docs/toothed.md):
+Source keys (full references in that note and in the README section on meshing):
 
 - OPT: Optibelt technical manual, table 2 "according to ISO 5296" (trapezoidal teeth)
 - SDP: SDP/SI handbook D265, table 4 (PLD a) and fig. 19 (T profiles)
