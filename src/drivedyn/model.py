@@ -61,6 +61,35 @@ def quantity(unit: str, **constraints):
     return Annotated[float, BeforeValidator(_si_validator(unit)), Field(json_schema_extra={"unit": unit}, **constraints)]
 
 
+def table_rows(value, units: tuple[str, str], field: str, min_rows: int = 1) -> list[list[float]]:
+    """Validate a table of rows [x, y] (numbers or unit strings) into SI floats, x increasing.
+
+    For pydantic validators: raises ValueError with a one-line message.
+    """
+    if not isinstance(value, (list, tuple)) or len(value) < min_rows:
+        raise ValueError(f"{field} must be a list of at least {min_rows} [{units[0]}, {units[1]}] row(s)")
+    rows = []
+    for k, row in enumerate(value):
+        if not isinstance(row, (list, tuple)) or len(row) != 2:
+            raise ValueError(f"row {k} of {field} must have 2 values, got {row!r}")
+        try:
+            rows.append([to_si(row[0], units[0]), to_si(row[1], units[1])])
+        except Exception as exc:
+            raise ValueError(f"row {k} of {field}: {exc}") from None
+    xs = [r[0] for r in rows]
+    if any(b <= a for a, b in zip(xs, xs[1:])):
+        raise ValueError(f"{field}: first column must increase strictly")
+    return rows
+
+
+def check_name(v: str, forbidden: str = " ./") -> str:
+    """A name used in result keys and dotted paths: non-empty, none of ``forbidden``."""
+    if not v or any(c in v for c in forbidden):
+        shown = ", ".join(repr(c) for c in forbidden)
+        raise ValueError(f"must be a non-empty name without {shown}, got {v!r}")
+    return v
+
+
 def analysis(kind: str):
     """The analysis package of ``kind`` (imported lazily)."""
     if kind not in KINDS:

@@ -16,30 +16,10 @@ from typing import Literal, Optional
 
 from pydantic import field_validator, model_validator
 
-from ..model import Spec, quantity
+from ..model import Spec, check_name, quantity, table_rows
 
 Length = quantity("m")
 Time = quantity("s")
-
-
-def _table(value, units, field):
-    """Validate a table of rows [x, y] (numbers or unit strings) into SI floats, x increasing."""
-    from ..units import to_si
-
-    if not isinstance(value, (list, tuple)) or len(value) < 1:
-        raise ValueError(f"{field} must be a list of [{units[0]}, {units[1]}] rows")
-    rows = []
-    for k, row in enumerate(value):
-        if not isinstance(row, (list, tuple)) or len(row) != 2:
-            raise ValueError(f"row {k} of {field} must have 2 values, got {row!r}")
-        try:
-            rows.append([to_si(row[0], units[0]), to_si(row[1], units[1])])
-        except Exception as exc:
-            raise ValueError(f"row {k} of {field}: {exc}") from None
-    xs = [r[0] for r in rows]
-    if any(b <= a for a, b in zip(xs, xs[1:])):
-        raise ValueError(f"{field}: first column must increase strictly")
-    return rows
 
 
 class Harmonic(Spec):
@@ -68,29 +48,24 @@ class Pulley(Spec):
     @field_validator("name")
     @classmethod
     def _name(cls, v):
-        if not v or any(c in v for c in " .-/"):
-            raise ValueError(f"must be a non-empty name without spaces, dots, dashes or slashes, got {v!r}")
-        return v
+        return check_name(v, " .-/")   # dashes join pulley names into span names
 
     @field_validator("torque_time")
     @classmethod
     def _tt(cls, v):
-        return None if v is None else _table(v, ("s", "N*m"), "torque_time")
+        return None if v is None else table_rows(v, ("s", "N*m"), "torque_time")
 
     @field_validator("torque_speed")
     @classmethod
     def _ts(cls, v):
         if v is None:
             return None
-        rows = _table(v, ("rad/s", "N*m"), "torque_speed")
-        if len(rows) < 2:
-            raise ValueError("torque_speed needs at least 2 rows (it is extrapolated linearly)")
-        return rows
+        return table_rows(v, ("rad/s", "N*m"), "torque_speed (extrapolated linearly)", min_rows=2)
 
     @field_validator("speed_time")
     @classmethod
     def _st(cls, v):
-        return None if v is None else _table(v, ("s", "rad/s"), "speed_time")
+        return None if v is None else table_rows(v, ("s", "rad/s"), "speed_time")
 
     @model_validator(mode="after")
     def _excitation(self):

@@ -12,36 +12,18 @@ from typing import Literal, Optional
 
 from pydantic import field_validator, model_validator
 
-from ..model import Spec, quantity
+from ..model import Spec, check_name, quantity, table_rows
 
 Length = quantity("m")
 Time = quantity("s")
 
 
 def _name(v):
-    if not v or any(c in v for c in " ./"):
-        raise ValueError(f"must be a non-empty name without spaces, dots or slashes, got {v!r}")
-    return v
+    return check_name(v)
 
 
 def _table(value, units, field):
-    """Rows [x, y] (numbers or unit strings) to SI floats, x strictly increasing."""
-    from ..units import to_si
-
-    if not isinstance(value, (list, tuple)) or len(value) < 2:
-        raise ValueError(f"{field} must be a list of at least 2 [{units[0]}, {units[1]}] rows")
-    rows = []
-    for k, row in enumerate(value):
-        if not isinstance(row, (list, tuple)) or len(row) != 2:
-            raise ValueError(f"row {k} of {field} must have 2 values, got {row!r}")
-        try:
-            rows.append([to_si(row[0], units[0]), to_si(row[1], units[1])])
-        except Exception as exc:
-            raise ValueError(f"row {k} of {field}: {exc}") from None
-    xs = [r[0] for r in rows]
-    if any(b <= a for a, b in zip(xs, xs[1:])):
-        raise ValueError(f"{field}: first column must increase strictly")
-    return rows
+    return table_rows(value, units, field, min_rows=2)
 
 
 class Gear(Spec):
