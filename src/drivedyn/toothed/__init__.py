@@ -9,7 +9,7 @@ from .model import Model
 
 
 def run(model, progress=None):
-    from .run import run as _run
+    from .analysis import run as _run
 
     return _run(model, progress=progress)
 
