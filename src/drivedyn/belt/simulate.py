@@ -91,23 +91,33 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     work = 0.0
     diss_total = np.zeros(4)
     last_report = -1.0
+    state = (x, y, phi, c, s, vx, vy, w, th, om, z, span_joint)
+    span_mx, span_my = sysm.span_mid[:, 0].copy(), sysm.span_mid[:, 1].copy()
+
+    def advance(nsteps, t):
+        return K.step_chunk(nsteps, t, h, sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, th, om, z,
+                            seg["m"], seg["inertia"], seg["mu"], seg["kax"], seg["bax"], seg["kb"], seg["bb"],
+                            seg["c1"], seg["c2"], seg["bc"],
+                            pul["pcx"], pul["pcy"], pul["pr"], pul["pinv_i"], pul["pmode"],
+                            pul["tq_const"], pul["tq_visc"], pul["tt_off"], pul["tt_x"], pul["tt_y"],
+                            pul["ts_off"], pul["ts_x"], pul["ts_y"], pul["hm_off"], pul["hm_order"], pul["hm_amp"],
+                            pul["hm_phase"], pul["sp_off"], pul["sp_x"], pul["sp_y"],
+                            span_mx, span_my, span_joint, sysm.track,
+                            fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, seg_p,
+                            acc["tq_ext"], acc["tq_belt"], acc["hubx"], acc["huby"], acc["pin"], acc["span"],
+                            acc["track"], acc["diss"])
+
     for k in range(nsamples):
         for a in acc.values():
             a[...] = 0.0
-        t = K.step_chunk(steps_per_sample, t, h, sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, th, om, z,
-                         seg["m"], seg["inertia"], seg["mu"], seg["kax"], seg["bax"], seg["kb"], seg["bb"],
-                         seg["c1"], seg["c2"], seg["bc"],
-                         pul["pcx"], pul["pcy"], pul["pr"], pul["pinv_i"], pul["pmode"],
-                         pul["tq_const"], pul["tq_visc"], pul["tt_off"], pul["tt_x"], pul["tt_y"],
-                         pul["ts_off"], pul["ts_x"], pul["ts_y"], pul["hm_off"], pul["hm_order"], pul["hm_amp"],
-                         pul["hm_phase"], pul["sp_off"], pul["sp_x"], pul["sp_y"],
-                         sysm.span_mid[:, 0].copy(), sysm.span_mid[:, 1].copy(), span_joint, sysm.track,
-                         fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, seg_p,
-                         acc["tq_ext"], acc["tq_belt"], acc["hubx"], acc["huby"], acc["pin"], acc["span"],
-                         acc["track"], acc["diss"])
-        bad = _blow_up(x, y, vx, vy, om, seg_p, sysm)
-        if bad:
-            return k, f"diverged at t = {t:.6g} s: {bad}"
+        saved = [a.copy() for a in state]
+        t0 = t
+        t = advance(steps_per_sample, t)
+        if _blow_up(x, y, vx, vy, om, seg_p, sysm):
+            # replay the sample step by step from its start to name the first quantity that ran away
+            for a, b in zip(state, saved):
+                a[...] = b
+            return k, "diverged " + _first_runaway(advance, t0, steps_per_sample, h, state, sysm)
         work += float(np.sum(acc["pin"]))
         diss_total += acc["diss"]
         rec.t[k] = t
@@ -127,6 +137,27 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
             last_report = (k + 1) / nsamples
             progress(last_report, f"t = {t:.3f} s")
     return nsamples, ""
+
+
+def _first_runaway(advance, t, nsteps, h, state, sysm):
+    """Step one step at a time and report the first segment or pulley speed that ran away."""
+    x, y, phi, c, s, vx, vy, w, th, om = state[:10]
+    pr = sysm.pul["pr"]
+    v_ref = max(float(np.max(np.hypot(vx, vy))), float(np.max(np.abs(om) * pr)), 1.0)
+    for _ in range(nsteps):
+        v_before = np.hypot(vx, vy)
+        t = advance(1, t)
+        v = np.hypot(vx, vy)
+        bad = ~(v < 10 * v_ref)
+        if np.any(bad):
+            i = int(np.argmax(np.where(bad, np.inf, v)) if np.any(~np.isfinite(v)) else np.argmax(v))
+            return (f"at t = {t:.6g} s: segment {i} speed {v[i]:.3g} m/s (was {v_before[i]:.3g} m/s a step "
+                    f"before, {h:.3g} s); is the step above the stability limit ({sysm.step_limit:.3g} s)?")
+        spd = np.abs(om) * pr
+        if not np.all(spd < 10 * v_ref + 100):
+            j = int(np.argmax(np.where(np.isfinite(spd), spd, np.inf)))
+            return f"at t = {t:.6g} s: pulley {sysm.layout.names[j]} speed {om[j]:.3g} rad/s"
+    return f"by t = {t:.6g} s: the belt state ran out of bounds"
 
 
 def _blow_up(x, y, vx, vy, om, pen, sysm):
