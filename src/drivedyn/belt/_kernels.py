@@ -24,6 +24,8 @@ import math
 import numpy as np
 from numba import njit
 
+from ..tables import table
+
 # integer parameter slots (ip)
 I_N, I_NK, I_LAW, I_NSPAN, I_NTRACK, I_NEXP, I_LINEAR = range(7)
 # float parameter slots (fp)
@@ -72,32 +74,6 @@ def solve_threlfall(w, a, dv):
     elif x < -1.0:
         x = -1.0
     return x * dv
-
-
-@njit(cache=True)
-def table(xs, ys, o0, o1, x, extrapolate):
-    """Piecewise-linear y(x) from rows o0..o1-1; held constant (or extrapolated) beyond the ends."""
-    m = o1 - o0
-    if m == 0:
-        return 0.0
-    if m == 1:
-        return ys[o0]
-    if x <= xs[o0]:
-        if extrapolate:
-            return ys[o0] + (ys[o0 + 1] - ys[o0]) * (x - xs[o0]) / (xs[o0 + 1] - xs[o0])
-        return ys[o0]
-    if x >= xs[o1 - 1]:
-        if extrapolate:
-            return ys[o1 - 1] + (ys[o1 - 1] - ys[o1 - 2]) * (x - xs[o1 - 1]) / (xs[o1 - 1] - xs[o1 - 2])
-        return ys[o1 - 1]
-    lo, hi = o0, o1 - 1
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        if xs[mid] <= x:
-            lo = mid
-        else:
-            hi = mid
-    return ys[lo] + (ys[hi] - ys[lo]) * (x - xs[lo]) / (xs[hi] - xs[lo])
 
 
 @njit(cache=True)

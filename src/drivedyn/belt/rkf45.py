@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ModelError
+from ..tables import table
 from . import _kernels as K
 
 
@@ -69,7 +70,7 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, max_steps_per_sa
         rec.theta[k], rec.omega[k] = y[3 * n:3 * n + nk], y[o + 3 * n:]
         for j in range(nk):
             if pul["pmode"][j] == 1:
-                rec.omega[k, j] = K.table(pul["sp_x"], pul["sp_y"], pul["sp_off"][j], pul["sp_off"][j + 1], t, False)
+                rec.omega[k, j] = table(pul["sp_x"], pul["sp_y"], pul["sp_off"][j], pul["sp_off"][j + 1], t, False)
         rec.tq_ext[k], rec.tq_belt[k] = acc_tq[:nk] / interval, acc_tq[nk:2 * nk] / interval
         rec.hubx[k], rec.huby[k] = acc_tq[2 * nk:3 * nk] / interval, acc_tq[3 * nk:] / interval
         rec.pin[k] = acc_p[4:] / interval

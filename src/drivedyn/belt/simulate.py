@@ -11,6 +11,7 @@ import xarray as xr
 from ..errors import SolverError
 from ..model import dumps
 from ..results import Result, variable
+from ..tables import table
 from . import _kernels as K
 from .system import BeltSystem, build, effective_inertia
 
@@ -50,7 +51,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     vx, vy, w = np.zeros(n), np.zeros(n), np.zeros(n)
     z = np.zeros(n)
     th = np.zeros(nk)
-    om = np.array([K.table(pul["sp_x"], pul["sp_y"], pul["sp_off"][j], pul["sp_off"][j + 1], 0.0, False)
+    om = np.array([table(pul["sp_x"], pul["sp_y"], pul["sp_off"][j], pul["sp_off"][j + 1], 0.0, False)
                    if pul["pmode"][j] == 1 else 0.0 for j in range(nk)])
     fx, fy, mz, jfk, jdx, jdy = (np.zeros(n) for _ in range(6))
     seg_n, seg_t, seg_p = np.zeros(n), np.zeros(n), np.zeros(n)

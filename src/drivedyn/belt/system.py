@@ -8,6 +8,7 @@ import numpy as np
 
 from . import _kernels as K
 from .initial import InitialState, initial_state
+from ..tables import flatten
 from .layout import Layout, compute_layout
 
 
@@ -28,17 +29,6 @@ class BeltSystem:
     @property
     def n(self):
         return int(self.ip[K.I_N])
-
-
-def _offsets(tables):
-    off = np.zeros(len(tables) + 1, dtype=np.int64)
-    xs, ys = [], []
-    for j, rows in enumerate(tables):
-        rows = rows or []
-        off[j + 1] = off[j] + len(rows)
-        xs += [r[0] for r in rows]
-        ys += [r[1] for r in rows]
-    return off, np.array(xs, float), np.array(ys, float)
 
 
 def build(model) -> BeltSystem:
@@ -67,9 +57,9 @@ def build(model) -> BeltSystem:
         seg["mu"][(s_mid >= zone.start) & (s_mid < zone.end)] = zone.coefficient
 
     P = model.pulleys
-    tt_off, tt_x, tt_y = _offsets([p.torque_time for p in P])
-    ts_off, ts_x, ts_y = _offsets([p.torque_speed for p in P])
-    sp_off, sp_x, sp_y = _offsets([p.speed_time for p in P])
+    tt_off, tt_x, tt_y = flatten([p.torque_time for p in P])
+    ts_off, ts_x, ts_y = flatten([p.torque_speed for p in P])
+    sp_off, sp_x, sp_y = flatten([p.speed_time for p in P])
     hm_off = np.zeros(nk + 1, dtype=np.int64)
     for j, p in enumerate(P):
         hm_off[j + 1] = hm_off[j] + len(p.harmonics)

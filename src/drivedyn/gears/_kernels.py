@@ -21,19 +21,9 @@ import math
 import numpy as np
 from numba import njit, prange
 
+from ..tables import table
+
 TWO_PI = 2.0 * math.pi
-
-
-@njit(cache=True)
-def _interp(xs, ys, lo, hi, x):
-    """Linear interpolation in rows lo..hi-1 of a flattened table, extrapolated linearly."""
-    if hi - lo == 1:
-        return ys[lo]
-    k = lo
-    while k < hi - 2 and x > xs[k + 1]:
-        k += 1
-    w = (x - xs[k]) / (xs[k + 1] - xs[k])
-    return ys[k] + w * (ys[k + 1] - ys[k])
 
 
 @njit(cache=True)
@@ -64,9 +54,9 @@ def rhs(t, y, p, dy, fm, dm):
     for i in range(n):
         T = Tc[i]
         if ts_off[i + 1] > ts_off[i]:
-            T += _interp(ts_x, ts_y, ts_off[i], ts_off[i + 1], y[n + i])
+            T += table(ts_x, ts_y, ts_off[i], ts_off[i + 1], y[n + i], True)
         if tt_off[i + 1] > tt_off[i]:
-            T += _interp(tt_x, tt_y, tt_off[i], tt_off[i + 1], t)
+            T += table(tt_x, tt_y, tt_off[i], tt_off[i + 1], t, False)
         dy[n + i] = r * T
         dy[i] = y[n + i]
     for j in range(ma.size):

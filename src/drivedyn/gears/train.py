@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ModelError
+from ..tables import flatten
 from . import iso6336, stiffness
 from .geometry import GearGeometry, PairGeometry, pair
 
@@ -130,14 +131,7 @@ class System:
 
 
 def _tables(gears, key, units_x):
-    off, xs, ys = [0], [], []
-    for g in gears:
-        rows = getattr(g, key) or []
-        for x, y in rows:
-            xs.append(x)
-            ys.append(y)
-        off.append(len(xs))
-    return np.array(off, dtype=np.int64), np.array(xs, dtype=float), np.array(ys, dtype=float)
+    return flatten([getattr(g, key) for g in gears])
 
 
 def _speed_ratios(model, index, pairs):
