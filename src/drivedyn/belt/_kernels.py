@@ -26,6 +26,9 @@ from numba import njit
 
 from ..tables import table
 
+# fast-math without the no-NaN/no-inf assumptions, so that blow-ups still show as NaN/inf
+FAST = {"contract", "arcp", "reassoc", "nsz"}
+
 # integer parameter slots (ip)
 I_N, I_NK, I_LAW, I_NSPAN, I_NTRACK, I_NEXP, I_LINEAR = range(7)
 # float parameter slots (fp)
@@ -88,8 +91,53 @@ def external_torque(j, t, th, om, tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off,
     return M
 
 
-@njit(cache=True)
-def joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy, h, inv_m, inv_i):
+@njit(cache=True, inline="always", fastmath=FAST)
+def _joint(i, k, hl, h, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, eax, eb, linear, inv_m, inv_i,
+           jfk, jdx, jdy, jmk, jmi):
+    """Joint i between segment k (+ end) and segment i (- end): stores its gap vector (jdx, jdy),
+    jfk (force vector = jfk * d, on k; minus that on i) and its moments on k and on i (arms and
+    bending). Returns the power of its axial and bending dampers."""
+    ax = hl * c[k]
+    ay = hl * s[k]
+    bx = hl * c[i]
+    by = hl * s[i]
+    dx = (x[i] - bx) - (x[k] + ax)
+    dy = (y[i] - by) - (y[k] + ay)
+    dvx = (vx[i] + w[i] * by) - (vx[k] - w[k] * ay)
+    dvy = (vy[i] - w[i] * bx) - (vy[k] + w[k] * ax)
+    dd = dx * dx + dy * dy
+    num = dx * dvx + dy * dvy                     # Delta_l * dDelta_l/dt
+    # damper force per unit gap, b (dDelta_l/dt) / Delta_l, with the implicit factor
+    # 1 / (1 + h b w_eff) folded into the one division (num = 0 when the gap closes)
+    hb = h * bax[i]
+    cak = ax * dy - ay * dx
+    cbi = bx * dy - by * dx
+    den = dd * (1.0 + hb * (inv_m[k] + inv_m[i])) + hb * (cak * cak * inv_i[k] + cbi * cbi * inv_i[i])
+    fd = bax[i] * num / max(den, 1e-300)
+    if linear:
+        fk = kax[i] + fd
+    else:
+        fk = kax[i] * dd ** (0.5 * (eax - 1.0)) + fd
+    Fx = fk * dx
+    Fy = fk * dy
+    dphi = phi[i] - phi[k]
+    if eb == 1.0:
+        M = kb[i] * dphi
+    else:
+        M = kb[i] * math.copysign(abs(dphi) ** eb, dphi)
+    dw = w[i] - w[k]
+    M += bb[i] * dw
+    jfk[i] = fk
+    jdx[i] = dx
+    jdy[i] = dy
+    jmk[i] = ax * Fy - ay * Fx + M        # on k: arm (+a) x F, plus the bending moment
+    jmi[i] = bx * Fy - by * Fx - M        # on i: arm (-b) x (-F) = b x F, minus it
+    return fd * num, bb[i] * dw * dw
+
+
+@njit(cache=True, fastmath=FAST)
+def joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy, h, inv_m, inv_i,
+                 jmk, jmi):
     """Elastic + damping forces of all joints into fx, fy, mz (zeroed here).
 
     Stores per joint the gap vector (jdx, jdy) and jfk with force vector = jfk * d (tension
@@ -106,64 +154,31 @@ def joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, m
     eax = fp[F_EAX]
     eb = fp[F_EB]
     hl = fp[F_HL]
-    turn = fp[F_TURN]
     linear = ip[I_LINEAR] == 1
-    pax = 0.0
-    pb = 0.0
-    for i in range(n):
-        fx[i] = 0.0
-        fy[i] = 0.0
-        mz[i] = 0.0
-    for i in range(n):
-        k = i - 1 if i > 0 else n - 1
-        # end of segment k (+ end) and start of segment i (- end), and their velocities
-        ax = hl * c[k]
-        ay = hl * s[k]
-        bx = hl * c[i]
-        by = hl * s[i]
-        dx = (x[i] - bx) - (x[k] + ax)
-        dy = (y[i] - by) - (y[k] + ay)
-        dvx = (vx[i] + w[i] * by) - (vx[k] - w[k] * ay)
-        dvy = (vy[i] - w[i] * bx) - (vy[k] + w[k] * ax)
-        dd = dx * dx + dy * dy
-        num = dx * dvx + dy * dvy                     # Delta_l * dDelta_l/dt
-        # damper force per unit gap, b (dDelta_l/dt) / Delta_l, with the implicit factor
-        # 1 / (1 + h b w_eff) folded into the one division
-        hb = h * bax[i]
-        cak = ax * dy - ay * dx
-        cbi = bx * dy - by * dx
-        den = dd * (1.0 + hb * (inv_m[k] + inv_m[i])) + hb * (cak * cak * inv_i[k] + cbi * cbi * inv_i[i])
-        fd = bax[i] * num / den if den > 1e-300 else 0.0
-        if linear:
-            fk = kax[i] + fd
-        else:
-            fk = kax[i] * dd ** (0.5 * (eax - 1.0)) + fd
-        pax += fd * num
-        jfk[i] = fk
-        jdx[i] = dx
-        jdy[i] = dy
-        Fx = fk * dx
-        Fy = fk * dy
-        # force on k pulls its + end toward i; force on i pulls its - end toward k
-        fx[k] += Fx
-        fy[k] += Fy
-        fx[i] -= Fx
-        fy[i] -= Fy
-        mz[k] += ax * Fy - ay * Fx
-        mz[i] += bx * Fy - by * Fx          # arm (-b) x (-F) = b x F
-        # bending (eq. 19); joint 0 closes the loop, where phi jumps by the total turn
-        dphi = phi[i] - phi[k]
-        if i == 0:
-            dphi += turn
-        if eb == 1.0:
-            M = kb[i] * dphi
-        else:
-            M = kb[i] * math.copysign(abs(dphi) ** eb, dphi)
-        dw = w[i] - w[k]
-        M += bb[i] * dw
-        pb += bb[i] * dw * dw
-        mz[i] -= M
-        mz[k] += M
+    # two passes without scattered writes (so that the loops vectorise): the joints, then each
+    # segment sums its two joints. Joint 0 closes the loop, where phi jumps by the total turn.
+    pax, pb = _joint(0, n - 1, hl, h, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, eax, eb, linear, inv_m, inv_i,
+                     jfk, jdx, jdy, jmk, jmi)
+    turn = fp[F_TURN]
+    if eb == 1.0:
+        Mt = kb[0] * turn
+    else:
+        d0 = phi[0] - phi[n - 1]
+        Mt = kb[0] * (math.copysign(abs(d0 + turn) ** eb, d0 + turn) - math.copysign(abs(d0) ** eb, d0))
+    jmk[0] += Mt
+    jmi[0] -= Mt
+    for i in range(1, n):
+        a, b = _joint(i, i - 1, hl, h, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, eax, eb, linear, inv_m, inv_i,
+                      jfk, jdx, jdy, jmk, jmi)
+        pax += a
+        pb += b
+    for i in range(n - 1):
+        fx[i] = jfk[i + 1] * jdx[i + 1] - jfk[i] * jdx[i]
+        fy[i] = jfk[i + 1] * jdy[i + 1] - jfk[i] * jdy[i]
+        mz[i] = jmi[i] + jmk[i + 1]
+    fx[n - 1] = jfk[0] * jdx[0] - jfk[n - 1] * jdx[n - 1]
+    fy[n - 1] = jfk[0] * jdy[0] - jfk[n - 1] * jdy[n - 1]
+    mz[n - 1] = jmi[n - 1] + jmk[0]
     return pax, pb
 
 
@@ -204,6 +219,8 @@ def step_chunk(nsteps, t, h, ip, fp,
     hi_ = np.empty(n)
     inv_m = np.empty(n)
     inv_i = np.empty(n)
+    jmk = np.empty(n)
+    jmi = np.empty(n)
     for i in range(n):
         inv_m[i] = 1.0 / m[i]
         inv_i[i] = 1.0 / inertia[i]
@@ -213,7 +230,7 @@ def step_chunk(nsteps, t, h, ip, fp,
     hg = h * g
     for _ in range(nsteps):
         pax, pb = joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy,
-                               h, inv_m, inv_i)
+                               h, inv_m, inv_i, jmk, jmi)
         pcd = 0.0
         pfr = 0.0
         for j in range(nk):
@@ -413,7 +430,7 @@ def rhs(t, yv, dy, ip, fp, z, m, inertia, mu, kax, bax, kb, bb, c1, c2, bc, pcx,
     c = np.cos(phi)
     s = np.sin(phi)
     pax, pb = joint_forces(ip, fp, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx, jdy,
-                           0.0, m, inertia)
+                           0.0, m, inertia, np.empty(n), np.empty(n))
     pcd = 0.0
     pfr = 0.0
     for j in range(4 * nk):

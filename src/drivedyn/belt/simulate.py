@@ -84,7 +84,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
 
     # fill joint forces once so that frame 0 has element tensions
     K.joint_forces(sysm.ip, sysm.fp, x, y, c, s, vx, vy, w, phi, seg["kax"], seg["bax"], seg["kb"], seg["bb"],
-                   fx, fy, mz, jfk, jdx, jdy, 0.0, seg["m"], seg["inertia"])
+                   fx, fy, mz, jfk, jdx, jdy, 0.0, seg["m"], seg["inertia"], np.empty(n), np.empty(n))
     E0 = energy()
     t = 0.0
     capture_frame(t)
