@@ -43,6 +43,21 @@ def test_tension_difference_is_torque_over_radius(loaded):
     assert r.summary["pulleys"]["driven"]["hub_load"] == pytest.approx(tight + slack, rel=0.01)
 
 
+def test_creep_on_each_pulley_follows_the_tensions(loaded):
+    """Belt speeds in the spans obey mass conservation, v ~ 1 + T/EA (Reynolds' creep): the belt
+    leaves the driver slower and the driven pulley faster than it arrived."""
+    _, r = loaded
+    s = r.summary
+    T1, T2 = s["spans"]["driver-driven"]["tension_mean"], s["spans"]["driven-driver"]["tension_mean"]
+    expect = (T1 - T2) / (1.52e5 + T1)
+    assert s["pulleys"]["driver"]["creep"] == pytest.approx(expect, rel=0.2)
+    assert s["pulleys"]["driven"]["creep"] == pytest.approx(-expect * (1.52e5 + T1) / (1.52e5 + T2), rel=0.2)
+    # belt speed = driver surface speed, up to the chordal action of the rigid 12 mm segments,
+    # which ride on the pulley like a chain, at about sqrt(r^2 + l^2/4) (+2 % here)
+    v = s["spans"]["driver-driven"]["speed_mean"]
+    assert 1.0 < abs(v) / (40 * 0.027) < 1.025
+
+
 def test_creep_slip_matches_tension_difference_over_EA(model_factory):
     # a softer belt makes the creep large enough to measure: (T1 - T2)/EA = 185 / 2e4 = 0.93 %
     m = kinematic(model_factory, 5.0, belt__axial_stiffness=2e4, simulation__duration=0.4,
@@ -90,14 +105,14 @@ def _free_vibration(model, steps, nsamp):
     E0, ts, ys, Es = energy(), [], [], []
     t = 0.0
     for _ in range(nsamp):
-        acc = [np.zeros(nk) for _ in range(5)] + [np.zeros(2), np.zeros((1, 3)), np.zeros(4)]
+        acc = [np.zeros(nk) for _ in range(5)] + [np.zeros((2, 2)), np.zeros((1, 3)), np.zeros(4)]
         t = K.step_chunk(steps, t, sysm.step, sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, th, om, z,
                          seg["m"], seg["inertia"], seg["mu"], seg["kax"], seg["bax"], seg["kb"], seg["bb"], seg["c1"],
                          seg["c2"], seg["bc"], pul["pcx"], pul["pcy"], pul["pr"], pul["pinv_i"], pul["pmode"],
                          pul["tq_const"], pul["tq_visc"], pul["tt_off"], pul["tt_x"], pul["tt_y"], pul["ts_off"],
                          pul["ts_x"], pul["ts_y"], pul["hm_off"], pul["hm_order"], pul["hm_amp"], pul["hm_phase"],
-                         pul["sp_off"], pul["sp_x"], pul["sp_y"], sysm.span_mid[:, 0].copy(),
-                         sysm.span_mid[:, 1].copy(), np.zeros(2, dtype=np.int64), sysm.track, *work, *acc)
+                         pul["sp_off"], pul["sp_x"], pul["sp_y"], sysm.span_geo,
+                         np.zeros(2, dtype=np.int64), sysm.track, *work, *acc)
         ts.append(t)
         ys.append(y[mid])
         Es.append(energy() - E0)

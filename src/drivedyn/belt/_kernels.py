@@ -189,14 +189,15 @@ def step_chunk(nsteps, t, h, ip, fp,
                pcx, pcy, pr, pinv_i, pmode,
                tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase,
                sp_off, sp_x, sp_y,
-               span_mx, span_my, span_joint, track_seg,
+               span_geo, span_joint, track_seg,
                fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, seg_p,
                acc_tq_ext, acc_tq_belt, acc_hubx, acc_huby, acc_pin, acc_span, acc_track, acc_diss):
     """Advance ``nsteps`` semi-implicit Euler steps from time t; returns the new time.
 
     Accumulators (added h * value, the caller divides by the interval): acc_tq_ext[j] applied
     torque, acc_tq_belt[j] belt torque on the pulley, acc_hubx/y[j] belt force on the pulley,
-    acc_pin[j] power into the system through pulley j, acc_span[q] mid-span tension,
+    acc_pin[j] power into the system through pulley j, acc_span[q, 0:2] mid-span tension and belt
+    speed along the span (span_geo[q] = midpoint x, y and unit direction x, y in belt order),
     acc_track[q, 0:3] element force / normal force / friction force (along the segment) of tracked
     segments, acc_diss[0:4] dissipation in axial dampers, bending dampers, contact damping,
     friction.
@@ -343,14 +344,16 @@ def step_chunk(nsteps, t, h, ip, fp,
                 elif jj >= n:
                     jj -= n
                 kk = jj - 1 if jj > 0 else n - 1
-                px = 0.5 * (x[jj] - hl * c[jj] + x[kk] + hl * c[kk]) - span_mx[q]
-                py = 0.5 * (y[jj] - hl * s[jj] + y[kk] + hl * s[kk]) - span_my[q]
+                px = 0.5 * (x[jj] - hl * c[jj] + x[kk] + hl * c[kk]) - span_geo[q, 0]
+                py = 0.5 * (y[jj] - hl * s[jj] + y[kk] + hl * s[kk]) - span_geo[q, 1]
                 dd = px * px + py * py
                 if dd < bestd:
                     bestd = dd
                     best = jj
             span_joint[q] = best
-            acc_span[q] += h * jfk[best] * math.sqrt(jdx[best] * jdx[best] + jdy[best] * jdy[best])
+            acc_span[q, 0] += h * jfk[best] * math.sqrt(jdx[best] * jdx[best] + jdy[best] * jdy[best])
+            kb_ = best - 1 if best > 0 else n - 1
+            acc_span[q, 1] += h * 0.5 * ((vx[best] + vx[kb_]) * span_geo[q, 2] + (vy[best] + vy[kb_]) * span_geo[q, 3])
         for q in range(ntrack):
             i = track_seg[q]
             jn = i + 1 if i < n - 1 else 0       # the joint after segment i

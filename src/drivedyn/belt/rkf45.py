@@ -79,8 +79,11 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, max_steps_per_sa
         # span tensions and tracked segments: instantaneous at the sample instant
         jx = 0.5 * (y[0:n] + np.roll(y[0:n], 1))
         jy = 0.5 * (y[n:2 * n] + np.roll(y[n:2 * n], 1))
-        for q, (mx, my) in enumerate(sysm.span_mid):
-            rec.span[k, q] = ten[int(np.argmin((jx - mx) ** 2 + (jy - my) ** 2))]
+        vx_, vy_ = y[o:o + n], y[o + n:o + 2 * n]
+        for q, (mx, my, ux, uy) in enumerate(sysm.span_geo):
+            jj = int(np.argmin((jx - mx) ** 2 + (jy - my) ** 2))
+            rec.span[k, q] = ten[jj]
+            rec.span_speed[k, q] = 0.5 * ((vx_[jj] + vx_[jj - 1]) * ux + (vy_[jj] + vy_[jj - 1]) * uy)
         for q, i in enumerate(sysm.track):
             rec.track[k, q] = (ten[(i + 1) % n], sn[i], st[i])
         rec.diss[k], rec.work[k], rec.energy[k] = diss, work, energy() - E0

@@ -29,6 +29,7 @@ class _Recorder:
         self.huby = np.zeros((ns, nk))
         self.pin = np.zeros((ns, nk))
         self.span = np.zeros((ns, nspan))
+        self.span_speed = np.zeros((ns, nspan))
         self.track = np.zeros((ns, ntrack, 3))
         self.diss = np.zeros((ns, 4))        # cumulative dissipated energy by mechanism (J)
         self.work = np.zeros(ns)             # cumulative work in (J)
@@ -64,7 +65,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     for q in range(nspan):
         span_joint[q] = int(np.argmin((jx - sysm.span_mid[q, 0]) ** 2 + (jy - sysm.span_mid[q, 1]) ** 2))
     acc = dict(tq_ext=np.zeros(nk), tq_belt=np.zeros(nk), hubx=np.zeros(nk), huby=np.zeros(nk), pin=np.zeros(nk),
-               span=np.zeros(nspan), track=np.zeros((ntrack, 3)), diss=np.zeros(4))
+               span=np.zeros((nspan, 2)), track=np.zeros((ntrack, 3)), diss=np.zeros(4))
     args_e = (sysm.ip, sysm.fp)
 
     inertia = effective_inertia(sysm, h)
@@ -93,7 +94,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     diss_total = np.zeros(4)
     last_report = -1.0
     state = (x, y, phi, c, s, vx, vy, w, th, om, z, span_joint)
-    span_mx, span_my = sysm.span_mid[:, 0].copy(), sysm.span_mid[:, 1].copy()
+    span_geo = sysm.span_geo
 
     def advance(nsteps, t):
         return K.step_chunk(nsteps, t, h, sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, th, om, z,
@@ -103,7 +104,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
                             pul["tq_const"], pul["tq_visc"], pul["tt_off"], pul["tt_x"], pul["tt_y"],
                             pul["ts_off"], pul["ts_x"], pul["ts_y"], pul["hm_off"], pul["hm_order"], pul["hm_amp"],
                             pul["hm_phase"], pul["sp_off"], pul["sp_x"], pul["sp_y"],
-                            span_mx, span_my, span_joint, sysm.track,
+                            span_geo, span_joint, sysm.track,
                             fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, seg_p,
                             acc["tq_ext"], acc["tq_belt"], acc["hubx"], acc["huby"], acc["pin"], acc["span"],
                             acc["track"], acc["diss"])
@@ -126,7 +127,8 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
         rec.tq_ext[k], rec.tq_belt[k] = acc["tq_ext"] / interval, acc["tq_belt"] / interval
         rec.hubx[k], rec.huby[k] = acc["hubx"] / interval, acc["huby"] / interval
         rec.pin[k] = acc["pin"] / interval
-        rec.span[k] = acc["span"] / interval
+        rec.span[k] = acc["span"][:, 0] / interval
+        rec.span_speed[k] = acc["span"][:, 1] / interval
         rec.track[k] = acc["track"] / interval
         rec.diss[k] = diss_total
         rec.work[k] = work
@@ -222,6 +224,7 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
             "hub_load": variable(hub, ("time", "pulley"), "N", "hub load magnitude"),
             "power_in": variable(rec.pin[:ns], ("time", "pulley"), "W", "power into the belt system through the pulley"),
             "span_tension": variable(rec.span[:ns], ("time", "span"), "N", "mid-span element force, interval mean"),
+            "span_speed": variable(rec.span_speed[:ns], ("time", "span"), "m/s", "mid-span belt speed along the span (belt order positive)"),
             "element_force": variable(rec.track[:ns, :, 0], ("time", "tracked"), "N", "longitudinal element force after the segment (seed fig. 11)"),
             "normal_force": variable(rec.track[:ns, :, 1], ("time", "tracked"), "N", "contact normal force on the segment (seed fig. 12)"),
             "friction_force": variable(rec.track[:ns, :, 2], ("time", "tracked"), "N", "friction force on the segment, along the pulley's counter-clockwise tangent (seed fig. 13)"),
@@ -290,12 +293,18 @@ def _summary(model, sysm, ds, wall, nsteps, h, failure) -> dict:
             "torque_mean": float(tq[j]),
             "power_mean": float(pin[j]),
         }
-    ten = mean("span_tension")
+    ten, vsp = mean("span_tension"), mean("span_speed")
     tsel = ds["span_tension"].values[sel] if np.any(sel) else np.zeros((0, len(ten)))
     spans = {sp: {"tension_mean": float(ten[q]),
                   "tension_min": float(tsel[:, q].min()) if len(tsel) else float("nan"),
-                  "tension_max": float(tsel[:, q].max()) if len(tsel) else float("nan")}
+                  "tension_max": float(tsel[:, q].max()) if len(tsel) else float("nan"),
+                  "speed_mean": float(vsp[q])}
              for q, sp in enumerate(ds["span"].values.tolist())}
+    # creep on each pulley: 1 - |belt speed leaving| / |belt speed arriving| (span k leaves pulley k)
+    forward = float(np.nanmean(vsp)) >= 0
+    for j, nm in enumerate(names):
+        v_arr, v_out = (vsp[j - 1], vsp[j]) if forward else (vsp[j], vsp[j - 1])
+        pulleys[nm]["creep"] = float(1 - abs(v_out) / abs(v_arr)) if abs(v_arr) > 1e-9 else float("nan")
     p_in = float(np.sum(pin[pin > 0]))
     p_out = float(-np.sum(pin[pin < 0]))
     # mean dissipation rates over the window from the cumulative energies

@@ -22,6 +22,7 @@ class BeltSystem:
     seg: dict          # per-segment arrays: m, inertia, mu, kax, bax, kb, bb, c1, c2, bc
     pul: dict          # per-pulley arrays: pcx, pcy, pr, pinv_i, pmode, pinertia + excitation tables
     span_mid: np.ndarray
+    span_geo: np.ndarray  # per span: midpoint x, y and unit direction x, y (belt order)
     track: np.ndarray
     step: float        # time step (s) of the semi-implicit scheme
     step_limit: float  # stability estimate 2 / omega_max (s)
@@ -76,6 +77,7 @@ def build(model) -> BeltSystem:
         sp_off=sp_off, sp_x=sp_x, sp_y=sp_y,
     )
     span_mid = np.array([sp.midpoint for sp in layout.spans])
+    span_geo = np.array([[*sp.midpoint, math.cos(sp.angle), math.sin(sp.angle)] for sp in layout.spans])
     track = np.array(model.output.segments, dtype=np.int64)
     ip = np.zeros(7, dtype=np.int64)
     ip[K.I_N], ip[K.I_NK] = n, nk
@@ -91,7 +93,7 @@ def build(model) -> BeltSystem:
     limit = stability_limit(model, init, seg, scaled)
     step = model.simulation.step if model.simulation.step is not None else 0.85 * limit
     fp[K.F_ISCALE] = ROTATION_SCALE if scaled else 1.0
-    return BeltSystem(model, layout, init, ip, fp, seg, pul, span_mid, track, step, limit)
+    return BeltSystem(model, layout, init, ip, fp, seg, pul, span_mid, span_geo, track, step, limit)
 
 
 # Selective mass scaling of the segments' rotation: I = m l^2/12 -> 3.3 I = 1.1 m l^2/4, just above
