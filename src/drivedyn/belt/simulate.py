@@ -301,7 +301,7 @@ def _summary(model, sysm, ds, wall, nsteps, h, failure) -> dict:
                   "speed_mean": float(vsp[q])}
              for q, sp in enumerate(ds["span"].values.tolist())}
     # creep on each pulley: 1 - |belt speed leaving| / |belt speed arriving| (span k leaves pulley k)
-    forward = float(np.nanmean(vsp)) >= 0
+    forward = float(np.nansum(vsp)) >= 0
     for j, nm in enumerate(names):
         v_arr, v_out = (vsp[j - 1], vsp[j]) if forward else (vsp[j], vsp[j - 1])
         pulleys[nm]["creep"] = float(1 - abs(v_out) / abs(v_arr)) if abs(v_arr) > 1e-9 else float("nan")
