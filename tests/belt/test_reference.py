@@ -96,7 +96,7 @@ def _free_vibration(model, steps, nsamp):
     work = [np.zeros(n) for _ in range(9)]
     mid = int(np.argmin(np.abs(x - 0.2575) + 10 * ~upper))
 
-    inertia = effective_inertia(sysm, sysm.step)
+    inertia = effective_inertia(sysm)
 
     def energy():
         return K.energy(sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, om, seg["m"], inertia, seg["kax"],

@@ -14,10 +14,11 @@
   pulley), so that friction power is exactly T * slip (energy-consistent reading of eqs. 12, 22).
 
 Scheme ``step_chunk``: symplectic (semi-implicit) Euler. Elastic and bending forces and gravity
-explicit; for each segment in contact, the contact damping and the regularised friction are solved
-implicitly in the segment's new velocity (a scalar monotone equation per contact, pulley speeds
-frozen during the step), which makes the stiff friction law (slope mu N / dv) unconditionally
-stable; the step is limited only by the elastic chain, h < 2 / sqrt(12 k / m).
+explicit; each joint's axial damper implicit for that joint (see ``joint_forces``); for each
+segment in contact, the contact damping and the regularised friction are solved implicitly in the
+segment's new velocity (a scalar monotone equation per contact, pulley speeds frozen during the
+step), which makes the stiff friction law (slope mu N / dv) unconditionally stable; the step is
+limited only by the elastic chain, h < 2 / sqrt(12 k / m) (``system.stability_limit``).
 """
 import math
 

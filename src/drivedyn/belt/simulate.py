@@ -66,9 +66,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
         span_joint[q] = int(np.argmin((jx - sysm.span_mid[q, 0]) ** 2 + (jy - sysm.span_mid[q, 1]) ** 2))
     acc = dict(tq_ext=np.zeros(nk), tq_belt=np.zeros(nk), hubx=np.zeros(nk), huby=np.zeros(nk), pin=np.zeros(nk),
                span=np.zeros((nspan, 2)), track=np.zeros((ntrack, 3)), diss=np.zeros(4))
-    args_e = (sysm.ip, sysm.fp)
-
-    inertia = effective_inertia(sysm, h)
+    inertia = effective_inertia(sysm)
 
     def energy():
         return K.energy(sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, om, seg["m"], inertia, seg["kax"], seg["kb"],
