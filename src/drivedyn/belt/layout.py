@@ -137,8 +137,11 @@ def layout_from(names, centers, radii, sides, orientation=None) -> Layout:
     total_turn = float(np.sum(np.sign(rho) * wrap))
     if abs(total_turn - orientation * 2 * math.pi) > 1e-6 or np.any(wrap <= 1e-9):
         bad = [names[j] for j in range(nk) if wrap[j] <= 1e-9 or wrap[j] >= 2 * math.pi - 1e-9]
+        backs = [names[j] for j in range(nk) if sides[j] == "back"]
+        hint = (f"; a back-side idler ({', '.join(backs)}) must press into the span between its neighbours"
+                if backs else "")
         raise ModelError("the belt order does not make a simple loop" + (f" (no wrap on {', '.join(bad)})" if bad else "")
-                         + ": list pulleys in belt order and check each side", field="pulleys")
+                         + ": list pulleys in belt order and check each side" + hint, field="pulleys")
 
     # spans must not cut through other pulleys
     for sp in spans:

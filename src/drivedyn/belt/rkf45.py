@@ -10,7 +10,7 @@ from ..tables import table
 from . import _kernels as K
 
 
-def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, max_steps_per_sample=2_000_000):
+def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_steps_per_sample=2_000_000):
     model = sysm.model
     if model.friction.law != "threlfall":
         raise ModelError("rkf45 supports the threlfall friction law only", field="simulation.method")
@@ -21,7 +21,6 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, max_steps_per_sa
     z = np.zeros(n)
     fx, fy, mz, jfk, jdx, jdy, sn, st = (np.zeros(n) for _ in range(8))
     acc_p, acc_tq = np.zeros(4 + nk), np.zeros(4 * nk)
-    interval = model.output.interval
     o = 3 * n + nk
     args = (sysm.ip, sysm.fp, z, seg["m"], seg["inertia"], seg["mu"], seg["kax"], seg["bax"], seg["kb"], seg["bb"],
             seg["c1"], seg["c2"], seg["bc"], pul["pcx"], pul["pcy"], pul["pr"], pul["pinv_i"], pul["pmode"],

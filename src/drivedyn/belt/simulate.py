@@ -182,21 +182,23 @@ def _blow_up(x, y, vx, vy, om, pen, sysm):
 def run(model, progress=None) -> Result:
     sysm = build(model)
     sim, out = model.simulation, model.output
+    # whole samples that end exactly at the duration (the interval is adjusted by < half a sample)
     nsamples = max(1, int(round(sim.duration / out.interval)))
+    interval = sim.duration / nsamples
     nk, n = len(sysm.layout.names), sysm.n
     frames = min(out.frames, nsamples)
     frame_every = max(1, nsamples // frames)
     rec = _Recorder(nsamples, nk, len(sysm.span_mid), len(sysm.track), nsamples // frame_every + 2, n)
     wall0 = _time.perf_counter()
     if sim.method == "semi-implicit":
-        steps_per_sample = max(1, int(math.ceil(out.interval / sysm.step)))
-        h = out.interval / steps_per_sample
+        steps_per_sample = max(1, int(math.ceil(interval / sysm.step)))
+        h = interval / steps_per_sample
         done, failure = _integrate_semi_implicit(sysm, progress, rec, nsamples, steps_per_sample, h, frame_every)
         nsteps = done * steps_per_sample
     else:
         from .rkf45 import integrate_rkf45
 
-        done, failure, nsteps, h = integrate_rkf45(sysm, progress, rec, nsamples, frame_every)
+        done, failure, nsteps, h = integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval)
     wall = _time.perf_counter() - wall0
     result = _assemble(model, sysm, rec, wall, nsteps, h, failure)
     if failure:

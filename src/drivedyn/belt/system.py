@@ -136,7 +136,12 @@ def stability_limit(model, init, seg, scaled=False) -> float:
     kc = 2 * float(seg["c1"][0]) * p + float(seg["c2"][0])
     kb = float(seg["kb"][0]) * max(model.belt.bending_exponent, 1.0)
     inertia = float(seg["inertia"][0])
-    w_zig = math.sqrt((4 * k + kc) / m + (4 * kb / (ROTATION_SCALE * inertia) if scaled else 0.0))
+    # the tension adds T l/2 per joint to a segment's rotational stiffness (arms turning in the
+    # force); negligible at usual strains, not at tens of per cent: take twice the pretension
+    k_rot = k + 4 * kb / init.seg_length ** 2 + 4 * init.tension / init.seg_length
+    w_zig = math.sqrt((4 * k + kc) / m)
+    if scaled:   # the scaled rotation branch, which at high tension may top the zig-zag modes
+        w_zig = max(w_zig, math.sqrt(12 * k_rot / (ROTATION_SCALE * m)))
     b = float(seg["bax"][0])
     h = 2 / w_zig
     for _ in range(50):
@@ -145,7 +150,7 @@ def stability_limit(model, init, seg, scaled=False) -> float:
         h = 2 / w_zig * (math.sqrt(1 + zeta ** 2) - zeta)
     limits = [h]
     if not scaled:
-        w_rot = math.sqrt(12 * (k + 4 * kb / init.seg_length ** 2) / m)
+        w_rot = math.sqrt(12 * k_rot / m)
         zeta = 4 * float(seg["bb"][0]) / inertia / (2 * w_rot)
         limits.append(2 / w_rot * (math.sqrt(1 + zeta ** 2) - zeta))
     elif float(seg["bb"][0]) > 0:   # explicit bending dampers, on the unscaled (conservative) inertia
