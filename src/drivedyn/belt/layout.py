@@ -44,9 +44,6 @@ class Layout:
     arc_start: np.ndarray  # polar angle of the arriving tangent point on each pulley
     length: float          # path length (m)
 
-    def arc_length(self, j: int) -> float:
-        return self.radii[j] * self.wrap[j]
-
     def hub_load_static(self, tension: float) -> np.ndarray:
         """Force of the belt on each pulley (N, vectors) for a uniform span tension."""
         nk = len(self.names)
@@ -69,21 +66,6 @@ class Layout:
             sweep = self.wrap[j] * math.copysign(1.0, self.rho[j])
             out.append(("arc", self.centers[j], self.radii[j], self.arc_start[j], sweep, self.radii[j] * self.wrap[j]))
         return out
-
-    def point(self, s: float) -> np.ndarray:
-        """Point of the path at arc length s (wrapped onto [0, length))."""
-        s = s % self.length
-        for piece in self.pieces():
-            L = piece[-1]
-            if s <= L or piece is self.pieces()[-1]:
-                if piece[0] == "line":
-                    _, p0, p1, _ = piece
-                    return p0 + (p1 - p0) * (s / L)
-                _, c, R, a0, sweep, _ = piece
-                a = a0 + sweep * (s / L)
-                return c + R * np.array([math.cos(a), math.sin(a)])
-            s -= L
-        raise AssertionError("unreachable")
 
 
 def _orientation(centers: np.ndarray) -> int:

@@ -6,7 +6,6 @@ import math
 
 import numpy as np
 
-from .layout import compute_layout
 
 
 def span_frequencies(tension, mass_per_length, length, bending_stiffness=0.0, speed=0.0, modes=3):
@@ -34,8 +33,8 @@ def capstan_torque(tension, radius, wrap, mu):
 def report(model) -> str:
     from .system import build
 
-    lay = compute_layout(model)
     sysm = build(model)
+    lay = sysm.layout
     T0 = sysm.init.tension
     belt = model.belt
     lines = [f"belt drive: {model.name or '(unnamed)'}",
