@@ -65,7 +65,7 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
             return k, (f"rkf45 stopped at t = {t:.6g} s: step size collapsed to {h:.3g} s "
                        f"(stiff friction law; raise friction.velocity_threshold)"), steps, h
         ten = snapshot(t)
-        rec.t[k] = t
+        rec.t[k] = (k + 1) * interval      # exact sample times (the accumulated t carries round-off)
         rec.theta[k], rec.omega[k] = y[3 * n:3 * n + nk], y[o + 3 * n:]
         for j in range(nk):
             if pul["pmode"][j] == 1:

@@ -120,7 +120,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
             return k, "diverged " + _first_runaway(advance, t0, steps_per_sample, h, state, sysm)
         work += float(np.sum(acc["pin"]))
         diss_total += acc["diss"]
-        rec.t[k] = t
+        rec.t[k] = (k + 1) * interval      # exact sample times (the accumulated t carries round-off)
         rec.theta[k], rec.omega[k] = th, om
         rec.tq_ext[k], rec.tq_belt[k] = acc["tq_ext"] / interval, acc["tq_belt"] / interval
         rec.hubx[k], rec.huby[k] = acc["hubx"] / interval, acc["huby"] / interval
