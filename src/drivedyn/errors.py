@@ -26,5 +26,13 @@ class SolverError(DrivedynError, RuntimeError):
         super().__init__(message)
 
 
+class Stopped(DrivedynError):
+    """Raised by a ``progress`` callback to stop a run early (a study's ``case_timeout``).
+
+    Analyses that integrate in time end the run there and raise a ``SolverError`` that keeps the
+    results computed so far; the others let it through.
+    """
+
+
 class DrivedynWarning(UserWarning):
     """Warnings about questionable but admissible input or results."""

@@ -84,3 +84,37 @@ def test_worker_without_the_cache_folder_returns_the_record(tmp_path):
     back = read_record(cache, key, ["speed"])
     assert back["summary"] == rec["summary"] and (cache / f"{key}.nc").exists()
     assert read_record(cache, key, ["speed", "angle"]) is None  # more series asked for: run again
+
+
+def test_case_timeout_stops_a_case_and_keeps_what_it_computed(tmp_path):
+    # a belt case stopped by its wall-time limit: "failed", the reason in the message, and the
+    # samples simulated so far in the record (summary) and the series
+    import drivedyn
+    from drivedyn.study.cases import model_key, run_case
+
+    BELT = Path(__file__).resolve().parents[2] / "examples" / "belt-5pk.toml"
+    toml = drivedyn.dumps(drivedyn.replace(drivedyn.load(BELT), {"simulation.duration": 0.2}))
+    rec = run_case(toml, model_key(toml), str(tmp_path / "elsewhere"), "token", ["speed"], timeout=1e-9)
+    assert rec["status"] == "failed" and "case_timeout of 1e-09 s" in rec["message"], rec["message"]
+    n = rec["series_data"].sizes["time"]
+    assert 1 <= n < 200  # stopped at the first progress report (1 % of the 200 samples)
+    assert rec["summary"]["solver.steps"] > 0
+
+    # an analysis that keeps nothing when stopped (gear train: reports only between phases)
+    GEARS = Path(__file__).resolve().parents[2] / "examples" / "gears-split-path.toml"
+    toml = drivedyn.dumps(drivedyn.load(GEARS))
+    rec = run_case(toml, model_key(toml), str(tmp_path / "elsewhere"), "token", [], timeout=1e-9)
+    assert rec["status"] == "failed" and rec["message"].startswith("stopped: case_timeout"), rec["message"]
+
+
+def test_case_timeout_in_the_study_file(write_study):
+    from drivedyn.study.spec import load_study
+
+    study = load_study(write_study("""
+        base = "{belt}"
+        case_timeout = "2 min"
+        [[parameters]]
+        path = "belt.pretension"
+        values = ["0.4 kN"]
+    """))
+    assert study.spec.case_timeout == 120.0

@@ -8,7 +8,7 @@ import time as _time
 import numpy as np
 import xarray as xr
 
-from ..errors import SolverError
+from ..errors import SolverError, Stopped
 from ..model import dumps
 from ..results import Result, variable
 from ..tables import table
@@ -190,15 +190,21 @@ def run(model, progress=None) -> Result:
     frame_every = max(1, nsamples // frames)
     rec = _Recorder(nsamples, nk, len(sysm.span_mid), len(sysm.track), nsamples // frame_every + 2, n)
     wall0 = _time.perf_counter()
-    if sim.method == "semi-implicit":
-        steps_per_sample = max(1, int(math.ceil(interval / sysm.step)))
-        h = interval / steps_per_sample
-        done, failure = _integrate_semi_implicit(sysm, progress, rec, nsamples, steps_per_sample, h, frame_every)
-        nsteps = done * steps_per_sample
-    else:
-        from .rkf45 import integrate_rkf45
+    steps_per_sample = max(1, int(math.ceil(interval / sysm.step)))
+    h = interval / steps_per_sample
+    try:
+        if sim.method == "semi-implicit":
+            done, failure = _integrate_semi_implicit(sysm, progress, rec, nsamples, steps_per_sample, h, frame_every)
+            nsteps = done * steps_per_sample
+        else:
+            from .rkf45 import integrate_rkf45
 
-        done, failure, nsteps, h = integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval)
+            done, failure, nsteps, h = integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval)
+    except (Stopped, KeyboardInterrupt) as exc:
+        # a time limit or Ctrl-C: keep the whole samples recorded so far (rec.ns counts them)
+        why = str(exc) if isinstance(exc, Stopped) else "interrupted by the user"
+        failure = f"stopped: {why}"
+        nsteps = rec.ns * steps_per_sample if sim.method == "semi-implicit" else 0
     wall = _time.perf_counter() - wall0
     result = _assemble(model, sysm, rec, wall, nsteps, h, failure)
     if failure:

@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .. import __version__
-from ..errors import ModelError, SolverError
+from ..errors import ModelError, SolverError, Stopped
 from ..model import from_dict, set_path, to_dict
 
 TOKEN = ".study-id"
@@ -157,11 +157,24 @@ def _one_line(exc: BaseException) -> str:
     return text[0] if text else type(exc).__name__
 
 
-def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str]) -> dict:
+def _deadline(timeout):
+    """A progress callback that stops the run once ``timeout`` seconds of wall time have passed."""
+    if timeout is None:
+        return None
+    t_end = time.perf_counter() + timeout
+
+    def progress(frac, info=""):
+        if time.perf_counter() > t_end:
+            raise Stopped(f"case_timeout of {timeout:g} s reached at {100 * frac:.0f} %" + (f" ({info})" if info else ""))
+    return progress
+
+
+def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str], timeout=None) -> dict:
     """Run one case on a worker and return its record (also written to the cache when visible).
 
     Every failure of the case itself is caught and recorded, so the task only fails when the
-    worker is lost; Dask then runs it again elsewhere.
+    worker is lost; Dask then runs it again elsewhere. ``timeout`` (s) stops the case at its
+    next progress report after that much wall time (status "failed", partial results kept).
     """
     from ..api import run
     from ..model import loads
@@ -177,7 +190,7 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str])
     t0 = time.perf_counter()
     status, message, summary, ds = "success", "", {}, None
     try:
-        result = run(loads(toml, source=f"case {key}"))
+        result = run(loads(toml, source=f"case {key}"), progress=_deadline(timeout))
         summary, ds = result.flat_summary(), result.ds
         if not result.success:
             status, message = "failed", result.message
@@ -187,6 +200,8 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str])
             summary, ds = exc.partial.flat_summary(), exc.partial.ds
     except ModelError as exc:
         status, message = "invalid", _one_line(exc)
+    except Stopped as exc:  # an analysis that keeps nothing when stopped
+        status, message = "failed", f"stopped: {_one_line(exc)}"
     except Exception as exc:  # a bug in an analysis must not stop the other cases
         status, message = "error", f"{type(exc).__name__}: {_one_line(exc)}"
     record = {

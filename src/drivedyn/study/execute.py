@@ -192,7 +192,8 @@ def _execute(study, todo, cases, cache, series, records, counts, client, schedul
         client.run(warm_worker, study.base.kind)
         prefix = f"drivedyn-case-{uuid.uuid4().hex[:8]}-"
         cache_dir, token = str(cache.resolve()), (cache / TOKEN).read_text().strip()
-        futures = {client.submit(run_case, c.toml, k, cache_dir, token, series, key=prefix + k, pure=False): k
+        futures = {client.submit(run_case, c.toml, k, cache_dir, token, series, study.spec.case_timeout,
+                                 key=prefix + k, pure=False): k
                    for k, c in todo.items()}
         weight = {k: sum(1 for c in cases if c.key == k) for k in todo}  # duplicated cases share a run
         count_running = _executing(prefix)

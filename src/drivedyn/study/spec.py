@@ -25,7 +25,7 @@ from typing import Any, Literal, Optional, Union
 from pydantic import BaseModel, ValidationError, field_validator, model_validator
 
 from ..errors import ModelError
-from ..model import Spec, format_validation_error, from_dict, set_path, to_dict
+from ..model import Spec, format_validation_error, from_dict, quantity, set_path, to_dict
 
 #: accepted sampler names -> canonical name (the aliases are what people type)
 SAMPLERS = {
@@ -154,6 +154,9 @@ class StudySpec(Spec):
     sampler: Sampler = Sampler()
     outputs: Outputs = Outputs()
     plots: Plots = Plots()
+    # wall-time limit per case, checked at the case's progress reports (belt: every 1 % of the
+    # simulated time); a case that exceeds it ends as "failed" and keeps what it computed
+    case_timeout: Optional[quantity("s", gt=0)] = None
 
     @model_validator(mode="after")
     def _consistent(self):
