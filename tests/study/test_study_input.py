@@ -114,6 +114,15 @@ def test_cli_runs_a_small_study_end_to_end(write_study, tmp_path, capsys):
     assert (out / "study.nc").exists() and len(list((out / "plots").glob("*.png"))) == 1
     assert cli_main(["study", str(path), "-o", str(out), "-q"]) == 0
     assert "0 run now, 2 from the cache" in capsys.readouterr().err
+    # the study shrinks: --prune drops the record (and journal) of the case no longer in it
+    path.write_text(path.read_text().replace('"500 N", "600 N"', '"500 N"'))
+    assert len(list((out / "cases").glob("*.json"))) == 2
+    assert cli_main(["study", str(path), "-o", str(out), "-q", "--dry-run", "--prune"]) == 0
+    assert "--prune would remove 1 cached case(s)" in capsys.readouterr().err
+    assert cli_main(["study", str(path), "-o", str(out), "-q", "--prune"]) == 0
+    err = capsys.readouterr().err
+    assert "1 cases: 1 succeeded" in err and "0 run now, 1 from the cache" in err and "pruned 1 cached case(s)" in err
+    assert len(list((out / "cases").glob("*.json"))) == 1 and len(list((out / "cases").glob("*.log"))) == 1
 
 
 def test_relative_file_references_in_the_base_model_become_absolute(tmp_path):

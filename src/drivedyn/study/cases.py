@@ -150,6 +150,24 @@ def cache_visible(cache_dir: str, token: str) -> Path | None:
         return None
 
 
+def prune(cache: Path, keep, dry_run=False) -> tuple[int, int]:
+    """Remove the cached cases whose key is not in ``keep`` (records, series, journals, stray
+    temporary files). Returns (cases removed, bytes freed); ``dry_run`` only counts them."""
+    keep = set(keep)
+    gone, freed = set(), 0
+    for f in cache.iterdir():
+        if f.name == TOKEN or not f.is_file():
+            continue
+        key = f.name.lstrip(".").split(".")[0]
+        if key in keep:
+            continue
+        gone.add(key)
+        freed += f.stat().st_size
+        if not dry_run:
+            f.unlink()
+    return len(gone), freed
+
+
 # ---------------------------------------------------------------- the task
 
 def _one_line(exc: BaseException) -> str:

@@ -5,15 +5,17 @@ from pathlib import Path
 
 
 def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False, plots=True, quiet=False,
-         dry_run=False) -> int:
+         dry_run=False, prune=False) -> int:
     """Run a study file with a progress bar (stderr) and print where everything went.
 
     Returns 0 when every case succeeded, 1 when some did not (the study still completes).
+    ``prune`` removes, after the run, the cached cases that are no longer part of the study.
     Raises :class:`drivedyn.ModelError` on bad input (the command line prints it on one line).
     """
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 
+    from .cases import prune as prune_cache
     from .execute import prepare, run_study
 
     console = Console(stderr=True)
@@ -28,6 +30,9 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
                           + (f"  [red]invalid: {c.message}[/]" if c.toml is None else ""))
         if len(cases) > 50:
             console.print(f"  ... and {len(cases) - 50} more")
+        if prune:
+            n, size = prune_cache(outdir / "cases", {c.key for c in cases}, dry_run=True)
+            console.print(f"--prune would remove {n} cached case(s) of other models ({size / 1e6:.1f} MB)")
         return 0
 
     bar = Progress(TextColumn("[bold]cases"), BarColumn(), MofNCompleteColumn(),
@@ -62,6 +67,9 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
             console.print(f"  [red]{s}[/]: {m}")
         if bad.sum() > 5:
             console.print(f"  ... {bad.sum() - 5} more (see the status and message variables)")
+    if prune:
+        n, size = prune_cache(outdir / "cases", {c.key for c in cases})
+        console.print(f"pruned {n} cached case(s) of other models ({size / 1e6:.1f} MB)")
     console.print(f"wrote {res.path}" + (f" and {len(res.plots)} plot(s) in {Path(res.path).parent / 'plots'}" if res.plots else ""))
     return 0 if not bad.any() else 1
 
