@@ -1,11 +1,14 @@
-"""Belt-drive speed: wall time per simulated second and cost per step, and its growth with n.
+"""Belt-drive speed: wall time per simulated second and cost per step, and its growth with the
+number of segments n and of pulleys k.
 
 Run: python benchmarks/bench_belt.py   (not a timed test; numbers depend on the machine)
 """
 import statistics
-import time
+
+import numpy as np
 
 import drivedyn
+from drivedyn.model import from_dict, to_dict
 
 
 def timed(model, repeat=3):
@@ -32,6 +35,32 @@ def main():
         walls, steps, r = timed(mn, repeat=2)
         w = min(walls)
         print(f"{n:5d} {r.summary['solver']['step'] * 1e6:8.3f} {steps / 0.1:12.0f} {w / steps * 1e6:8.2f} {w / 0.1:17.2f}")
+
+    # k pulleys of 27 mm on a regular polygon, the 5PK belt (1.2 m path, 150 segments), the
+    # seed's driver and load on the first two, free idlers on the others
+    print(f"{'pulleys':>7s} {'us/step':>8s} {'wall s per sim s':>17s}")
+    for k in (2, 3, 4, 6, 8):
+        mk = ring(base, k)
+        drivedyn.run(drivedyn.replace(mk, {"simulation.duration": 0.002}))
+        walls, steps, r = timed(mk, repeat=2)
+        w = min(walls)
+        print(f"{k:7d} {w / steps * 1e6:8.2f} {w / 0.1:17.2f}")
+
+
+def ring(base, k, radius=0.027, path=1.2):
+    """The 5PK drive with its belt around k pulleys on a regular polygon (same path length)."""
+    d = to_dict(base)
+    rc = (path - 2 * np.pi * radius) / (2 * k * np.sin(np.pi / k))
+    pulleys = []
+    for i in range(k):
+        p = dict(d["pulleys"][i]) if i < 2 else {"name": f"idler{i}", "radius": radius, "inertia": 0.001}
+        a = np.pi + 2 * np.pi * i / k
+        p["center"] = [rc * np.cos(a), rc * np.sin(a)]
+        pulleys.append(p)
+    d["pulleys"] = pulleys
+    d["simulation"]["duration"] = 0.1
+    d["output"]["segments"] = [0]
+    return from_dict(d, source=f"ring of {k} pulleys")
 
 
 if __name__ == "__main__":
