@@ -84,10 +84,13 @@ def _walk(path: _Path, n: int, l: float, g: float):
 def _next(path: _Path, s: float, p, c: float) -> float:
     """Smallest arc length beyond s where the path is at distance c from p (chord c <= arc)."""
     f = lambda t: float(np.hypot(*(path.point(t) - p))) - c
+    lo = s + 0.999 * c
+    if f(lo) >= 0:                            # a gap at round-off level (almost no strain): arc = chord
+        return s + c
     hi = s + c * math.pi / 2 + 1e-12          # a chord of a circle is at least 2/pi of its arc
     for _ in range(8):
         if f(hi) > 0:
-            return brentq(f, s + 0.999 * c, hi, xtol=1e-14)
+            return brentq(f, lo, hi, xtol=1e-14)
         hi += c
     raise ModelError("cannot place the belt segments on the path", field="belt.segments")
 

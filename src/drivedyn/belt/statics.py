@@ -26,8 +26,7 @@ def span_frequencies(tension, mass_per_length, length, bending_stiffness=0.0, sp
 def capstan_torque(tension, radius, wrap, mu):
     """Largest torque a pulley transmits before gross slip (Euler-Eytelwein, T1/T2 = e^(mu theta)),
     with T1 + T2 = 2 T0 (constant belt length): M = 2 T0 r (e - 1)/(e + 1)."""
-    e = math.exp(mu * wrap)
-    return 2 * tension * radius * (e - 1) / (e + 1)
+    return 2 * tension * radius * math.tanh(mu * wrap / 2)  # = (e - 1)/(e + 1), no overflow
 
 
 def report(model) -> str:

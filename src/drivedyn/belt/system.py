@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ModelError
 from . import _kernels as K
 from .initial import InitialState, initial_state
 from ..tables import flatten
@@ -92,6 +93,10 @@ def build(model) -> BeltSystem:
     scaled = model.simulation.method == "semi-implicit" and model.simulation.rotation_scaling
     limit = stability_limit(model, init, seg, scaled)
     step = model.simulation.step if model.simulation.step is not None else 0.85 * limit
+    if not model.simulation.duration / step < MAX_STEPS:
+        raise ModelError(f"the stable step is only {limit:.3g} s ({model.simulation.duration / step:.3g} steps for "
+                         f"{model.simulation.duration:g} s, over the {MAX_STEPS:.0e} allowed): check the belt's "
+                         "stiffness and damping values and the contact stiffness", field="simulation")
     fp[K.F_ISCALE] = ROTATION_SCALE if scaled else 1.0
     return BeltSystem(model, layout, init, ip, fp, seg, pul, span_mid, span_geo, track, step, limit)
 
@@ -102,6 +107,8 @@ def build(model) -> BeltSystem:
 # changes span forces by < 0.5 % and slip by < 1e-4, but at 11 m/s it raises the contact losses
 # where segments land on a pulley by a third.
 ROTATION_SCALE = 3.3
+# more steps than this (days of computing at microseconds per step) means an input error
+MAX_STEPS = 1e11
 
 
 def effective_inertia(sysm) -> np.ndarray:
@@ -147,12 +154,12 @@ def stability_limit(model, init, seg, scaled=False) -> float:
     for _ in range(50):
         gamma = 4 * b / m / (1 + 2 * h * b / m)
         zeta = gamma / (2 * w_zig)
-        h = 2 / w_zig * (math.sqrt(1 + zeta ** 2) - zeta)
+        h = 2 / w_zig / (math.sqrt(1 + zeta ** 2) + zeta)  # = sqrt(1 + z^2) - z without cancellation
     limits = [h]
     if not scaled:
         w_rot = math.sqrt(12 * k_rot / m)
         zeta = 4 * float(seg["bb"][0]) / inertia / (2 * w_rot)
-        limits.append(2 / w_rot * (math.sqrt(1 + zeta ** 2) - zeta))
+        limits.append(2 / w_rot / (math.sqrt(1 + zeta ** 2) + zeta))
     elif float(seg["bb"][0]) > 0:   # explicit bending dampers, on the unscaled (conservative) inertia
         limits.append(inertia / (2 * float(seg["bb"][0])))
     return min(limits)

@@ -151,13 +151,15 @@ def estimate_tension(f, m, L, EI=0.0, V=0.0, n=1, sigma_f=0.0, sigma_L=0.0, sigm
         if s <= 0:
             contrib[name] = 0.0
             continue
-        h = 1e-4 * max(abs(x), s)
+        # derivative step from the value (from the uncertainty only where the value is 0); one-sided
+        # where the value cannot go below 0 (EI = 0)
+        h = 1e-4 * (abs(x) if x != 0 else s)
         args = {"f": f, "m": m, "L": L, "EI": EI}
         key = {"frequency": "f", "length": "L", "mass": "m", "bending": "EI"}[name]
         up, dn = dict(args), dict(args)
         up[key] = x + h
-        dn[key] = x - h
-        dTdx = (tension_from_frequency(V=V, n=n, **up) - tension_from_frequency(V=V, n=n, **dn)) / (2 * h)
+        dn[key] = x - h if x - h >= 0 else x
+        dTdx = (tension_from_frequency(V=V, n=n, **up) - tension_from_frequency(V=V, n=n, **dn)) / (up[key] - dn[key])
         contrib[name] = abs(dTdx) * s
     sigma = float(np.sqrt(sum(v ** 2 for v in contrib.values())))
     return TensionEstimate(float(T), float(Ts), float(Tb - Ts), float(T - Tb), sigma, contrib)

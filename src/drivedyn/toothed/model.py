@@ -198,6 +198,13 @@ class Pair(Spec):
     def _known(cls, v):
         return _profile_name(v)
 
+    @field_validator("teeth")
+    @classmethod
+    def _teeth(cls, v):
+        if v < 6:
+            raise ValueError(f"must be >= 6, got {v}")
+        return v
+
 
 class Model(Spec):
     """A toothed-belt meshing study (seed 001)."""
