@@ -4,7 +4,8 @@ ModelError (one line, exit status 2 on the command line); never another exceptio
 check. Each value gets one plain replacement and, for a quantity, one with its unit, cycled over
 the values so that the suite stays fast. Full sweeps of every replacement over every value (load,
 check and short runs) found what this guards: a tiny pretension, a huge bending damping, friction
-coefficient or mass uncertainty, a comparison row with 0 teeth."""
+coefficient or mass uncertainty, a comparison row with 0 teeth, a meshing sample spacing of 1e-12 m
+(a run that never ends)."""
 import copy
 import tomllib
 import warnings
@@ -72,6 +73,8 @@ def test_a_bad_value_anywhere_is_refused_cleanly(name):
     ("belt-5pk", "belt.bending_damping", "1e9 N*m^2*s"),              # stable step ~ 0
     ("belt-5pk", "friction.coefficient", 1e30),                       # capstan e^(mu theta) overflow
     ("span-t10", "measurement.mass_uncertainty", "1e9 kg/m"),         # derivative step from sigma
+    ("mesh-htd8m", "mesh.flank_spacing", "1e-9 mm"),                  # 1e10 samples: refused
+    ("mesh-htd8m", "mesh.chord_tolerance", "1e-9 mm"),
 ])
 def test_values_that_once_raised_tracebacks(name, path, bad):
     model = drivedyn.load(drivedyn.example_path(name))

@@ -165,8 +165,10 @@ class Mesh(Spec):
     angles: int = 181
     half_range: Optional[quantity("rad", gt=0)] = None  # default: from first possible contact
     tooth_offset: Length = 0.0  # belt tooth ahead (+) of its groove when seated (pitch error)
-    chord_tolerance: quantity("m", gt=0) = 2e-7
-    flank_spacing: quantity("m", gt=0) = 2e-5
+    # floors far below the profile data's precision (10 um): finer sampling only costs time and
+    # memory (a 1e-12 m spacing would mean 1e10 samples of one tooth)
+    chord_tolerance: quantity("m", ge=1e-9) = 2e-7
+    flank_spacing: quantity("m", ge=1e-7) = 2e-5
 
     @field_validator("angles")
     @classmethod
