@@ -109,6 +109,33 @@ def _loc_str(loc) -> str:
     return out
 
 
+def _field_unit(model_cls, loc) -> str:
+    """SI unit declared (``quantity``) by the field at ``loc``, or ""."""
+    import typing
+
+    cls, field = model_cls, None
+    for part in loc:
+        if isinstance(part, int) or cls is None:
+            continue
+        field = getattr(cls, "model_fields", {}).get(part)
+        if field is None:
+            return ""
+        cls = None
+        for cand in [field.annotation, *typing.get_args(field.annotation)]:
+            for c in [cand, *typing.get_args(cand)]:
+                if isinstance(c, type) and issubclass(c, BaseModel):
+                    cls = c
+    if field is None:
+        return ""
+    extras = [field.json_schema_extra] + [getattr(m, "json_schema_extra", None) for m in field.metadata]
+    for a in typing.get_args(field.annotation):  # Optional[quantity(...)]: the unit sits in the Annotated
+        extras += [getattr(m, "json_schema_extra", None) for m in getattr(a, "__metadata__", ())]
+    for e in extras:
+        if isinstance(e, dict) and e.get("unit"):
+            return e["unit"]
+    return ""
+
+
 def _fields_at(model_cls, loc):
     """Field names of the model class reached by following ``loc`` (for suggestions)."""
     import typing
@@ -145,6 +172,12 @@ def format_validation_error(exc: ValidationError, model_cls=None) -> str:
     msg = err["msg"]
     for prefix in ("Value error, ", "Assertion failed, "):
         msg = msg.removeprefix(prefix)
+    bound = {"greater_than": ">", "greater_than_equal": ">=", "less_than": "<", "less_than_equal": "<="}.get(err["type"])
+    if bound is not None and err.get("ctx"):
+        # "must be > 0 m, got -27 mm": the bound in the field's SI unit, the input as written
+        limit = next(iter(err["ctx"].values()))
+        unit = _field_unit(model_cls, loc) if model_cls is not None else ""
+        msg = f"must be {bound} {limit:g}{' ' + unit if unit else ''}, got {err.get('input')}"
     n = len(exc.errors())
     more = f" (and {n - 1} more problem{'s' if n > 2 else ''})" if n > 1 else ""
     return f"{field}: {msg}{more}" if field else f"{msg}{more}"

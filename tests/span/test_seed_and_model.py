@@ -133,8 +133,8 @@ def _good():
 
 
 @pytest.mark.parametrize("old, new, expect", [
-    ('pretension = "100 N"', 'pretension = "-100 N"', "operation.pretension: Input should be greater than 0"),
-    ('length = "0.3 m"', 'length = "0 m"', "span.length: Input should be greater than 0"),
+    ('pretension = "100 N"', 'pretension = "-100 N"', "operation.pretension: must be > 0 N, got -100 N"),
+    ('length = "0.3 m"', 'length = "0 m"', "span.length: must be > 0 m, got 0 m"),
     ('speed = "1.11 m/s"', 'speed = "40 m/s"\n[response]', "operation.speed: 40 m/s is at or above the critical speed"),
     ('frequency = "58 Hz"', 'frequency = "5 Hz"', "measurement.frequency: 5 Hz is below"),
     ('teeth = 16', 'teeth = 0', "excitation.teeth: must be >= 1"),
