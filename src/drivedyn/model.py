@@ -109,8 +109,8 @@ def _loc_str(loc) -> str:
     return out
 
 
-def _field_unit(model_cls, loc) -> str:
-    """SI unit declared (``quantity``) by the field at ``loc``, or ""."""
+def _walk(model_cls, loc):
+    """(model class reached, last field) following ``loc`` through nested models (lists skipped)."""
     import typing
 
     cls, field = model_cls, None
@@ -119,12 +119,20 @@ def _field_unit(model_cls, loc) -> str:
             continue
         field = getattr(cls, "model_fields", {}).get(part)
         if field is None:
-            return ""
+            return None, None
         cls = None
         for cand in [field.annotation, *typing.get_args(field.annotation)]:
             for c in [cand, *typing.get_args(cand)]:
                 if isinstance(c, type) and issubclass(c, BaseModel):
                     cls = c
+    return cls, field
+
+
+def _field_unit(model_cls, loc) -> str:
+    """SI unit declared (``quantity``) by the field at ``loc``, or ""."""
+    import typing
+
+    _, field = _walk(model_cls, loc)
     if field is None:
         return ""
     extras = [field.json_schema_extra] + [getattr(m, "json_schema_extra", None) for m in field.metadata]
@@ -138,21 +146,7 @@ def _field_unit(model_cls, loc) -> str:
 
 def _fields_at(model_cls, loc):
     """Field names of the model class reached by following ``loc`` (for suggestions)."""
-    import typing
-
-    cls = model_cls
-    for part in loc:
-        if isinstance(part, int) or cls is None:
-            continue
-        field = getattr(cls, "model_fields", {}).get(part)
-        if field is None:
-            return []
-        ann = field.annotation
-        cls = None
-        for cand in [ann, *typing.get_args(ann)]:
-            for c in [cand, *typing.get_args(cand)]:
-                if isinstance(c, type) and issubclass(c, BaseModel):
-                    cls = c
+    cls, _ = _walk(model_cls, loc)
     return list(getattr(cls, "model_fields", {})) if cls is not None else []
 
 

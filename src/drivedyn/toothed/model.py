@@ -112,6 +112,12 @@ class ArcGrooveSpec(Spec):
 GrooveSpec = Annotated[Union[TrapezoidalGrooveSpec, ArcGrooveSpec], Field(discriminator="type")]
 
 
+def _tooth_count(v):
+    if v < 6:
+        raise ValueError(f"must be >= 6, got {v}")
+    return v
+
+
 def _profile_name(v):
     from .catalogue import canonical
 
@@ -151,12 +157,7 @@ class Pulley(Spec):
     def _known(cls, v):
         return _profile_name(v)
 
-    @field_validator("teeth")
-    @classmethod
-    def _teeth(cls, v):
-        if v < 6:
-            raise ValueError(f"must be >= 6, got {v}")
-        return v
+    _teeth = field_validator("teeth")(classmethod(lambda cls, v: _tooth_count(v)))
 
 
 class Mesh(Spec):
@@ -200,12 +201,7 @@ class Pair(Spec):
     def _known(cls, v):
         return _profile_name(v)
 
-    @field_validator("teeth")
-    @classmethod
-    def _teeth(cls, v):
-        if v < 6:
-            raise ValueError(f"must be >= 6, got {v}")
-        return v
+    _teeth = field_validator("teeth")(classmethod(lambda cls, v: _tooth_count(v)))
 
 
 class Model(Spec):
