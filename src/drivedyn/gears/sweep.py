@@ -47,9 +47,15 @@ def run_sweep(sys_, model, progress=None) -> dict:
     q0 = static_start(sys_)
     ns, m = len(speeds), sys_.m
     kv_max, kv_min, f_mean = np.zeros((ns, m)), np.zeros((ns, m)), np.zeros((ns, m))
-    if progress:
-        progress(0.92, f"sweep of {ns} speeds")
-    _kernels.sweep_rk4(speeds, sys_.ratio, q0, p, h, n_settle, n_window, kv_max, kv_min, f_mean)
+    # in chunks of speeds (each one parallel over its speeds), so that progress is reported and a
+    # study's case_timeout can act between them
+    chunk = max(8, -(-ns // 10))
+    for a in range(0, ns, chunk):
+        b = min(ns, a + chunk)
+        if progress:
+            progress(0.92 + 0.07 * a / ns, f"sweep: {a} of {ns} speeds")
+        _kernels.sweep_rk4(speeds[a:b], sys_.ratio, q0, p, h[a:b], n_settle[a:b], n_window[a:b],
+                           kv_max[a:b], kv_min[a:b], f_mean[a:b])
     F = sys_.force_nominal
     mred = reduced_mass_per_mesh(sys_)
     kv_iso = np.zeros((ns, m))
