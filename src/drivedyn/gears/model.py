@@ -146,16 +146,9 @@ class Mesh(Spec):
     def _n(cls, v):
         return _name(v)
 
-    @field_validator("friction")
+    @field_validator("friction", "damping_ratio")
     @classmethod
-    def _mu(cls, v):
-        if not 0.0 <= v < 1.0:
-            raise ValueError(f"must lie in [0, 1), got {v}")
-        return v
-
-    @field_validator("damping_ratio")
-    @classmethod
-    def _zeta(cls, v):
+    def _unit_interval(cls, v):
         if v is not None and not 0.0 <= v < 1.0:
             raise ValueError(f"must lie in [0, 1), got {v}")
         return v
