@@ -87,6 +87,7 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
             rec.track[k, q] = (ten[(i + 1) % n], sn[i], st[i])
         rec.diss[k], rec.work[k], rec.energy[k] = diss, work, energy() - E0
         rec.ns = k + 1
+        rec.steps, rec.step = steps, h  # what a stop (time limit, Ctrl-C) reports
         if (k + 1) % frame_every == 0:
             capture(t)
         if progress is not None:

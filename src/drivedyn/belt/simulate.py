@@ -41,6 +41,7 @@ class _Recorder:
         self.ft = np.zeros((nframes, n))
         self.ftension = np.zeros((nframes, n))
         self.ns = 0
+        self.steps, self.step = 0, 0.0  # adaptive steps and last step size so far (rkf45)
         self.nf = 0
 
 
@@ -204,7 +205,10 @@ def run(model, progress=None) -> Result:
         # a time limit or Ctrl-C: keep the whole samples recorded so far (rec.ns counts them)
         why = str(exc) if isinstance(exc, Stopped) else "interrupted by the user"
         failure = f"stopped: {why}"
-        nsteps = rec.ns * steps_per_sample if sim.method == "semi-implicit" else 0
+        if sim.method == "semi-implicit":
+            nsteps = rec.ns * steps_per_sample
+        else:
+            nsteps, h = rec.steps, rec.step or h
     wall = _time.perf_counter() - wall0
     result = _assemble(model, sysm, rec, wall, nsteps, h, failure)
     if failure:
