@@ -1,8 +1,10 @@
 """The public entry points shared by every analysis: run, check, plot, examples."""
 from __future__ import annotations
 
+from contextlib import contextmanager
 from pathlib import Path
 
+from .errors import ModelError
 from .model import analysis, load
 
 
@@ -12,21 +14,35 @@ def _as_model(model):
     return model
 
 
+@contextmanager
+def _naming(model):
+    """Errors found after loading (while assembling the model) name the file it came from."""
+    try:
+        yield
+    except ModelError as exc:
+        if isinstance(model, (str, Path)) and not str(exc).startswith(str(model)):
+            raise ModelError(f"{model}: {exc}") from None
+        raise
+
+
 def run(model, progress=None):
     """Run any model (object or path) and return its :class:`~drivedyn.Result`.
 
     ``progress``, if given, is called as ``progress(fraction_done, text)`` during long runs.
-    A solve that fails raises :class:`~drivedyn.SolverError` whose ``partial`` holds the Result
-    computed so far (``success=False``).
+    ``result.status`` is "success", or "warning" when ``result.diagnostics`` say the result is
+    outside the model's valid regime. A solve that fails raises :class:`~drivedyn.SolverError`
+    whose ``partial`` holds the Result computed so far (status "failed").
     """
-    model = _as_model(model)
-    return analysis(model.kind).run(model, progress=progress)
+    m = _as_model(model)
+    with _naming(model):
+        return analysis(m.kind).run(m, progress=progress)
 
 
 def check(model) -> str:
     """Validate a model and return a text report of what is known without running it."""
-    model = _as_model(model)
-    return analysis(model.kind).check(model)
+    m = _as_model(model)
+    with _naming(model):
+        return analysis(m.kind).check(m)
 
 
 def plot(result, outdir) -> list[Path]:
@@ -48,8 +64,6 @@ def examples() -> dict[str, Path]:
 
 def example_path(name: str) -> Path:
     """Path of a shipped example model, e.g. ``example_path("belt-5pk")``."""
-    from .errors import ModelError
-
     ex = examples()
     if name.removesuffix(".toml") not in ex:
         raise ModelError(f"no example named {name!r} (have: {', '.join(ex)})")

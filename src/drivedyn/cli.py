@@ -1,7 +1,8 @@
 """The ``drivedyn`` command: a thin layer over drivedyn.run / check / plot / study.
 
 Every user mistake ends with one line on stderr and exit status 2; a failed solve writes what
-was computed, says where it stopped, and exits with status 1.
+was computed, says where it stopped, and exits with status 1. A run that ends with diagnostics
+(status "warning") prints them and exits with 0, or with 3 under ``--strict``.
 """
 from __future__ import annotations
 
@@ -18,9 +19,33 @@ app = typer.Typer(add_completion=False, no_args_is_help=True, pretty_exceptions_
                   help="Dynamics and geometry of belt drives and gear trains.")
 
 
+#: exit status of a run that ended with status "warning" under --strict
+EXIT_WARNING = 3
+
+
 def _fail(message: str, code: int = 2):
     typer.echo(f"drivedyn: error: {message}", err=True)
     raise typer.Exit(code)
+
+
+def _named(path: Path, exc: Exception) -> str:
+    """The error's message, prefixed with the model file unless it already names it."""
+    text = str(exc)
+    return text if text.startswith(str(path)) else f"{path}: {text}"
+
+
+def check_outdir(out: Path) -> None:
+    """Refuse an output folder that cannot be written, before any solve (one line, exit 2)."""
+    import tempfile
+
+    if out.exists() and not out.is_dir():
+        _fail(f"{out}: the output path is a file, not a folder (-o names a folder)")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=out):
+            pass
+    except OSError as exc:
+        _fail(f"{out}: cannot write the output folder ({exc.strerror or exc})")
 
 
 def _progress_bar(console):
@@ -35,7 +60,10 @@ def _progress_bar(console):
 def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         out: Path = typer.Option(Path("out"), "-o", "--out", help="Output folder."),
         plots: bool = typer.Option(True, help="Write the standard PNG plots."),
-        quiet: bool = typer.Option(False, "-q", "--quiet", help="No progress bar.")):
+        quiet: bool = typer.Option(False, "-q", "--quiet", help="No progress bar."),
+        strict: bool = typer.Option(False, "--strict", help=f"Exit with status {EXIT_WARNING} when the run ends "
+                                    "with diagnostics (status 'warning')."),
+        ):
     """Run a model; write results.nc, summary.json and plots into OUT."""
     from rich.console import Console
 
@@ -47,6 +75,7 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         m = load(model)
     except ModelError as exc:
         _fail(str(exc))
+    check_outdir(out)
     result, failure = None, None
     import contextlib
 
@@ -62,14 +91,25 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
             failure = exc
             result = exc.partial
         except ModelError as exc:
-            _fail(f"{model}: {exc}")
+            _fail(_named(model, exc))
     if result is not None:
         result.save(out)
         written = api.plot(result, out) if plots else []
         console.print(f"wrote {out / 'results.nc'}, {out / 'summary.json'} and {len(written)} plot(s)")
         _print_summary(console, result)
+        _print_status(console, result)
     if failure is not None:
         _fail(f"solve failed: {failure}" + ("; partial results kept in " + str(out) if result is not None else ""), code=1)
+    if strict and result is not None and result.status == "warning":
+        raise typer.Exit(EXIT_WARNING)
+
+
+def _number(v: float, unit: str) -> str:
+    v = v + 0.0  # no "-0"
+    text = f"{v:.6g}"
+    if unit == "rad/s":  # a person reads shaft speeds in rpm
+        text += f" ({v * 30 / 3.141592653589793:.5g} rpm)"
+    return text
 
 
 def _print_summary(console, result):
@@ -77,27 +117,56 @@ def _print_summary(console, result):
 
     from .results import flatten
 
-    table = Table(title="summary", show_header=True)
+    table = Table(title="summary (SI units)", show_header=True)
     table.add_column("key")
     table.add_column("value", justify="right")
+    table.add_column("unit")
     for k, v in flatten(result.summary).items():
+        unit = result.units.get(k, "")
         if isinstance(v, float):
-            v = f"{v:.6g}"
+            v = _number(v, unit)
         elif isinstance(v, list) and len(v) > 6:
             v = f"[{len(v)} values]"
-        table.add_row(k, str(v))
+        table.add_row(k, str(v), "" if unit == "1" else unit)
     console.print(table)
 
 
+def _print_status(console, result):
+    """The status line, then one line per diagnostic (code, text, value against limit)."""
+    from rich.markup import escape
+
+    style = {"success": "green", "warning": "yellow", "failed": "red"}[result.status]
+    console.print(f"status: [{style}]{result.status}[/{style}]" + escape(f" ({result.message})" if result.message else ""))
+    for d in result.diagnostics:
+        numbers = ""
+        if d.value is not None and d.limit is not None:
+            unit = "" if d.unit in ("", "1") else f" {d.unit}"
+            numbers = f" ({d.quantity} = {d.value:.4g}{unit}, limit {d.limit:.4g}{unit})"
+        console.print(f"  [yellow]{d.code}[/yellow]: " + escape(d.text + numbers))
+
+
 @app.command()
-def check(model: Path = typer.Argument(..., help="Model file (TOML).")):
+def check(model: Path = typer.Argument(..., help="Model file (TOML)."),
+          as_json: bool = typer.Option(False, "--json", help="Belt drives: steady state, margins, modes as JSON.")):
     """Validate a model and print what is known without running it."""
     from . import api
+    from .model import load
 
     try:
-        typer.echo(api.check(model))
+        m = load(model)
     except ModelError as exc:
         _fail(str(exc))
+    try:
+        if as_json and m.kind != "belt-drive":
+            _fail(f"{model}: check --json is for belt-drive models (this is {m.kind})")
+        if as_json:
+            from .belt.statics import check_json
+
+            typer.echo(check_json(m))
+            return
+        typer.echo(api.check(m))
+    except ModelError as exc:
+        _fail(_named(model, exc))
 
 
 @app.command()

@@ -34,5 +34,10 @@ class Stopped(DrivedynError):
     """
 
 
+def stop_reason(exc: BaseException) -> str:
+    """Why a time integration stopped early: a ``Stopped``'s message, or Ctrl-C."""
+    return str(exc) if isinstance(exc, Stopped) else "interrupted by the user"
+
+
 class DrivedynWarning(UserWarning):
     """Warnings about questionable but admissible input or results."""

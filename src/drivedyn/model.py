@@ -13,32 +13,34 @@ once here. Unknown keys are errors that suggest the nearest valid name.
 from __future__ import annotations
 
 import difflib
-import importlib
+import re
 import tomllib
 from pathlib import Path
 from typing import Annotated, Any
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError
 
+from .analyses import KINDS, analysis  # noqa: F401  (re-exported: the registry lives in analyses.py)
 from .errors import ModelError
-from .units import to_si
+from .units import finite, to_si
 
 SCHEMA_VERSION = 1
-
-# kind -> analysis package. Each package exposes: Model (a Spec subclass), run(model, progress=None)
-# -> Result, check(model) -> str, plot(result, outdir) -> list[Path].
-KINDS = {
-    "belt-drive": "drivedyn.belt",
-    "gear-train": "drivedyn.gears",
-    "span-stability": "drivedyn.span",
-    "toothed-mesh": "drivedyn.toothed",
-}
+#: longest list a model file may hold: the longest legitimate one is a measured table (a few
+#: thousand rows); 100 000 entries would only cost validation time (longer series go in a CSV)
+MAX_LIST = 10_000
+#: largest model file read (bytes): 10 000 table rows take about 0.2 MB, and parsing TOML costs
+#: about 0.3 s per MB, so anything larger is refused before it is parsed
+MAX_BYTES = 2_000_000
+_CONTROL = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
+#: deepest nesting of tables and lists: the schemas nest 4 levels; 1000 would exhaust the stack
+MAX_DEPTH = 32
 
 
 class Spec(BaseModel):
-    """Base of every model object: frozen, unknown keys forbidden, defaults validated."""
+    """Base of every model object: frozen, unknown keys forbidden, defaults validated, and no
+    NaN or inf in any float field (quantities are refused earlier, in ``units.to_si``)."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True, validate_default=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, validate_default=True, allow_inf_nan=False)
 
 
 def _si_validator(unit: str):
@@ -68,6 +70,8 @@ def table_rows(value, units: tuple[str, str], field: str, min_rows: int = 1) -> 
     """
     if not isinstance(value, (list, tuple)) or len(value) < min_rows:
         raise ValueError(f"{field} must be a list of at least {min_rows} [{units[0]}, {units[1]}] row(s)")
+    if len(value) > MAX_LIST:
+        raise ValueError(f"{field} has {len(value)} rows, more than {MAX_LIST}")
     rows = []
     for k, row in enumerate(value):
         if not isinstance(row, (list, tuple)) or len(row) != 2:
@@ -90,15 +94,6 @@ def check_name(v: str, forbidden: str = " ./") -> str:
     return v
 
 
-def analysis(kind: str):
-    """The analysis package of ``kind`` (imported lazily)."""
-    if kind not in KINDS:
-        close = difflib.get_close_matches(str(kind), KINDS, n=1)
-        hint = f" (did you mean {close[0]!r}?)" if close else f" (one of {', '.join(KINDS)})"
-        raise ModelError(f"unknown kind {kind!r}{hint}", field="kind")
-    return importlib.import_module(KINDS[kind])
-
-
 def _loc_str(loc) -> str:
     out = ""
     for part in loc:
@@ -109,45 +104,88 @@ def _loc_str(loc) -> str:
     return out
 
 
-def _walk(model_cls, loc):
-    """(model class reached, last field) following ``loc`` through nested models (lists skipped)."""
+# Walking the schema: one step at a time from a model class through fields, list items and tuple
+# entries, carrying the unit a quantity() declares down to the items of its list or tuple. Used
+# for error messages (the unit of a bound, suggestions for unknown keys) and by studies (the unit
+# of a parameter path).
+
+def unwrap(ann):
+    """Strip Optional and Annotated layers; returns (core annotation, unit found or None)."""
+    import types
     import typing
 
-    cls, field = model_cls, None
-    for part in loc:
-        if isinstance(part, int) or cls is None:
-            continue
-        field = getattr(cls, "model_fields", {}).get(part)
-        if field is None:
-            return None, None
-        cls = None
-        for cand in [field.annotation, *typing.get_args(field.annotation)]:
-            for c in [cand, *typing.get_args(cand)]:
-                if isinstance(c, type) and issubclass(c, BaseModel):
-                    cls = c
-    return cls, field
+    unit = None
+    while True:
+        origin = typing.get_origin(ann)
+        if origin is typing.Annotated:
+            for meta in ann.__metadata__:
+                extra = getattr(meta, "json_schema_extra", None)
+                if isinstance(extra, dict) and extra.get("unit"):
+                    unit = extra["unit"]
+            ann = typing.get_args(ann)[0]
+        elif origin is typing.Union or origin is types.UnionType:
+            args = [a for a in typing.get_args(ann) if a is not type(None)]
+            if len(args) != 1:
+                return ann, unit
+            ann = args[0]
+        else:
+            return ann, unit
 
 
-def _field_unit(model_cls, loc) -> str:
-    """SI unit declared (``quantity``) by the field at ``loc``, or ""."""
+class _Unit:
+    """Annotated marker carrying a field's unit down into list/tuple items."""
+
+    def __init__(self, unit):
+        self.json_schema_extra = {"unit": unit}
+
+
+def schema_step(ann, part):
+    """Annotation one path step (a field name or an item index) below ``ann``, or None."""
     import typing
 
-    _, field = _walk(model_cls, loc)
-    if field is None:
-        return ""
-    extras = [field.json_schema_extra] + [getattr(m, "json_schema_extra", None) for m in field.metadata]
-    for a in typing.get_args(field.annotation):  # Optional[quantity(...)]: the unit sits in the Annotated
-        extras += [getattr(m, "json_schema_extra", None) for m in getattr(a, "__metadata__", ())]
-    for e in extras:
-        if isinstance(e, dict) and e.get("unit"):
-            return e["unit"]
-    return ""
+    part = str(part)
+    core, unit = unwrap(ann)
+    if isinstance(core, type) and issubclass(core, BaseModel):
+        f = core.model_fields.get(part)
+        if f is None:
+            return None
+        extra = f.json_schema_extra if isinstance(f.json_schema_extra, dict) else {}
+        sub = f.annotation
+        for m in f.metadata:  # quantity() as a whole field annotation is merged into the FieldInfo
+            e = getattr(m, "json_schema_extra", None)
+            if isinstance(e, dict) and e.get("unit"):
+                extra = e
+        return typing.Annotated[sub, _Unit(extra["unit"])] if extra.get("unit") else sub
+    if typing.get_origin(core) in (list, tuple):
+        args = [a for a in typing.get_args(core) if a is not Ellipsis]
+        if not args:
+            return None
+        item = args[int(part)] if typing.get_origin(core) is tuple and part.isdigit() and int(part) < len(args) else args[0]
+        return typing.Annotated[item, _Unit(unit)] if unit else item
+    return None
+
+
+def schema_at(model_cls, path):
+    """Annotation reached from ``model_cls`` along ``path`` (dotted string or parts), or None."""
+    ann = model_cls
+    for part in (path.split(".") if isinstance(path, str) else path):
+        ann = schema_step(ann, part)
+        if ann is None:
+            return None
+    return ann
+
+
+def field_unit(model_cls, path) -> str | None:
+    """SI unit of the field at ``path`` (declared with ``quantity``), or None."""
+    ann = schema_at(model_cls, path)
+    return None if ann is None else unwrap(ann)[1]
 
 
 def _fields_at(model_cls, loc):
     """Field names of the model class reached by following ``loc`` (for suggestions)."""
-    cls, _ = _walk(model_cls, loc)
-    return list(getattr(cls, "model_fields", {})) if cls is not None else []
+    ann = schema_at(model_cls, loc)
+    core = unwrap(ann)[0] if ann is not None else None
+    return list(core.model_fields) if isinstance(core, type) and issubclass(core, BaseModel) else []
 
 
 def format_validation_error(exc: ValidationError, model_cls=None) -> str:
@@ -163,6 +201,8 @@ def format_validation_error(exc: ValidationError, model_cls=None) -> str:
         return f"{field}: unknown key{hint}"
     if err["type"] == "missing":
         return f"{field}: required field is missing"
+    if err["type"] == "finite_number":
+        return f"{field}: must be a finite number, got {err.get('input')}"
     msg = err["msg"]
     for prefix in ("Value error, ", "Assertion failed, "):
         msg = msg.removeprefix(prefix)
@@ -170,7 +210,7 @@ def format_validation_error(exc: ValidationError, model_cls=None) -> str:
     if bound is not None and err.get("ctx"):
         # "must be > 0 m, got -27 mm": the bound in the field's SI unit, the input as written
         limit = next(iter(err["ctx"].values()))
-        unit = _field_unit(model_cls, loc) if model_cls is not None else ""
+        unit = (field_unit(model_cls, loc) or "") if model_cls is not None else ""
         msg = f"must be {bound} {limit:g}{' ' + unit if unit else ''}, got {err.get('input')}"
     n = len(exc.errors())
     more = f" (and {n - 1} more problem{'s' if n > 2 else ''})" if n > 1 else ""
@@ -185,15 +225,21 @@ def from_dict(data: dict, source: str = "model", base_dir=None):
     """
     if not isinstance(data, dict):
         raise ModelError("a model must be a table of keys", field=source)
+    _screen(data, source)
     kind = data.get("kind")
     if kind is None:
         raise ModelError(f"{source}: missing top-level 'kind' (one of {', '.join(KINDS)})")
+    if not isinstance(kind, str):
+        raise ModelError(f"{source}: kind: must be a string (one of {', '.join(KINDS)}), got {kind!r:.40}")
     if kind == "study":
         raise ModelError(f"{source}: this is a study file: run it with 'drivedyn study {source}'")
     version = data.get("schema_version", SCHEMA_VERSION)
     if version != SCHEMA_VERSION:
         raise ModelError(f"{source}: schema_version {version!r} is not supported (this drivedyn reads {SCHEMA_VERSION})")
-    pkg = analysis(kind)
+    try:
+        pkg = analysis(kind)
+    except ModelError as exc:
+        raise ModelError(f"{source}: {exc}") from None
     try:
         return pkg.Model.model_validate(data, context={"base_dir": Path(base_dir) if base_dir else Path.cwd()})
     except ValidationError as exc:
@@ -202,13 +248,69 @@ def from_dict(data: dict, source: str = "model", base_dir=None):
         raise ModelError(f"{source}: {exc}") from None
 
 
+def _screen(data: dict, source: str) -> None:
+    """One pass over the raw data before validation: every number finite and of sensible magnitude
+    (``units.finite``; strings with units are checked the same way by ``units.to_si``), no list
+    longer than MAX_LIST, nesting at most MAX_DEPTH (iterative: a deep file must not exhaust the
+    stack). The message names the field: "belt.pretension: must be a finite number, got nan"."""
+    stack = [(data, ())]
+    while stack:
+        node, loc = stack.pop()
+        if len(loc) > MAX_DEPTH:
+            raise ModelError(f"{source}: {_loc_str(loc[:3])}...: nested more than {MAX_DEPTH} levels deep")
+        if isinstance(node, dict):
+            stack.extend((v, loc + (str(k),)) for k, v in node.items())
+        elif isinstance(node, list):
+            if len(node) > MAX_LIST:
+                raise ModelError(f"{source}: {_loc_str(loc)}: a list of {len(node)} entries, more than {MAX_LIST}")
+            stack.extend((v, loc + (i,)) for i, v in enumerate(node))
+        elif isinstance(node, str) and _CONTROL.search(node):
+            # names and labels end up in netCDF, JSON and file names: no NUL, escape or other
+            # control characters (tabs and newlines are harmless)
+            raise ModelError(f"{source}: {_loc_str(loc)}: control character {_CONTROL.search(node).group()!r} in a string")
+        elif isinstance(node, (int, float)) and not isinstance(node, bool):
+            try:
+                finite(node)
+            except (ModelError, OverflowError) as exc:
+                raise ModelError(f"{source}: {_loc_str(loc)}: {exc}") from None
+
+
+def parse_toml(text: str, source: str = "model") -> dict:
+    """TOML text to data; every failure is one ModelError line naming ``source``."""
+    if len(text) > MAX_BYTES:
+        raise ModelError(f"{source}: {len(text) / 1e6:.1f} MB is too large for a model file (at most {MAX_BYTES / 1e6:g} MB)")
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ModelError(f"{source}: not valid TOML: {_one_line(exc)}") from None
+    except RecursionError:  # tomllib recurses per nested inline table or array
+        raise ModelError(f"{source}: not valid TOML: nested too deeply") from None
+
+
+def read_toml(path, what: str = "model") -> tuple[dict, str]:
+    """(data, text) of a TOML file (a model or a study: ``what`` names it in messages)."""
+    path = Path(path)
+    if not path.exists():
+        raise ModelError(f"{path}: file not found")
+    if path.is_dir():
+        raise ModelError(f"{path}: is a directory, expected a {what} file")
+    try:
+        if path.stat().st_size > MAX_BYTES:
+            raise ModelError(f"{path}: {path.stat().st_size / 1e6:.1f} MB is too large for a {what} file "
+                             f"(at most {MAX_BYTES / 1e6:g} MB)")
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ModelError(f"{path}: cannot read: {exc}") from None
+    return parse_toml(text, str(path)), text
+
+
 def loads(text: str, source: str = "model", base_dir=None):
     """Parse TOML text into a model object."""
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ModelError(f"{source}: not valid TOML: {exc}") from None
-    return from_dict(data, source, base_dir=base_dir)
+    return from_dict(parse_toml(text, source), source, base_dir=base_dir)
+
+
+def _one_line(exc) -> str:
+    return " ".join(str(exc).split())
 
 
 def load(path):
@@ -217,16 +319,8 @@ def load(path):
     >>> import drivedyn
     >>> m = drivedyn.load(drivedyn.example_path("belt-5pk"))  # doctest: +SKIP
     """
-    path = Path(path)
-    if not path.exists():
-        raise ModelError(f"{path}: file not found")
-    if path.is_dir():
-        raise ModelError(f"{path}: is a directory, expected a model file")
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ModelError(f"{path}: cannot read: {exc}") from None
-    return loads(text, source=str(path), base_dir=path.parent)
+    data, _ = read_toml(path)
+    return from_dict(data, str(path), base_dir=Path(path).parent)
 
 
 def to_dict(model) -> dict:

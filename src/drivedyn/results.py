@@ -3,11 +3,17 @@
 A :class:`Result` wraps an ``xarray.Dataset`` (time series and fields, ``units`` and
 ``long_name`` in each variable's attrs, the model TOML and versions in the Dataset attrs) and a
 nested ``summary`` dict of headline scalars (SI units; key names carry no unit unless they
-would be ambiguous, e.g. ``max_overlap_area_mm2``). ``save`` writes ``results.nc`` and
-``summary.json``; :func:`open_result` reads them back.
+would be ambiguous, e.g. ``max_overlap_area_mm2``), a ``units`` map (dotted summary key -> unit)
+and the run's ``diagnostics`` (see :mod:`drivedyn.diagnostics`). ``status`` is one of success,
+warning, failed. ``save`` writes ``results.nc`` and ``summary.json``; :func:`open_result` reads
+them back.
+
+summary.json: ``{"kind", "status", "message", "diagnostics": [{code, text, quantity, value,
+limit, unit}], "units": {"pulleys.driven.speed_mean": "rad/s", ...}, <the summary>}``.
 """
 from __future__ import annotations
 
+import fnmatch
 import json
 import math
 from dataclasses import dataclass, field
@@ -17,6 +23,7 @@ import numpy as np
 import xarray as xr
 
 from . import __version__
+from .diagnostics import Diagnostic, status_of
 
 
 @dataclass
@@ -35,6 +42,10 @@ class Result:
         False when the solve stopped early; ``ds`` then holds what was computed.
     message : str
         Why it stopped, or "" on success.
+    diagnostics : list of Diagnostic
+        Findings that put the result outside the model's valid regime (status "warning").
+    units : dict
+        Unit of each dotted summary key ("1" for ratios); keys without a unit are not listed.
     """
 
     kind: str
@@ -42,21 +53,36 @@ class Result:
     summary: dict = field(default_factory=dict)
     success: bool = True
     message: str = ""
+    diagnostics: list = field(default_factory=list)
+    units: dict = field(default_factory=dict)
+
+    @property
+    def status(self) -> str:
+        """"success", "warning" (ran; see ``diagnostics``) or "failed" (stopped; partial results)."""
+        return status_of(self.success, self.diagnostics)
+
+    def diagnose(self, code: str, text: str, quantity: str = "", value=None, limit=None, unit: str = "") -> Diagnostic:
+        """Add a diagnostic (a code of :data:`drivedyn.diagnostics.CODES`) and return it."""
+        d = Diagnostic(code, text, quantity, None if value is None else float(value),
+                       None if limit is None else float(limit), unit)
+        self.diagnostics.append(d)
+        return d
 
     def save(self, outdir) -> Path:
         """Write ``results.nc`` and ``summary.json`` into ``outdir`` (created if needed)."""
         outdir = Path(outdir)
         outdir.mkdir(parents=True, exist_ok=True)
         ds = self.ds.copy()
-        ds.attrs.update(kind=self.kind, status="success" if self.success else "failed",
-                        message=self.message, drivedyn_version=__version__)
+        ds.attrs.update(kind=self.kind, status=self.status, message=self.message, drivedyn_version=__version__,
+                        diagnostics=json.dumps([d.to_dict() for d in self.diagnostics]))
         ds.to_netcdf(outdir / "results.nc", engine="h5netcdf")
         (outdir / "summary.json").write_text(json.dumps(self.summary_document(), indent=2, default=_jsonable))
         return outdir
 
     def summary_document(self) -> dict:
-        """The summary as written to summary.json (with kind, status and message)."""
-        doc = {"kind": self.kind, "status": "success" if self.success else "failed", "message": self.message}
+        """The summary as written to summary.json (kind, status, message, diagnostics, units first)."""
+        doc = {"kind": self.kind, "status": self.status, "message": self.message,
+               "diagnostics": [d.to_dict() for d in self.diagnostics], "units": dict(self.units)}
         doc.update(_clean(self.summary))
         return doc
 
@@ -73,7 +99,22 @@ def open_result(outdir) -> Result:
     kind = doc.pop("kind", ds.attrs.get("kind", ""))
     status = doc.pop("status", "success")
     message = doc.pop("message", "")
-    return Result(kind=kind, ds=ds, summary=doc, success=status == "success", message=message)
+    diagnostics = [Diagnostic.from_dict(d) for d in doc.pop("diagnostics", [])]
+    units = doc.pop("units", {})
+    return Result(kind=kind, ds=ds, summary=doc, success=status != "failed", message=message,
+                  diagnostics=diagnostics, units=units)
+
+
+def unit_map(summary: dict, patterns: dict) -> dict:
+    """Units of the dotted keys of ``summary`` from ``patterns`` (fnmatch pattern -> unit; the
+    first pattern that matches a key wins)."""
+    out = {}
+    for key in flatten(summary):
+        for pat, unit in patterns.items():
+            if fnmatch.fnmatchcase(key, pat):
+                out[key] = unit
+                break
+    return out
 
 
 def flatten(d: dict, prefix: str = "") -> dict:

@@ -90,3 +90,49 @@ def test_comparison_row_with_too_few_teeth_names_the_field():
     data["compare"][0]["teeth"] = 0
     with pytest.raises(ModelError, match="teeth"):
         from_dict(data, source="mesh")
+
+
+# The crash classes of issue 10's hostile-user fuzz (each ended in a traceback): now one line
+# naming the field, at load. A value out of the float range or the physical range is refused where
+# it is read; the bounds' reasons are next to them in the code.
+@pytest.mark.parametrize("name, path, bad, field", [
+    ("belt-5pk", "belt.mass_per_length", float("inf"), "belt.mass_per_length"),     # ZeroDivisionError, stability_limit
+    ("belt-5pk", "belt.bending_stiffness", 1e308, "belt.bending_stiffness"),        # ZeroDivisionError, build
+    ("belt-5pk", "belt.axial_stiffness", "1e308 N", "belt.axial_stiffness"),
+    ("belt-5pk", "pulleys.driver.center", [float("inf"), 0.0], "pulleys[0].center"),  # OverflowError, initial_state
+    ("belt-accessory", "pulleys.idler.center", ["1e308 m", "0 m"], "pulleys[3].center"),  # OverflowError, layout
+    ("belt-5pk", "belt.segments", 2 ** 62, "belt.segments"),                        # allocation of 4e18 segments
+    ("gears-split-path", "gears.pinion.inertia", 1e-308, "gears[0].inertia"),       # OverflowError, assemble
+    ("gears-split-path", "drive.speed", "1e-308 rad/s", "drive.speed"),
+    ("gears-split-path", "gears.pinion.profile_shift", 1e308, "gears[0].profile_shift"),  # math domain error
+    ("gears-split-path", "gears.pinion.face_width", 1e308, "gears[0].face_width"),           # ran to exit 0
+    ("gears-split-path", "gears.pinion.face_width", "1e20 m", "gears[0].face_width"),
+    ("gears-split-path", "drive.speed", "1e20 rpm", "drive.speed"),                 # ran to exit 0
+    ("gears-split-path", "iso.sigma_hlim", 1e308, "iso.sigma_hlim"),                # OverflowError, iso6336
+    ("span-t10", "span.bending_stiffness", float("inf"), "span.bending_stiffness"),  # LinAlgError, frequencies
+    ("span-t10", "span.length", 1e-308, "span.length"),                             # ZeroDivisionError, euler_load
+    ("span-t10", "span.density", 1e308, "span.density"),                            # LinAlgError
+    ("span-t10", "tooth_force.polynomial", [float("nan"), 1.0], "tooth_force.polynomial"),  # ran to exit 0
+    ("span-t10", "tooth_force.polynomial", [float("inf"), 1.0], "tooth_force.polynomial"),
+    ("span-t10", "chart.zoom.points", [-5, 10], "chart.zoom.points"),               # negative count to linspace
+    ("span-t10", "excitation.pulley_radius", 1e308, "excitation.pulley_radius"),    # ZeroDivisionError, point_floquet
+    ("span-t10", "measurement.frequency", "1e308 Hz", "measurement.frequency"),      # OverflowError, string_tension
+    ("mesh-htd8m", "maps.pitch_error", [float("nan")], "maps.pitch_error"),         # GEOSException
+    ("mesh-htd8m", "maps.angles", -3, "maps.angles"),                               # negative count to linspace
+    ("mesh-htd8m", "maps.teeth", [16] * 500, "maps"),                               # 500 engagement sweeps at load
+    ("belt-5pk", "pulleys.driver.name", "a\x00b", "pulleys[0].name"),               # ValueError writing netCDF
+])
+def test_issue_10_crash_classes_are_refused_naming_the_field(name, path, bad, field):
+    model = drivedyn.load(drivedyn.example_path(name))
+    with pytest.raises(ModelError) as exc:
+        drivedyn.replace(model, {path: bad})
+    text = str(exc.value)
+    assert "\n" not in text and f"override: {field}" in text, text
+
+
+def test_a_model_read_back_writes_back():
+    """NaN or inf cannot reach a model object, so every model that loads can be saved as TOML
+    (a table holding NaN once failed after the solve, when the model was written with the results)."""
+    for name in EXAMPLES:
+        model = drivedyn.load(drivedyn.example_path(name))
+        assert drivedyn.loads(drivedyn.dumps(model)) == model

@@ -32,5 +32,7 @@ def test_contract(kind, tmp_path):
     assert first.flat_summary().keys() == second.flat_summary().keys()
     first.save(tmp_path)
     back = drivedyn.open_result(tmp_path)
-    assert back.kind == kind and back.summary.keys() == first.summary_document().keys() - {"kind", "status", "message"}
+    assert back.kind == kind and back.status == first.status
+    assert back.summary.keys() == first.summary_document().keys() - {"kind", "status", "message", "diagnostics", "units"}
+    assert back.diagnostics == first.diagnostics and back.units == first.units
     assert drivedyn.api.plot(back, tmp_path / "plots")

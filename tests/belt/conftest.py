@@ -2,7 +2,6 @@ import copy
 
 import pytest
 
-import drivedyn
 from drivedyn.model import from_dict
 
 BASE = {

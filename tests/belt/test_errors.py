@@ -32,6 +32,7 @@ def test_bad_input_one_line_exit_2(tmp_path, capsys, edit, expect):
     assert code == 2
     assert len(err.splitlines()) == 1, err
     assert expect in err
+    assert "m.toml" in err              # every model error names the file, also those found while assembling
 
 
 def test_missing_file(capsys):

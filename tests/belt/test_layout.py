@@ -7,7 +7,7 @@ import pytest
 import drivedyn
 from drivedyn.belt.initial import initial_state
 from drivedyn.belt.layout import compute_layout, layout_from
-from drivedyn.belt.statics import capstan_torque, span_frequencies
+from drivedyn.belt.statics import capstan_torque
 
 
 def test_open_belt_length_formula():
@@ -52,14 +52,11 @@ def test_initial_state_at_pretension(model_factory):
         assert T == pytest.approx(550.0, rel=1e-4)
 
 
-def test_capstan_and_string_formulas():
+def test_capstan_formula():
     assert capstan_torque(300, 0.027, math.pi, 0.3) == pytest.approx(2 * 300 * 0.027 * math.tanh(0.3 * math.pi / 2))
-    f = span_frequencies(550, 0.096, 0.515)
-    assert f[0] == pytest.approx(math.sqrt(550 / 0.096) / (2 * 0.515))
-    assert f[1] == pytest.approx(2 * f[0])
 
 
 def test_check_report_lists_everything():
     text = drivedyn.check(drivedyn.example_path("belt-accessory"))
-    for word in ("crankshaft", "idler", "wrap", "hub load", "f1 Hz", "alternator-idler"):
+    for word in ("crankshaft", "idler", "wrap", "hub load", "f1 Hz", "alternator-idler", "measure here", "slip margin"):
         assert word in text

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from drivedyn.study.cases import COMPLETED
 from drivedyn.study import run_study
 
 STUDY = """
@@ -61,13 +62,15 @@ def test_killed_worker_loses_nothing(client, write_study, tmp_path):
     t.join(5)
     assert killed, "the worker was not killed"
     ds = res.ds
-    assert (ds["status"] == "success").all(), ds["message"].values
+    assert np.isin(ds["status"], COMPLETED).all(), ds["message"].values  # short start-up runs may warn
     assert np.isfinite(ds["pulleys.driven.slip"].values).all()
     keys = ds["case_key"].values.tolist()
     assert len(set(keys)) == 8
     events = {k: _journal(cache, k) for k in keys}
-    # exactly one finished run per case, whichever worker ran it
-    assert all(ev.count("end") == 1 for ev in events.values()), events
+    # no case ran to its end twice, and every case finished: ran to its end, or (killed between
+    # writing its record and journaling "end") found finished in the cache by the re-run
+    assert all(ev.count("end") <= 1 for ev in events.values()), events
+    assert all(ev.count("end") + ev.count("cached") >= 1 for ev in events.values()), events
     # the killed worker's case ran again elsewhere: started anew, or, when the kill came between its
     # record being written and the worker reporting, found finished in the cache
     restarted = sum(ev.count("start") for ev in events.values()) > len(keys)
@@ -86,7 +89,7 @@ def test_worker_without_the_cache_folder_returns_the_record(tmp_path):
     toml = drivedyn.dumps(drivedyn.replace(drivedyn.load(BELT), {"simulation.duration": 0.005}))
     key = model_key(toml)
     rec = run_case(toml, key, str(tmp_path / "elsewhere"), "token", ["speed"])
-    assert rec["status"] == "success" and rec["series_data"]["speed"].dims == ("time", "pulley")
+    assert rec["status"] in COMPLETED and rec["series_data"]["speed"].dims == ("time", "pulley")
     cache = tmp_path / "cases"
     cache.mkdir()
     (cache / TOKEN).write_text("another-token")

@@ -32,6 +32,8 @@ class InitialState:
     tension: float          # T0 (N)
     penetration: np.ndarray # static penetration per pulley (m)
     turn: float             # +-2 pi: total turn of the loop (orientation)
+    residual: float = float("nan")  # largest static force left / pretension (nan: not relaxed)
+    gap: float = 0.0        # joint gap at the pretension, l (T0 / EA)^(1/e) (m): segment pitch l + gap
 
 
 class _Path:
@@ -166,4 +168,5 @@ def initial_state(model, layout: Layout) -> InitialState:
     d = ends - starts
     phi = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
     turn = 2 * math.pi * layout.orientation
-    return InitialState(lay, mid[:, 0].copy(), mid[:, 1].copy(), phi, float(l), float(T), p0, turn)
+    return InitialState(lay, mid[:, 0].copy(), mid[:, 1].copy(), phi, float(l), float(T), p0, turn,
+                        gap=float(l * (T / EA) ** (1.0 / e)))

@@ -1,6 +1,7 @@
 """Standard figures of a belt-drive run (seed figs. 10-17) and an animation of the belt.
 
-Functions take an ``ax`` (or create a Figure) and never touch pyplot or the backend.
+Functions are ``plot_x(ds, ..., ax=None)`` (a new figure when no ``ax``) and never touch pyplot or
+the backend; ``plot_all`` marks every figure of a warned or failed run (drivedyn.plotting).
 """
 from __future__ import annotations
 
@@ -9,6 +10,8 @@ from pathlib import Path
 import numpy as np
 from matplotlib.figure import Figure
 
+from .. import plotting
+
 
 def _fig(nrows=1, height=3.2):
     fig = Figure(figsize=(8, height * nrows), layout="constrained")
@@ -16,7 +19,8 @@ def _fig(nrows=1, height=3.2):
     return fig, axes
 
 
-def plot_speeds(ds, ax):
+def plot_speeds(ds, ax=None):
+    ax = plotting.ax_or_new(ax)
     t = ds["time"].values
     for nm in ds["pulley"].values:
         ax.plot(t, ds["speed"].sel(pulley=nm), label=str(nm))
@@ -26,7 +30,8 @@ def plot_speeds(ds, ax):
     ax.grid(alpha=0.3)
 
 
-def plot_slip(ds, ax, driver):
+def plot_slip(ds, driver, ax=None):
+    ax = plotting.ax_or_new(ax)
     t = ds["time"].values
     r = ds["pulley_radius"]
     vd = np.abs(ds["speed"].sel(pulley=driver) * r.sel(pulley=driver)).values
@@ -43,7 +48,8 @@ def plot_slip(ds, ax, driver):
     ax.grid(alpha=0.3)
 
 
-def plot_lines(ds, var, dim, ax, ylabel, title):
+def plot_lines(ds, var, dim, ylabel, title, ax=None):
+    ax = plotting.ax_or_new(ax)
     t = ds["time"].values
     for key in ds[dim].values:
         ax.plot(t, ds[var].sel({dim: key}), label=str(key))
@@ -53,7 +59,8 @@ def plot_lines(ds, var, dim, ax, ylabel, title):
     ax.grid(alpha=0.3)
 
 
-def plot_energy(ds, ax):
+def plot_energy(ds, ax=None):
+    ax = plotting.ax_or_new(ax)
     t = ds["time"].values
     ax.plot(t, ds["work_in"], label="work in", color="k")
     D = ds["dissipated"]
@@ -90,40 +97,78 @@ def draw_drive(ds, frame, ax, vmax=None):
     return sc
 
 
+def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), rpm_max=None):
+    """Campbell diagram: the drive's rotational modes (horizontal) against the orders of the
+    driver's rotation (k x driver speed); crossings are resonances a run-up passes through."""
+    ax = plotting.ax_or_new(ax)
+    w = np.abs(ds["speed"].sel(pulley=driver).values)
+    rpm_run = float(w.max()) * 30 / np.pi if len(w) else 0.0
+    top_rpm = rpm_max or max(1.25 * rpm_run, 1.0)
+    f_top = max([1.1 * f for f in frequencies_hz] + [orders[-1] * top_rpm / 60])
+    for f in frequencies_hz:
+        ax.axhline(f, color="C0", lw=1.2)
+        ax.text(top_rpm * 0.99, f, f" {f:.1f} Hz", va="bottom", ha="right", fontsize=8, color="C0")
+    n = np.array([0.0, top_rpm])
+    for k in orders:
+        ax.plot(n, k * n / 60, color="0.5", lw=0.8, ls="--")
+        ax.text(top_rpm, k * top_rpm / 60, f" {k}", fontsize=8, color="0.4", va="center")
+        for f in frequencies_hz:   # resonance: order k at the speed where k n / 60 = f
+            if 60 * f / k <= top_rpm:
+                ax.plot(60 * f / k, f, "o", color="C3", ms=5)
+    if rpm_run > 0:
+        ax.axvline(rpm_run, color="k", lw=0.8, ls=":", label=f"{driver}: {rpm_run:.0f} rpm (run's largest)")
+        ax.legend(loc="upper left", fontsize=8)
+    ax.set_xlim(0, top_rpm * 1.08)
+    ax.set_ylim(0, f_top)
+    ax.set_xlabel(f"{driver} speed (rpm)")
+    ax.set_ylabel("frequency (Hz)")
+    ax.set_title("Campbell diagram: rotational modes (spans EA/L) and orders of the driver (dashed)")
+    ax.grid(alpha=0.3)
+    return ax
+
+
 def plot_all(result, outdir) -> list[Path]:
     ds, outdir = result.ds, Path(outdir)
     driver = result.summary.get("driver", str(ds["pulley"].values[0]))
     files = []
 
     def save(fig, name):
-        p = outdir / name
-        fig.savefig(p, dpi=110)
-        files.append(p)
+        plotting.save(fig, outdir / name, result, files, dpi=110)
 
     if ds.sizes.get("time", 0) == 0:
         return files
     fig, ax = _fig(2)
-    plot_speeds(ds, ax[0])
-    plot_slip(ds, ax[1], driver)
+    plot_speeds(ds, ax=ax[0])
+    plot_slip(ds, driver, ax=ax[1])
     ax[1].set_xlabel("time (s)")
     save(fig, "speeds.png")
 
     fig, ax = _fig(2)
-    plot_lines(ds, "span_tension", "span", ax[0], "tension (N)", "mid-span tensions")
-    plot_lines(ds, "hub_load", "pulley", ax[1], "hub load (N)", "hub loads")
+    plot_lines(ds, "span_tension", "span", "tension (N)", "mid-span tensions", ax=ax[0])
+    plot_lines(ds, "hub_load", "pulley", "hub load (N)", "hub loads", ax=ax[1])
     ax[1].set_xlabel("time (s)")
     save(fig, "tensions.png")
 
     fig, ax = _fig(3, 2.6)
-    plot_lines(ds, "element_force", "tracked", ax[0], "force (N)", "longitudinal element force after segment (seed fig. 11)")
-    plot_lines(ds, "normal_force", "tracked", ax[1], "force (N)", "contact normal force on segment (seed fig. 12)")
-    plot_lines(ds, "friction_force", "tracked", ax[2], "force (N)", "friction force on segment (seed fig. 13)")
+    plot_lines(ds, "element_force", "tracked", "force (N)", "longitudinal element force after segment (seed fig. 11)", ax=ax[0])
+    plot_lines(ds, "normal_force", "tracked", "force (N)", "contact normal force on segment (seed fig. 12)", ax=ax[1])
+    plot_lines(ds, "friction_force", "tracked", "force (N)", "friction force on segment (seed fig. 13)", ax=ax[2])
     ax[2].set_xlabel("time (s)")
     save(fig, "segment_forces.png")
 
     fig, ax = _fig(1, 4)
-    plot_energy(ds, ax[0])
+    plot_energy(ds, ax=ax[0])
     save(fig, "energy.png")
+
+    if "model_toml" in ds.attrs:   # the drive's rotational modes (modes.py) against the driver's orders
+        from ..model import loads
+        from .modes import modes
+
+        freqs = modes(loads(ds.attrs["model_toml"])).frequencies_hz
+        if freqs:
+            fig, ax = _fig(1, 4)
+            plot_campbell(ds, freqs, driver, ax=ax[0])
+            save(fig, "campbell.png")
 
     if ds.sizes.get("frame", 0):
         fig = Figure(figsize=(8, 5), layout="constrained")

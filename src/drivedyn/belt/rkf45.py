@@ -54,6 +54,7 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
     E0 = energy()
     capture(0.0)
     t, h, steps, work = 0.0, min(sysm.step, interval), 0, 0.0
+    rec.rejected, rec.rhs = 0, 0
     diss = np.zeros(4)
     for k in range(nsamples):
         acc_p[:], acc_tq[:] = 0.0, 0.0
@@ -61,6 +62,8 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
         t, h, a, r = K.rkf45_chunk(t, t_end, h, y, model.simulation.rtol, model.simulation.atol,
                                     max_steps_per_sample, *args[:-2], sn, st, acc_p, acc_tq)
         steps += a
+        rec.rejected += r
+        rec.rhs += 6 * (a + r) + 1           # six stages per attempt, one snapshot per sample
         if t < t_end - 1e-12 or not np.all(np.isfinite(y)):
             return k, (f"rkf45 stopped at t = {t:.6g} s: step size collapsed to {h:.3g} s "
                        f"(stiff friction law; raise friction.velocity_threshold)"), steps, h

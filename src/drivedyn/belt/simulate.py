@@ -8,9 +8,10 @@ import time as _time
 import numpy as np
 import xarray as xr
 
-from ..errors import SolverError, Stopped
+from ..errors import SolverError, Stopped, stop_reason
 from ..model import dumps
-from ..results import Result, variable
+from ..results import Result, unit_map, variable
+from ..window import in_window, steady_window
 from ..tables import table
 from . import _kernels as K
 from .system import BeltSystem, build, effective_inertia
@@ -42,6 +43,7 @@ class _Recorder:
         self.ftension = np.zeros((nframes, n))
         self.ns = 0
         self.steps, self.step = 0, 0.0  # adaptive steps and last step size so far (rkf45)
+        self.rejected, self.rhs = 0, 0  # rejected steps and right-hand-side evaluations (rkf45)
         self.nf = 0
 
 
@@ -203,7 +205,7 @@ def run(model, progress=None) -> Result:
             done, failure, nsteps, h = integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval)
     except (Stopped, KeyboardInterrupt) as exc:
         # a time limit or Ctrl-C: keep the whole samples recorded so far (rec.ns counts them)
-        why = str(exc) if isinstance(exc, Stopped) else "interrupted by the user"
+        why = stop_reason(exc)
         failure = f"stopped: {why}"
         if sim.method == "semi-implicit":
             nsteps = rec.ns * steps_per_sample
@@ -256,8 +258,47 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
         attrs={"model_toml": dumps(model), "title": model.name or "belt drive"},
     )
     ds["time"].attrs["units"] = "s"
-    summary = _summary(model, sysm, ds, wall, nsteps, h, failure)
-    return Result("belt-drive", ds, summary, success=not failure, message=failure)
+    t = rec.t[:ns]
+    t_end = float(t[-1]) if ns else 0.0
+    window = steady_window(model.output.steady_window, model.simulation.duration)
+    sel = in_window(t, window)
+    if not np.any(sel):     # a run stopped before the window: the last quarter of what was computed
+        window = steady_window(None, t_end)
+        sel = in_window(t, window)
+    semi = model.simulation.method == "semi-implicit"
+    # the one solver record (same keys in every time integration), extras after it
+    solver = {"method": model.simulation.method, "steps": int(nsteps),
+              "rejected_steps": 0 if semi else int(rec.rejected),
+              "rhs_evaluations": int(nsteps) if semi else int(rec.rhs),   # semi-implicit: one force pass per step
+              "last_step": float(h), "wall_time": float(wall), "simulated_time": t_end,
+              "status": "failed" if failure else "success",
+              "step": float(h), "stability_limit": float(sysm.step_limit),
+              "real_time_factor": float(t_end / wall) if wall > 0 else float("nan")}
+    summary = _summary(model, sysm, ds, solver, sel, window)
+    result = Result("belt-drive", ds, summary, success=not failure, message=failure)
+    if ns:
+        from .diagnose import run_checks
+
+        run_checks(result, model, sysm, sel)
+    result.units = unit_map(result.summary, UNITS)
+    return result
+
+
+#: units of the summary keys (results.unit_map: first matching pattern wins; "1" for ratios)
+UNITS = {
+    "steady_window": "s",
+    "pulleys.*.speed_mean": "rad/s", "pulleys.*.hub_load": "N", "pulleys.*.hub_force": "N",
+    "pulleys.*.torque_mean": "N*m", "pulleys.*.power_mean": "W",
+    "pulleys.*.slip": "1", "pulleys.*.creep": "1", "pulleys.*.creep_bound": "1", "pulleys.*.sliding": "1",
+    "pulleys.*.sliding_share": "1", "pulleys.*.contact_share": "1", "pulleys.*.peak_normal_ratio": "1",
+    "pulleys.*.chordal_error": "1", "pulleys.*.slip_margin": "1",
+    "spans.*.tension_*": "N", "spans.*.speed_mean": "m/s",
+    "power.efficiency": "1", "power.energy_residual_*": "1", "power.*": "W",
+    "belt.pretension": "N", "belt.segment_length": "m", "belt.path_length": "m",
+    "steady.*": "1", "at_rest.speed_max.*": "rad/s", "at_rest.residual_force": "1",
+    "solver.last_step": "s", "solver.step": "s", "solver.stability_limit": "s", "solver.wall_time": "s",
+    "solver.simulated_time": "s", "solver.real_time_factor": "1",
+}
 
 
 def warm():
@@ -273,19 +314,9 @@ def warm():
     run(m)
 
 
-def steady_window(model, t_end):
-    if model.output.steady_window is not None:
-        return tuple(model.output.steady_window)
-    return (0.75 * t_end, t_end)
-
-
-def _summary(model, sysm, ds, wall, nsteps, h, failure) -> dict:
+def _summary(model, sysm, ds, solver, sel, window) -> dict:
     t = ds["time"].values
-    t_end = float(t[-1]) if len(t) else 0.0
-    w0, w1 = steady_window(model, model.simulation.duration)
-    sel = (t > w0) & (t <= w1 + 1e-12)
-    if not np.any(sel):
-        sel = t >= 0.75 * t_end
+    w0, w1 = window
     mean = lambda v: ds[v].values[sel].mean(axis=0) if np.any(sel) else np.full(ds[v].shape[1:], np.nan)
     names = list(sysm.layout.names)
     speed, pin = mean("speed"), mean("power_in")
@@ -316,7 +347,7 @@ def _summary(model, sysm, ds, wall, nsteps, h, failure) -> dict:
         v_arr, v_out = (vsp[j - 1], vsp[j]) if forward else (vsp[j], vsp[j - 1])
         pulleys[nm]["creep"] = float(1 - abs(v_out) / abs(v_arr)) if abs(v_arr) > 1e-9 else float("nan")
     p_in = float(np.sum(pin[pin > 0]))
-    p_out = float(-np.sum(pin[pin < 0]))
+    p_out = float(-np.sum(pin[pin < 0])) + 0.0     # + 0.0: no "-0" when nothing is taken out
     # mean dissipation rates over the window from the cumulative energies
     D = ds["dissipated"].values
     tw = t[sel]
@@ -328,7 +359,6 @@ def _summary(model, sysm, ds, wall, nsteps, h, failure) -> dict:
     else:
         rates, resid_rate = np.full(4, np.nan), float("nan")
     mech = ds["mechanism"].values.tolist()
-    W = ds["work_in"].values
     return {
         "driver": names[d],
         "steady_window": [float(w0), float(w1)],
@@ -339,12 +369,9 @@ def _summary(model, sysm, ds, wall, nsteps, h, failure) -> dict:
             "efficiency": p_out / p_in if p_in > 0 else float("nan"),
             "losses": {m: float(r) for m, r in zip(mech, rates)},
             "unaccounted": float(resid_rate),
-            "energy_residual_relative": float(abs(ds["energy_residual"].values[-1]) / max(abs(W[-1]), 1e-30)) if len(W) else float("nan"),
+            "energy_residual_relative": float("nan"),     # diagnose._energy: against the work in
         },
         "belt": {"pretension": sysm.init.tension, "segment_length": sysm.init.seg_length,
                  "segments": sysm.n, "path_length": sysm.layout.length},
-        "solver": {"method": model.simulation.method, "step": float(h), "steps": int(nsteps),
-                   "simulated_time": t_end, "wall_time": float(wall),
-                   "real_time_factor": float(t_end / wall) if wall > 0 else float("nan"),
-                   "stability_limit": float(sysm.step_limit), "status": "failed" if failure else "success"},
+        "solver": solver,
     }

@@ -1,26 +1,11 @@
-"""What is known without simulating: layout, belt length, wraps, static tensions, hub loads,
-span frequencies, the capstan limit and the step the integrator will use."""
+"""What is known without simulating: layout, belt length, wraps, static tensions, hub loads, the
+installation table (installation.py), the steady running state of creep theory with the slip
+margins (steady.py), the rotational modes (modes.py) and the step the integrator will use."""
 from __future__ import annotations
 
 import math
 
 import numpy as np
-
-
-
-def span_frequencies(tension, mass_per_length, length, bending_stiffness=0.0, speed=0.0, modes=3):
-    """Transverse natural frequencies (Hz) of a span.
-
-    Taut string (Wickert & Mote 1990, axially moving): f_n = n/(2L) c (1 - v^2/c^2), c = sqrt(T/m');
-    a pinned-pinned bending correction multiplies by sqrt(1 + (n pi / L)^2 EI / T) (beam under tension).
-    """
-    c = math.sqrt(tension / mass_per_length)
-    out = []
-    for k in range(1, modes + 1):
-        f = k / (2 * length) * c * (1 - (speed / c) ** 2)
-        f *= math.sqrt(1 + (k * math.pi / length) ** 2 * bending_stiffness / tension)
-        out.append(f)
-    return out
 
 
 def capstan_torque(tension, radius, wrap, mu):
@@ -29,10 +14,74 @@ def capstan_torque(tension, radius, wrap, mu):
     return 2 * tension * radius * math.tanh(mu * wrap / 2)  # = (e - 1)/(e + 1), no overflow
 
 
+def check_data(model, sysm=None) -> dict:
+    """What ``check`` knows, as plain data (``drivedyn check --json``): the steady running state of
+    creep theory (steady.py), the slip margins and the rotational modes (modes.py)."""
+    from .installation import installation_table
+    from .layout import compute_layout
+    from .modes import modes
+    from .steady import steady_state
+
+    lay = sysm.layout if sysm is not None else compute_layout(model)
+    st = steady_state(model, lay)
+    if sysm is not None:
+        t0 = sysm.init.tension
+    elif model.belt.pretension is not None:
+        t0 = model.belt.pretension
+    else:   # installed by length: the tension of that length at rest
+        from .steady import drive_of, tensions
+
+        t0 = float(np.mean(tensions(drive_of(model, lay), np.zeros(len(model.pulleys)), 0.0, True)))
+    inst = installation_table(model, t0, lay)
+    md = modes(model, lay)
+    fin = lambda x: float(x) if math.isfinite(x) else None     # JSON: no inf (an unloaded pulley never slips)
+    return {
+        "steady": {
+            "state": st.state, "belt_speed": st.speed, "acceleration": st.acceleration,
+            "centrifugal_tension": st.centrifugal, "unstretched_length": st.unstretched_length,
+            "driver": st.driver, "gross_slip": st.gross_slip or None,
+            "slip_margin": fin(st.margin), "limiting_pulley": st.limiting or None, "notes": st.notes,
+            "spans": {n: {"tension": t} for n, t in st.spans.items()},
+            "pulleys": {p.name: {"torque": p.torque, "speed": p.speed, "wrap": p.wrap,
+                                 "tension_in": p.tension_in, "tension_out": p.tension_out,
+                                 "slip_arc": fin(p.slip_arc), "adhesion_arc": p.adhesion_arc,
+                                 "creep": p.creep, "speed_ratio": p.speed_ratio,
+                                 "slip_margin": fin(p.slip_margin),
+                                 "slip_torque": fin(abs(p.torque) * p.slip_margin) if p.torque else None}
+                        for p in st.pulleys.values()},
+        },
+        "installation": inst,
+        "modes": {"dofs": list(md.dofs), "rigid_modes": md.rigid_modes, "frequencies_hz": md.frequencies_hz,
+                  "shapes": md.shapes, "participation": md.participation},
+    }
+
+
+#: units of check_data's keys (angles in rad, margins and creep are ratios)
+CHECK_UNITS = {"steady.spans.*.tension": "N", "steady.pulleys.*.torque": "N*m", "steady.pulleys.*.slip_torque": "N*m",
+               "steady.pulleys.*.speed": "rad/s", "steady.pulleys.*.tension_*": "N", "steady.pulleys.*.wrap": "rad",
+               "steady.pulleys.*.*_arc": "rad", "steady.pulleys.*": "1", "steady.belt_speed": "m/s",
+               "steady.acceleration": "m/s^2", "steady.centrifugal_tension": "N", "steady.unstretched_length": "m",
+               "steady.slip_margin": "1", "installation.tolerance": "1", "installation.spans.*.length": "m",
+               "installation.spans.*.tension": "N", "installation.spans.*.frequency*": "Hz",
+               "installation.spans.*.band": "Hz", "installation.spans.*.bending_correction": "1",
+               "modes.frequencies_hz": "Hz", "modes.participation*": "1", "modes.shapes*": "rad"}
+
+
+def check_json(model) -> str:
+    import json
+
+    from ..results import unit_map
+
+    data = check_data(model)
+    data["units"] = unit_map(data, CHECK_UNITS)
+    return json.dumps(data, indent=1)
+
+
 def report(model) -> str:
+    from .installation import installation_table, table_lines
     from .system import build
 
-    sysm = build(model)
+    sysm = build(model, settle=False)       # the report needs no settled segment positions
     lay = sysm.layout
     T0 = sysm.init.tension
     belt = model.belt
@@ -42,20 +91,49 @@ def report(model) -> str:
              f"belt: unstretched length {sysm.init.seg_length * belt.segments * 1e3:.2f} mm, pretension {T0:.1f} N "
              f"(strain {T0 / belt.axial_stiffness * 100:.3f} %), {belt.segments} segments of {sysm.init.seg_length * 1e3:.3f} mm",
              "", f"{'pulley':14s} {'x mm':>9s} {'y mm':>9s} {'r mm':>7s} {'side':>6s} {'wrap deg':>9s} {'hub load N':>11s} "
-             f"{'hub dir deg':>11s} {'penetr. mm':>10s} {'capstan N m':>11s}"]
+             f"{'hub dir deg':>11s} {'penetr. mm':>10s}"]
     hub = lay.hub_load_static(T0)
-    mu = model.friction.coefficient
     for j, p in enumerate(model.pulleys):
         H = hub[j]
         lines.append(f"{p.name:14s} {p.center[0] * 1e3:9.2f} {p.center[1] * 1e3:9.2f} {p.radius * 1e3:7.2f} {p.side:>6s} "
                      f"{math.degrees(lay.wrap[j]):9.2f} {np.hypot(*H):11.1f} {math.degrees(math.atan2(H[1], H[0])):11.1f} "
-                     f"{sysm.init.penetration[j] * 1e3:10.4f} {capstan_torque(T0, p.radius, lay.wrap[j], mu):11.2f}")
-    lines += ["", f"{'span':28s} {'length mm':>10s} {'tension N':>10s} {'f1 Hz':>8s} {'f2 Hz':>8s} {'f3 Hz':>8s}"]
-    for sp in lay.spans:
-        f = span_frequencies(T0, belt.mass_per_length, sp.length, belt.bending_stiffness)
-        lines.append(f"{sp.name:28s} {sp.length * 1e3:10.2f} {T0:10.1f} {f[0]:8.1f} {f[1]:8.1f} {f[2]:8.1f}")
-    lines += ["", "static: no load, no gravity sag; span frequencies of the belt at rest (taut string with bending).",
+                     f"{sysm.init.penetration[j] * 1e3:10.4f}")
+    lines += [""] + table_lines(installation_table(model, T0, lay))
+    lines += [""] + _steady_lines(check_data(model, sysm), model)
+    lines += ["", "static: no load, no gravity sag; span frequencies of the belt at rest (taut beam, pinned ends).",
               f"integration: {model.simulation.method}, step {sysm.step * 1e6:.3f} us (stability limit "
               f"{sysm.step_limit * 1e6:.3f} us), {model.simulation.duration / sysm.step:.3g} steps for "
               f"{model.simulation.duration:g} s"]
     return "\n".join(lines)
+
+
+def _steady_lines(data, model) -> list:
+    st, md = data["steady"], data["modes"]
+    what = {"running": f"running steady at belt speed {abs(st['belt_speed']):.4g} m/s (centrifugal tension "
+                       f"{st['centrifugal_tension']:.3g} N)",
+            "accelerating": f"accelerating uniformly ({abs(st['acceleration']):.4g} m/s^2 of belt)",
+            "at rest": "at rest (no load)"}[st["state"]]
+    out = [f"steady state (creep theory, belt length kept; driver {st['driver']}): {what}"]
+    out += ["  " + n for n in st["notes"]]
+    out.append(f"{'pulley':14s} {'load N m':>9s} {'T in N':>8s} {'T out N':>8s} {'slip arc':>9s} {'of wrap':>8s} "
+               f"{'creep %':>8s} {'margin':>7s} {'slips at N m':>12s}")
+    for name, p in st["pulleys"].items():
+        arc, m, mt = p["slip_arc"], p["slip_margin"], p["slip_torque"]
+        arc_s = "gross" if arc is None else "%5.1f deg" % math.degrees(arc)
+        share = "-" if arc is None else "%5.1f %%" % (100 * arc / p["wrap"])
+        m_s = "-" if m is None else "%7.3f" % m
+        mt_s = "-" if mt is None else "%12.2f" % mt
+        out.append(f"{name:14s} {p['torque']:9.3f} {p['tension_in']:8.1f} {p['tension_out']:8.1f} {arc_s:>9s} "
+                   f"{share:>8s} {100 * p['creep']:8.4f} {m_s:>7s} {mt_s:>12s}")
+    out.append("  " + ", ".join(f"span {n} {s['tension']:.1f} N" for n, s in st["spans"].items()))
+    if st["gross_slip"]:
+        out.append(f"  no steady state: pulley {st['gross_slip']} slips grossly under these loads (slip arc > wrap)")
+    elif st["slip_margin"] is not None:
+        out.append(f"  slip margin {st['slip_margin']:.3f}: the loads x {st['slip_margin']:.3f} make pulley "
+                   f"{st['limiting_pulley']} slip grossly (its slip arc reaches its wrap)")
+    fr = ", ".join(f"{f:.1f}" for f in md["frequencies_hz"]) or "none"
+    out.append(f"rotational modes (spans EA/L, free pulleys {', '.join(md['dofs'])}): {fr} Hz")
+    for k, part in enumerate(md["participation"]):
+        top = sorted(part.items(), key=lambda kv: -kv[1])
+        out.append(f"  {md['frequencies_hz'][k]:8.1f} Hz: " + ", ".join(f"{n} {100 * e:.0f} %" for n, e in top if e >= 0.01))
+    return out

@@ -1,6 +1,7 @@
 """Model -> plain arrays for the kernels (the only place that knows both worlds)."""
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -8,6 +9,7 @@ import numpy as np
 
 from ..errors import ModelError
 from . import _kernels as K
+from .equilibrium import relax
 from .initial import InitialState, initial_state
 from ..tables import flatten
 from .layout import Layout, compute_layout
@@ -33,7 +35,9 @@ class BeltSystem:
         return int(self.ip[K.I_N])
 
 
-def build(model) -> BeltSystem:
+def build(model, settle: bool = True) -> BeltSystem:
+    """The kernels' arrays for ``model``. ``settle``: start the belt from its static equilibrium
+    (equilibrium.relax, 0.2-1.5 s); ``check`` needs only the placement's tension and penetration."""
     layout = compute_layout(model)
     init = initial_state(model, layout)
     belt, n, nk = model.belt, model.belt.segments, len(model.pulleys)
@@ -54,7 +58,7 @@ def build(model) -> BeltSystem:
         bc=model.contact.damping * l * ones,
     )
     # friction zones by arc length of the segment centre measured from the start of segment 0
-    s_mid = (np.arange(n) + 0.5) * (l * (1 + (init.tension / belt.axial_stiffness) ** (1 / e)))
+    s_mid = (np.arange(n) + 0.5) * (l + init.gap)
     for zone in model.friction.zones:
         seg["mu"][(s_mid >= zone.start) & (s_mid < zone.end)] = zone.coefficient
 
@@ -87,7 +91,7 @@ def build(model) -> BeltSystem:
     ip[K.I_LINEAR] = 1 if e == 1.0 else 0
     fp = np.zeros(9)
     fp[K.F_EAX], fp[K.F_EB] = e, belt.bending_exponent
-    fp[K.F_PMAX], fp[K.F_DV], fp[K.F_DMAX] = model.contact.damping_depth, model.friction.velocity_threshold, model.friction.displacement_limit
+    fp[K.F_PMAX], fp[K.F_DV], fp[K.F_DMAX] = damping_depth(model, init), model.friction.velocity_threshold, model.friction.displacement_limit
     fp[K.F_G], fp[K.F_TURN], fp[K.F_HL] = model.gravity, init.turn, 0.5 * l
 
     scaled = model.simulation.method == "semi-implicit" and model.simulation.rotation_scaling
@@ -98,7 +102,21 @@ def build(model) -> BeltSystem:
                          f"{model.simulation.duration:g} s, over the {MAX_STEPS:.0e} allowed): check the belt's "
                          "stiffness and damping values and the contact stiffness", field="simulation")
     fp[K.F_ISCALE] = ROTATION_SCALE if scaled else 1.0
-    return BeltSystem(model, layout, init, ip, fp, seg, pul, span_mid, span_geo, track, step, limit)
+    sysm = BeltSystem(model, layout, init, ip, fp, seg, pul, span_mid, span_geo, track, step, limit)
+    # start from the chain's static equilibrium, so that a drive at rest stays at rest
+    eq = relax(sysm, init.x, init.y, init.phi) if settle else None
+    if eq is not None:
+        x, y, phi, res, _ = eq
+        sysm.init = dataclasses.replace(init, x=x, y=y, phi=phi, residual=res)
+    return sysm
+
+
+def damping_depth(model, init) -> float:
+    """p_max of the contact damping ramp: the model's, else the smallest static penetration at the
+    pretension (the segments pressed as at rest on the largest pulley get the full damping)."""
+    if model.contact.damping_depth is not None:
+        return float(model.contact.damping_depth)
+    return float(np.min(init.penetration))
 
 
 # Selective mass scaling of the segments' rotation: I = m l^2/12 -> 3.3 I = 1.1 m l^2/4, just above
@@ -121,8 +139,7 @@ def _tangent_k(model, init, seg):
     e = model.belt.axial_exponent
     k = float(seg["kax"][0])
     if e != 1.0:  # tangent stiffness at the pretension
-        g = init.seg_length * (init.tension / model.belt.axial_stiffness) ** (1 / e)
-        k = e * k * g ** (e - 1)
+        k = e * k * init.gap ** (e - 1)
     return k
 
 

@@ -14,7 +14,8 @@
   the backlash, never pulling); torque -r_ba f + fa(u) f on the driving gear, r_bb f + fb(u) f on
   the driven one (fa, fb: tooth friction moment per unit force, sign change at the pitch point).
 - RK4 (fixed step, as the seed) and Dormand-Prince 5(4) (adaptive, Hairer, Norsett & Wanner,
-  Solving ODEs I, table II.5.2, with cubic Hermite output) loop entirely in compiled code.
+  Solving ODEs I, table II.5.2, with cubic Hermite output) loop in compiled code, in chunks of
+  steps that the caller strings together (progress, Ctrl-C and time limits between chunks).
 """
 import math
 
@@ -39,6 +40,19 @@ def _periodic(tab, j, u):
     if i1 == N:
         i1 = 0
     return tab[j, i0] * (1.0 - w) + tab[j, i1] * w
+
+
+@njit(cache=True)
+def _shafts_and_inertia(y, dy, n, J, sa, sb, sk, sc):
+    """Add the torsional shafts' moments to the torques in dy[n:], then divide by the inertias."""
+    for j in range(sa.size):
+        a = sa[j]
+        b = sb[j]
+        M = sk[j] * (y[a] - y[b]) + sc[j] * (y[n + a] - y[n + b])
+        dy[n + a] -= M
+        dy[n + b] += M
+    for i in range(n):
+        dy[n + i] /= J[i]
 
 
 @njit(cache=True)
@@ -79,14 +93,7 @@ def rhs(t, y, p, dy, fm, dm):
         dm[j] = d
         dy[n + a] += (-rba[j] + _periodic(fa, j, u)) * f
         dy[n + b] += (rbb[j] + _periodic(fb, j, u)) * f
-    for j in range(sa.size):
-        a = sa[j]
-        b = sb[j]
-        M = sk[j] * (y[a] - y[b]) + sc[j] * (y[n + a] - y[n + b])
-        dy[n + a] -= M
-        dy[n + b] += M
-    for i in range(n):
-        dy[n + i] /= J[i]
+    _shafts_and_inertia(y, dy, n, J, sa, sb, sk, sc)
 
 
 @njit(cache=True)
@@ -107,14 +114,15 @@ def _rk4_step(t, y, h, p, k1, k2, k3, k4, tmp, fm, dm, fs, ds):
 
 
 @njit(cache=True)
-def run_rk4(y0, h, nsteps, every, p, w0, w1, out_y, out_f, out_d, stats):
-    """Fixed-step RK4 over nsteps steps of h from t = 0; a sample every ``every`` steps.
+def run_rk4(y, h, s0, s1, nsteps, every, p, w0, w1, out_y, out_f, out_d, stats):
+    """Fixed-step RK4: steps s0 .. s1 - 1 of h (of nsteps in all) from the state ``y`` at t = s0 h,
+    in place; a sample every ``every`` steps. Called in chunks (the caller reports progress and
+    honours interrupts between them); s = nsteps only evaluates the forces at the end.
 
-    stats (m x 4): max force, min force, sum of force, count, over the steady window [w0, w1].
-    Returns the number of steps done (< nsteps if the state stopped being finite).
+    stats (m x 4, initialised by the caller): max force, min force, sum of force, count, over the
+    steady window [w0, w1]. Returns s1, or the step at which the state stopped being finite.
     """
     m = out_f.shape[1]
-    y = y0.copy()
     k1 = np.empty_like(y)
     k2 = np.empty_like(y)
     k3 = np.empty_like(y)
@@ -124,13 +132,7 @@ def run_rk4(y0, h, nsteps, every, p, w0, w1, out_y, out_f, out_d, stats):
     dm = np.empty(m)
     fs = np.empty(m)
     ds = np.empty(m)
-    for j in range(m):
-        stats[j, 0] = -np.inf
-        stats[j, 1] = np.inf
-        stats[j, 2] = 0.0
-        stats[j, 3] = 0.0
-    out_y[0, :] = y
-    for s in range(nsteps + 1):
+    for s in range(s0, min(s1, nsteps + 1)):
         t = s * h
         if s < nsteps:
             _rk4_step(t, y, h, p, k1, k2, k3, k4, tmp, fm, dm, fs, ds)
@@ -152,7 +154,7 @@ def run_rk4(y0, h, nsteps, every, p, w0, w1, out_y, out_f, out_d, stats):
                 return s
         if s < nsteps and (s + 1) % every == 0 and (s + 1) // every < out_y.shape[0]:
             out_y[(s + 1) // every, :] = y
-    return nsteps
+    return s1
 
 
 # Dormand-Prince 5(4) tableau (Hairer, Norsett & Wanner I, table II.5.2)
@@ -169,36 +171,39 @@ _E = np.array([71 / 57600, 0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525,
 
 
 @njit(cache=True)
-def run_dopri5(y0, t_end, h0, h_max, rtol, atol, p, dt_out, w0, w1, out_y, out_f, out_d, stats, counts):
-    """Adaptive Dormand-Prince 5(4) from t = 0 to t_end; samples every dt_out by cubic Hermite.
-
-    ``atol`` is per component (2n). counts = [accepted, rejected, rhs evaluations].
-    Forces in ``stats`` are taken at the accepted steps and the samples. Returns the final time.
-    """
-    nv = y0.size
+def dopri5_start(y, p, K, out_y, out_f, out_d, counts):
+    """First right-hand side (K[0], FSAL) and the sample at t = 0."""
     m = out_f.shape[1]
-    K = np.zeros((7, nv))
-    y = y0.copy()
-    ynew = np.empty(nv)
-    tmp = np.empty(nv)
     fm = np.empty(m)
     dm = np.empty(m)
-    for j in range(m):
-        stats[j, 0] = -np.inf
-        stats[j, 1] = np.inf
-        stats[j, 2] = 0.0
-        stats[j, 3] = 0.0
-    t = 0.0
-    h = h0
-    rhs(t, y, p, K[0], fm, dm)
+    rhs(0.0, y, p, K[0], fm, dm)
     counts[2] += 1
     out_y[0, :] = y
     for j in range(m):
         out_f[0, j] = fm[j]
         out_d[0, j] = dm[j]
-    q = 1
+
+
+@njit(cache=True)
+def run_dopri5(y, K, st, t_stop, t_end, h_max, rtol, atol, p, dt_out, w0, w1, out_y, out_f, out_d, stats, counts):
+    """Adaptive Dormand-Prince 5(4) from st[0] until t_stop (a chunk) or t_end; samples every dt_out
+    by cubic Hermite. Resumable: y, K[0] (FSAL), st = [t, next step, last accepted step, next
+    sample index] are updated in place; ``dopri5_start`` begins a run.
+
+    ``atol`` is per component (2n). counts = [accepted, rejected, rhs evaluations].
+    Forces in ``stats`` are taken at the samples. Returns False if the error stopped being finite.
+    """
+    nv = y.size
+    m = out_f.shape[1]
+    ynew = np.empty(nv)
+    tmp = np.empty(nv)
+    fm = np.empty(m)
+    dm = np.empty(m)
+    t = st[0]
+    h = st[1]
+    q = int(st[3])
     nout = out_y.shape[0]
-    while t < t_end * (1 - 1e-14):
+    while t < t_end * (1 - 1e-14) and t < t_stop:
         h = min(h, h_max, t_end - t)
         for s in range(1, 7):
             for i in range(nv):
@@ -217,7 +222,10 @@ def run_dopri5(y0, t_end, h0, h_max, rtol, atol, p, dt_out, w0, w1, out_y, out_f
             sc = atol[i] + rtol * max(abs(y[i]), abs(ynew[i]))
             err = max(err, abs(h * e) / sc)
         if not math.isfinite(err):
-            return t
+            st[0] = t
+            st[1] = h
+            st[3] = q
+            return False
         if err <= 1.0:
             # samples in (t, t + h] by cubic Hermite between (y, K0) and (ynew, K6)
             while q < nout and q * dt_out <= t + h * (1 + 1e-12):
@@ -240,6 +248,7 @@ def run_dopri5(y0, t_end, h0, h_max, rtol, atol, p, dt_out, w0, w1, out_y, out_f
                         stats[j, 3] += 1.0
                 q += 1
             t += h
+            st[2] = h
             for i in range(nv):
                 y[i] = ynew[i]
                 K[0, i] = K[6, i]
@@ -248,14 +257,18 @@ def run_dopri5(y0, t_end, h0, h_max, rtol, atol, p, dt_out, w0, w1, out_y, out_f
             counts[1] += 1
         fac = 0.9 * (1.0 / max(err, 1e-10)) ** 0.2
         h *= min(5.0, max(0.2, fac))
-    return t
+    st[0] = t
+    st[1] = h
+    st[3] = q
+    return True
 
 
 @njit(cache=True, parallel=True)
-def sweep_rk4(omegas, ratio, q0, p, h, n_settle, n_window, kv_max, kv_min, f_mean):
+def sweep_rk4(omegas, ratio, q0, p, h, n_settle, n_window, kv_max, kv_min, f_mean, halves):
     """One RK4 run per input speed omegas[k] (prange): start at the static deflection q0 and the
     nominal speeds ratio * omega, settle n_settle[k] steps of h[k], then track the mesh forces over
-    n_window[k] steps into kv_max, kv_min, f_mean (ns x m)."""
+    n_window[k] steps into kv_max, kv_min, f_mean (ns x m), and the max and min force of the first
+    and of the second half of the window into halves (ns x m x 4), which shows growth."""
     ns = omegas.size
     n = q0.size
     m = kv_max.shape[1]
@@ -277,7 +290,12 @@ def sweep_rk4(omegas, ratio, q0, p, h, n_settle, n_window, kv_max, kv_min, f_mea
             kv_max[k, j] = -np.inf
             kv_min[k, j] = np.inf
             f_mean[k, j] = 0.0
+            halves[k, j, 0] = -np.inf
+            halves[k, j, 1] = np.inf
+            halves[k, j, 2] = -np.inf
+            halves[k, j, 3] = np.inf
         hk = h[k]
+        mid = n_settle[k] + n_window[k] // 2
         for s in range(n_settle[k] + n_window[k]):
             _rk4_step(s * hk, y, hk, p, k1, k2, k3, k4, tmp, fm, dm, fs, ds)
             if s >= n_settle[k]:
@@ -285,3 +303,63 @@ def sweep_rk4(omegas, ratio, q0, p, h, n_settle, n_window, kv_max, kv_min, f_mea
                     kv_max[k, j] = max(kv_max[k, j], fm[j])
                     kv_min[k, j] = min(kv_min[k, j], fm[j])
                     f_mean[k, j] += fm[j] / n_window[k]
+                    c = 0 if s < mid else 2
+                    halves[k, j, c] = max(halves[k, j, c], fm[j])
+                    halves[k, j, c + 1] = min(halves[k, j, c + 1], fm[j])
+
+
+@njit(cache=True)
+def _lin_rhs(t, y, p, w, dy):
+    """Right-hand side of the linear parametric model: the perturbation y of the nominal rotation
+    (gear speeds w), stiffness and friction arms at the nominal mesh positions u(t); no loads."""
+    (J, Tc, ramp, ts_off, ts_x, ts_y, tt_off, tt_x, tt_y, ma, mb, rba, rbb, za, phase, cm, sep, bl,
+     kt, fa, fb, sa, sb, sk, sc) = p
+    n = J.size
+    for i in range(n):
+        dy[i] = y[n + i]
+        dy[n + i] = 0.0
+    for j in range(ma.size):
+        a = ma[j]
+        b = mb[j]
+        u = za[j] * w[a] * t / TWO_PI + phase[j]
+        u -= math.floor(u)
+        f = _periodic(kt, j, u) * (rba[j] * y[a] - rbb[j] * y[b]) + cm[j] * (rba[j] * y[n + a] - rbb[j] * y[n + b])
+        dy[n + a] += (-rba[j] + _periodic(fa, j, u)) * f
+        dy[n + b] += (rbb[j] + _periodic(fb, j, u)) * f
+    _shafts_and_inertia(y, dy, n, J, sa, sb, sk, sc)
+
+
+@njit(cache=True, parallel=True)
+def monodromy(omegas, ratio, periods, nsteps, p, phi):
+    """Monodromy matrices phi[k] (2n x 2n) of the linear parametric model over one period
+    periods[k] at input speed omegas[k], by RK4 with nsteps[k] steps (prange over speeds);
+    their eigenvalues are the Floquet multipliers."""
+    n = ratio.size
+    for k in prange(omegas.size):
+        w = ratio * omegas[k]
+        h = periods[k] / nsteps[k]
+        y = np.empty(2 * n)
+        k1 = np.empty(2 * n)
+        k2 = np.empty(2 * n)
+        k3 = np.empty(2 * n)
+        k4 = np.empty(2 * n)
+        tmp = np.empty(2 * n)
+        for c in range(2 * n):
+            for i in range(2 * n):
+                y[i] = 1.0 if i == c else 0.0
+            for s in range(nsteps[k]):
+                t = s * h
+                _lin_rhs(t, y, p, w, k1)
+                for i in range(2 * n):
+                    tmp[i] = y[i] + 0.5 * h * k1[i]
+                _lin_rhs(t + 0.5 * h, tmp, p, w, k2)
+                for i in range(2 * n):
+                    tmp[i] = y[i] + 0.5 * h * k2[i]
+                _lin_rhs(t + 0.5 * h, tmp, p, w, k3)
+                for i in range(2 * n):
+                    tmp[i] = y[i] + h * k3[i]
+                _lin_rhs(t + h, tmp, p, w, k4)
+                for i in range(2 * n):
+                    y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+            for i in range(2 * n):
+                phi[k, i, c] = y[i]

@@ -136,7 +136,7 @@ def pair(g1: GearGeometry, g2: GearGeometry, center_distance: float | None = Non
         raise ModelError(f"the driven gear's tip reaches past the driving gear's base circle (tip interference, "
                          f"T1A = {rho_a * 1e3:.3g} mm)", field=f"{field}.gears")
     if rho_e > t12:
-        raise ModelError(f"the driving gear's tip reaches past the driven gear's base circle (tip interference)", field=f"{field}.gears")
+        raise ModelError("the driving gear's tip reaches past the driven gear's base circle (tip interference)", field=f"{field}.gears")
     geo = PairGeometry(g1=g1, g2=g2, alpha_w=alpha_w, a_w=a_w, a_zero_backlash=a_zb, tangent_length=t12,
                        rho_start=rho_a, rho_end=rho_e, rho_pitch=g1.rb * math.tan(alpha_w))
     if geo.contact_ratio < 1.0:

@@ -14,6 +14,9 @@ from pydantic import field_validator, model_validator
 
 from ..model import Spec, check_name, quantity, table_rows
 
+#: highest pitch-line speed accepted (m/s): turbo gears, the fastest in service, stay below 200 m/s
+V_MAX = 300.0
+
 Length = quantity("m")
 Time = quantity("s")
 
@@ -57,6 +60,16 @@ class Gear(Spec):
     def _z(cls, v):
         if v < 5:
             raise ValueError(f"must be >= 5 (an involute gear needs at least 5 teeth), got {v}")
+        if v > 2000:  # the largest cut spur gears have a few hundred teeth; the mesh tables scale with z
+            raise ValueError(f"must be <= 2000, got {v}")
+        return v
+
+    @field_validator("profile_shift")
+    @classmethod
+    def _x(cls, v):
+        # ISO 21771 practice lies within -1..+1.5; beyond +-3 the tooth is pointed or fully undercut
+        if not -3.0 < v < 3.0:
+            raise ValueError(f"must lie in (-3, 3) modules, got {v}")
         return v
 
     @field_validator("poisson")
@@ -236,10 +249,11 @@ class Sweep(Spec):
 
     @model_validator(mode="after")
     def _range(self):
-        if self.count < 2:
-            raise ValueError(f"count must be >= 2, got {self.count}")
-        if self.window_cycles < 2 or self.steps_per_cycle < 16:
-            raise ValueError("window_cycles must be >= 2 and steps_per_cycle >= 16")
+        # upper bounds: each count is one settle + window run; cycles x steps set its length
+        if not 2 <= self.count <= 10_000:
+            raise ValueError(f"count must lie in 2..10000, got {self.count}")
+        if not (2 <= self.window_cycles <= 10_000 and 16 <= self.steps_per_cycle <= 10_000):
+            raise ValueError("window_cycles must lie in 2..10000 and steps_per_cycle in 16..10000")
         if self.speed_min is not None and self.speed_max is not None and not self.speed_max > self.speed_min:
             raise ValueError("speed_max must be > speed_min")
         return self
@@ -296,4 +310,17 @@ class Model(Spec):
                     raise ValueError(f"{where}.gears: no gear named {g!r} (gears: {', '.join(names)})")
         if self.drive.input not in names:
             raise ValueError(f"drive.input: no gear named {self.drive.input!r}")
+        for k, g in enumerate(self.gears):
+            # spur gears are a few to a few tens of modules wide, rarely wider than their pitch
+            # diameter; 100 modules or 2 pitch diameters, whichever is larger, covers every real gear
+            b_max = g.module * max(100, 2 * g.teeth)
+            if g.face_width > b_max:
+                raise ValueError(f"gears[{k}].face_width: {g.face_width:.4g} m is more than {b_max:.4g} m "
+                                 f"(100 modules or 2 pitch diameters, whichever is larger)")
+        gear = self.gears[names.index(self.drive.input)]
+        top = max(self.drive.speed, self.sweep.speed_max or 0.0)
+        v = top * 0.5 * gear.module * gear.teeth
+        if v > V_MAX:
+            raise ValueError(f"drive.speed: a pitch-line speed of {v:.4g} m/s at the input gear is above "
+                             f"{V_MAX:g} m/s (the fastest turbo gears run below 200 m/s)")
         return self

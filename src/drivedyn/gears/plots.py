@@ -154,12 +154,19 @@ def plot_sweep(ds, ax=None):
         arts.append(ax.plot(rpm, ds.kv_iso_sweep.sel(mesh=m), f"C{j}--", lw=1.2, label=f"ISO 6336-1 method B, mesh {m}")[0])
     op = ds.attrs["input_speed"] * 30 / math.pi
     arts.append(ax.axvline(op, color="k", lw=0.8, ls=":", label=f"operating speed {op:.0f} rpm"))
+    if "sweep_unstable" in ds:
+        bad = ds.sweep_unstable.values.any(axis=1)
+        if bad.any():                         # speeds where the linear model grows without bound
+            step = np.diff(rpm).mean() / 2 if len(rpm) > 1 else 1.0
+            for k, r in enumerate(rpm[bad]):
+                arts.append(ax.axvspan(r - step, r + step, color="#b22222", alpha=0.18, lw=0,
+                                       label="unstable (kv-unstable): K_v meaningless" if k == 0 else None))
     finite = ds.kv_sweep.values[np.isfinite(ds.kv_sweep.values)]
     top = min(np.nanmax(finite) if finite.size else 3, 6.0)
     ax.set_ylim(0.8, max(top * 1.05, 2.8))
     ax.set_xlabel("input speed [rpm]")
     ax.set_ylabel("K_v")
-    ax.set_title("K_v against input speed (off the top: parametric instability of the linear model)")
+    ax.set_title("K_v against input speed (shaded: parametric instability of the linear model)")
     ax.legend(loc="upper left", fontsize=8)
     ax.grid(alpha=0.3)
     return arts
@@ -196,15 +203,15 @@ def plot_campbell(ds, ax=None, orders=(1, 2, 3, 4, 5)):
 
 
 def plot_all(result, outdir) -> list[Path]:
-    """Write the standard PNGs into ``outdir``; returns their paths."""
+    """Write the standard PNGs into ``outdir`` (a warned or failed run says so on each); their paths."""
+    from .. import plotting
+
     ds = result.ds
     outdir = Path(outdir)
     files = []
 
     def save(fig, name):
-        path = outdir / f"gears-{name}.png"
-        fig.savefig(path)
-        files.append(path)
+        plotting.save(fig, outdir / f"gears-{name}.png", result, files)
 
     fig, ax = _figure(2, 1, (8, 7.5))
     plot_stiffness_time(ds, ax[0, 0])

@@ -3,13 +3,13 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 
 import numpy as np
 import xarray as xr
 
-from ..errors import DrivedynWarning, SolverError
-from ..results import Result, variable
+from ..errors import SolverError, Stopped, stop_reason
+from ..results import Result, unit_map, variable
+from ..window import in_window, steady_window
 from . import _kernels
 from .train import System, assemble
 
@@ -26,16 +26,19 @@ def params(sys_: System, ramp: float = 0.0, tables: bool = True) -> tuple:
 
 
 def stiffness_at(sys_: System, theta_a) -> np.ndarray:
-    """Mesh stiffness (N/m) of every mesh at driving-gear angles ``theta_a`` (..., m) by the tables."""
+    """Mesh stiffness (N/m) of every mesh at driving-gear angles ``theta_a`` (..., m) by the tables;
+    NaN where an angle is not finite (a diverged run)."""
     kt = sys_.ktab()
     N = kt.shape[1]
-    u = (sys_.z_a * np.asarray(theta_a) / (2 * math.pi) + sys_.phase) % 1.0
+    theta_a = np.asarray(theta_a, dtype=float)
+    ok = np.isfinite(theta_a)
+    u = (sys_.z_a * np.where(ok, theta_a, 0.0) / (2 * math.pi) + sys_.phase) % 1.0
     x = u * N
     i0 = np.minimum(x.astype(int), N - 1)
     w = x - i0
     i1 = (i0 + 1) % N
     cols = np.arange(sys_.m)
-    return kt[cols, i0] * (1 - w) + kt[cols, i1] * w
+    return np.where(ok, kt[cols, i0] * (1 - w) + kt[cols, i1] * w, np.nan)
 
 
 def static_start(sys_: System) -> np.ndarray:
@@ -46,74 +49,161 @@ def static_start(sys_: System) -> np.ndarray:
     return q
 
 
-def default_window(sim) -> tuple[float, float]:
-    """The steady window: as given, else the second half of the run."""
-    if sim.steady_window is not None:
-        return tuple(sim.steady_window)
-    return 0.5 * sim.duration, sim.duration
+#: wall time aimed at per compiled chunk: progress, Ctrl-C and a study's time limit act between chunks
+CHUNK_SECONDS = 0.2
+#: right-hand-side evaluations per second assumed for the first chunk (then measured)
+_RHS_RATE = 2e6
+
+
+class _Integration:
+    """State of a chunked integration; ``chunk()`` advances it, ``record()`` is the solver record."""
+
+    def __init__(self, sys_, sim, y0, p, window):
+        n, m = sys_.n, sys_.m
+        self.sim, self.p, self.window = sim, p, window
+        self.y = y0.copy()
+        self.h = sim.step
+        self.failed_at = None
+        if sim.method == "rk4":
+            interval = sim.output_interval or self.h
+            self.every = max(1, int(round(interval / self.h)))
+            self.nsteps = int(math.ceil(sim.duration / self.h - 1e-9))
+            nout = self.nsteps // self.every + 1
+            self.dt_out = self.every * self.h
+            self.s = 0
+        else:
+            self.dt_out = sim.output_interval if sim.output_interval else max(self.h, sim.duration / 20000)
+            nout = int(math.floor(sim.duration / self.dt_out + 1e-9)) + 1
+            self.atol = np.concatenate([np.full(n, sim.atol / sys_.rb_a.min()),
+                                        np.full(n, sim.atol / sys_.rb_a.min() * 1e4)])
+            self.h_max = 1.0 / sys_.mesh_frequency(sys_.omega_in).max() / 20
+            self.K = np.zeros((7, 2 * n))
+            self.st = np.array([0.0, self.h, 0.0, 1.0])      # t, next step, last accepted step, next sample
+            self.counts = np.zeros(3, dtype=np.int64)
+        self.out_y = np.full((nout, 2 * n), np.nan)
+        self.out_f = np.full((nout, m), np.nan)
+        self.out_d = np.full((nout, m), np.nan)
+        self.out_y[0] = y0
+        self.stats = np.zeros((m, 4))
+        self.stats[:, 0], self.stats[:, 1] = -np.inf, np.inf
+        self.t = np.arange(nout) * self.dt_out
+        if sim.method == "dopri5":
+            _kernels.dopri5_start(self.y, p, self.K, self.out_y, self.out_f, self.out_d, self.counts)
+        self.rate = _RHS_RATE / max(sys_.n + sys_.m, 1)         # rhs evaluations per second, refined
+
+    @property
+    def done(self) -> bool:
+        if self.failed_at is not None:
+            return True
+        if self.sim.method == "rk4":
+            return self.s > self.nsteps
+        return self.st[0] >= self.sim.duration * (1 - 1e-14)
+
+    @property
+    def time(self) -> float:
+        """Simulated time reached."""
+        return self.s * self.h if self.sim.method == "rk4" else float(self.st[0])
+
+    def chunk(self) -> None:
+        """Integrate for about CHUNK_SECONDS of wall time."""
+        w0, w1 = self.window
+        t0 = time.perf_counter()
+        if self.sim.method == "rk4":
+            n = max(1000, int(self.rate * CHUNK_SECONDS / 4))
+            s1 = min(self.s + n, self.nsteps + 1)
+            done = _kernels.run_rk4(self.y, self.h, self.s, s1, self.nsteps, self.every, self.p, w0, w1,
+                                    self.out_y, self.out_f, self.out_d, self.stats)
+            evals = 4 * (done - self.s)
+            if done < s1:
+                self.failed_at = done * self.h
+            self.s = done if done < s1 else s1
+        else:
+            before = int(self.counts[2])
+            # a chunk of simulated time from the step size reached (dopri5 adapts it)
+            span = max(self.st[1], self.st[2]) * self.rate * CHUNK_SECONDS / 7
+            ok = _kernels.run_dopri5(self.y, self.K, self.st, self.st[0] + span, self.sim.duration, self.h_max,
+                                     self.sim.rtol, self.atol, self.p, self.dt_out, w0, w1, self.out_y, self.out_f,
+                                     self.out_d, self.stats, self.counts)
+            evals = int(self.counts[2]) - before
+            if not ok:
+                self.failed_at = float(self.st[0])
+        wall = time.perf_counter() - t0
+        if wall > 1e-3 and evals > 0:
+            self.rate = evals / wall
+
+    def record(self, wall: float, status: str) -> dict:
+        """The solver record (same keys as the belt's): method, steps, rejected_steps,
+        rhs_evaluations, last_step, wall_time, simulated_time, status."""
+        if self.sim.method == "rk4":
+            steps = min(self.s, self.nsteps)
+            return {"method": "rk4", "step": self.h, "steps": int(steps), "rejected_steps": 0,
+                    "rhs_evaluations": int(4 * steps + (self.s > self.nsteps)), "last_step": self.h,
+                    "wall_time": wall, "simulated_time": float(min(self.time, self.sim.duration)), "status": status}
+        return {"method": "dopri5", "rtol": self.sim.rtol, "max_step": self.h_max, "steps": int(self.counts[0]),
+                "rejected_steps": int(self.counts[1]), "rhs_evaluations": int(self.counts[2]),
+                "last_step": float(self.st[2]), "wall_time": wall, "simulated_time": float(self.st[0]),
+                "status": status}
 
 
 def run(model, progress=None) -> Result:
-    """Simulate a gear-train model; K_v per mesh over the steady window; optional speed sweep."""
+    """Simulate a gear-train model; K_v per mesh over the steady window; optional speed sweep.
+
+    The integration runs in chunks: ``progress`` is called between them, and a ``Stopped`` from it
+    or a Ctrl-C ends the run with a SolverError whose ``partial`` Result keeps what was computed.
+    """
+    from .checks import check_step, diagnose, diagnose_sweep
+
     t0 = time.perf_counter()
     sys_ = assemble(model)
     sim = model.simulation
-    n, m = sys_.n, sys_.m
-    if sim.start == "static":
-        q0 = static_start(sys_)
-    else:
-        q0 = np.zeros(n)
+    if sim.method == "rk4":
+        check_step(sys_, sim.step)              # one line before integrating, never a blown-up run
+    n = sys_.n
+    q0 = static_start(sys_) if sim.start == "static" else np.zeros(n)
     y0 = np.concatenate([q0, sys_.ratio * sys_.omega_in])
     ramp = sim.ramp_time if sim.start == "ramp" else 0.0
-    p = params(sys_, ramp)
-    w0, w1 = default_window(sim)
-    h = sim.step
-    interval = sim.output_interval or h
-    every = max(1, int(round(interval / h)))
-    nsteps = int(math.ceil(sim.duration / h - 1e-9))
-    nout = nsteps // every + 1
-    out_y = np.full((nout, 2 * n), np.nan)
-    out_f = np.full((nout, m), np.nan)
-    out_d = np.full((nout, m), np.nan)
-    stats = np.zeros((m, 4))
+    window = steady_window(sim.steady_window, sim.duration)
+    run_ = _Integration(sys_, sim, y0, params(sys_, ramp), window)
+    failure = ""
     if progress:
         progress(0.0, "compiling / integrating")
-    if sim.method == "rk4":
-        done = _kernels.run_rk4(y0, h, nsteps, every, p, w0, w1, out_y, out_f, out_d, stats)
-        ok = done == nsteps
-        t_fail = done * h
-        t = np.arange(nout) * every * h
-        solver = {"method": "rk4", "step": h, "steps": int(done)}
-    else:
-        dt_out = interval if sim.output_interval else max(h, sim.duration / 20000)
-        nout = int(math.floor(sim.duration / dt_out + 1e-9)) + 1
-        out_y = np.full((nout, 2 * n), np.nan)
-        out_f = np.full((nout, m), np.nan)
-        out_d = np.full((nout, m), np.nan)
-        atol = np.concatenate([np.full(n, sim.atol / sys_.rb_a.min()), np.full(n, sim.atol / sys_.rb_a.min() * 1e4)])
-        counts = np.zeros(3, dtype=np.int64)
-        t_mesh = 1.0 / sys_.mesh_frequency(sys_.omega_in).max()
-        tend = _kernels.run_dopri5(y0, sim.duration, h, t_mesh / 20, sim.rtol, atol, p, dt_out, w0, w1,
-                                   out_y, out_f, out_d, stats, counts)
-        ok = tend >= sim.duration * (1 - 1e-12)
-        t_fail = tend
-        t = np.arange(nout) * dt_out
-        solver = {"method": "dopri5", "rtol": sim.rtol, "steps": int(counts[0]), "rejected": int(counts[1]),
-                  "rhs_evaluations": int(counts[2]), "max_step": t_mesh / 20}
-    solver["wall_time"] = time.perf_counter() - t0
-    if progress:
+    try:
+        while not run_.done:
+            run_.chunk()
+            if progress:
+                progress(0.9 * min(run_.time / sim.duration, 1.0), f"t = {run_.time:.4g} s")
+    except (Stopped, KeyboardInterrupt) as exc:
+        why = stop_reason(exc)
+        failure = f"stopped at t = {run_.time:.6g} s: {why}"
+    if run_.failed_at is not None:
+        failure = (f"the state stopped being finite at t = {run_.failed_at:.6g} s (mesh forces diverged: "
+                   "parametric instability of the linear model, or a step too large)")
+    wall = time.perf_counter() - t0
+    solver = run_.record(wall, "failed" if failure else "success")
+    if progress and not failure:
         progress(0.9, "results")
-    result = _result(model, sys_, t, out_y, out_f, out_d, stats, (w0, w1), solver)
-    if not ok:
+    result = _result(model, sys_, run_.t, run_.out_y, run_.out_f, run_.out_d, run_.stats, window, solver)
+    if failure:
         result.success = False
-        result.message = f"the state stopped being finite at t = {t_fail:.6g} s (mesh forces diverged); try a smaller step"
-        raise SolverError(result.message, partial=result)
+        result.message = failure
+        _units(result)
+        raise SolverError(failure + f" (results kept up to t = {run_.time:.6g} s)", partial=result)
+    diagnose(result, sys_, model)
     if model.sweep.enabled:
         from .sweep import run_sweep
 
-        sw = run_sweep(sys_, model, progress=progress)
+        try:
+            sw = run_sweep(sys_, model, progress=progress)
+        except (Stopped, KeyboardInterrupt) as exc:
+            # the single run is complete: keep it, without the sweep
+            why = stop_reason(exc)
+            result.success, result.message = False, f"sweep stopped: {why}"
+            _units(result)
+            raise SolverError(result.message + " (the single run is kept)", partial=result) from None
         _add_sweep(result, sys_, sw)
+        diagnose_sweep(result, sys_, sw)
     result.summary["solver"]["wall_time"] = time.perf_counter() - t0
+    _units(result)
     if progress:
         progress(1.0, "done")
     return result
@@ -121,7 +211,6 @@ def run(model, progress=None) -> Result:
 
 def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Result:
     from .. import dumps
-    from .iso6336 import MethodB
     from .train import reduced_mass_per_mesh
 
     n, m = sys_.n, sys_.m
@@ -136,10 +225,10 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
     fmean = stats[:, 2] / np.maximum(stats[:, 3], 1)
     freqs, shapes, zeta = sys_.modes()
     f_mesh = sys_.mesh_frequency(sys_.omega_in)
-    win = (t >= window[0]) & (t <= window[1]) & np.isfinite(out_f[:, 0])
+    win = in_window(t, window) & np.isfinite(out_f[:, 0])
     spec_f, spec = _spectrum(t[win], out_f[win])
     mred = reduced_mass_per_mesh(sys_)
-    meshes, warn = {}, []
+    meshes, found = {}, []
     iso_b = []
     for j, name in enumerate(sys_.mesh_names):
         p_ = sys_.pairs[j]
@@ -159,10 +248,10 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
             "iso_c_single": c1, "iso_c_gamma": cg, "damping": sys_.damping[j],
         }
         if not model.meshes[j].separation and fmin[j] < 0:
-            msg = (f"mesh {name!r}: the mesh force goes negative ({fmin[j]:.4g} N) in the steady window: the teeth "
-                   f"would separate; switch on tooth separation (meshes[{j}].separation = true)")
-            warnings.warn(msg, DrivedynWarning, stacklevel=3)
-            warn.append(msg)
+            found.append(("tooth-separation",
+                          f"mesh {name}: the mesh force goes negative ({fmin[j]:.4g} N) in the steady window: the teeth "
+                          f"would separate; switch on tooth separation (meshes[{j}].separation = true)",
+                          f"meshes.{name}.force_min", fmin[j], 0.0, "N"))
     start = model.simulation.start
     how = {"static": "static equilibrium at the start position (no start-up step)",
            "ramp": f"load ramped smoothly over {model.simulation.ramp_time:g} s",
@@ -178,7 +267,6 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
                        "speed_mean": float(np.nanmean(om[win, i])) if win.any() else None,
                        "torque": sys_.torque_const[i]} for i, nm in enumerate(sys_.names)},
         "solver": solver,
-        "warnings": warn,
     }
     T0 = 1.0 / f_mesh[0]
     ds = xr.Dataset(
@@ -216,7 +304,10 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
         ds.attrs[f"pair_k_{name}"] = list(map(float, sys_.tables[j].pair_k[::8]))
         ds.attrs[f"contact_ratio_{name}"] = float(sys_.pairs[j].contact_ratio)
         ds.attrs[f"pitch_s_{name}"] = float((sys_.pairs[j].rho_pitch - sys_.pairs[j].rho_start) / sys_.pairs[j].base_pitch)
-    return Result(kind="gear-train", ds=ds, summary=summary)
+    result = Result(kind="gear-train", ds=ds, summary=summary)
+    for d in found:
+        result.diagnose(*d)
+    return result
 
 
 def _method_b(model, sys_, j, m_red):
@@ -230,6 +321,26 @@ def _method_b(model, sys_, j, m_red):
                    f_pb=model.iso.pitch_deviation * 1e6, f_falpha=model.iso.profile_deviation * 1e6,
                    material=model.iso.material, sigma_hlim=model.iso.sigma_hlim / 1e6,
                    c_a=None if model.iso.tip_relief is None else model.iso.tip_relief * 1e6, pitch_radius=p_.g1.r)
+
+
+#: units of the summary keys (fnmatch patterns, first match wins; "1" for ratios)
+UNITS = {
+    "meshes.*.force_*": "N", "meshes.*.kv*": "1", "meshes.*.load_share": "1", "meshes.*.iso_speed_ratio_N": "1",
+    "meshes.*.iso_resonance_speed_rpm": "rpm", "meshes.*.contact_ratio": "1", "meshes.*.mesh_frequency": "Hz",
+    "meshes.*.phase": "1", "meshes.*.stiffness_*": "N/m", "meshes.*.iso_c_*": "N/m", "meshes.*.damping": "N*s/m",
+    "meshes.*.window_drift": "1", "meshes.*.window_growth": "1", "natural_frequencies_hz": "Hz", "modal_damping_ratios": "1",
+    "steady_window": "s", "window_decay_times": "1", "input.speed": "rad/s", "input.torque": "N*m",
+    "gears.*.speed_*": "rad/s", "gears.*.torque": "N*m",
+    "solver.step": "s", "solver.last_step": "s", "solver.max_step": "s", "solver.wall_time": "s",
+    "solver.simulated_time": "s", "solver.rtol": "1",
+    "sweep.speed_*": "rad/s", "sweep.settle": "s", "sweep.wall_time": "s", "sweep.meshes.*.kv*": "1",
+    "sweep.meshes.*.speed_at_kv_max": "rad/s", "sweep.meshes.*.unstable_speeds": "rad/s",
+    "sweep.meshes.*.separation_speeds": "rad/s", "floquet_growth_rate": "1/s",
+}
+
+
+def _units(result) -> None:
+    result.units = unit_map(result.summary, UNITS)
 
 
 def _spectrum(t, f):
@@ -250,6 +361,8 @@ def _add_sweep(result, sys_, sw):
     ds["kv_sweep"] = variable(sw["kv"], ("sweep_speed", "mesh"), "1", "simulated K_v against input speed")
     ds["kv_min_sweep"] = variable(sw["kv_min"], ("sweep_speed", "mesh"), "1", "min force / nominal against input speed")
     ds["kv_iso_sweep"] = variable(sw["kv_iso"], ("sweep_speed", "mesh"), "1", "ISO 6336-1 method B K_v")
+    ds["floquet_growth_sweep"] = variable(sw["floquet"], ("sweep_speed",), "1/s",
+                                          "largest Floquet growth rate of the linear model (> 0: unstable)")
     result.ds = ds
     result.summary["sweep"] = {
         "speed_min": float(sw["speeds"][0]), "speed_max": float(sw["speeds"][-1]), "count": len(sw["speeds"]),

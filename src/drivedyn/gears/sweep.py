@@ -47,6 +47,7 @@ def run_sweep(sys_, model, progress=None) -> dict:
     q0 = static_start(sys_)
     ns, m = len(speeds), sys_.m
     kv_max, kv_min, f_mean = np.zeros((ns, m)), np.zeros((ns, m)), np.zeros((ns, m))
+    halves = np.zeros((ns, m, 4))
     # in chunks of speeds (each one parallel over its speeds), so that progress is reported and a
     # study's case_timeout can act between them
     chunk = max(8, -(-ns // 10))
@@ -55,7 +56,7 @@ def run_sweep(sys_, model, progress=None) -> dict:
         if progress:
             progress(0.92 + 0.07 * a / ns, f"sweep: {a} of {ns} speeds")
         _kernels.sweep_rk4(speeds[a:b], sys_.ratio, q0, p, h[a:b], n_settle[a:b], n_window[a:b],
-                           kv_max[a:b], kv_min[a:b], f_mean[a:b])
+                           kv_max[a:b], kv_min[a:b], f_mean[a:b], halves[a:b])
     F = sys_.force_nominal
     mred = reduced_mass_per_mesh(sys_)
     kv_iso = np.zeros((ns, m))
@@ -63,5 +64,13 @@ def run_sweep(sys_, model, progress=None) -> dict:
         mb = _method_b(model, sys_, j, mred[j])
         for k, om in enumerate(speeds):
             kv_iso[k, j] = mb.kv(sys_.ratio[sys_.mesh_a[j]] * om / (2 * math.pi))[0]
-    return {"speeds": speeds, "kv": kv_max / F, "kv_min": kv_min / F, "f_mean": f_mean, "kv_iso": kv_iso,
+    # force amplitude in the second half of the window over the first: 1 when steady, > 1 growing
+    with np.errstate(divide="ignore", invalid="ignore"):
+        growth = (halves[:, :, 2] - halves[:, :, 3]) / (halves[:, :, 0] - halves[:, :, 1])
+    from .checks import floquet_growth
+
+    linear = np.array([not ms.separation for ms in model.meshes])
+    floquet = floquet_growth(sys_, speeds, model.simulation.step) if linear.any() else np.full(ns, np.nan)
+    return {"speeds": speeds, "kv": kv_max / F, "floquet": floquet, "linear": linear, "kv_min": kv_min / F, "f_mean": f_mean, "kv_iso": kv_iso,
+            "growth": growth,
             "settle": settle, "window_cycles": sw.window_cycles, "wall_time": time.perf_counter() - t0}

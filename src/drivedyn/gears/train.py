@@ -16,7 +16,7 @@ import numpy as np
 from ..errors import ModelError
 from ..tables import flatten
 from . import iso6336, stiffness
-from .geometry import GearGeometry, PairGeometry, pair
+from .geometry import GearGeometry, pair
 
 
 @dataclass

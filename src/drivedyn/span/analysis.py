@@ -1,19 +1,34 @@
 """``run`` for span-stability models: quantities, chart, bands, frequencies, measurement, response."""
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import xarray as xr
 
 from ..errors import ModelError, SolverError
 from ..model import dumps
-from ..results import Result, variable
+from ..results import Result, unit_map, variable
 from . import fourier
 from .chart import UNSTABLE, bands, chart_variables, floquet_band, tongue_curves, zoom_ranges
 from .frequencies import estimate_tension, span_frequencies
 from .quantities import critical_speed, effective_tension, excitation_coefficient, excitation_frequency, natural_frequency
-from .source import resolve
+from .source import read_belt_run, resolve
 
 KIND = "span-stability"
+
+#: units of the summary keys (fnmatch patterns, first match wins; "1" for ratios)
+UNITS = {
+    "pretension": "N", "speed": "m/s", "v_critical": "m/s", "critical_speed_margin": "m/s", "euler_load": "N",
+    "omega": "rad/s", "natural_frequency_hz": "Hz", "mu": "1", "effective_tension": "N",
+    "excitation_frequency": "rad/s", "frequency_ratio": "1", "f1": "N", "tooth_force_mean": "N",
+    "tooth_force_harmonics": "N", "pitch": "m", "span_length": "m", "mass_per_length": "kg/m",
+    "bending_stiffness": "N*m^2", "damping_ratio": "1", "resonance_bands*": "m/s", "tongue_bands": "m/s",
+    "floquet_multiplier": "1", "growth_rate": "1/s", "frequencies.*": "Hz",
+    "measurement.frequency": "Hz", "measurement.speed": "m/s", "measurement.tension*": "N",
+    "measurement.*_correction": "N", "measurement.uncertainty": "N", "measurement.contributions.*": "N",
+    "response.*": "m", "belt_run.window": "s", "belt_run.tension_*": "N", "belt_run.speed": "m/s",
+}
 
 
 def tooth_force_harmonics(model, setup) -> fourier.Harmonics:
@@ -28,8 +43,23 @@ def tooth_force_harmonics(model, setup) -> fourier.Harmonics:
         if setup.speed <= 0:
             raise ModelError("must be > 0 to analyse a time series at the tooth period", field="operation.speed")
         period = 2 * np.pi / float(excitation_frequency(setup.speed, setup.teeth, setup.pitch, setup.convention))
-        return fourier.from_series(*fourier.read_series(tf.series), period, n)
+        return fourier.from_series(*series_of(model, setup), period, n)
     return fourier.Harmonics(0.0, np.array([tf.amplitude]), np.array([0.0]))
+
+
+def series_of(model, setup):
+    """(time, force) of ``tooth_force.series``: a CSV file, or a belt-drive results.nc whose span
+    ``span.span_name`` gives its tension history in the run's steady window."""
+    path = model.tooth_force.series
+    if not str(path).lower().endswith(".nc"):
+        return fourier.read_series(path)
+    run = setup.belt_run
+    if run is None or Path(run.path).resolve() != Path(path).resolve():
+        if not model.span.span_name:
+            raise ModelError("a belt-drive results file needs span.span_name (the span whose tension to take)",
+                             field="tooth_force.series")
+        run = read_belt_run(path, model.span.span_name, field="tooth_force.series")[2]
+    return run.time, run.tension
 
 
 def operating_point(setup, harm) -> dict:
@@ -73,6 +103,8 @@ def run(model, progress=None) -> Result:
     op = operating_point(setup, harm)
     if model.response is not None:
         require_stable_speed(op, "[response]")
+    # a measurement no tension can explain is the user's mistake: refuse it before the chart
+    measured = measurement_summary(model, setup) if model.measurement is not None else None
     sp, ch = setup.span, model.chart
     report(0.05, "chart")
 
@@ -134,11 +166,25 @@ def run(model, progress=None) -> Result:
                             "parametric resonance" if summary["floquet_multiplier"] > UNSTABLE else "stable")
     summary["stable"] = summary["stability"] == "stable"
     if model.measurement is not None:
-        summary["measurement"] = measurement_summary(model, setup)
+        summary["measurement"] = measured
+    if setup.belt_run is not None:   # where F0, V (and the tension history) came from, and how sound it was
+        run_ = setup.belt_run
+        summary["belt_run"] = {"file": run_.path, "span": run_.span_name, "status": run_.status,
+                               "diagnostics": list(run_.diagnostics), "window": list(run_.window),
+                               "tension_mean": float(run_.tension.mean()), "tension_min": float(run_.tension.min()),
+                               "tension_max": float(run_.tension.max()), "speed": run_.speed}
 
     result_ds = xr.Dataset(data, coords=coords, attrs={"model_toml": dumps(model), "title": model.name or KIND})
     result_ds.coords["mode"] = variable(modes, ("mode",), "1", "mode number")
     result = Result(KIND, result_ds, summary)
+    if op["omega"] is None:
+        # the span model (a tensioned moving beam) needs N = F0 + F* - rhoA V^2 > 0: report, keep the chart
+        result.diagnose("above-critical-speed",
+                        f"the belt speed {op['speed']:.4g} m/s is at or above the critical speed V_cr = "
+                        f"{op['v_critical']:.4g} m/s at pretension {op['pretension']:.4g} N: the span diverges (buckles) "
+                        f"and the span model does not apply; only the chart is meaningful",
+                        "speed", op["speed"], op["v_critical"], "m/s")
+    result.units = unit_map(summary, UNITS)
     if model.response is not None:
         report(0.9, "modal response")
         from .response import modal_response
@@ -147,11 +193,13 @@ def run(model, progress=None) -> Result:
         try:
             t, q = modal_response(setup, harm, r.duration, r.moment_amplitude, r.initial_displacement, r.points)
         except SolverError as exc:
-            raise SolverError(str(exc), partial=Result(KIND, result_ds, summary, success=False, message=str(exc))) from None
+            result.success, result.message = False, str(exc)
+            raise SolverError(str(exc), partial=result) from None
         result_ds["modal_coordinate"] = xr.DataArray(q, dims=("time",), attrs={"units": "m", "long_name": "modal coordinate q (mid-span deflection)"})
         result_ds.coords["time"] = variable(t, ("time",), "s", "time")
         tail = t >= 0.9 * t[-1]
         summary["response"] = {"max_deflection": float(np.max(np.abs(q))), "final_amplitude": float(np.max(np.abs(q[tail])))}
+    result.units = unit_map(summary, UNITS)
     report(1.0, "done")
     return result
 

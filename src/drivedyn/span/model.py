@@ -2,12 +2,14 @@
 
 Tables (every quantity SI or a string with a unit):
 
-    [span]         the free span: length (or a belt-drive model and a span name), mass per metre
-                   (or density and area), bending stiffness, modal damping ratio
+    [span]         the free span: length (or a belt-drive model, or a belt-drive run's results.nc,
+                   and a span name), mass per metre (or density and area), bending stiffness,
+                   modal damping ratio
     [operation]    pretension F0 and belt speed V of the installation
     [excitation]   tooth-passing excitation: pulley teeth and radius (or pitch), period convention
-    [tooth_force]  the tooth-force signal over one tooth: polynomial, samples, a CSV time series,
-                   or a given first-harmonic amplitude
+    [tooth_force]  the tooth-force signal over one tooth: polynomial, samples, a time series (a CSV
+                   file, or a belt-drive results.nc: the span's tension in its steady window), or a
+                   given first-harmonic amplitude
     [chart]        the (F0, V) stability chart: ranges, points, tongues, Floquet, zoomed tongue
     [measurement]  optional: a measured span frequency -> tension (with uncertainties)
     [response]     optional: time response of the modal coordinate to the end-moment rate
@@ -43,11 +45,18 @@ def _check_range(v, what):
     return v
 
 
+def _check_points(v):
+    if min(v) < 2 or max(v) > 2000:
+        raise ValueError(f"each must lie in 2..2000, got {list(v)}")
+    return v
+
+
 class Span(Spec):
     """The free span, modelled as a simply supported moving beam (seed eq. 1-2)."""
 
     length: Optional[quantity("m", gt=0)] = None
     belt_model: Optional[str] = None
+    belt_results: Optional[str] = None   # a belt-drive run's results.nc: span, tension and speed from it
     span_name: Optional[str] = None
     mass_per_length: Optional[quantity("kg/m", gt=0)] = None
     density: Optional[quantity("kg/m^3", gt=0)] = None
@@ -55,7 +64,7 @@ class Span(Spec):
     bending_stiffness: Optional[quantity("N*m^2", ge=0)] = None
     damping_ratio: float = 0.0
 
-    _belt_path = field_validator("belt_model")(classmethod(lambda cls, v, info: _relative_to_model(v, info)))
+    _belt_path = field_validator("belt_model", "belt_results")(classmethod(lambda cls, v, info: _relative_to_model(v, info)))
 
     @field_validator("damping_ratio")
     @classmethod
@@ -66,15 +75,17 @@ class Span(Spec):
 
     @model_validator(mode="after")
     def _sources(self):
-        if (self.length is None) == (self.belt_model is None):
-            raise ValueError("give exactly one of span.length or span.belt_model (with span.span_name)")
-        if self.belt_model is not None and not self.span_name:
-            raise ValueError("span.belt_model needs span.span_name (e.g. \"driver-driven\")")
+        given = [k for k in ("length", "belt_model", "belt_results") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise ValueError("give exactly one of span.length, span.belt_model or span.belt_results (with span.span_name)"
+                             + (f" (got {', '.join(given)})" if given else ""))
+        if self.length is None and not self.span_name:
+            raise ValueError(f"span.{given[0]} needs span.span_name (e.g. \"driver-driven\")")
         if self.mass_per_length is not None and (self.density is not None or self.area is not None):
             raise ValueError("give span.mass_per_length or span.density with span.area, not both")
         if (self.density is None) != (self.area is None):
             raise ValueError("span.density and span.area go together")
-        if self.belt_model is None:
+        if self.length is not None:
             if self.mass_per_length is None and self.density is None:
                 raise ValueError("span.mass_per_length (or span.density and span.area) is required")
             if self.bending_stiffness is None:
@@ -85,8 +96,8 @@ class Span(Spec):
 class Operation(Spec):
     """The installation: static tension F0 and belt speed V."""
 
-    pretension: Optional[quantity("N", gt=0)] = None   # None: taken from the belt-drive model
-    speed: quantity("m/s", ge=0) = 0.0
+    pretension: Optional[quantity("N", gt=0)] = None   # None: taken from the belt-drive model or results
+    speed: Optional[quantity("m/s", ge=0)] = None      # None: the belt results' span speed, else 0
 
 
 class Excitation(Spec):
@@ -103,6 +114,8 @@ class Excitation(Spec):
     def _z(cls, v):
         if v < 1:
             raise ValueError(f"must be >= 1, got {v}")
+        if v > 1000:  # a toothed pulley has tens of teeth; 1 is the once-per-turn excitation
+            raise ValueError(f"must be <= 1000, got {v}")
         return v
 
     @field_validator("harmonics")
@@ -166,6 +179,7 @@ class Zoom(Spec):
 
     _pr = field_validator("pretension")(classmethod(lambda cls, v: _check_range(v, "pretension")))
     _sp = field_validator("speed")(classmethod(lambda cls, v: _check_range(v, "speed")))
+    _pts = field_validator("points")(classmethod(lambda cls, v: _check_points(v)))
 
 
 class Chart(Spec):
@@ -182,12 +196,7 @@ class Chart(Spec):
     _pr = field_validator("pretension")(classmethod(lambda cls, v: _check_range(v, "pretension")))
     _sp = field_validator("speed")(classmethod(lambda cls, v: _check_range(v, "speed")))
 
-    @field_validator("points")
-    @classmethod
-    def _pts(cls, v):
-        if min(v) < 2 or max(v) > 2000:
-            raise ValueError(f"each must lie in 2..2000, got {list(v)}")
-        return v
+    _pts = field_validator("points")(classmethod(lambda cls, v: _check_points(v)))
 
     @field_validator("tongues")
     @classmethod
@@ -255,6 +264,6 @@ class Model(Spec):
 
     @model_validator(mode="after")
     def _pretension(self):
-        if self.span.belt_model is None and self.operation.pretension is None:
-            raise ValueError("operation.pretension is required (or take it from span.belt_model)")
+        if self.span.length is not None and self.operation.pretension is None:
+            raise ValueError("operation.pretension is required (or take it from span.belt_model or span.belt_results)")
         return self

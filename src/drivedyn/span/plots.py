@@ -178,7 +178,9 @@ def plot_response(ds, summary, ax=None):
 
 
 def plot_all(result, outdir) -> list[Path]:
-    """Write the standard PNGs of a span-stability result into ``outdir``."""
+    """Write the standard PNGs of a span-stability result into ``outdir`` (a warned run says so on each)."""
+    from .. import plotting
+
     outdir = Path(outdir)
     ds, s = result.ds, result.summary
     jobs = [("span-chart.png", plot_chart, (7, 5)), ("span-tongue.png", plot_tongue, (7.5, 5)),
@@ -193,6 +195,5 @@ def plot_all(result, outdir) -> list[Path]:
         fn(ds, s, fig.subplots())
         if fn is plot_chart:
             fig.axes[0].set_title(f"stability chart: {ds.attrs.get('title', '')}", fontsize=10)
-        fig.savefig(outdir / name, dpi=110)
-        written.append(outdir / name)
+        plotting.save(fig, outdir / name, result, written, dpi=110)
     return written

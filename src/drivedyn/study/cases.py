@@ -35,7 +35,9 @@ from ..model import from_dict, set_path, to_dict
 
 TOKEN = ".study-id"
 #: statuses a case can end with
-STATUSES = ("success", "failed", "invalid", "error", "lost", "missing")
+STATUSES = ("success", "warning", "failed", "invalid", "error", "lost", "missing")
+#: statuses of a case that ran to its end ("warning": with diagnostics; a re-run gives the same)
+COMPLETED = ("success", "warning")
 
 
 @dataclass
@@ -91,7 +93,9 @@ def resolve(study, design, overrides_of) -> list[Case]:
             out.append(Case(i, values, ov, None, key, msg))
             continue
         toml = dumps(model)
-        out.append(Case(i, values, ov, toml, model_key(toml)))
+        # a check of a model is another result than its run: another cache key
+        mode = study.spec.mode
+        out.append(Case(i, values, ov, toml, model_key(toml if mode == "run" else f"# mode {mode}\n{toml}")))
     return out
 
 
@@ -187,7 +191,7 @@ def _deadline(timeout):
     return progress
 
 
-def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str], timeout=None) -> dict:
+def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str], timeout=None, mode: str = "run") -> dict:
     """Run one case on a worker and return its record (also written to the cache when visible).
 
     Every failure of the case itself is caught and recorded, so the task only fails when the
@@ -206,16 +210,26 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
             return done
         journal(cache, key, "start")
     t0 = time.perf_counter()
-    status, message, summary, ds = "success", "", {}, None
+    status, message, summary, ds, diagnostics = "success", "", {}, None, []
     try:
-        result = run(loads(toml, source=f"case {key}"), progress=_deadline(timeout))
-        summary, ds = result.flat_summary(), result.ds
-        if not result.success:
-            status, message = "failed", result.message
+        model = loads(toml, source=f"case {key}")
+        if mode == "check":   # what check knows, as the case's summary (no time series)
+            import xarray as xr
+
+            from ..analyses import analysis
+            from ..results import Result
+
+            result = Result(model.kind, xr.Dataset(), analysis(model.kind).check_data(model))
+        else:
+            result = run(model, progress=_deadline(timeout))
+        summary, ds, diagnostics = result.flat_summary(), result.ds, result.diagnostics
+        status, message = result.status, result.message
+        if status == "warning":  # the diagnostics, one line
+            message = "; ".join(d.line() for d in diagnostics)
     except SolverError as exc:
         status, message = "failed", _one_line(exc)
         if exc.partial is not None:
-            summary, ds = exc.partial.flat_summary(), exc.partial.ds
+            summary, ds, diagnostics = exc.partial.flat_summary(), exc.partial.ds, exc.partial.diagnostics
     except ModelError as exc:
         status, message = "invalid", _one_line(exc)
     except Stopped as exc:  # an analysis that keeps nothing when stopped
@@ -224,6 +238,7 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
         status, message = "error", f"{type(exc).__name__}: {_one_line(exc)}"
     record = {
         "key": key, "status": status, "message": message, "summary": _clean(summary),
+        "diagnostics": [d.to_dict() for d in diagnostics],
         "wall_time": time.perf_counter() - t0, "worker": f"{socket.gethostname()}:{os.getpid()}",
         "finished": _dt.datetime.now().isoformat(timespec="seconds"), "drivedyn_version": __version__,
         "series": sorted(series),
@@ -245,7 +260,5 @@ def warm_worker(kind: str) -> str:
     """Import the analysis on a worker and run its optional ``warmup()`` (numba compilation)."""
     from ..model import analysis
 
-    pkg = analysis(kind)
-    if callable(getattr(pkg, "warmup", None)):
-        pkg.warmup()
+    analysis(kind).warmup()
     return f"{socket.gethostname()}:{os.getpid()}"

@@ -3,8 +3,8 @@
 Grid studies get one dimension per parameter; sampled designs a ``case`` dimension with the
 parameters as coordinates along it. Each collected summary key becomes a variable named by its
 dotted key (``pulleys.driven.slip``), NaN where a case has no value; lists of fixed length get an
-extra dimension ``<key>.i``. Per case: ``status``, ``message``, ``case_key`` (the cache key) and
-``wall_time``. ``attrs`` hold the study text and the base model text.
+extra dimension ``<key>.i``. Per case: ``status``, ``message``, ``diagnostics`` (codes),
+``case_key`` (the cache key) and ``wall_time``. ``attrs`` hold the study text and the base model text.
 """
 from __future__ import annotations
 
@@ -18,6 +18,7 @@ import numpy as np
 import xarray as xr
 
 from .. import __version__
+from .cases import STATUSES
 
 
 def _selected(keys, patterns):
@@ -73,7 +74,7 @@ def assemble(study, design, cases, records, cache) -> xr.Dataset:
         kind = _kind_of(vals)
         if kind is None:
             continue
-        name = _safe(f"summary.{k}" if k in labels or k in ("case", "status", "message") else k)
+        name = _safe(f"summary.{k}" if k in labels or k in ("case", "status", "message", "diagnostics") else k)
         if kind == "float":
             arr = np.array([np.nan if v is None else float(v) for v in vals])
             data_vars[name] = (("case",), arr, {"long_name": k})
@@ -85,10 +86,12 @@ def assemble(study, design, cases, records, cache) -> xr.Dataset:
             arr = np.array([[np.nan] * m if v is None else [np.nan if x is None else float(x) for x in v] for v in vals])
             data_vars[name] = (("case", f"{k}.i"), arr, {"long_name": k})
         summary_keys.append(name)
-    data_vars["status"] = (("case",), status, {"long_name": "case status: " + ", ".join(
-        ("success", "failed", "invalid", "error", "lost", "missing"))})
+    data_vars["status"] = (("case",), status, {"long_name": "case status: " + ", ".join(STATUSES)})
     data_vars["message"] = (("case",), np.array([r.get("message", "") for r in recs], dtype=object),
-                            {"long_name": "why the case failed ('' on success)"})
+                            {"long_name": "why the case failed or warned ('' on success)"})
+    data_vars["diagnostics"] = (("case",), np.array([",".join(dict.fromkeys(d["code"] for d in r.get("diagnostics", [])))
+                                                      for r in recs], dtype=object),
+                                {"long_name": "codes of the case's diagnostics, comma-separated ('' if none)"})
     data_vars["case_key"] = (("case",), np.array([c.key for c in cases], dtype=object),
                              {"long_name": "cache key: SHA-256 of the resolved model TOML (first 20 hex digits)"})
     data_vars["wall_time"] = (("case",), np.array([float(r.get("wall_time", np.nan)) for r in recs]),
@@ -106,7 +109,7 @@ def assemble(study, design, cases, records, cache) -> xr.Dataset:
     for p in study.spec.parameters:
         ds[p.label].attrs.update(units=study.units.get(p.label, ""), long_name=", ".join(p.paths),
                                  paths=", ".join(p.paths))
-    counts = {s: int((status == s).sum()) for s in ("success", "failed", "invalid", "error", "lost", "missing")}
+    counts = {s: int((status == s).sum()) for s in STATUSES}
     sp = study.spec
     ds.attrs.update(
         title=study.name, kind="study", base_kind=study.base.kind,

@@ -8,13 +8,17 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
          dry_run=False, prune=False) -> int:
     """Run a study file with a progress bar (stderr) and print where everything went.
 
-    Returns 0 when every case succeeded, 1 when some did not (the study still completes).
+    Returns 0 when every case ran to its end (status success or warning; warned cases are listed),
+    1 when some did not (the study still completes).
     ``prune`` removes, after the run, the cached cases that are no longer part of the study.
     Raises :class:`drivedyn.ModelError` on bad input (the command line prints it on one line).
     """
     from rich.console import Console
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 
+    import numpy as np
+
+    from .cases import COMPLETED
     from .cases import prune as prune_cache
     from .execute import prepare, run_study
 
@@ -57,16 +61,17 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
     c = res.counts
     if res.ds.attrs.get("unmatched_outputs"):
         console.print(f"[yellow]warning:[/] outputs.summary pattern(s) matching no summary key: {res.ds.attrs['unmatched_outputs']}")
-    console.print(f"{c['total']} cases: {c['success']} succeeded, {c['total'] - c['success']} did not "
-                  f"({c['ran']} run now, {c['cached']} from the cache)")
-    bad = res.ds["status"].values.ravel() != "success"
-    if bad.any():
-        msgs = res.ds["message"].values.ravel()[bad]
-        sts = res.ds["status"].values.ravel()[bad]
-        for s, m in list(zip(sts, msgs))[:5]:
-            console.print(f"  [red]{s}[/]: {m}")
-        if bad.sum() > 5:
-            console.print(f"  ... {bad.sum() - 5} more (see the status and message variables)")
+    warned = c.get("warning", 0)
+    console.print(f"{c['total']} cases: {c['success']} succeeded, {warned} warned, "
+                  f"{c['total'] - c['success'] - warned} did not ({c['ran']} run now, {c['cached']} from the cache)")
+    sts = res.ds["status"].values.ravel()
+    msgs = res.ds["message"].values.ravel()
+    bad = ~np.isin(sts, COMPLETED)
+    for label, mask, colour in (("warned", sts == "warning", "yellow"), ("did not finish", bad, "red")):
+        for s, m in list(zip(sts[mask], msgs[mask]))[:5]:
+            console.print(f"  [{colour}]{s}[/]: {m}")
+        if mask.sum() > 5:
+            console.print(f"  ... {mask.sum() - 5} more {label} (see the status, diagnostics and message variables)")
     if prune:
         n, size = prune_cache(outdir / "cases", {c.key for c in cases})
         console.print(f"pruned {n} cached case(s) of other models ({size / 1e6:.1f} MB)")

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import ModelError
-from .cases import TOKEN, Case, read_record, resolve, run_case, warm_worker, write_record
+from .cases import COMPLETED, STATUSES, TOKEN, Case, read_record, resolve, run_case, warm_worker, write_record
 from .design import make_design, overrides_of
 from .spec import Study, load_study
 
@@ -33,8 +33,8 @@ class StudyRun:
         The netCDF file written (``<out>/study.nc``).
     counts : dict
         ``total`` cases, ``ran`` (distinct models executed now), ``cached`` (cases reused from the
-        cache), and one count per status (``success``, ``failed``, ``invalid``, ``error``,
-        ``lost``, ``missing``).
+        cache), and one count per status (``success``, ``warning``, ``failed``, ``invalid``,
+        ``error``, ``lost``, ``missing``).
     plots : list of pathlib.Path
         The PNG files written.
     """
@@ -103,7 +103,7 @@ def run_study(study, out=None, *, client=None, scheduler=None, workers=None, ret
         with ``workers`` single-threaded worker processes (default: one per core).
     retry_failed : bool
         Also re-run cases cached as failed/invalid/error (by default only missing or changed
-        cases run).
+        cases run; a case cached as "warning" ran to its end and is never re-run).
     plots : bool
         Draw the study plots into ``<out>/plots``.
     progress : callable, optional
@@ -130,13 +130,13 @@ def run_study(study, out=None, *, client=None, scheduler=None, workers=None, ret
         if c.key in records or c.key in todo:
             continue
         rec = read_record(cache, c.key, series)
-        if rec is not None and (rec["status"] == "success" or not retry_failed):
+        if rec is not None and (rec["status"] in COMPLETED or not retry_failed):
             records[c.key] = rec
         else:
             todo[c.key] = c
     cached = sum(1 for c in cases if c.toml is not None and c.key in records)
     counts = {"total": len(cases), "cases_to_run": len(todo), "cached": cached, "done": len(cases) - len(_pending(cases, todo)),
-              "not_success": sum(1 for c in cases if c.key in records and records[c.key]["status"] != "success"),
+              "not_success": sum(1 for c in cases if c.key in records and records[c.key]["status"] not in COMPLETED),
               "running": 0, "ran": 0}
     if progress:
         progress(dict(counts))
@@ -148,7 +148,7 @@ def run_study(study, out=None, *, client=None, scheduler=None, workers=None, ret
             interrupted = exc
     ds = assemble(study, design, cases, records, cache)
     path = write_dataset(ds, out / "study.nc")
-    for s in ("success", "failed", "invalid", "error", "lost", "missing"):
+    for s in STATUSES:
         counts[s] = int((ds["status"].values == s).sum())
     files = []
     if plots and study.spec.plots.enabled and interrupted is None:
@@ -192,7 +192,7 @@ def _execute(study, todo, cases, cache, series, records, counts, client, schedul
         client.run(warm_worker, study.base.kind)
         prefix = f"drivedyn-case-{uuid.uuid4().hex[:8]}-"
         cache_dir, token = str(cache.resolve()), (cache / TOKEN).read_text().strip()
-        futures = {client.submit(run_case, c.toml, k, cache_dir, token, series, study.spec.case_timeout,
+        futures = {client.submit(run_case, c.toml, k, cache_dir, token, series, study.spec.case_timeout, study.spec.mode,
                                  key=prefix + k, pure=False): k
                    for k, c in todo.items()}
         weight = {k: sum(1 for c in cases if c.key == k) for k in todo}  # duplicated cases share a run
@@ -207,7 +207,7 @@ def _execute(study, todo, cases, cache, series, records, counts, client, schedul
                     records[k] = rec
                     counts["done"] += weight[k]
                     counts["ran"] += 1
-                    if rec["status"] != "success":
+                    if rec["status"] not in COMPLETED:
                         counts["not_success"] += weight[k]
                     f.release()
                 now = time.monotonic()

@@ -2,7 +2,9 @@
 
 One parameter: a line (failed cases shown as gaps and marked on the axis). Two grid parameters:
 a map (``pcolormesh`` on the parameter values) with failed cases crossed out; this is the
-stability map of a span study when the key is a stability flag or margin. Sampled designs, or more
+stability map of a span study when the key is a stability flag or margin. Cases that ended with
+diagnostics (status "warning": outside the model's valid regime) are left out of the line and
+the colour scale, so that they cannot swamp it, and marked with an orange triangle. Sampled designs, or more
 than two grid dimensions: one scatter panel per parameter (main effects), coloured by a second
 parameter. Built on ``matplotlib.figure.Figure`` (no pyplot, no backend), so it runs headless.
 """
@@ -31,6 +33,18 @@ def _monotonic(coord) -> bool:
     return bool(np.all(d > 0) or np.all(d < 0))
 
 
+#: how cases that did not give a valid value are marked: status -> (marker, colour, legend label)
+_MARKS = {"warning": ("^", "darkorange", "warning (see diagnostics)"), "failed": ("x", "C3", "failed")}
+
+
+def _masks(ds):
+    """(valid, {mark: mask}) of the cases: valid = success; warning; failed = everything else."""
+    status = ds["status"]
+    ok = status == "success"
+    warn = status == "warning"
+    return ok, {"warning": warn, "failed": ~ok & ~warn}
+
+
 def plot_key(ds, key, fig=None):
     """Draw summary ``key`` of study Dataset ``ds`` against its parameters; returns the Figure.
 
@@ -53,7 +67,7 @@ def plot_key(ds, key, fig=None):
     var = ds[key]
     params = [p.strip() for p in ds.attrs.get("parameters", "").split(",") if p.strip()]
     fig = fig or Figure(figsize=(6.4, 4.8), layout="constrained")
-    ok = ds["status"] == "success"
+    ok, marks = _masks(ds)
     grid = "case" not in var.dims
     extra = [d for d in var.dims if d not in params and d != "case"]
     if extra:  # a list-valued key: plot its first component
@@ -65,11 +79,15 @@ def plot_key(ds, key, fig=None):
         x = ds[p].values
         numeric_x = ds[p].dtype.kind in "fiu"
         xs = x if numeric_x else np.arange(len(x))
-        ax.plot(xs, var.where(ok).values, "o-", label=key)
-        bad = ~ok.values
-        if bad.any():
-            ax.plot(xs[bad], np.full(bad.sum(), np.nanmin(var.values) if np.isfinite(var.values).any() else 0.0),
-                    "x", color="C3", label="failed")
+        good = var.where(ok).values
+        ax.plot(xs, good, "o-", label=key)
+        floor = np.nanmin(good) if np.isfinite(good).any() else 0.0
+        for mark, mask in marks.items():
+            m = mask.values
+            if m.any():
+                sym, colour, label = _MARKS[mark]
+                ax.plot(xs[m], np.full(m.sum(), floor), sym, color=colour, ms=8, label=label)
+        if any(mask.values.any() for mask in marks.values()):
             ax.legend()
         if not numeric_x:
             ax.set_xticks(xs, [str(v) for v in x])
@@ -88,11 +106,15 @@ def plot_key(ds, key, fig=None):
         # contours only where the grid is fine enough for them to mean something
         if min(len(xs), len(ys)) >= 6 and np.isfinite(z).all() and np.nanmax(z) > np.nanmin(z):
             ax.contour(xs, ys, np.ma.masked_invalid(z), colors="white", linewidths=0.7, alpha=0.8)
-        bad = ~ok.transpose(py, px).values
-        if bad.any():
-            yy, xx = np.nonzero(bad)
-            ax.plot(xs[xx], ys[yy], "x", color="C3", ms=9, mew=2, label="failed")
-            ax.legend(loc="upper right")
+        shown = False
+        for mark, mask in marks.items():
+            yy, xx = np.nonzero(mask.transpose(py, px).values)
+            if len(xx):
+                sym, colour, label = _MARKS[mark]
+                ax.plot(xs[xx], ys[yy], sym, color=colour, ms=9, mew=2, label=label)
+                shown = True
+        if shown:
+            ax.legend(loc="upper right", fontsize=8)
         if not _monotonic(ds[px]):
             ax.set_xticks(xs, [f"{v:.4g}" if isinstance(v, float) else str(v) for v in xv])
         if not _monotonic(ds[py]):
@@ -111,9 +133,12 @@ def plot_key(ds, key, fig=None):
             if colour is not None and p != colour:
                 kw = dict(c=flat[colour].values[fok].astype(float), cmap="viridis")
             sc = ax.scatter(x[fok], fv[fok], s=14, **kw)
-            if (~fok).any():
-                ax.scatter(x[~fok], np.full((~fok).sum(), np.nanmin(fv) if np.isfinite(fv).any() else 0.0),
-                           marker="x", color="C3", label="failed")
+            floor = np.nanmin(fv[fok]) if np.isfinite(fv[fok]).any() else 0.0
+            for mark, mask in marks.items():
+                fm = (mask.stack(_c=params) if grid else mask.rename({"case": "_c"})).values
+                if fm.any():
+                    sym, mark_colour, label = _MARKS[mark]
+                    ax.scatter(x[fm], np.full(fm.sum(), floor), marker=sym, color=mark_colour, label=label)
             ax.set_xlabel(_label(ds, p))
             ax.grid(True, alpha=0.3)
         axes[0].set_ylabel(key)
@@ -137,7 +162,7 @@ def plot_study(ds, outdir, keys=None) -> list[Path]:
         chosen = available
     else:
         chosen = [k for k in available if any(fnmatch.fnmatchcase(k.lower(), p.lower()) for p in keys)]
-    if not chosen or not (ds["status"] == "success").any():
+    if not chosen or not np.isin(ds["status"].values, ("success", "warning")).any():
         return []
     outdir.mkdir(parents=True, exist_ok=True)
     files = []

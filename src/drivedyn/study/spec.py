@@ -17,15 +17,14 @@ in ``belt.pretension`` costs a second, not a cluster start::
 from __future__ import annotations
 
 import difflib
-import tomllib
-import typing
 from pathlib import Path
 from typing import Any, Literal, Optional, Union
 
-from pydantic import BaseModel, ValidationError, field_validator, model_validator
+from pydantic import ValidationError, field_validator, model_validator
 
 from ..errors import ModelError
-from ..model import Spec, format_validation_error, from_dict, quantity, set_path, to_dict
+from ..model import Spec, field_unit, format_validation_error, from_dict, quantity, read_toml, schema_step, set_path, to_dict
+from ..model import unwrap as _unwrap
 
 #: accepted sampler names -> canonical name (the aliases are what people type)
 SAMPLERS = {
@@ -157,6 +156,9 @@ class StudySpec(Spec):
     # wall-time limit per case, checked at the case's progress reports (belt: every 1 % of the
     # simulated time); a case that exceeds it ends as "failed" and keeps what it computed
     case_timeout: Optional[quantity("s", gt=0)] = None
+    # "run" simulates each case; "check" evaluates what check knows (belt drives: the creep-theory
+    # steady state, slip margins, modes) in milliseconds per case, for margin maps of many cases
+    mode: Literal["run", "check"] = "run"
 
     @model_validator(mode="after")
     def _consistent(self):
@@ -164,6 +166,8 @@ class StudySpec(Spec):
             raise ValueError("give exactly one of base (a model file) or [model] (the base model inline)")
         if not self.parameters:
             raise ValueError("parameters: a study needs at least one parameter")
+        if self.mode == "check" and self.outputs.series:
+            raise ValueError("outputs.series: a study with mode = \"check\" has no time series (summary keys only)")
         labels = [p.label for p in self.parameters]
         dup = sorted({x for x in labels if labels.count(x) > 1})
         if dup:
@@ -219,15 +223,7 @@ def load_study(path) -> Study:
         With one line naming the file, the field and the problem.
     """
     path = Path(path)
-    if not path.exists():
-        raise ModelError(f"{path}: file not found")
-    if path.is_dir():
-        raise ModelError(f"{path}: is a directory, expected a study file")
-    text = path.read_text(encoding="utf-8")
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ModelError(f"{path}: not valid TOML: {exc}") from None
+    data, text = read_toml(path, what="study")
     return study_from_dict(data, source=str(path), root=path.parent, text=text, path=path)
 
 
@@ -256,6 +252,11 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
         inline = dict(spec.model)
         _absolute_files(inline, Path(root))
         base = from_dict(inline, source=f"{source}: model")
+    if spec.mode == "check":
+        from ..analyses import analysis
+
+        if not analysis(base.kind).check_data_at:
+            raise ModelError(f"{source}: mode: \"check\" studies are for belt-drive models (the base is {base.kind})")
     model_cls = type(base)
     raw = to_dict(base)
     for key, value in spec.overrides.items():
@@ -370,71 +371,12 @@ def _index(node: list, part: str) -> int:
     return k
 
 
-def _unwrap(ann):
-    """Strip Optional and Annotated layers; returns (core annotation, unit found or None)."""
-    import types
-
-    unit = None
-    while True:
-        origin = typing.get_origin(ann)
-        if origin is typing.Annotated:
-            for meta in ann.__metadata__:
-                extra = getattr(meta, "json_schema_extra", None)
-                if isinstance(extra, dict) and extra.get("unit"):
-                    unit = extra["unit"]
-            ann = typing.get_args(ann)[0]
-        elif origin is Union or origin is types.UnionType:
-            args = [a for a in typing.get_args(ann) if a is not type(None)]
-            if len(args) != 1:
-                return ann, unit
-            ann = args[0]
-        else:
-            return ann, unit
-
-
-class _Unit:
-    """Annotated marker carrying a field's unit down into list/tuple items."""
-
-    def __init__(self, unit):
-        self.json_schema_extra = {"unit": unit}
-
-
-def _step(ann, part):
-    """Annotation one path step below ``ann`` (a model class, list or tuple), or None."""
-    core, unit = _unwrap(ann)
-    if isinstance(core, type) and issubclass(core, BaseModel):
-        f = core.model_fields.get(part)
-        if f is None:
-            return None
-        extra = f.json_schema_extra if isinstance(f.json_schema_extra, dict) else {}
-        sub = f.annotation
-        # quantity() as a whole field annotation is merged by pydantic into the FieldInfo
-        return typing.Annotated[sub, _Unit(extra["unit"])] if extra.get("unit") else sub
-    if typing.get_origin(core) in (list, tuple):
-        args = [a for a in typing.get_args(core) if a is not Ellipsis]
-        if not args:
-            return None
-        item = args[int(part)] if typing.get_origin(core) is tuple and part.isdigit() and int(part) < len(args) else args[0]
-        return typing.Annotated[item, _Unit(unit)] if unit else item
-    return None
-
-
 def _field_class(cls, part):
-    return _step(cls, part) if cls is not None else None
+    return schema_step(cls, part) if cls is not None else None
 
 
 def _item_class(ann):
-    return _step(ann, "0") if ann is not None else None
-
-
-def field_unit(model_cls, path: str) -> str | None:
-    """SI unit of the model field at ``path`` (declared with ``quantity``), or None."""
-    ann: Any = model_cls
-    for part in path.split("."):
-        ann = _step(ann, part)
-        if ann is None:
-            return None
-    return _unwrap(ann)[1]
+    return schema_step(ann, "0") if ann is not None else None
 
 
 def to_number(value, unit: str | None):

@@ -5,9 +5,13 @@ import numpy as np
 import xarray as xr
 
 from ..model import dumps
-from ..results import Result, variable
+from ..results import Result, unit_map, variable
 from .engagement import comparison, geometry, headline, maps, sweep
 from .pair import resolve
+
+
+#: units of the summary keys: the keys carry their unit as a suffix (summary.json keeps mm and deg)
+UNITS = {"*_mm2": "mm^2", "*_mm": "mm", "*_deg": "deg", "*groove_depth_used": "1"}
 
 
 def run(model, progress=None) -> Result:
@@ -68,4 +72,4 @@ def run(model, progress=None) -> Result:
                     belt_thickness=pair.tooth.thickness, teeth=pair.teeth, title=model.name)
     if progress:
         progress(1.0, "done")
-    return Result("toothed-mesh", ds, summary)
+    return Result("toothed-mesh", ds, summary, units=unit_map(summary, UNITS))

@@ -113,8 +113,11 @@ GrooveSpec = Annotated[Union[TrapezoidalGrooveSpec, ArcGrooveSpec], Field(discri
 
 
 def _tooth_count(v):
+    # upper: catalogue pulleys stop near 200 teeth; the tooth outlines scale with z
     if v < 6:
         raise ValueError(f"must be >= 6, got {v}")
+    if v > 1000:
+        raise ValueError(f"must be <= 1000, got {v}")
     return v
 
 
@@ -171,12 +174,13 @@ class Mesh(Spec):
     chord_tolerance: quantity("m", ge=1e-9) = 2e-7
     flank_spacing: quantity("m", ge=1e-7) = 2e-5
 
-    @field_validator("angles")
-    @classmethod
-    def _angles(cls, v):
-        if v < 3:
-            raise ValueError(f"must be >= 3, got {v}")
-        return v
+    _angles = field_validator("angles")(classmethod(lambda cls, v: _angle_count(v)))
+
+
+def _angle_count(v):
+    if not 3 <= v <= 10_000:  # each angle is one polygon intersection per tooth pair
+        raise ValueError(f"must lie in 3..10000, got {v}")
+    return v
 
 
 class Maps(Spec):
@@ -185,6 +189,17 @@ class Maps(Spec):
     teeth: list[int]
     pitch_error: list[Length] = [0.0]
     angles: int = 61
+
+    _angles = field_validator("angles")(classmethod(lambda cls, v: _angle_count(v)))
+    _teeth = field_validator("teeth")(classmethod(lambda cls, v: [_tooth_count(z) for z in v]))
+
+    @model_validator(mode="after")
+    def _size(self):
+        # every cell is a full engagement sweep (and is checked at load): keep the map a figure
+        if not self.teeth or not self.pitch_error or len(self.teeth) * len(self.pitch_error) > 400:
+            raise ValueError(f"maps needs 1..400 cells (teeth x pitch errors), got "
+                             f"{len(self.teeth)} x {len(self.pitch_error)}")
+        return self
 
 
 class Pair(Spec):

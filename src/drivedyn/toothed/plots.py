@@ -228,9 +228,10 @@ def plot_all(result, outdir) -> list[Path]:
         figs["mesh-maps.png"] = plot_maps(ds)
     if "pair" in ds.dims and ds.sizes["pair"] > 1:
         figs["mesh-comparison.png"] = plot_comparison(ds)
+    from .. import plotting
+
     paths = []
     for name, fig in figs.items():
-        fig.savefig(outdir / name, dpi=110)
-        paths.append(outdir / name)
+        plotting.save(fig, outdir / name, result, paths, dpi=110)
     paths.append(animate(ds, outdir / "mesh-animation.gif"))
     return paths

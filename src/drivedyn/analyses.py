@@ -1,0 +1,75 @@
+"""The analysis registry: which package answers which ``kind``, and where its entry points live.
+
+Every analysis is a subpackage whose ``model.py`` defines ``Model``; its run, check and plot
+functions are named here as ``"module:function"`` inside the package and imported only when
+called, so that ``drivedyn.load`` of a belt model never imports the gear code (or numba).
+"""
+from __future__ import annotations
+
+import difflib
+import importlib
+from dataclasses import dataclass
+
+from .errors import ModelError
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """One analysis: ``run(model, progress=None) -> Result``, ``check(model) -> str``,
+    ``plot(result, outdir) -> list[Path]``, optional ``warmup()`` (compile kernels once)."""
+
+    kind: str
+    package: str
+    run_at: str
+    check_at: str
+    plot_at: str
+    warmup_at: str = ""
+    check_data_at: str = ""    # what check knows, as a dict (check --json, studies with mode = "check")
+
+    def _get(self, where: str):
+        module, name = where.split(":")
+        return getattr(importlib.import_module(f"{self.package}.{module}"), name)
+
+    @property
+    def Model(self):
+        return importlib.import_module(f"{self.package}.model").Model
+
+    def run(self, model, progress=None):
+        return self._get(self.run_at)(model, progress=progress)
+
+    def check(self, model) -> str:
+        return self._get(self.check_at)(model)
+
+    def plot(self, result, outdir):
+        return self._get(self.plot_at)(result, outdir)
+
+    def check_data(self, model) -> dict:
+        if not self.check_data_at:
+            raise ModelError(f"check data (check --json, a study's mode = \"check\") is for belt-drive models "
+                             f"(this is {self.kind})")
+        return self._get(self.check_data_at)(model)
+
+    def warmup(self) -> None:
+        if self.warmup_at:
+            self._get(self.warmup_at)()
+
+
+ANALYSES = {a.kind: a for a in (
+    Analysis("belt-drive", "drivedyn.belt", "simulate:run", "statics:report", "plots:plot_all", "simulate:warm",
+             "statics:check_data"),
+    Analysis("gear-train", "drivedyn.gears", "simulate:run", "report:report", "plots:plot_all"),
+    Analysis("span-stability", "drivedyn.span", "analysis:run", "report:report", "plots:plot_all"),
+    Analysis("toothed-mesh", "drivedyn.toothed", "analysis:run", "report:report", "plots:plot_all"),
+)}
+
+#: kind -> analysis package (for listings)
+KINDS = {kind: a.package for kind, a in ANALYSES.items()}
+
+
+def analysis(kind: str) -> Analysis:
+    """The registered analysis of ``kind``; a ModelError naming the field ``kind`` otherwise."""
+    if kind not in ANALYSES:
+        close = difflib.get_close_matches(str(kind), ANALYSES, n=1)
+        hint = f" (did you mean {close[0]!r}?)" if close else f" (one of {', '.join(ANALYSES)})"
+        raise ModelError(f"unknown kind {kind!r}{hint}", field="kind")
+    return ANALYSES[kind]

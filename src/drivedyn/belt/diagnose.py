@@ -1,0 +1,323 @@
+"""Belt-drive diagnostics: does the computed run stay inside the model's valid regime?
+
+Each check reads the Result (window means, frames) and the built system, adds its numbers to the
+summary and, past its limit, a diagnostic (codes of :data:`drivedyn.diagnostics.CODES`):
+
+- gross-slip: creep theory (Euler-Eytelwein / Grashof) puts the pulley surface speed between the
+  speeds of the belt arriving and leaving (adhesion arc at the entry, sliding arc at the exit); in
+  gross slip it leaves that band. Measured: sliding = 1 - |v_arrive| / |omega r_eff|, against the
+  elastic-creep bound (T_hi - T_lo) / (EA + T_hi) plus the chain's chordal speed error.
+- contact-chatter, contact-damping-depth: share of the wrapped segments in contact and peak
+  normal force against the capstan value T l / r, from the frames inside the window.
+- window-not-steady: drift of pulley speeds and span tensions inside the window (window.drift).
+- energy-residual: |work in - dissipated - energy change| over the window against the work in.
+- coarse-discretisation: chordal speed error l^2 / (12 r^2) of each pulley.
+- at-rest-drift: a drive with no excitation whose pulleys move (it starts at static equilibrium).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import ModelError
+from ..window import drift, in_window
+from . import _kernels as K
+from .equilibrium import FORCE_TOL
+
+#: gross slip: sliding beyond twice the creep band plus the largest discretisation speed error the
+#: coarse-discretisation check lets pass (CHORDAL_LIMIT): then it cannot be creep or chordal action
+SLIP_FACTOR = 2.0
+#: contact chatter: fewer wrapped segments in contact than this share, or a peak normal force
+#: above this multiple of the capstan value T l / r
+CONTACT_SHARE = 0.75
+PEAK_FACTOR = 3.0
+#: the damping depth is "far" from the static penetration beyond this ratio
+DEPTH_RATIO = 10.0
+#: drift of a window mean over the window, against its scale
+DRIFT_LIMIT = 0.02
+#: energy residual over the window against the work in
+ENERGY_LIMIT = 0.01
+#: chordal speed error of a pulley. A chain of chords l on a circle r (chord midpoints on r)
+#: carries the belt at r_eff = l / (2 asin(l / 2 R_e)), R_e = sqrt(r^2 + l^2/4): r_eff / r - 1
+#: = l^2 / (12 r^2) + O(l^4) (README "Chordal action": 0.96 % alternator-crank error at 110
+#: segments = 9.9^2/12 (1/27^2 - 1/80^2)). Above 2 % (l > 0.49 r) it exceeds the creep of a
+#: belt at rated load (1-2 %) and would be read as slip.
+CHORDAL_LIMIT = 0.02
+
+
+def chordal_error(l: float, r) -> np.ndarray:
+    """Relative speed error l^2 / (12 r^2) of the segment chain on a pulley of radius r."""
+    return l * l / (12.0 * np.asarray(r, dtype=float) ** 2)
+
+
+def effective_radius(l: float, g: float, radii_chords) -> np.ndarray:
+    """Belt length carried per radian of pulley turn: segment + gap over the angle one segment
+    subtends with its ends on the chord-end circle R_e (initial.py)."""
+    Re = np.asarray(radii_chords, dtype=float)
+    return (l + g) / (2.0 * np.arcsin(np.minimum(l / (2.0 * Re), 1.0)))
+
+
+def run_checks(result, model, sysm, sel) -> None:
+    """Add the belt diagnostics and their numbers to ``result`` (summary and diagnostics)."""
+    if not np.any(sel) or result.ds.sizes.get("time", 0) < 3:
+        return
+    _gross_slip(result, model, sysm, sel)
+    _contact(result, model, sysm)
+    _steady(result, model, sysm, sel)
+    _energy(result, model, sel)
+    _coarse(result, model, sysm)
+    _at_rest(result, model, sysm)
+    _slip_margin(result, model, sysm, sel)
+
+
+def _slip_margin(result, model, sysm, sel):
+    """pulleys.<name>.slip_margin: the load multiplier at gross-slip onset by creep theory
+    (steady.py) for the run's mean loads in the window (inertia torques J dw/dt included, so that
+    an accelerating drive counts what its belt transmits)."""
+    from .steady import steady_state
+
+    ds = result.ds
+    t = ds["time"].values[sel]
+    w = ds["speed"].values[sel]
+    if len(t) < 3:
+        return
+    acc = np.polyfit(t - t[0], w, 1)[0]
+    J = np.array([p.inertia for p in model.pulleys])
+    loads = ds["torque_applied"].values[sel].mean(axis=0) - J * acc
+    d = int(np.argmax(np.abs(w.mean(axis=0)) * np.abs(sysm.layout.rho)))
+    speed = float(w.mean(axis=0)[d] * sysm.layout.rho[d])
+    try:
+        st = steady_state(model, sysm.layout, loads=loads, speed=speed)
+    except ModelError:       # a slack belt: the run's own diagnostics say what happened
+        return
+    for name, p in st.pulleys.items():
+        result.summary["pulleys"][name]["slip_margin"] = float(p.slip_margin) if np.isfinite(p.slip_margin) else float("nan")
+
+
+def _spans_at(sysm, j, forward):
+    """(arriving, leaving) span index at pulley j; span k leaves pulley k in belt order."""
+    nk = len(sysm.layout.names)
+    return ((j - 1) % nk, j) if forward else (j, (j - 1) % nk)
+
+
+def _gross_slip(result, model, sysm, sel):
+    ds, s = result.ds, result.summary
+    init = sysm.init
+    EA = model.belt.axial_stiffness
+    l = init.seg_length
+    r_eff = effective_radius(l, init.gap, init.layout.radii)
+    speed = ds["speed"].values[sel].mean(axis=0)
+    vsp = ds["span_speed"].values[sel].mean(axis=0)
+    ten = ds["span_tension"].values[sel].mean(axis=0)
+    forward = float(np.nansum(vsp)) >= 0
+    v_scale = max(float(np.max(np.abs(speed) * r_eff)), float(np.max(np.abs(vsp))))
+    share = _sliding_share(result, model, sysm)
+    t_w = s["steady_window"][1] - s["steady_window"][0]
+    for j, name in enumerate(sysm.layout.names):
+        a, b = _spans_at(sysm, j, forward)
+        surf, v_arr = abs(speed[j]) * r_eff[j], abs(vsp[a])
+        t_hi, t_lo = max(ten[a], ten[b]), min(ten[a], ten[b])
+        # elastic creep at the capstan limit (whole wrap sliding): strain difference of the spans
+        bound = (t_hi - t_lo) / (EA + t_hi) if EA + t_hi > 0 else 0.0
+        p = s["pulleys"][name]
+        p["creep_bound"] = float(bound)
+        p["sliding_share"] = share.get(name, float("nan"))
+        # the belt must pass at least one segment through the window, else speeds are start-up noise
+        if v_scale * t_w < l or max(surf, v_arr) < 1e-3 * v_scale:
+            p["sliding"] = float("nan")
+            continue
+        sliding = (surf - v_arr) / max(surf, v_arr)
+        p["sliding"] = float(sliding)
+        limit = SLIP_FACTOR * bound + CHORDAL_LIMIT
+        if abs(sliding) > limit and _excited(model):   # a free drive: at-rest-drift says it
+            who = "pulley outruns the belt" if sliding > 0 else "belt outruns the pulley"
+            result.diagnose("gross-slip", f"pulley {name} slips grossly ({who}): sliding {abs(sliding):.3g} against "
+                            f"the creep band {bound:.3g} (T1 {t_hi:.0f} N, T2 {t_lo:.0f} N); "
+                            f"{_pct(share.get(name))} of its wrap slides; more pretension or less load",
+                            f"pulleys.{name}.sliding", abs(sliding), limit, "1")
+
+
+def _pct(x):
+    return "?" if x is None or not np.isfinite(x) else f"{100 * x:.0f} %"
+
+
+def _frames_in_window(result):
+    ds = result.ds
+    if ds.sizes.get("frame", 0) == 0:
+        return np.zeros(0, dtype=int)
+    w = result.summary["steady_window"]
+    idx = np.nonzero(in_window(ds["frame_time"].values, w))[0]
+    return idx
+
+
+def _on_pulley(ds, frames, p):
+    """Mask (frames, segments) of segment centres inside pulley p's contact radius."""
+    d = np.hypot(ds["belt_x"].values[frames] - p.center[0], ds["belt_y"].values[frames] - p.center[1])
+    return d < p.radius
+
+
+def _sliding_share(result, model, sysm) -> dict:
+    """Share of the segments in contact on each pulley whose friction is saturated (|T| = mu N,
+    Threlfall's law past Delta_v): the sliding arc of creep theory; 1 in gross slip."""
+    ds = result.ds
+    fr = _frames_in_window(result)
+    if len(fr) == 0:
+        return {}
+    fn, ft = ds["belt_normal_force"].values[fr], ds["belt_friction_force"].values[fr]
+    mu = sysm.seg["mu"][None, :]
+    out = {}
+    for p in model.pulleys:
+        inc = _on_pulley(ds, fr, p) & (fn > 0)
+        n = inc.sum()
+        out[p.name] = float((inc & (np.abs(ft) >= 0.99 * mu * fn)).sum() / n) if n else float("nan")
+    return out
+
+
+def _contact(result, model, sysm):
+    ds, s = result.ds, result.summary
+    fr = _frames_in_window(result)
+    if len(fr) == 0:
+        return
+    init = sysm.init
+    lg = init.seg_length + init.gap                               # segment pitch at the pretension
+    fn = ds["belt_normal_force"].values[fr]
+    ten = ds["span_tension"].values
+    sel = in_window(ds["time"].values, s["steady_window"])
+    t_max = float(ten[sel].max()) if np.any(sel) else init.tension
+    depth = float(sysm.fp[K.F_PMAX])
+    p0 = init.penetration
+    worst = None
+    for j, p in enumerate(model.pulleys):
+        expected = sysm.layout.wrap[j] * p.radius / lg          # segments the wrap holds
+        inc = _on_pulley(ds, fr, p) & (fn > 0)
+        share = float(np.mean(inc.sum(axis=1)) / expected) if expected >= 1 else float("nan")
+        n_static = t_max * lg / p.radius                       # capstan pressure T / r on one segment
+        peak = float(np.max(np.where(inc, fn, 0.0)) / n_static)
+        s["pulleys"][p.name]["contact_share"] = min(share, 1.0)
+        s["pulleys"][p.name]["peak_normal_ratio"] = peak
+        if expected >= 3 and (share < CONTACT_SHARE or peak > PEAK_FACTOR):
+            if worst is None or share < worst[1]:
+                worst = (p.name, share, peak, j)
+    if worst is None:
+        return
+    name, share, peak, j = worst
+    if share < CONTACT_SHARE:
+        result.diagnose("contact-chatter", f"belt segments bounce on pulley {name}: {100 * share:.0f} % of the wrapped "
+                        f"segments in contact, peak normal force {peak:.1f} x the static value",
+                        f"pulleys.{name}.contact_share", share, CONTACT_SHARE, "1")
+    else:
+        result.diagnose("contact-chatter", f"belt segments bounce on pulley {name}: peak normal force {peak:.1f} x the "
+                        f"static value T l / r", f"pulleys.{name}.peak_normal_ratio", peak, PEAK_FACTOR, "1")
+    if depth > DEPTH_RATIO * float(np.max(p0)):
+        result.diagnose("contact-damping-depth", f"contact.damping_depth {depth * 1e3:.3g} mm is "
+                        f"{depth / np.max(p0):.0f} x the static penetration {np.max(p0) * 1e6:.3g} um: the contact "
+                        "damping is far below nominal; omit damping_depth (it then follows the static penetration)",
+                        "contact.damping_depth", depth, DEPTH_RATIO * float(np.max(p0)), "m")
+
+
+def _steady(result, model, sysm, sel):
+    ds, s = result.ds, result.summary
+    t = ds["time"].values[sel]
+    if len(t) < 3:
+        return
+    init = sysm.init
+    r = np.array([p.radius for p in model.pulleys])
+    w = ds["speed"].values[sel]
+    # speeds: against their mean, at least the speed that moves the belt by one segment per window
+    floor = init.seg_length / (t[-1] - t[0]) / r
+    d_speed = drift(t, w, np.maximum(np.abs(w.mean(axis=0)), floor))
+    ten = ds["span_tension"].values[sel]
+    # tensions: against the drive's tension level (the tight span's mean, at least the
+    # pretension): a slack span's few newtons of slow swing do not make the drive unsteady
+    d_ten = drift(t, ten, max(float(np.max(np.abs(ten.mean(axis=0)))), init.tension))
+    names, spans = list(sysm.layout.names), [sp.name for sp in sysm.layout.spans]
+    s["steady"] = {"speed_drift": {n: float(v) for n, v in zip(names, d_speed)},
+                   "tension_drift": {n: float(v) for n, v in zip(spans, d_ten)}, "limit": DRIFT_LIMIT}
+    k, q = int(np.nanargmax(d_speed)), int(np.nanargmax(d_ten))
+    if d_speed[k] >= d_ten[q]:
+        qty, val, what = f"steady.speed_drift.{names[k]}", d_speed[k], f"speed of pulley {names[k]}"
+    else:
+        qty, val, what = f"steady.tension_drift.{spans[q]}", d_ten[q], f"tension of span {spans[q]}"
+    if val > DRIFT_LIMIT:
+        result.diagnose("window-not-steady", f"the {what} drifts by {100 * val:.1f} % inside the steady window "
+                        f"{t[0]:.3g}-{t[-1]:.3g} s: run longer or move output.steady_window", qty, val, DRIFT_LIMIT, "1")
+
+
+def _energy(result, model, sel):
+    ds, s = result.ds, result.summary
+    idx = np.nonzero(sel)[0]
+    R = ds["energy_residual"].values
+    pin = ds["power_in"].values
+    t = ds["time"].values
+    dt = np.diff(np.concatenate([[0.0], t]))
+    work_pos = np.cumsum(np.clip(pin, 0, None).sum(axis=1) * dt)     # work in (J), positive flows only
+    D = ds["dissipated"].values.sum(axis=1)
+    # whole run: residual against the energy that flowed (work in, or what the drive dissipated
+    # when nothing drives it); undefined (None) when nothing flowed at all
+    # flows below a billionth of the belt's stored elastic energy T0^2 L / (2 EA) are round-off
+    # of that energy (a drive at rest): nothing flowed
+    b = model.belt
+    T0 = result.summary["belt"]["pretension"]
+    stored = T0 ** 2 * result.summary["belt"]["path_length"] / (2 * b.axial_stiffness)
+    scale = max(float(work_pos[-1]), float(D[-1]))
+    scale = scale if scale > 1e-9 * stored else 0.0
+    s["power"]["energy_residual_relative"] = float(abs(R[-1]) / scale) if scale > 0 else float("nan")
+    i0 = max(idx[0] - 1, 0)
+    w_win = float(work_pos[idx[-1]] - work_pos[i0])
+    r_win = abs(float(R[idx[-1]] - R[i0]))
+    rel = r_win / w_win if w_win > 0 else float("nan")
+    s["power"]["energy_residual_window"] = rel
+    if np.isfinite(rel) and rel > ENERGY_LIMIT:
+        result.diagnose("energy-residual", f"the energy balance misses {100 * rel:.1f} % of the work in over the steady "
+                        "window: a smaller simulation.step, or see the other diagnostics", "power.energy_residual_window",
+                        rel, ENERGY_LIMIT, "1")
+
+
+def _coarse(result, model, sysm):
+    l = sysm.init.seg_length
+    err = chordal_error(l, [p.radius for p in model.pulleys])
+    for j, p in enumerate(model.pulleys):
+        result.summary["pulleys"][p.name]["chordal_error"] = float(err[j])
+    j = int(np.argmax(err))
+    if err[j] > CHORDAL_LIMIT:
+        need = math.ceil(sysm.layout.length / (model.pulleys[j].radius * math.sqrt(12 * CHORDAL_LIMIT)))
+        result.diagnose("coarse-discretisation", f"segments of {l * 1e3:.3g} mm on the {model.pulleys[j].radius * 1e3:.3g} mm "
+                        f"pulley {model.pulleys[j].name}: chordal speed error {100 * err[j]:.1f} %; "
+                        f"use belt.segments >= {need}", f"pulleys.{model.pulleys[j].name}.chordal_error",
+                        err[j], CHORDAL_LIMIT, "1")
+
+
+def _excited(model) -> bool:
+    return any(p.torque or p.torque_time or p.torque_speed or p.harmonics or p.speed_time for p in model.pulleys)
+
+
+def at_rest_limit(sysm, duration) -> np.ndarray:
+    """Largest pulley speed (rad/s) a free drive may reach: the belt starts at its static
+    equilibrium (equilibrium.relax) with every residual force below FORCE_TOL T0; n such forces
+    acting on the belt's mass m for the whole run give it at most n FORCE_TOL T0 t / m (Newton's
+    law; the pulleys' inertia, coupled by friction, only lowers it). A start out of equilibrium
+    swings in the chain's cogging well instead (about 0.1-2 rad/s for the 5PK drive)."""
+    n, T0 = sysm.n, sysm.init.tension
+    mass = float(np.sum(sysm.seg["m"]))
+    v = n * FORCE_TOL * T0 * duration / mass
+    return v / np.array(sysm.pul["pr"], dtype=float)
+
+
+def _at_rest(result, model, sysm):
+    """A drive that nothing drives must keep its belt in place (limit: at_rest_limit)."""
+    if _excited(model):
+        return
+    ds = result.ds
+    t = ds["time"].values
+    w_max = np.abs(ds["speed"].values).max(axis=0)
+    limit = at_rest_limit(sysm, max(float(t[-1]), 1e-12))
+    result.summary["at_rest"] = {"speed_max": {n: float(v) for n, v in zip(sysm.layout.names, w_max)},
+                                 "residual_force": float(sysm.init.residual)}
+    j = int(np.argmax(w_max / limit))
+    if w_max[j] > limit[j]:
+        why = ("the belt did not start at its static equilibrium" if not np.isfinite(sysm.init.residual)
+               else "a force the static balance does not hold")
+        result.diagnose("at-rest-drift", f"nothing drives this belt, yet pulley {sysm.layout.names[j]} reaches "
+                        f"{w_max[j]:.3g} rad/s ({why})",
+                        f"at_rest.speed_max.{sysm.layout.names[j]}", w_max[j], limit[j], "rad/s")

@@ -1,0 +1,351 @@
+"""Steady running state of a belt drive by classical creep theory, and the gross-slip margins.
+
+Creep theory (Grashof; Reynolds; Firbank, Wear 15 (1970) 347-361; Johnson, Contact Mechanics,
+ch. 8; multi-pulley form: Kong & Parker, J. Appl. Mech. 72 (2005) 25-34), for a belt of axial
+stiffness EA, mass per length m, speed v (centrifugal tension c = m v^2):
+
+- each wrap: the belt enters in an adhesion arc at the entry span's tension, then a slip arc where
+  T - c varies as exp(+-mu phi) up to the exit span's tension; slip arc phi_s = ln((T_hi - c)/(T_lo - c))/mu;
+  gross slip when phi_s would exceed the wrap;
+- torque balance of pulley j: M_j + rho_j (T_exit - T_entry) = 0 (rho_j the radius signed by the
+  sense the travelling belt turns round it), so all span tensions follow from one of them;
+- mass conservation: a belt element at tension T runs at v0 (1 + T/EA); a pulley turns with the
+  belt at its entry, so the speed ratio of two pulleys is (EA + T_in,b)/(EA + T_in,a) and the creep
+  of pulley j (1 - v_exit/v_entry) is (T_in - T_out)/(EA + T_in);
+- the unstretched length L0 is fixed at installation (sum of L_k/(1 + T_k/EA) over spans plus
+  the wraps' integrals of r dphi/(1 + T/EA)); it, not T1 + T2 = 2 T0, sets the tension level.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..errors import ModelError
+from ..tables import table
+from .layout import Layout, compute_layout
+
+
+@dataclass
+class PulleySteady:
+    name: str
+    wrap: float            # rad
+    radius: float          # m (contact radius)
+    torque: float          # load applied to the pulley (N m, counter-clockwise positive)
+    speed: float           # rad/s (counter-clockwise positive)
+    tension_in: float      # N, span the belt arrives from
+    tension_out: float     # N, span it leaves by
+    slip_arc: float        # rad (inf: gross slip)
+    adhesion_arc: float    # rad
+    creep: float           # 1 - v_exit / v_entry = (T_in - T_out) / (EA + T_in)
+    speed_ratio: float     # omega r / (omega r) of the driver = (EA + T_in) / (EA + T_in,driver)
+    slip_margin: float = math.inf   # load multiplier at which this pulley's slip arc fills its wrap
+
+
+@dataclass
+class Steady:
+    state: str                 # "running" | "accelerating" | "at rest"
+    speed: float               # belt speed (m/s) at the driver's entry, signed along the listed order
+    acceleration: float        # belt acceleration (m/s^2) of an accelerating drive (0 else)
+    centrifugal: float         # m v^2 (N)
+    unstretched_length: float  # L0 (m)
+    driver: str
+    spans: dict                # span name -> tension (N)
+    pulleys: dict              # name -> PulleySteady
+    gross_slip: str = ""       # pulley that cannot hold the loads ("" when a steady state exists)
+    margin: float = math.inf   # drive's slip margin (smallest of the pulleys')
+    limiting: str = ""         # pulley that slips first
+    notes: list = field(default_factory=list)
+
+
+# --- the wrap: adhesion then slip ---------------------------------------------------------------
+
+def _arc(t_in, t_out, c, mu):
+    """Slip arc (rad) from t_in to t_out with T - c ~ exp(+-mu phi); inf when it cannot exist."""
+    if t_in == t_out:
+        return 0.0
+    if min(t_in, t_out) <= c or mu <= 0:
+        return math.inf
+    return abs(math.log((t_out - c) / (t_in - c))) / mu
+
+
+def _wrap_length(r, theta, t_in, t_out, c, mu, EA):
+    """Unstretched belt length on a wrap: adhesion arc at t_in, then the slip arc.
+    Slip arc: int dphi / (1 + T/EA) with T = c + (t_in - c) e^(k phi) is
+    [phi - ln(1 + T/EA)/k] / (1 + c/EA) (elementary integral)."""
+    phi = _arc(t_in, t_out, c, mu)
+    phi = min(phi, theta)                         # gross slip: the arc cannot exceed the wrap
+    adh = r * (theta - phi) / (1 + t_in / EA)
+    if phi == 0.0 or mu <= 0 or min(t_in, t_out) <= c:   # no steady state there: length at the entry tension
+        return r * theta / (1 + t_in / EA)
+    if phi == 0.0:
+        return adh
+    k = math.copysign(mu, t_out - t_in)
+    t_end = c + (t_in - c) * math.exp(k * phi)
+    B = 1 + c / EA
+    return adh + r * (phi - math.log((1 + t_end / EA) / (1 + t_in / EA)) / k) / B
+
+
+# --- the core: tensions from the loads and the length ------------------------------------------
+
+@dataclass
+class Drive:
+    """What the solver needs, in the listed belt order."""
+    names: tuple
+    rho: np.ndarray       # signed radii (layout.rho)
+    wrap: np.ndarray
+    span_length: np.ndarray
+    span_names: tuple
+    mu: np.ndarray
+    EA: float
+    m: float
+    L0: float
+
+
+def drive_of(model, layout: Layout | None = None) -> Drive:
+    lay = layout or compute_layout(model)
+    b = model.belt
+    EA = b.axial_stiffness
+    # installation: the belt at rest carries the pretension everywhere (or has the given length)
+    L0 = b.length if b.length is not None else lay.length / (1 + b.pretension / EA)
+    mu = np.full(len(lay.names), model.friction.coefficient)
+    return Drive(lay.names, lay.rho.copy(), lay.wrap.copy(), np.array([sp.length for sp in lay.spans]),
+                 tuple(sp.name for sp in lay.spans), mu, EA, b.mass_per_length, L0)
+
+
+def _entry_exit(nk, forward):
+    """(entry span, exit span) per pulley; span k leaves pulley k in the listed order."""
+    return [((j - 1) % nk, j) if forward else (j, (j - 1) % nk) for j in range(nk)]
+
+
+def _offsets(d: Drive, M, forward):
+    """Span tensions relative to span 0 from the torque balances, walking in the travel sense."""
+    nk = len(d.names)
+    s = 1.0 if forward else -1.0
+    off = np.zeros(nk)
+    ee = _entry_exit(nk, forward)
+    # start at pulley 1 (forward: entry span 0) or pulley 0 (backward: entry span 0)
+    j = 1 % nk if forward else 0
+    for _ in range(nk - 1):
+        a, b = ee[j]
+        off[b] = off[a] - M[j] / (s * d.rho[j])   # M_j + rho'_j (T_exit - T_entry) = 0
+        j = (j + 1) % nk if forward else (j - 1) % nk
+    return off
+
+
+def length_of(d: Drive, T, c, forward):
+    """Unstretched length of the belt carrying span tensions T (listed order)."""
+    L = float(np.sum(d.span_length / (1 + T / d.EA)))
+    for j, (a, b) in enumerate(_entry_exit(len(d.names), forward)):
+        L += _wrap_length(abs(d.rho[j]), d.wrap[j], T[a], T[b], c, d.mu[j], d.EA)
+    return L
+
+
+def tensions(d: Drive, M, c, forward):
+    """Span tensions (listed order) under pulley loads M (balanced: sum M_j / rho_j = 0) at
+    centrifugal tension c, with L0 conserved. None when the belt would go slack (T <= c)."""
+    off = _offsets(d, M, forward)
+    f = lambda t0: length_of(d, t0 + off, c, forward) - d.L0
+    lo = c - off.min() + 1e-9 * (d.EA + abs(c))
+    if f(lo) <= 0:                     # even the slackest tight-enough belt is too short to need more
+        return None
+    hi = max(lo, 1.0) * 2
+    while f(hi) > 0:
+        hi *= 2
+        if hi > 1e3 * d.EA:
+            raise ModelError("no belt tension holds this installation (belt length?)", field="belt")
+    t0 = brentq(f, lo, hi, xtol=1e-10 * hi, rtol=1e-13)
+    return t0 + off
+
+
+def slip_arcs(d: Drive, T, c, forward):
+    return np.array([_arc(T[a], T[b], c, d.mu[j]) for j, (a, b) in enumerate(_entry_exit(len(d.names), forward))])
+
+
+def _fill(d: Drive, M, c, forward, lam):
+    """Largest slip-arc share of the wrap per pulley at loads lam * M (inf when slack)."""
+    T = tensions(d, lam * M, c, forward)
+    if T is None:
+        return np.full(len(d.names), math.inf)
+    return slip_arcs(d, T, c, forward) / d.wrap
+
+
+def margins(d: Drive, M, c, forward, max_factor=1e3):
+    """Load multiplier per pulley at which its slip arc reaches its wrap (inf: never, e.g. an
+    unloaded idler), by bisection on the factor (the driver keeps balancing the scaled loads)."""
+    nk = len(d.names)
+    out = np.full(nk, math.inf)
+    if not np.any(M):
+        return out
+    for j in range(nk):
+        if M[j] == 0:
+            continue
+        g = lambda lam: min(_fill(d, M, c, forward, lam)[j], 10.0) - 1.0   # finite: brentq on a slack jump
+        hi = 1.0
+        while g(hi) < 0 and hi < max_factor:
+            hi *= 2
+        if g(hi) < 0:
+            continue
+        lo = 0.0 if hi == 1.0 else hi / 2
+        out[j] = lo if g(lo) >= 0 else brentq(g, lo, hi, xtol=1e-9, rtol=1e-10)
+    return out
+
+
+# --- the loads: steady speed, driver, or a uniformly accelerating drive ------------------------
+
+def applied_torque(p, omega):
+    """Mean torque on pulley p at steady speed omega: constant + the last torque_time value +
+    the torque-speed table + viscous; harmonics average out."""
+    M = p.torque - p.viscous_torque * omega
+    if p.torque_time:
+        M += p.torque_time[-1][1]
+    if p.torque_speed:   # extrapolated linearly beyond the ends, as the dynamic model reads it
+        rows = np.asarray(p.torque_speed, dtype=float)
+        M += table(rows[:, 0], rows[:, 1], 0, len(rows), float(omega), True)
+    return M
+
+
+def _speeds(d: Drive, v0, T, forward):
+    """Pulley speeds (rad/s): each turns with the belt arriving at it, v0 (1 + T_in/EA)."""
+    ee = _entry_exit(len(d.names), forward)
+    return np.array([v0 * (1 + T[a] / d.EA) / d.rho[j] for j, (a, _) in enumerate(ee)])
+
+
+def _steady_speed(model, d: Drive, T, prescribed):
+    """Belt speed v0 (unstretched, signed along the listed order) where the loads balance
+    (sum M_j / rho_j = 0), or None when they never do."""
+    pulleys = model.pulleys
+    if prescribed is not None:
+        j = prescribed
+        w = pulleys[j].speed_time[-1][1]
+        v_try = w * d.rho[j]
+        forward = v_try >= 0
+        a = _entry_exit(len(d.names), forward)[j][0]
+        return w * d.rho[j] / (1 + T[a] / d.EA)
+
+    def g(v0):
+        w = _speeds(d, v0, T, v0 >= 0)
+        return sum(applied_torque(p, w[j]) / d.rho[j] for j, p in enumerate(pulleys))
+
+    # candidates: table corners mapped to belt speed, and wide brackets; net torque is piecewise linear
+    cand = {0.0}
+    for j, p in enumerate(pulleys):
+        for row in (p.torque_speed or []):
+            cand.add(row[0] * d.rho[j])
+    vmax = max(abs(x) for x in cand) if len(cand) > 1 else 1.0
+    cand |= {-10 * vmax - 100, 10 * vmax + 100}
+    xs = sorted(cand)
+    gs = [g(x) for x in xs]
+    roots = []
+    for (x0, g0), (x1, g1) in zip(zip(xs, gs), zip(xs[1:], gs[1:])):
+        if g0 == 0 and x0 != 0:
+            roots.append(x0)
+        elif g0 * g1 < 0:
+            roots.append(brentq(g, x0, x1, xtol=1e-12))
+    stable = [x for x in roots if g(x + 1e-6 * max(abs(x), 1)) < g(x - 1e-6 * max(abs(x), 1))]
+    if stable:
+        return max(stable, key=abs)
+    if all(abs(x) < 1e-12 for x in gs):   # nothing loads the drive
+        return 0.0
+    return None
+
+
+def steady_state(model, layout: Layout | None = None, loads=None, speed=None) -> Steady:
+    """Steady state of ``model``. ``loads`` (N m per pulley) and ``speed`` (belt m/s, signed along
+    the listed order) override the model's loads: a run's mean torques and speed."""
+    d = drive_of(model, layout)
+    nk = len(d.names)
+    pulleys = model.pulleys
+    presc = [j for j, p in enumerate(pulleys) if p.speed_time]
+    notes = []
+    T = np.full(nk, model.belt.pretension or 0.0)
+    if model.belt.pretension is None:
+        T = tensions(d, np.zeros(nk), 0.0, True)
+    accel = 0.0
+    if loads is not None:
+        # a run's mean loads at its belt speed (m/s at the driver's entry): loads balanced below
+        M = np.asarray(loads, float).copy()
+        v = float(speed or 0.0)
+        state = "running" if v else "at rest"
+    else:
+        state, v0 = "running", None
+        for _ in range(4):                 # loads depend on the speeds, speeds on the tensions (creep)
+            v0 = _steady_speed(model, d, T, presc[0] if presc else None)
+            if v0 is None:
+                break
+            w = _speeds(d, v0, T, v0 >= 0)
+            M = np.array([applied_torque(p, w[j]) for j, p in enumerate(pulleys)])
+            Tn = tensions(d, _balanced(d, M, w, presc), d.m * (v0 * (1 + T.mean() / d.EA)) ** 2, v0 >= 0)
+            if Tn is None:
+                break
+            T = Tn
+        if v0 is None:
+            # loads never balance at a steady speed: the drive accelerates as one body (belt
+            # acceleration a, pulley j at a / rho_j); the inertia torques -J_j a / rho_j close the balance
+            M = np.array([applied_torque(p, 0.0) for p in pulleys])
+            Jr = np.array([p.inertia for p in pulleys]) / d.rho
+            accel = float(np.sum(M / d.rho) / np.sum(Jr / d.rho))
+            M = M - Jr * accel
+            v, state = 0.0, "accelerating"
+            notes.append(f"the loads do not balance at any speed: the drive accelerates at {accel:.4g} m/s^2 "
+                         "(belt); tensions of that uniform acceleration, no centrifugal tension")
+        else:
+            drv = _driver(_balanced(d, M, w, presc), w, presc)
+            v = v0 * (1 + T[_entry_exit(nk, v0 >= 0)[drv][0]] / d.EA)
+            if abs(v0) < 1e-12:
+                state = "at rest"
+    return _solve(d, M, v, accel, state, presc, notes)
+
+
+def _solve(d: Drive, M, v, accel, state, presc, notes) -> Steady:
+    """Tensions, arcs, creep, speeds and margins for loads M at belt speed v (at the driver's entry)."""
+    nk = len(d.names)
+    forward = (accel >= 0) if state == "accelerating" else (v >= 0)
+    sense = accel if state == "accelerating" else v          # the sense of motion picks the driver
+    w_rigid = np.array([sense / r for r in d.rho])
+    Mb = _balanced(d, M, w_rigid, presc)
+    drv = _driver(Mb, w_rigid, presc)
+    c = d.m * v * v
+    T = tensions(d, Mb, c, forward)
+    slack = T is None
+    if slack:
+        # a span would need a tension below m v^2: no steady state; the pulley that slips first
+        # as the loads grow from zero is the one that cannot hold them
+        T = np.full(nk, math.nan)
+        notes.append("no steady state: a span would go slack under these loads")
+    arcs = slip_arcs(d, T, c, forward) if not slack else np.full(nk, math.inf)
+    ee = _entry_exit(nk, forward)
+    marg = margins(d, Mb, c, forward)
+    over = [j for j in range(nk) if arcs[j] > d.wrap[j] and (not slack or Mb[j] != 0)]
+    if slack:
+        over = [int(np.argmin(marg))]
+    e_drv = 1 + T[ee[drv][0]] / d.EA
+    w = _speeds(d, v / e_drv, T, forward)
+    ps = {}
+    for j, name in enumerate(d.names):
+        a, b = ee[j]
+        ps[name] = PulleySteady(name, float(d.wrap[j]), float(abs(d.rho[j])), float(Mb[j]), float(w[j]),
+                                float(T[a]), float(T[b]), float(arcs[j]), float(max(d.wrap[j] - arcs[j], 0.0)),
+                                float((T[a] - T[b]) / (d.EA + T[a])), float((1 + T[a] / d.EA) / e_drv),
+                                float(marg[j]))
+    k = int(np.argmin(marg))
+    return Steady(state, float(v), accel, c, d.L0, d.names[drv], {n: float(t) for n, t in zip(d.span_names, T)},
+                  ps, gross_slip=d.names[over[0]] if over else "", margin=float(marg[k]),
+                  limiting=d.names[k] if np.isfinite(marg[k]) else "", notes=notes)
+
+
+def _driver(M, w, presc):
+    if presc:
+        return presc[0]
+    return int(np.argmax(M * w)) if np.any(M * w > 0) else int(np.argmax(np.abs(M)))
+
+
+def _balanced(d: Drive, M, w, presc):
+    """Loads with the driver's torque set to balance the others (sum M_j / rho_j = 0)."""
+    M = np.array(M, float)
+    j = _driver(M, w, presc)
+    M[j] = 0.0
+    M[j] = -d.rho[j] * float(np.sum(M / d.rho))
+    return M

@@ -1,0 +1,75 @@
+"""One status contract for every analysis: success, warning, failed, and the diagnostics behind it.
+
+A run ends ``failed`` when it stopped (the partial results are kept), ``warning`` when it ran to
+the end but at least one diagnostic says the result lies outside the model's valid regime or is
+not converged, ``success`` otherwise. Each diagnostic names the quantity that was measured, its
+value and the limit it crossed, so that a person (and a study) can judge how far off it is.
+
+The codes are fixed and documented (README, "Diagnostics"); an analysis adds one with
+``result.diagnose(code, text, quantity, value, limit, unit)``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+#: every diagnostic code, with what it means (README "Diagnostics" lists the same)
+CODES = {
+    "gross-slip": "a pulley slips grossly: the belt slides over the whole wrap instead of creeping",
+    "contact-chatter": "belt segments bounce on a pulley: few wrapped segments in contact, peak normal forces far "
+                       "above the static value",
+    "contact-damping-depth": "the contact damping depth is far from the static penetration, so the contact "
+                             "damping is far from its nominal value",
+    "window-not-steady": "the quantities drift inside the steady window (or the slowest mode has not decayed): "
+                         "the window means are not steady-state values",
+    "energy-residual": "the energy balance (work in - dissipated - energy change) misses a large share of the work",
+    "coarse-discretisation": "the belt segments are long against a pulley radius: chordal error in speeds and slip",
+    "kv-unstable": "the dynamic factor grows without bound (parametric instability of the linear mesh model) or "
+                   "is not converged",
+    "step-too-large": "the time step is too large for the integration method",
+    "above-critical-speed": "the belt speed is at or above the span's critical speed: the span model does not apply",
+    "at-rest-drift": "a drive with no load moves away from its initial state",
+    "tooth-separation": "the mesh force goes negative: the teeth would separate, the model assumes they stay in mesh",
+}
+
+STATUSES = ("success", "warning", "failed")
+
+
+@dataclass(frozen=True)
+class Diagnostic:
+    """One finding about a run: ``code`` (from CODES), a one-line ``text`` for a person, the
+    ``quantity`` measured, its ``value``, the ``limit`` it crossed, and the ``unit`` of both."""
+
+    code: str
+    text: str
+    quantity: str = ""
+    value: float | None = None
+    limit: float | None = None
+    unit: str = ""
+
+    def __post_init__(self):
+        if self.code not in CODES:
+            raise ValueError(f"unknown diagnostic code {self.code!r}")
+
+    def to_dict(self) -> dict:
+        d = asdict(self)
+        for k in ("value", "limit"):
+            v = d[k]
+            d[k] = None if v is None or not math.isfinite(float(v)) else float(v)
+        return d
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "Diagnostic":
+        return cls(**{k: d.get(k) for k in ("code", "text", "quantity", "value", "limit", "unit")
+                      if d.get(k) is not None})
+
+    def line(self) -> str:
+        """``code: text`` on one line, as the command line prints it."""
+        return f"{self.code}: {self.text}"
+
+
+def status_of(success: bool, diagnostics) -> str:
+    """The one status word: failed (stopped), warning (ran, with diagnostics) or success."""
+    if not success:
+        return "failed"
+    return "warning" if diagnostics else "success"

@@ -1,0 +1,64 @@
+"""The command line's side of the status contract: output folder checked before solving, the
+status and diagnostics printed, numbers a person reads (no "-0", rpm beside rad/s)."""
+import json
+import time
+
+import drivedyn
+from drivedyn.cli import _number, main
+
+
+def test_output_path_that_is_a_file_is_refused_before_solving(tmp_path, capsys):
+    target = tmp_path / "results"
+    target.write_text("not a folder")
+    t0 = time.perf_counter()
+    code = main(["run", str(drivedyn.example_path("belt-5pk")), "-o", str(target), "-q"])
+    elapsed = time.perf_counter() - t0
+    err = capsys.readouterr().err.strip()
+    assert code == 2
+    assert len(err.splitlines()) == 1 and "is a file" in err and str(target) in err
+    assert elapsed < 5.0                      # the 2 s simulation (about 10 s) never started
+    assert target.read_text() == "not a folder"
+
+
+def test_output_folder_below_a_file_is_refused(tmp_path, capsys):
+    blocker = tmp_path / "blocker"
+    blocker.write_text("")
+    code = main(["run", str(drivedyn.example_path("span-t10")), "-o", str(blocker / "out"), "-q"])
+    err = capsys.readouterr().err.strip()
+    assert code == 2 and len(err.splitlines()) == 1 and "cannot write the output folder" in err
+
+
+def test_summary_carries_status_diagnostics_and_units(tmp_path, capsys):
+    code = main(["run", str(drivedyn.example_path("span-t10")), "-o", str(tmp_path), "-q", "--no-plots"])
+    out = capsys.readouterr().err
+    doc = json.loads((tmp_path / "summary.json").read_text())
+    assert code == 0
+    assert list(doc)[:5] == ["kind", "status", "message", "diagnostics", "units"]
+    assert doc["status"] in ("success", "warning")
+    assert f"status: {doc['status']}" in out
+    for d in doc["diagnostics"]:
+        assert set(d) == {"code", "text", "quantity", "value", "limit", "unit"}
+        assert d["code"] in out
+
+
+def test_numbers_as_a_person_reads_them():
+    assert _number(-0.0, "1") == "0"
+    assert _number(104.71975511965977, "rad/s") == "104.72 (1000 rpm)"
+
+
+def test_diagnostic_line_shows_quantity_value_and_limit():
+    import io
+
+    import xarray as xr
+    from rich.console import Console
+
+    from drivedyn.cli import _print_status
+    from drivedyn.results import Result
+
+    r = Result("belt-drive", xr.Dataset())
+    r.diagnose("gross-slip", "pulley [a] slips", "pulleys.a.sliding", 0.42, 0.027, "1")
+    buf = io.StringIO()
+    _print_status(Console(file=buf, width=200), r)
+    text = buf.getvalue()
+    assert "status: warning" in text
+    assert "gross-slip: pulley [a] slips (pulleys.a.sliding = 0.42, limit 0.027)" in text

@@ -1,0 +1,333 @@
+"""The command line as a hostile user meets it (issue 10): every shipped example (study files
+excluded: they are not models), one value at a time replaced by a wrong type, NaN, inf, 0, -1,
+1e308, 1e-308, a wrong or absurd unit, a 100 000-entry list, an empty table or an injection
+string, or the whole file truncated or sprinkled with random bytes. ``drivedyn check`` must exit 0
+(a valid model) or 2 with one line naming the problem, never a traceback, and refuse within a few
+seconds; ``drivedyn run`` of a shortened model may also exit 1 (a reported solve failure).
+
+The CI budget is bounded (``max_examples`` below, about 30 s in all); a long run is
+``DRIVEDYN_FUZZ_EXAMPLES=5000 pytest tests/api/test_fuzz.py``; ``DRIVEDYN_FUZZ_REPORT=file.jsonl``
+appends one line per example tried (example, field, mutation, command, exit status, seconds); with
+both set, a failing example is recorded (exit "failure") and the run goes on, for the counts.
+"""
+from __future__ import annotations
+
+import contextlib
+import copy
+import io
+import json
+import math
+import os
+import signal
+import tempfile
+import time
+import tomllib
+import warnings
+from pathlib import Path
+
+import pytest
+import tomli_w
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import drivedyn
+from drivedyn.cli import main
+
+LONG = int(os.environ.get("DRIVEDYN_FUZZ_EXAMPLES", "0"))
+REPORT = os.environ.get("DRIVEDYN_FUZZ_REPORT")
+#: a refusal (exit 2) must come within this many seconds (the slowest seen in CI is about 1 s;
+#: the margin is for a loaded machine)
+REFUSAL_SECONDS = 5.0
+#: a run longer than this is a hang: the run test only mutates values that do not set the cost
+RUN_SECONDS = 60
+
+MODELS = {name: path for name, path in drivedyn.examples().items() if not name.startswith("study")}
+MARKER = "drivedyn-fuzz-injected"
+
+# the ways a single value is spoiled; "big-list" and "empty-table" are made from the value replaced
+MUTATIONS = [
+    {"x": 1}, "abc", True, [], float("nan"), float("inf"), -float("inf"), 0, -1, 1e308, -1e308, 1e-308,
+    2 ** 62, 1e29, -1e29, 1e-29, "3 kg*s", "1e400 m", "nan m", "9**9**9 m", "2^2^2^2^2 m", "1 m**99", "furlong/fortnight",
+    "x" * 10_000, "big-list", "empty-table", "double", "half",
+    # injection: none of these may be executed or evaluated
+    f"__import__('os').system('touch {MARKER}')", f"$(touch {MARKER})", f"`touch {MARKER}`",
+    "{{7*7}} m", "'; DROP TABLE models; --", "../../../../etc/passwd", "\x00\x1b[31m", "%s%n%x",
+]
+NAMES = ["wrong-type", "string", "bool", "empty-list", "nan", "inf", "-inf", "zero", "-1", "1e308", "-1e308",
+         "1e-308", "2**62", "1e29", "-1e29", "1e-29", "wrong-unit", "overflowing-unit", "nan-unit", "power-tower", "power-tower-2",
+         "huge-exponent", "absurd-unit", "long-string", "big-list", "empty-table", "double", "half",
+         "python-injection", "shell-injection", "backtick-injection", "template-injection",
+         "sql-injection", "path-injection", "control-chars", "format-string"]
+assert len(NAMES) == len(MUTATIONS)
+# values that often pass validation, so that ``run`` reaches the solvers with them (just inside
+# the read bounds 1e-30..1e30, or plausible)
+SOLVABLE = [NAMES.index(n) for n in ("zero", "-1", "1e29", "-1e29", "1e-29", "double", "half")]
+
+# shortened models for ``run`` (each run well under a second once the kernels are compiled)
+SHORT = {
+    "belt-drive": {"simulation": {"duration": "0.01 s"}, "output": {"frames": 2, "interval": "1 ms"}},
+    "gear-train": {"sweep": {"enabled": False}, "simulation": {"duration": "2 ms", "steady_window": ["1 ms", "2 ms"]}},
+    "span-stability": {"chart": {"points": [3, 3], "tongues": 1, "zoom": {"points": [3, 3]}}},
+    "toothed-mesh": {"mesh": {"angles": 15}, "maps": {"angles": 5}},
+}
+# fields that set how much work a valid run does (durations, steps, sample counts): mutating them
+# may make a valid but arbitrarily long run, so ``run`` leaves them alone (``check`` does not)
+COST = {"duration", "step", "interval", "output_interval", "segments", "frames", "count", "points", "angles",
+        "settle", "window_cycles", "steps_per_cycle", "flank_spacing", "chord_tolerance", "steady_window",
+        "harmonics", "tongues", "steps_per_oscillation", "teeth", "pitch_error", "compare", "half_range",
+        "ramp_time", "rtol", "atol", "speed_min", "speed_max", "enabled", "floquet", "response", "sweep"}
+
+
+def _merge(base: dict, over: dict) -> dict:
+    out = copy.deepcopy(base)
+    for k, v in over.items():
+        out[k] = _merge(out.get(k, {}), v) if isinstance(v, dict) and isinstance(out.get(k), dict) else v
+    return out
+
+
+def _leaves(node, path=()):
+    """Every value's path: tables and lists themselves (for "empty table", "big list") and scalars."""
+    if path:
+        yield path
+    if isinstance(node, dict):
+        for k, v in node.items():
+            yield from _leaves(v, path + (k,))
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            yield from _leaves(v, path + (i,))
+
+
+def _get(data, path):
+    for p in path:
+        data = data[p]
+    return data
+
+
+def _mutated(original, k):
+    name = NAMES[k]
+    if name == "big-list":
+        item = original[0] if isinstance(original, list) and original else original
+        return [item] * 100_000
+    if name == "empty-table":
+        return {}
+    if name in ("double", "half"):  # a plausible value: most such models are valid and get solved
+        f = 2.0 if name == "double" else 0.5
+        if isinstance(original, (int, float)) and not isinstance(original, bool):
+            return type(original)(original * f) if original * f != 0 else 1
+        if isinstance(original, str) and " " in original:
+            num, unit = original.split(" ", 1)
+            with contextlib.suppress(ValueError):
+                return f"{float(num) * f:g} {unit}"
+        return copy.deepcopy(original)
+    return copy.deepcopy(MUTATIONS[k])
+
+
+BASES = {name: tomllib.loads(path.read_text()) for name, path in MODELS.items()}
+
+
+@st.composite
+def damaged_file(draw, for_run=False):
+    """(example, description, file bytes): one value mutated, or the whole file damaged."""
+    name = draw(st.sampled_from(sorted(MODELS)))
+    data = BASES[name]
+    if for_run:
+        data = _merge(data, SHORT[data["kind"]])
+    how = draw(st.sampled_from(["value"] * 8 + ["truncate", "bytes"]))
+    if how == "value":
+        paths = list(_leaves(data))
+        if for_run:
+            paths = [p for p in paths if not COST & {str(q) for q in p}]
+        path = draw(st.sampled_from(paths))
+        k = draw(st.integers(0, len(MUTATIONS) - 1) | (st.sampled_from(SOLVABLE) if for_run else st.nothing()))
+        data = copy.deepcopy(data)
+        if len(path) == 1:
+            data[path[0]] = _mutated(data[path[0]], k)
+        else:
+            _get(data, path[:-1])[path[-1]] = _mutated(_get(data, path), k)
+        return name, f"{'.'.join(map(str, path))} <- {NAMES[k]}", tomli_w.dumps(data).encode("utf-8")
+    text = tomli_w.dumps(data).encode("utf-8") if for_run else MODELS[name].read_bytes()
+    if how == "truncate":
+        cut = draw(st.integers(0, len(text)))
+        return name, f"truncated at {cut}", text[:cut]
+    spots = draw(st.lists(st.tuples(st.integers(0, len(text) - 1), st.binary(min_size=1, max_size=8)),
+                          min_size=1, max_size=5))
+    out = bytearray(text)
+    for at, junk in spots:
+        out[at:at + len(junk)] = junk
+    return name, f"random bytes at {sorted(a for a, _ in spots)}", bytes(out)
+
+
+class _Hang(Exception):
+    pass
+
+
+def _alarm(signum, frame):
+    raise _Hang()
+
+
+def _cli(args, seconds):
+    """(exit status, stderr, stdout, seconds) of ``drivedyn ARGS`` in-process; any exception fails."""
+    err, out = io.StringIO(), io.StringIO()
+    old = signal.signal(signal.SIGALRM, _alarm)
+    signal.alarm(seconds)
+    t0 = time.perf_counter()
+    try:
+        with contextlib.redirect_stderr(err), contextlib.redirect_stdout(out), warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            code = main(args)
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+    return code, err.getvalue(), out.getvalue(), time.perf_counter() - t0
+
+
+def _record(**row):
+    if REPORT:
+        with open(REPORT, "a") as fh:
+            fh.write(json.dumps(row) + "\n")
+
+
+def _try(command, case, allowed):
+    if not (LONG and REPORT):
+        return _try_one(command, case, allowed)
+    try:
+        return _try_one(command, case, allowed)
+    except AssertionError as exc:  # the long run counts failures instead of stopping at the first
+        _record(example=case[0], mutation=case[1], command=command, exit="failure", text=str(exc)[:400])
+
+
+def _try_one(command, case, allowed):
+    name, what, content = case
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / f"{name}.toml"
+        path.write_bytes(content)
+        args = [command, str(path)] + (["-o", str(Path(tmp) / "out"), "-q", "--no-plots"] if command == "run" else [])
+        cwd = os.getcwd()
+        os.chdir(tmp)  # an injection that ran would leave its marker here
+        try:
+            code, err, out, seconds = _cli(args, RUN_SECONDS if command == "run" else 30)
+        except _Hang:
+            _record(example=name, mutation=what, command=command, exit="hang")
+            pytest.fail(f"{command} {name} ({what}): no answer within {RUN_SECONDS if command == 'run' else 30} s")
+        except BaseException as exc:  # the point: any exception here is a traceback for the user
+            import traceback
+
+            where = traceback.extract_tb(exc.__traceback__)[-1]
+            _record(example=name, mutation=what, command=command, exit=f"{type(exc).__name__}",
+                    text=f"{str(exc)[:200]} at {where.filename.split('drivedyn/')[-1]}:{where.name}")
+            raise AssertionError(f"{command} {name} ({what}): {type(exc).__name__}: {exc}") from exc
+        finally:
+            os.chdir(cwd)
+        assert not (Path(tmp) / MARKER).exists(), f"{name} ({what}): an injection string was executed"
+    _record(example=name, mutation=what, command=command, exit=code, seconds=round(seconds, 3))
+    where = f"{command} {name} ({what})"
+    assert code in allowed, f"{where}: exit {code}: {err.strip()[-300:]}"
+    assert "Traceback" not in err + out, f"{where}: {err[-500:]}"
+    if code in (1, 2):
+        lines = [ln for ln in err.strip().splitlines() if ln.startswith("drivedyn: error:")]
+        assert len(lines) == 1 and err.strip().endswith(lines[0].strip()), f"{where}: not one line: {err!r}"
+    if code == 2:
+        assert seconds < REFUSAL_SECONDS, f"{where}: refused after {seconds:.1f} s"
+    return code
+
+
+COMMON = dict(deadline=None, database=None, suppress_health_check=list(HealthCheck), print_blob=True)
+
+
+@settings(max_examples=LONG or 120, derandomize=not LONG, **COMMON)
+@given(case=damaged_file())
+def test_check_never_ends_in_a_traceback(case):
+    _try("check", case, allowed=(0, 2))
+
+
+@settings(max_examples=LONG // 5 or 25, derandomize=not LONG, **COMMON)
+@given(case=damaged_file(for_run=True))
+def test_run_never_ends_in_a_traceback(case):
+    _try("run", case, allowed=(0, 1, 2))
+
+
+@pytest.mark.parametrize("text, what", [
+    ("a = " + "{b = " * 1000 + "1" + "}" * 1000, "nested"),       # RecursionError inside tomllib
+    ("a = " + "[" * 1000 + "]" * 1000, "nested"),
+    ("kind = 'belt-drive'\n" + "x = [" + ", ".join(["1.0"] * 100_000) + "]\n", "more than"),
+    ("[" * 10, "not valid TOML"),
+    ("kind = ['belt-drive']", "kind"),
+    ("kind = {}", "kind"),
+    ("= = =", "not valid TOML"),
+])
+def test_damaged_files_end_in_one_line(tmp_path, text, what):
+    path = tmp_path / "m.toml"
+    path.write_text(text)
+    with pytest.raises(drivedyn.ModelError, match=what) as exc:
+        drivedyn.load(path)
+    assert "\n" not in str(exc.value)
+
+
+def test_a_huge_file_is_refused_before_it_is_parsed(tmp_path):
+    path = tmp_path / "m.toml"
+    path.write_text("kind = 'belt-drive'\n# " + "x" * 3_000_000 + "\n")
+    t0 = time.perf_counter()
+    with pytest.raises(drivedyn.ModelError, match="too large"):
+        drivedyn.load(path)
+    assert time.perf_counter() - t0 < 0.5
+
+
+def test_a_100000_row_table_is_refused_in_under_two_seconds(tmp_path):
+    data = tomllib.loads(drivedyn.example_path("belt-5pk").read_text())
+    data["pulleys"][1]["torque_speed"] = [[f"{k} rad/s", "1 N*m"] for k in range(100_000)]
+    path = tmp_path / "m.toml"
+    path.write_text(tomli_w.dumps(data))
+    t0 = time.perf_counter()
+    code, err, _, _ = _cli(["check", str(path)], 30)
+    assert code == 2 and "100000" in err
+    assert time.perf_counter() - t0 < 2.0
+
+
+def test_a_10000_row_table_with_units_reads_fast_and_right():
+    """The cached unit factor gives pint's value exactly, and 20 000 cells take well under a second."""
+    from drivedyn.model import table_rows
+    from drivedyn.units import registry
+
+    rows = [[f"{k / 7:.6g} rpm", f"{k % 13} kN*m"] for k in range(10_000)]
+    t0 = time.perf_counter()
+    got = table_rows(rows, ("rad/s", "N*m"), "t")
+    assert time.perf_counter() - t0 < 1.0
+    ureg = registry()
+    for k in (0, 1, 977, 9999):
+        assert got[k][0] == ureg.Quantity(rows[k][0]).to("rad/s").magnitude
+        assert got[k][1] == ureg.Quantity(rows[k][1]).to("N*m").magnitude
+
+
+@pytest.mark.parametrize("text", ["9**9**9 m", "9^9^9 m", "10**(9**9) m", "2 m**2**99", "1 m^999"])
+def test_power_towers_are_refused_at_once(text):
+    from drivedyn.units import to_si
+
+    t0 = time.perf_counter()
+    with pytest.raises(drivedyn.ModelError, match="exponent"):
+        to_si(text, "m")
+    assert time.perf_counter() - t0 < 0.1
+
+
+@pytest.mark.parametrize("text, unit, si", [("27 mm", "m", 0.027), ("2^3 m", "m", 8.0), ("1 m^2", "m^2", 1.0),
+                                            ("1450 rpm", "rad/s", 1450 * math.pi / 30), ("4 rev/s", "rad/s", 8 * math.pi),
+                                            ("9.81 m/s**2", "m/s^2", 9.81), ("20 deg", "rad", math.radians(20))])
+def test_ordinary_quantities_still_read(text, unit, si):
+    from drivedyn.units import to_si
+
+    assert to_si(text, unit) == pytest.approx(si, rel=1e-15)
+
+
+@pytest.mark.parametrize("value", [float("nan"), float("inf"), -float("inf"), "nan N", "inf N", "1e400 N",
+                                   "1e308 kN", 1e308, 1e-308, "1e-308 N"])
+def test_non_finite_and_absurd_numbers_are_refused_where_read_naming_the_field(value):
+    model = drivedyn.load(drivedyn.example_path("belt-5pk"))
+    with pytest.raises(drivedyn.ModelError, match=r"belt\.pretension: (must be a finite number|magnitude)") as exc:
+        drivedyn.replace(model, {"belt.pretension": value})
+    assert "\n" not in str(exc.value)
+
+
+def test_a_plain_float_field_refuses_nan_through_the_python_api_too():
+    from drivedyn.belt.model import Friction
+
+    with pytest.raises(Exception, match="finite"):
+        Friction(coefficient=float("nan"))
