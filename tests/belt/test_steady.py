@@ -3,7 +3,6 @@ against closed forms, conservation and the dynamic model's measured numbers."""
 import json
 import math
 
-import numpy as np
 import pytest
 from scipy.integrate import quad
 

@@ -1,5 +1,4 @@
 """The span analysis reading a belt-drive run's results.nc: span, tension and speed from the run."""
-import numpy as np
 import pytest
 import xarray as xr
 
