@@ -40,7 +40,7 @@ def test_friction_zone_marks_the_right_segments(model_factory):
     pitch = 1.1956 / 100   # unstretched length / n, stretched by 0.36 %
     s_mid = (np.arange(100) + 0.5) * pitch * (1 + 550 / 1.52e5)
     inside = (s_mid >= 0.1) & (s_mid < 0.3)
-    assert np.all(sysm.seg["mu"][inside] == 0.05) and np.all(sysm.seg["mu"][~inside] == 1.0)
+    assert np.all(sysm.contact.mu[inside] == 0.05) and np.all(sysm.contact.mu[~inside] == 1.0)
 
 
 def test_oily_stretch_slips_when_it_crosses_the_driven_pulley(model_factory):
@@ -67,9 +67,12 @@ def test_elastic_plastic_law_transmits_the_same_torque(model_factory):
 def test_harmonic_torque_closed_form():
     off = np.array([0, 0], dtype=np.int64)
     e = np.zeros(0)
-    M = K.external_torque(0, 0.3, 1.2, 5.0, np.array([2.0]), np.array([0.1]), off, e, e, off, e, e,
-                          np.array([0, 2], dtype=np.int64), np.array([2.0, 4.0]), np.array([3.0, 1.0]),
-                          np.array([0.0, 0.5]))
+    one = np.ones(1)
+    P = K.Pulleys(nk=1, cx=0 * one, cy=0 * one, r=one, inertia=one, inv_i=one, mode=np.zeros(1, dtype=np.int64),
+                  tq_const=np.array([2.0]), tq_visc=np.array([0.1]), tt_off=off, tt_x=e, tt_y=e, ts_off=off,
+                  ts_x=e, ts_y=e, hm_off=np.array([0, 2], dtype=np.int64), hm_order=np.array([2.0, 4.0]),
+                  hm_amp=np.array([3.0, 1.0]), hm_phase=np.array([0.0, 0.5]), sp_off=off, sp_x=e, sp_y=e)
+    M = K.external_torque(P, 0, 0.3, 1.2, 5.0)
     assert M == pytest.approx(2.0 - 0.1 * 5.0 + 3 * math.sin(2 * 1.2) + math.sin(4 * 1.2 + 0.5))
 
 

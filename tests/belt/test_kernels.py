@@ -5,7 +5,7 @@ import pytest
 
 import drivedyn
 from drivedyn.belt import _kernels as K
-from drivedyn.belt.system import build
+from drivedyn.belt.system import build, new_state, new_work
 
 
 def reference_joint_forces(x, y, phi, vx, vy, w, l, k, b, kb, bb, turn):
@@ -54,20 +54,19 @@ def perturbed():
 
 
 def kernel(S, x, y, phi, vx, vy, w):
-    n = S.n
-    out = [np.zeros(n) for _ in range(6)]
-    seg = S.seg
-    K.joint_forces(S.ip, S.fp, x, y, np.cos(phi), np.sin(phi), vx, vy, w, phi, seg["kax"], seg["bax"], seg["kb"],
-                   seg["bb"], *out, 0.0, seg["m"], seg["inertia"], np.zeros(n), np.zeros(n))
-    return out[0], out[1], out[2]
+    st = new_state(S, x, y, phi)
+    st = st._replace(vx=vx, vy=vy, w=w)
+    W = new_work(S)
+    K.joint_forces(S.belt, st, W, 0.0)
+    return W.fx, W.fy, W.mz
 
 
 def test_joint_forces_match_the_equations(perturbed):
     S, x, y, phi, vx, vy, w = perturbed
     fx, fy, mz = kernel(S, x, y, phi, vx, vy, w)
-    seg = S.seg
-    F, M = reference_joint_forces(x, y, phi, vx, vy, w, S.init.seg_length, seg["kax"][0], seg["bax"][0],
-                                  seg["kb"][0], seg["bb"][0], S.init.turn)
+    B = S.belt
+    F, M = reference_joint_forces(x, y, phi, vx, vy, w, S.init.seg_length, B.kax[0], B.bax[0],
+                                  B.kb[0], B.bb[0], S.init.turn)
     scale = np.max(np.abs(F))
     np.testing.assert_allclose(fx, F[:, 0], atol=1e-9 * scale)
     np.testing.assert_allclose(fy, F[:, 1], atol=1e-9 * scale)

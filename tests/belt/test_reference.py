@@ -13,7 +13,7 @@ import pytest
 import drivedyn
 from drivedyn.belt import _kernels as K
 from drivedyn.belt.simulate import _Recorder  # noqa: F401  (internal, used for the energy test)
-from drivedyn.belt.system import build, effective_inertia
+from drivedyn.belt.system import build, new_state, new_work
 
 R = 0.027
 
@@ -86,33 +86,20 @@ def _free_vibration(model, steps, nsamp):
 
     Returns the system, sample times, mid-span y and the energies at the samples."""
     sysm = build(model)
-    seg, pul, n, nk = sysm.seg, sysm.pul, sysm.n, 2
-    x, y, phi = sysm.init.x.copy(), sysm.init.y.copy(), sysm.init.phi.copy()
-    c, s = np.cos(phi), np.sin(phi)
-    vx, vy, w = np.zeros(n), np.zeros(n), np.zeros(n)
+    S = new_state(sysm)
+    x, y, vy = S.x, S.y, S.vy
     upper = (y > 0.02) & (x > 0.0) & (x < 0.515)
     vy[upper] = 0.5 * np.sin(np.pi * x[upper] / 0.515)
-    th, om, z = np.zeros(nk), np.zeros(nk), np.zeros(n)
-    work = [np.zeros(n) for _ in range(9)]
+    W = new_work(sysm)
     mid = int(np.argmin(np.abs(x - 0.2575) + 10 * ~upper))
 
-    inertia = effective_inertia(sysm)
-
     def energy():
-        return K.energy(sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, om, seg["m"], inertia, seg["kax"],
-                        seg["kb"], seg["c1"], seg["c2"], pul["pcx"], pul["pcy"], pul["pr"], pul["pinertia"], pul["pmode"])
+        return K.energy(*sysm.groups, S)
 
     E0, ts, ys, Es = energy(), [], [], []
     t = 0.0
     for _ in range(nsamp):
-        acc = [np.zeros(nk) for _ in range(5)] + [np.zeros((2, 2)), np.zeros((1, 3)), np.zeros(4)]
-        t = K.step_chunk(steps, t, sysm.step, sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, th, om, z,
-                         seg["m"], seg["inertia"], seg["mu"], seg["kax"], seg["bax"], seg["kb"], seg["bb"], seg["c1"],
-                         seg["c2"], seg["bc"], pul["pcx"], pul["pcy"], pul["pr"], pul["pinv_i"], pul["pmode"],
-                         pul["tq_const"], pul["tq_visc"], pul["tt_off"], pul["tt_x"], pul["tt_y"], pul["ts_off"],
-                         pul["ts_x"], pul["ts_y"], pul["hm_off"], pul["hm_order"], pul["hm_amp"], pul["hm_phase"],
-                         pul["sp_off"], pul["sp_x"], pul["sp_y"], sysm.span_geo,
-                         np.zeros(2, dtype=np.int64), sysm.track, *work, *acc)
+        t = K.step_chunk(steps, t, sysm.step, *sysm.groups, S, W)
         ts.append(t)
         ys.append(y[mid])
         Es.append(energy() - E0)

@@ -22,7 +22,6 @@ import numpy as np
 
 from ..errors import ModelError
 from ..window import drift, in_window
-from . import _kernels as K
 from .equilibrium import FORCE_TOL
 
 #: gross slip: sliding beyond twice the creep band plus the largest discretisation speed error the
@@ -165,7 +164,7 @@ def _sliding_share(result, model, sysm) -> dict:
     if len(fr) == 0:
         return {}
     fn, ft = ds["belt_normal_force"].values[fr], ds["belt_friction_force"].values[fr]
-    mu = sysm.seg["mu"][None, :]
+    mu = sysm.contact.mu[None, :]
     out = {}
     for p in model.pulleys:
         inc = _on_pulley(ds, fr, p) & (fn > 0)
@@ -185,7 +184,7 @@ def _contact(result, model, sysm):
     ten = ds["span_tension"].values
     sel = in_window(ds["time"].values, s["steady_window"])
     t_max = float(ten[sel].max()) if np.any(sel) else init.tension
-    depth = float(sysm.fp[K.F_PMAX])
+    depth = float(sysm.contact.pmax)
     p0 = init.penetration
     worst = None
     for j, p in enumerate(model.pulleys):
@@ -299,9 +298,9 @@ def at_rest_limit(sysm, duration) -> np.ndarray:
     law; the pulleys' inertia, coupled by friction, only lowers it). A start out of equilibrium
     swings in the chain's cogging well instead (about 0.1-2 rad/s for the 5PK drive)."""
     n, T0 = sysm.n, sysm.init.tension
-    mass = float(np.sum(sysm.seg["m"]))
+    mass = float(np.sum(sysm.belt.m))
     v = n * FORCE_TOL * T0 * duration / mass
-    return v / np.array(sysm.pul["pr"], dtype=float)
+    return v / np.array(sysm.pulleys.r, dtype=float)
 
 
 def _at_rest(result, model, sysm):

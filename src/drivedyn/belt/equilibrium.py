@@ -8,10 +8,10 @@ the nearest cogging well and swings in it (about 1.7 rad/s at 100 segments for t
 
 At rest friction is zero (both laws give no force at zero slip and zero elastic displacement)
 and the pulleys' angles do not enter the energy, so the static equilibrium is a minimum of the
-belt's potential energy (joints, bending, contact, gravity: ``_kernels.energy``) over the 3 n
-segment coordinates. Newton's method with an energy line search finds it; the Hessian is the
-central difference of the forces, banded (a segment couples only to its two neighbours), so a few
-coloured sweeps of force evaluations build it. Forces in equilibrium vanish to round-off, so the
+belt's potential energy (joints, bending, contact, gravity: ``_kernels.energy``, whose gradient
+is ``_kernels.static_forces``) over the 3 n segment coordinates. Newton's method with an energy
+line search finds it; the Hessian is the central difference of the forces, banded (a segment
+couples only to its two neighbours), so a few coloured sweeps of force evaluations build it. Forces in equilibrium vanish to round-off, so the
 semi-implicit step leaves the state exactly in place.
 """
 from __future__ import annotations
@@ -28,34 +28,29 @@ FORCE_TOL = 1e-9
 MAX_ITER = 60
 
 
+def _state(sysm, q):
+    """Kernel State at rest in configuration q (n, 3: x, y, phi)."""
+    from .system import new_state
+
+    return new_state(sysm, *(np.ascontiguousarray(q[:, k]) for k in range(3)))
+
+
 def forces(sysm, q: np.ndarray) -> np.ndarray:
     """Static generalised forces -dE/dq (n, 3: fx, fy, moment) at zero velocity, q = (x, y, phi)."""
-    n, seg, pul = sysm.n, sysm.seg, sysm.pul
-    x, y, phi = (np.ascontiguousarray(q[:, k]) for k in range(3))
-    z = np.zeros(n)
-    fx, fy, mz, jfk, jdx, jdy = (np.zeros(n) for _ in range(6))
-    K.joint_forces(sysm.ip, sysm.fp, x, y, np.cos(phi), np.sin(phi), z, z, z, phi, seg["kax"], seg["bax"],
-                   seg["kb"], seg["bb"], fx, fy, mz, jfk, jdx, jdy, 0.0, seg["m"], seg["inertia"],
-                   np.empty(n), np.empty(n))
-    for j in range(len(pul["pr"])):                      # contact: N = c1 p^2 + c2 p, radial (eq. 9)
-        rx, ry = x - pul["pcx"][j], y - pul["pcy"][j]
-        d = np.hypot(rx, ry)
-        p = np.clip(pul["pr"][j] - d, 0.0, None)
-        N = (seg["c1"] * p + seg["c2"]) * p / np.maximum(d, 1e-300)
-        fx += N * rx
-        fy += N * ry
-    fy -= seg["m"] * sysm.fp[K.F_G]
-    return np.stack([fx, fy, mz], axis=1)
+    from .system import new_work
+
+    S = _state(sysm, q)
+    W = new_work(sysm)
+    K.static_forces(*sysm.groups, S, W)
+    return np.stack([W.fx, W.fy, W.mz], axis=1)
 
 
 def potential(sysm, q: np.ndarray) -> float:
-    """Potential energy (J) of the belt at rest in configuration q."""
-    n, seg, pul = sysm.n, sysm.seg, sysm.pul
-    x, y, phi = (np.ascontiguousarray(q[:, k]) for k in range(3))
-    z = np.zeros(n)
-    return float(K.energy(sysm.ip, sysm.fp, x, y, phi, np.cos(phi), np.sin(phi), z, z, z, np.zeros(len(pul["pr"])),
-                          seg["m"], seg["inertia"], seg["kax"], seg["kb"], seg["c1"], seg["c2"], pul["pcx"],
-                          pul["pcy"], pul["pr"], pul["pinertia"], np.ones(len(pul["pr"]), dtype=np.int64)))
+    """Potential energy (J) of the belt at rest in configuration q (the pulleys at rest add none)."""
+    B, C, P = sysm.groups
+    S = _state(sysm, q)
+    S.om[:] = 0.0
+    return float(K.energy(B, C, P, S))
 
 
 def _hessian(sysm, q, scale):

@@ -12,9 +12,8 @@ from ..errors import SolverError, Stopped, stop_reason
 from ..model import dumps
 from ..results import Result, unit_map, variable
 from ..window import in_window, steady_window
-from ..tables import table
 from . import _kernels as K
-from .system import BeltSystem, build, effective_inertia
+from .system import BeltSystem, build, clear_accumulators, new_state, new_work
 
 
 class _Recorder:
@@ -48,45 +47,24 @@ class _Recorder:
 
 
 def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsamples, steps_per_sample, h, frame_every):
-    init, seg, pul = sysm.init, sysm.seg, sysm.pul
-    n, nk = sysm.n, len(sysm.layout.names)
-    x, y, phi = init.x.copy(), init.y.copy(), init.phi.copy()
-    c, s = np.cos(phi), np.sin(phi)
-    vx, vy, w = np.zeros(n), np.zeros(n), np.zeros(n)
-    z = np.zeros(n)
-    th = np.zeros(nk)
-    om = np.array([table(pul["sp_x"], pul["sp_y"], pul["sp_off"][j], pul["sp_off"][j + 1], 0.0, False)
-                   if pul["pmode"][j] == 1 else 0.0 for j in range(nk)])
-    fx, fy, mz, jfk, jdx, jdy = (np.zeros(n) for _ in range(6))
-    seg_n, seg_t, seg_p = np.zeros(n), np.zeros(n), np.zeros(n)
-    nspan, ntrack = len(sysm.span_mid), len(sysm.track)
-    span_joint = np.zeros(nspan, dtype=np.int64)
-    # start each span tracker at the joint nearest its midpoint
-    hl = sysm.fp[K.F_HL]
-    jx = 0.5 * (x - hl * c + np.roll(x + hl * c, 1))
-    jy = 0.5 * (y - hl * s + np.roll(y + hl * s, 1))
-    for q in range(nspan):
-        span_joint[q] = int(np.argmin((jx - sysm.span_mid[q, 0]) ** 2 + (jy - sysm.span_mid[q, 1]) ** 2))
-    acc = dict(tq_ext=np.zeros(nk), tq_belt=np.zeros(nk), hubx=np.zeros(nk), huby=np.zeros(nk), pin=np.zeros(nk),
-               span=np.zeros((nspan, 2)), track=np.zeros((ntrack, 3)), diss=np.zeros(4))
-    inertia = effective_inertia(sysm)
+    B, C, P = sysm.groups
+    S = new_state(sysm)
+    W = new_work(sysm, S)
 
     def energy():
-        return K.energy(sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, om, seg["m"], inertia, seg["kax"], seg["kb"],
-                        seg["c1"], seg["c2"], pul["pcx"], pul["pcy"], pul["pr"], pul["pinertia"], pul["pmode"])
+        return K.energy(B, C, P, S)
 
     def capture_frame(t):
         k = rec.nf
         if k >= len(rec.frame_t):
             return
         rec.frame_t[k] = t
-        rec.fx[k], rec.fy[k], rec.fn[k], rec.ft[k] = x, y, seg_n, seg_t
-        rec.ftension[k] = jfk * np.hypot(jdx, jdy)
+        rec.fx[k], rec.fy[k], rec.fn[k], rec.ft[k] = S.x, S.y, W.seg_n, W.seg_t
+        rec.ftension[k] = W.jfk * np.hypot(W.jdx, W.jdy)
         rec.nf += 1
 
     # fill joint forces once so that frame 0 has element tensions
-    K.joint_forces(sysm.ip, sysm.fp, x, y, c, s, vx, vy, w, phi, seg["kax"], seg["bax"], seg["kb"], seg["bb"],
-                   fx, fy, mz, jfk, jdx, jdy, 0.0, seg["m"], seg["inertia"], np.empty(n), np.empty(n))
+    K.joint_forces(B, S, W, 0.0)
     E0 = energy()
     t = 0.0
     capture_frame(t)
@@ -94,46 +72,34 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     work = 0.0
     diss_total = np.zeros(4)
     last_report = -1.0
-    state = (x, y, phi, c, s, vx, vy, w, th, om, z, span_joint)
-    span_geo = sysm.span_geo
+    saved_parts = (*S, W.span_joint)         # what a replay restores
 
     def advance(nsteps, t):
-        return K.step_chunk(nsteps, t, h, sysm.ip, sysm.fp, x, y, phi, c, s, vx, vy, w, th, om, z,
-                            seg["m"], seg["inertia"], seg["mu"], seg["kax"], seg["bax"], seg["kb"], seg["bb"],
-                            seg["c1"], seg["c2"], seg["bc"],
-                            pul["pcx"], pul["pcy"], pul["pr"], pul["pinv_i"], pul["pmode"],
-                            pul["tq_const"], pul["tq_visc"], pul["tt_off"], pul["tt_x"], pul["tt_y"],
-                            pul["ts_off"], pul["ts_x"], pul["ts_y"], pul["hm_off"], pul["hm_order"], pul["hm_amp"],
-                            pul["hm_phase"], pul["sp_off"], pul["sp_x"], pul["sp_y"],
-                            span_geo, span_joint, sysm.track,
-                            fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, seg_p,
-                            acc["tq_ext"], acc["tq_belt"], acc["hubx"], acc["huby"], acc["pin"], acc["span"],
-                            acc["track"], acc["diss"])
+        return K.step_chunk(nsteps, t, h, B, C, P, S, W)
 
     for k in range(nsamples):
-        for a in acc.values():
-            a[...] = 0.0
-        saved = [a.copy() for a in state]
+        clear_accumulators(W)
+        saved = [a.copy() for a in saved_parts]
         t0 = t
         t = advance(steps_per_sample, t)
-        if _blow_up(x, y, vx, vy, om, seg_p, sysm):
+        if _blow_up(S.x, S.y, S.vx, S.vy, S.om, W.seg_p, sysm):
             # replay the sample step by step from its start to name the first quantity that ran away
-            for a, b in zip(state, saved):
+            for a, b in zip(saved_parts, saved):
                 a[...] = b
-            return k, "diverged " + _first_runaway(advance, t0, steps_per_sample, h, state, sysm)
-        work += float(np.sum(acc["pin"]))
-        diss_total += acc["diss"]
+            return k, "diverged " + _first_runaway(advance, t0, steps_per_sample, h, S, sysm)
+        work += float(np.sum(W.acc_pin))
+        diss_total += W.acc_diss
         rec.t[k] = (k + 1) * interval      # exact sample times (the accumulated t carries round-off)
-        rec.theta[k], rec.omega[k] = th, om
-        rec.tq_ext[k], rec.tq_belt[k] = acc["tq_ext"] / interval, acc["tq_belt"] / interval
-        rec.hubx[k], rec.huby[k] = acc["hubx"] / interval, acc["huby"] / interval
-        rec.pin[k] = acc["pin"] / interval
-        rec.span[k] = acc["span"][:, 0] / interval
-        rec.span_speed[k] = acc["span"][:, 1] / interval
-        rec.track[k] = acc["track"] / interval
+        rec.theta[k], rec.omega[k] = S.th, S.om
+        rec.tq_ext[k], rec.tq_belt[k] = W.acc_tq_ext / interval, W.acc_tq_belt / interval
+        rec.hubx[k], rec.huby[k] = W.acc_hubx / interval, W.acc_huby / interval
+        rec.pin[k] = W.acc_pin / interval
+        rec.span[k] = W.acc_span[:, 0] / interval
+        rec.span_speed[k] = W.acc_span[:, 1] / interval
+        rec.track[k] = W.acc_track / interval
         rec.diss[k] = diss_total
         rec.work[k] = work
-        rec.energy[k] = energy() - E0
+        rec.energy[k] = W.energy[0] - E0
         rec.ns = k + 1
         if (k + 1) % frame_every == 0:
             capture_frame(t)
@@ -145,8 +111,8 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
 
 def _first_runaway(advance, t, nsteps, h, state, sysm):
     """Step one step at a time and report the first segment or pulley speed that ran away."""
-    x, y, phi, c, s, vx, vy, w, th, om = state[:10]
-    pr = sysm.pul["pr"]
+    vx, vy, om = state.vx, state.vy, state.om
+    pr = sysm.pulleys.r
     v_ref = max(float(np.max(np.hypot(vx, vy))), float(np.max(np.abs(om) * pr)), 1.0)
     for _ in range(nsteps):
         v_before = np.hypot(vx, vy)
@@ -172,7 +138,7 @@ def _blow_up(x, y, vx, vy, om, pen, sysm):
         return f"segment {i} state is not finite"
     if v2[i] > 1e6:
         return f"segment {i} speed {math.sqrt(v2[i]):.3g} m/s"
-    pr = sysm.pul["pr"]
+    pr = sysm.pulleys.r
     j = int(np.argmax(np.abs(om) * pr))
     if not np.isfinite(om[j]) or abs(om[j]) * pr[j] > 1e3:
         return f"pulley {sysm.layout.names[j]} speed {om[j]:.3g} rad/s"

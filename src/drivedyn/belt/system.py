@@ -20,10 +20,9 @@ class BeltSystem:
     model: object
     layout: Layout
     init: InitialState
-    ip: np.ndarray
-    fp: np.ndarray
-    seg: dict          # per-segment arrays: m, inertia, mu, kax, bax, kb, bb, c1, c2, bc
-    pul: dict          # per-pulley arrays: pcx, pcy, pr, pinv_i, pmode, pinertia + excitation tables
+    belt: K.Belt
+    contact: K.Contact
+    pulleys: K.Pulleys
     span_mid: np.ndarray
     span_geo: np.ndarray  # per span: midpoint x, y and unit direction x, y (belt order)
     track: np.ndarray
@@ -32,7 +31,12 @@ class BeltSystem:
 
     @property
     def n(self):
-        return int(self.ip[K.I_N])
+        return self.belt.n
+
+    @property
+    def groups(self):
+        """(Belt, Contact, Pulleys): the constant arguments of every kernel, in kernel order."""
+        return self.belt, self.contact, self.pulleys
 
 
 def build(model, settle: bool = True) -> BeltSystem:
@@ -40,75 +44,109 @@ def build(model, settle: bool = True) -> BeltSystem:
     (equilibrium.relax, 0.2-1.5 s); ``check`` needs only the placement's tension and penetration."""
     layout = compute_layout(model)
     init = initial_state(model, layout)
-    belt, n, nk = model.belt, model.belt.segments, len(model.pulleys)
+    belt, n = model.belt, model.belt.segments
     l = init.seg_length
     e = belt.axial_exponent
     ones = np.ones(n)
     m = belt.mass_per_length * l * ones
-    seg = dict(
-        m=m,
-        inertia=m * l * l / 12.0,                                    # eq. 2
-        mu=model.friction.coefficient * ones,
+    inertia = m * l * l / 12.0                                      # eq. 2
+    scaled = model.simulation.method == "semi-implicit" and model.simulation.rotation_scaling
+    B = K.Belt(
+        n=int(n), m=m, inertia=inertia, inv_m=1.0 / m, inv_i=1.0 / inertia,
         kax=belt.axial_stiffness / l ** e * ones,                     # F = EA (g / l)^e
         bax=belt.axial_damping / l * ones,
         kb=belt.bending_stiffness / l * ones,
         bb=belt.bending_damping / l * ones,
-        c1=model.contact.stiffness_quadratic * l * ones,
-        c2=model.contact.stiffness_linear * l * ones,
-        bc=model.contact.damping * l * ones,
-    )
+        eax=float(e), eb=float(belt.bending_exponent), linear=bool(e == 1.0), hl=float(0.5 * l),
+        turn=float(init.turn), g=float(model.gravity), iscale=float(ROTATION_SCALE if scaled else 1.0))
+    mu = model.friction.coefficient * ones
     # friction zones by arc length of the segment centre measured from the start of segment 0
     s_mid = (np.arange(n) + 0.5) * (l + init.gap)
     for zone in model.friction.zones:
-        seg["mu"][(s_mid >= zone.start) & (s_mid < zone.end)] = zone.coefficient
-
-    P = model.pulleys
-    tt_off, tt_x, tt_y = flatten([p.torque_time for p in P])
-    ts_off, ts_x, ts_y = flatten([p.torque_speed for p in P])
-    sp_off, sp_x, sp_y = flatten([p.speed_time for p in P])
-    hm_off = np.zeros(nk + 1, dtype=np.int64)
-    for j, p in enumerate(P):
-        hm_off[j + 1] = hm_off[j] + len(p.harmonics)
-    hs = [hh for p in P for hh in p.harmonics]
-    pul = dict(
-        pcx=np.array([p.center[0] for p in P]), pcy=np.array([p.center[1] for p in P]),
-        pr=np.array([p.radius for p in P]),
-        pinertia=np.array([p.inertia for p in P]), pinv_i=np.array([1.0 / p.inertia for p in P]),
-        pmode=np.array([1 if p.speed_time is not None else 0 for p in P], dtype=np.int64),
-        tq_const=np.array([p.torque for p in P]), tq_visc=np.array([p.viscous_torque for p in P]),
-        tt_off=tt_off, tt_x=tt_x, tt_y=tt_y, ts_off=ts_off, ts_x=ts_x, ts_y=ts_y,
-        hm_off=hm_off, hm_order=np.array([hh.order for hh in hs], float),
-        hm_amp=np.array([hh.amplitude for hh in hs], float), hm_phase=np.array([hh.phase for hh in hs], float),
-        sp_off=sp_off, sp_x=sp_x, sp_y=sp_y,
-    )
+        mu[(s_mid >= zone.start) & (s_mid < zone.end)] = zone.coefficient
+    C = K.Contact(
+        c1=model.contact.stiffness_quadratic * l * ones,
+        c2=model.contact.stiffness_linear * l * ones,
+        bc=model.contact.damping * l * ones,
+        mu=mu, pmax=damping_depth(model, init), law=int(K.LAWS[model.friction.law]),
+        dv=float(model.friction.velocity_threshold), dmax=float(model.friction.displacement_limit))
+    P = _pulleys(model.pulleys)
     span_mid = np.array([sp.midpoint for sp in layout.spans])
     span_geo = np.array([[*sp.midpoint, math.cos(sp.angle), math.sin(sp.angle)] for sp in layout.spans])
     track = np.array(model.output.segments, dtype=np.int64)
-    ip = np.zeros(7, dtype=np.int64)
-    ip[K.I_N], ip[K.I_NK] = n, nk
-    ip[K.I_LAW] = 0 if model.friction.law == "threlfall" else 1
-    ip[K.I_NSPAN], ip[K.I_NTRACK] = len(layout.spans), len(track)
-    ip[K.I_LINEAR] = 1 if e == 1.0 else 0
-    fp = np.zeros(9)
-    fp[K.F_EAX], fp[K.F_EB] = e, belt.bending_exponent
-    fp[K.F_PMAX], fp[K.F_DV], fp[K.F_DMAX] = damping_depth(model, init), model.friction.velocity_threshold, model.friction.displacement_limit
-    fp[K.F_G], fp[K.F_TURN], fp[K.F_HL] = model.gravity, init.turn, 0.5 * l
-
-    scaled = model.simulation.method == "semi-implicit" and model.simulation.rotation_scaling
-    limit = stability_limit(model, init, seg, scaled)
+    limit = stability_limit(model, init, B, C, scaled)
     step = model.simulation.step if model.simulation.step is not None else 0.85 * limit
     if not model.simulation.duration / step < MAX_STEPS:
         raise ModelError(f"the stable step is only {limit:.3g} s ({model.simulation.duration / step:.3g} steps for "
                          f"{model.simulation.duration:g} s, over the {MAX_STEPS:.0e} allowed): check the belt's "
                          "stiffness and damping values and the contact stiffness", field="simulation")
-    fp[K.F_ISCALE] = ROTATION_SCALE if scaled else 1.0
-    sysm = BeltSystem(model, layout, init, ip, fp, seg, pul, span_mid, span_geo, track, step, limit)
+    sysm = BeltSystem(model, layout, init, B, C, P, span_mid, span_geo, track, step, limit)
     # start from the chain's static equilibrium, so that a drive at rest stays at rest
     eq = relax(sysm, init.x, init.y, init.phi) if settle else None
     if eq is not None:
         x, y, phi, res, _ = eq
         sysm.init = dataclasses.replace(init, x=x, y=y, phi=phi, residual=res)
     return sysm
+
+
+def _pulleys(P) -> K.Pulleys:
+    tt_off, tt_x, tt_y = flatten([p.torque_time for p in P])
+    ts_off, ts_x, ts_y = flatten([p.torque_speed for p in P])
+    sp_off, sp_x, sp_y = flatten([p.speed_time for p in P])
+    hm_off = np.zeros(len(P) + 1, dtype=np.int64)
+    for j, p in enumerate(P):
+        hm_off[j + 1] = hm_off[j] + len(p.harmonics)
+    hs = [hh for p in P for hh in p.harmonics]
+    return K.Pulleys(
+        nk=len(P), cx=np.array([p.center[0] for p in P], float), cy=np.array([p.center[1] for p in P], float),
+        r=np.array([p.radius for p in P], float),
+        inertia=np.array([p.inertia for p in P], float), inv_i=np.array([1.0 / p.inertia for p in P], float),
+        mode=np.array([1 if p.speed_time is not None else 0 for p in P], dtype=np.int64),
+        tq_const=np.array([p.torque for p in P], float), tq_visc=np.array([p.viscous_torque for p in P], float),
+        tt_off=tt_off, tt_x=tt_x, tt_y=tt_y, ts_off=ts_off, ts_x=ts_x, ts_y=ts_y,
+        hm_off=hm_off, hm_order=np.array([hh.order for hh in hs], float),
+        hm_amp=np.array([hh.amplitude for hh in hs], float), hm_phase=np.array([hh.phase for hh in hs], float),
+        sp_off=sp_off, sp_x=sp_x, sp_y=sp_y)
+
+
+def new_state(sysm, x=None, y=None, phi=None) -> K.State:
+    """A kernel State: the placement (or x, y, phi) at rest, prescribed pulleys at their t = 0
+    speed. Arrays are fresh copies (the kernels advance them in place)."""
+    n, P = sysm.n, sysm.pulleys
+    x = np.array(sysm.init.x if x is None else x, dtype=float)
+    y = np.array(sysm.init.y if y is None else y, dtype=float)
+    phi = np.array(sysm.init.phi if phi is None else phi, dtype=float)
+    om = np.array([K.prescribed_speed(P, j, 0.0) if P.mode[j] == 1 else 0.0 for j in range(P.nk)], dtype=float)
+    return K.State(x=x, y=y, phi=phi, c=np.cos(phi), s=np.sin(phi), vx=np.zeros(n), vy=np.zeros(n),
+                   w=np.zeros(n), th=np.zeros(P.nk), om=om, z=np.zeros(n))
+
+
+def new_work(sysm, state=None) -> K.Work:
+    """A kernel Work record (zeroed); with a state, each span probe starts at the joint nearest
+    its midpoint."""
+    n, nk = sysm.n, sysm.pulleys.nk
+    nspan, ntrack = len(sysm.span_mid), len(sysm.track)
+    span_joint = np.zeros(nspan, dtype=np.int64)
+    if state is not None:
+        hl = sysm.belt.hl
+        jx = 0.5 * (state.x - hl * state.c + np.roll(state.x + hl * state.c, 1))
+        jy = 0.5 * (state.y - hl * state.s + np.roll(state.y + hl * state.s, 1))
+        for q in range(nspan):
+            span_joint[q] = int(np.argmin((jx - sysm.span_mid[q, 0]) ** 2 + (jy - sysm.span_mid[q, 1]) ** 2))
+    z = np.zeros
+    return K.Work(fx=z(n), fy=z(n), mz=z(n), jfk=z(n), jdx=z(n), jdy=z(n), jmk=z(n), jmi=z(n),
+                  seg_n=z(n), seg_t=z(n), seg_p=z(n),
+                  tq_ext=z(nk), tq_belt=z(nk), hubx=z(nk), huby=z(nk), pin=z(nk), diss=z(4),
+                  acc_tq_ext=z(nk), acc_tq_belt=z(nk), acc_hubx=z(nk), acc_huby=z(nk), acc_pin=z(nk),
+                  acc_span=z((nspan, 2)), acc_track=z((ntrack, 3)), acc_diss=z(4), energy=z(1),
+                  span_geo=np.ascontiguousarray(sysm.span_geo, dtype=float).reshape(nspan, 4),
+                  span_joint=span_joint, track=np.ascontiguousarray(sysm.track, dtype=np.int64))
+
+
+def clear_accumulators(W: K.Work):
+    for a in (W.acc_tq_ext, W.acc_tq_belt, W.acc_hubx, W.acc_huby, W.acc_pin, W.acc_span, W.acc_track, W.acc_diss):
+        a[...] = 0.0
+
 
 
 def damping_depth(model, init) -> float:
@@ -132,18 +170,18 @@ MAX_STEPS = 1e11
 def effective_inertia(sysm) -> np.ndarray:
     """Rotational inertia of the segments as the integrator sees it (mass-scaled or not); the
     energy balance uses it, since that is the energy the scheme conserves."""
-    return sysm.seg["inertia"] * float(sysm.fp[K.F_ISCALE])
+    return sysm.belt.inertia * sysm.belt.iscale
 
 
-def _tangent_k(model, init, seg):
+def _tangent_k(model, init, B):
     e = model.belt.axial_exponent
-    k = float(seg["kax"][0])
+    k = float(B.kax[0])
     if e != 1.0:  # tangent stiffness at the pretension
         k = e * k * init.gap ** (e - 1)
     return k
 
 
-def stability_limit(model, init, seg, scaled=False) -> float:
+def stability_limit(model, init, B, C, scaled=False) -> float:
     """Largest stable step of the explicit part: 2/omega for the stiffest chain mode.
 
     The zero-length joint spring is isotropic. Bloch analysis of the straight chain gives, for the
@@ -154,19 +192,19 @@ def stability_limit(model, init, seg, scaled=False) -> float:
     implicit factor 1 / (1 + 2 h b / m)) lower the symplectic-Euler limit to
     2/omega (sqrt(1 + zeta^2) - zeta); solved for h by fixed-point iteration.
     """
-    m = float(seg["m"][0])
-    k = _tangent_k(model, init, seg)
+    m = float(B.m[0])
+    k = _tangent_k(model, init, B)
     p = 2 * float(np.max(init.penetration))          # contact stiffness at twice the static penetration
-    kc = 2 * float(seg["c1"][0]) * p + float(seg["c2"][0])
-    kb = float(seg["kb"][0]) * max(model.belt.bending_exponent, 1.0)
-    inertia = float(seg["inertia"][0])
+    kc = 2 * float(C.c1[0]) * p + float(C.c2[0])
+    kb = float(B.kb[0]) * max(model.belt.bending_exponent, 1.0)
+    inertia = float(B.inertia[0])
     # the tension adds T l/2 per joint to a segment's rotational stiffness (arms turning in the
     # force); negligible at usual strains, not at tens of per cent: take twice the pretension
     k_rot = k + 4 * kb / init.seg_length ** 2 + 4 * init.tension / init.seg_length
     w_zig = math.sqrt((4 * k + kc) / m)
     if scaled:   # the scaled rotation branch, which at high tension may top the zig-zag modes
         w_zig = max(w_zig, math.sqrt(12 * k_rot / (ROTATION_SCALE * m)))
-    b = float(seg["bax"][0])
+    b = float(B.bax[0])
     h = 2 / w_zig
     for _ in range(50):
         gamma = 4 * b / m / (1 + 2 * h * b / m)
@@ -175,8 +213,8 @@ def stability_limit(model, init, seg, scaled=False) -> float:
     limits = [h]
     if not scaled:
         w_rot = math.sqrt(12 * k_rot / m)
-        zeta = 4 * float(seg["bb"][0]) / inertia / (2 * w_rot)
+        zeta = 4 * float(B.bb[0]) / inertia / (2 * w_rot)
         limits.append(2 / w_rot / (math.sqrt(1 + zeta ** 2) + zeta))
-    elif float(seg["bb"][0]) > 0:   # explicit bending dampers, on the unscaled (conservative) inertia
-        limits.append(inertia / (2 * float(seg["bb"][0])))
+    elif float(B.bb[0]) > 0:   # explicit bending dampers, on the unscaled (conservative) inertia
+        limits.append(inertia / (2 * float(B.bb[0])))
     return min(limits)
