@@ -116,6 +116,40 @@ class Pulleys(NamedTuple):
     sp_y: np.ndarray
 
 
+class Arms(NamedTuple):
+    """Tensioners, na of them: each carries pulley ``pulley[a]`` on one coordinate q (the travel
+    from the drawn position, positive into the belt): a pivoted arm (kind 0; q in rad, the centre
+    at pivot + length (cos psi, sin psi), psi = psi0 + sgn q) or a slider (kind 1; q in m, the
+    centre at (px, py) + q (dx, dy)). Generalised load on q: spring (preload - rate q, or the
+    table over q when it has rows), stops (penalty kstop, damping cstop), viscous damping, Coulomb
+    friction (fric moving into the belt, fric x asym moving away; Threlfall-regularised over fv),
+    and the belt's hub force projected on d centre / dq."""
+    na: int
+    pulley: np.ndarray       # int64
+    kind: np.ndarray         # int64: 0 arm, 1 slider
+    px: np.ndarray           # pivot (arm) or drawn centre (slider), m
+    py: np.ndarray
+    length: np.ndarray       # arm length (m)
+    psi0: np.ndarray         # arm angle at the drawn position (rad)
+    sgn: np.ndarray          # +-1: the arm's rotation sense into the belt
+    dx: np.ndarray           # slider direction into the belt (unit)
+    dy: np.ndarray
+    inertia: np.ndarray      # kg m^2 (arm) or kg (slider)
+    preload: np.ndarray      # N m or N
+    rate: np.ndarray         # N m/rad or N/m
+    visc: np.ndarray         # N m s/rad or N s/m
+    fric: np.ndarray         # N m or N
+    asym: np.ndarray         # friction away from the belt / into it
+    fv: np.ndarray           # regularisation speed (rad/s or m/s)
+    qmin: np.ndarray         # stops
+    qmax: np.ndarray
+    kstop: np.ndarray
+    cstop: np.ndarray
+    tab_off: np.ndarray      # spring tables over q (flattened, see ``tables``)
+    tab_x: np.ndarray
+    tab_y: np.ndarray
+
+
 class State(NamedTuple):
     x: np.ndarray
     y: np.ndarray
@@ -128,6 +162,12 @@ class State(NamedTuple):
     th: np.ndarray
     om: np.ndarray
     z: np.ndarray
+    cx: np.ndarray           # pulley centres (m) and their velocities (m/s): tensioners move them
+    cy: np.ndarray
+    cvx: np.ndarray
+    cvy: np.ndarray
+    q: np.ndarray            # tensioner travel (rad or m, see Arms) and its rate
+    qd: np.ndarray
 
 
 class Work(NamedTuple):
@@ -159,7 +199,7 @@ class Work(NamedTuple):
     acc_pin: np.ndarray
     acc_span: np.ndarray     # (nspan, 2): mid-span tension, belt speed along the span
     acc_track: np.ndarray    # (ntrack, 3): element force, normal force, friction force
-    acc_diss: np.ndarray     # (4) as diss
+    acc_diss: np.ndarray     # (5) as diss, and tensioner damping + friction + stop damping
     energy: np.ndarray       # (1) total energy at the end of the last step_chunk (J), see ``energy``
     # probes
     span_geo: np.ndarray     # (nspan, 4): midpoint x, y, unit direction x, y (belt order)
@@ -411,8 +451,8 @@ def static_forces(B, Ct, P, S, W):
     joint_forces(B, S, W, 0.0)
     for i in range(B.n):
         for j in range(P.nk):
-            rx = S.x[i] - P.cx[j]
-            ry = S.y[i] - P.cy[j]
+            rx = S.x[i] - S.cx[j]
+            ry = S.y[i] - S.cy[j]
             d2 = rx * rx + ry * ry
             if d2 >= P.r[j] * P.r[j]:
                 continue
@@ -423,26 +463,121 @@ def static_forces(B, Ct, P, S, W):
         W.fy[i] -= B.m[i] * B.g
 
 
+# ---- tensioners ------------------------------------------------------------------------------
+
+@njit(cache=True, inline="always")
+def arm_centre(A, a, q):
+    """Pulley centre of tensioner a at travel q and d centre / dq."""
+    if A.kind[a] == 0:
+        psi = A.psi0[a] + A.sgn[a] * q
+        cs = math.cos(psi)
+        sn = math.sin(psi)
+        L = A.length[a]
+        return A.px[a] + L * cs, A.py[a] + L * sn, -A.sgn[a] * L * sn, A.sgn[a] * L * cs
+    return A.px[a] + q * A.dx[a], A.py[a] + q * A.dy[a], A.dx[a], A.dy[a]
+
+
+@njit(cache=True, inline="always")
+def spring_load(A, a, q):
+    """Spring load on the travel coordinate (into the belt positive): table or preload - rate q,
+    plus the stops' penalty. Returns (load, on a stop)."""
+    if A.tab_off[a + 1] > A.tab_off[a]:
+        Q = table(A.tab_x, A.tab_y, A.tab_off[a], A.tab_off[a + 1], q, True)
+    else:
+        Q = A.preload[a] - A.rate[a] * q
+    if q < A.qmin[a]:
+        return Q + A.kstop[a] * (A.qmin[a] - q), True
+    if q > A.qmax[a]:
+        return Q - A.kstop[a] * (q - A.qmax[a]), True
+    return Q, False
+
+
+@njit(cache=True)
+def spring_energy(A, a, q):
+    """Potential of the spring and stops at travel q (J): -integral of the spring load from 0."""
+    o0 = A.tab_off[a]
+    o1 = A.tab_off[a + 1]
+    if o1 > o0:
+        # exact for the piecewise-linear table: trapezoids between its breakpoints inside [0, q]
+        lo = min(0.0, q)
+        hi = max(0.0, q)
+        xp = lo
+        yp = table(A.tab_x, A.tab_y, o0, o1, lo, True)
+        W = 0.0
+        for k in range(o0, o1 + 1):
+            xk = A.tab_x[k] if k < o1 else hi
+            if xk <= lo:
+                continue
+            if xk > hi:
+                xk = hi
+            yk = table(A.tab_x, A.tab_y, o0, o1, xk, True)
+            W += 0.5 * (yp + yk) * (xk - xp)
+            xp = xk
+            yp = yk
+            if xk >= hi:
+                break
+        E = -W if q >= 0.0 else W
+    else:
+        E = -(A.preload[a] * q - 0.5 * A.rate[a] * q * q)
+    if q < A.qmin[a]:
+        E += 0.5 * A.kstop[a] * (A.qmin[a] - q) ** 2
+    elif q > A.qmax[a]:
+        E += 0.5 * A.kstop[a] * (q - A.qmax[a]) ** 2
+    return E
+
+
+@njit(cache=True, inline="always")
+def step_arms(A, S, hubx, huby, h):
+    """One semi-implicit step of every tensioner under the belt's hub forces of this step: the
+    spring and stops explicit, viscous and stop damping and the regularised Coulomb friction
+    implicit in the new rate (the same scalar solve as the belt friction). Moves the pulley
+    centres. Returns the power dissipated."""
+    P_diss = 0.0
+    for a in range(A.na):
+        j = A.pulley[a]
+        q = S.q[a]
+        _, _, jx, jy = arm_centre(A, a, q)
+        Q, on_stop = spring_load(A, a, q)
+        Q += hubx[j] * jx + huby[j] * jy            # the belt pushes the pulley out (Q < 0)
+        c = A.visc[a] + (A.cstop[a] if on_stop else 0.0)
+        hI = h / A.inertia[a]
+        den = 1.0 + hI * c
+        w0 = (S.qd[a] + hI * Q) / den
+        fr = A.fric[a] if w0 >= 0.0 else A.fric[a] * A.asym[a]
+        qd = solve_threlfall(w0, hI * fr / den, A.fv[a])
+        P_diss += c * qd * qd + fr * threlfall(qd, A.fv[a]) * qd
+        q += h * qd
+        S.q[a] = q
+        S.qd[a] = qd
+        cx, cy, jx, jy = arm_centre(A, a, q)
+        S.cx[j] = cx
+        S.cy[j] = cy
+        S.cvx[j] = jx * qd
+        S.cvy[j] = jy * qd
+    return P_diss
+
+
 # ---- semi-implicit integrator ---------------------------------------------------------------
 
 @njit(cache=True)
-def step_chunk(nsteps, t, h, B, Ct, P, S, W):
+def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     """Advance ``nsteps`` semi-implicit Euler steps from time t; returns the new time.
 
     Accumulates into W (added h * value, the caller divides by the interval): acc_tq_ext[j]
     applied torque, acc_tq_belt[j] belt torque on the pulley, acc_hubx/y[j] belt force on the
     pulley, acc_pin[j] power into the system through pulley j, acc_span[q, 0:2] mid-span tension
     and belt speed along the span, acc_track[q, 0:3] element force / normal force / friction force
-    (along the segment) of tracked segments, acc_diss[0:4] dissipation in axial dampers, bending
-    dampers, contact damping, friction.
+    (along the segment) of tracked segments, acc_diss[0:5] dissipation in axial dampers, bending
+    dampers, contact damping, friction, tensioners. Tensioners (A) move their pulleys' centres
+    in S (cx, cy, cvx, cvy); contact and friction act on the velocity relative to the centre.
     """
     # every array of the records taken out once, before the loops: reading a record's field in
     # the time loop costs a reference-count pair per read
     n, nk, hl, g, iscale, eax, eb, linear, turn = B.n, P.nk, B.hl, B.g, B.iscale, B.eax, B.eb, B.linear, B.turn
-    x, y, phi, c, s, vx, vy, w, th, om, z = S
+    x, y, phi, c, s, vx, vy, w, th, om, z = S.x, S.y, S.phi, S.c, S.s, S.vx, S.vy, S.w, S.th, S.om, S.z
     c1, c2, bc, mu, pmax, law, dv, dmax = Ct
     kax, bax, kb, bb, inertia = B.kax, B.bax, B.kb, B.bb, B.inertia
-    pcx, pcy, pr = P.cx, P.cy, P.r
+    pcx, pcy, pvx, pvy, pr = S.cx, S.cy, S.cvx, S.cvy, P.r
     fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, seg_p = W.fx, W.fy, W.mz, W.jfk, W.jdx, W.jdy, W.seg_n, W.seg_t, W.seg_p
     span_geo, span_joint, track_seg = W.span_geo, W.span_joint, W.track
     acc_pin, acc_tq_ext, acc_tq_belt, acc_hubx, acc_huby = W.acc_pin, W.acc_tq_ext, W.acc_tq_belt, W.acc_hubx, W.acc_huby
@@ -501,14 +636,17 @@ def step_chunk(nsteps, t, h, B, Ct, P, S, W):
                 ny = ry * inv
                 p = pr[j] - dist
                 pen = p
-                vn = vxs * nx + vys * ny
+                # velocities relative to the pulley centre (a tensioner moves it)
+                rvx = vxs - pvx[j]
+                rvy = vys - pvy[j]
+                vn = rvx * nx + rvy * ny
                 N, db = normal_force(c1[i], c2[i], bc[i], pmax, p, vn, hm)
                 if N <= 0.0:
                     continue
                 vn_new = vn + hm * N
                 pcd += db * vn_new * vn_new
                 # slip of the pulley surface relative to the segment, along tau = Z x n = (-ny, nx)
-                T, sl = friction(mu[i], law, dv, dmax, N, om[j] * pr[j] - (vxs * -ny + vys * nx), hm, h, z, i)
+                T, sl = friction(mu[i], law, dv, dmax, N, om[j] * pr[j] - (rvx * -ny + rvy * nx), hm, h, z, i)
                 pfr += T * sl
                 # force N n + T tau, tau = Z x n = (-ny, nx)
                 vxs += hm * (N * nx + T * -ny)
@@ -554,6 +692,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, S, W):
             acc_huby[j] += h * huby[j]
             om[j] = om_new
             th[j] += h * om_new
+        if A.na > 0:     # tensioners, under this step's hub forces; they move the centres
+            acc_diss[4] += h * step_arms(A, S, hubx, huby, h)
         # mid-span tension: follow the joint nearest each span's midpoint as the belt moves
         for q in range(nspan):
             best = span_joint[q]
@@ -589,12 +729,12 @@ def step_chunk(nsteps, t, h, B, Ct, P, S, W):
     W.tq_belt[:] = tq_belt
     W.hubx[:] = hubx
     W.huby[:] = huby
-    W.energy[0] = energy(B, Ct, P, S)   # here, not by a second call from Python (12 us per call)
+    W.energy[0] = energy(B, Ct, P, A, S)   # here, not by a second call from Python (12 us per call)
     return t
 
 
 @njit(cache=True)
-def energy(B, Ct, P, S):
+def energy(B, Ct, P, A, S):
     """Kinetic + potential energy (J): belt, dynamic pulleys, joints, bending, contact, gravity.
     The segments' rotational inertia is the one the integrator uses (times B.iscale)."""
     n = B.n
@@ -616,14 +756,16 @@ def energy(B, Ct, P, S):
             dphi += B.turn
         E += B.kb[i] * abs(dphi) ** (eb + 1.0) / (eb + 1.0)
         for j in range(P.nk):
-            rx = x[i] - P.cx[j]
-            ry = y[i] - P.cy[j]
+            rx = x[i] - S.cx[j]
+            ry = y[i] - S.cy[j]
             p = P.r[j] - math.sqrt(rx * rx + ry * ry)
             if p > 0.0:
                 E += contact_energy(Ct, i, p)
     for j in range(P.nk):
         if P.mode[j] == 0:
             E += 0.5 * P.inertia[j] * S.om[j] * S.om[j]
+    for a in range(A.na):   # arm or slider: kinetic (pulley mass included), spring and stops
+        E += 0.5 * A.inertia[a] * S.qd[a] * S.qd[a] + spring_energy(A, a, S.q[a])
     return E
 
 
@@ -651,7 +793,8 @@ def rhs(t, yv, dy, B, Ct, P, W, z):
     for j in range(nk):
         if P.mode[j] == 1:
             om[j] = prescribed_speed(P, j, t)
-    S = State(x, y, phi, np.cos(phi), np.sin(phi), vx, vy, w, th, om, z)
+    e0 = np.zeros(0)
+    S = State(x, y, phi, np.cos(phi), np.sin(phi), vx, vy, w, th, om, z, P.cx, P.cy, np.zeros(nk), np.zeros(nk), e0, e0)
     pax, pb = joint_forces(B, S, W, 0.0)
     pcd = 0.0
     pfr = 0.0

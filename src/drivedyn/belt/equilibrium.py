@@ -41,16 +41,18 @@ def forces(sysm, q: np.ndarray) -> np.ndarray:
 
     S = _state(sysm, q)
     W = new_work(sysm)
-    K.static_forces(*sysm.groups, S, W)
+    B, C, P, _ = sysm.groups
+    K.static_forces(B, C, P, S, W)
     return np.stack([W.fx, W.fy, W.mz], axis=1)
 
 
 def potential(sysm, q: np.ndarray) -> float:
     """Potential energy (J) of the belt at rest in configuration q (the pulleys at rest add none)."""
-    B, C, P = sysm.groups
+    B, C, P, A = sysm.groups
     S = _state(sysm, q)
     S.om[:] = 0.0
-    return float(K.energy(B, C, P, S))
+    S.qd[:] = 0.0
+    return float(K.energy(B, C, P, A, S))
 
 
 def _hessian(sysm, q, scale):

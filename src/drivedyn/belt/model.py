@@ -30,6 +30,80 @@ class Harmonic(Spec):
     phase: quantity("rad") = 0.0
 
 
+class _Tensioner(Spec):
+    """What arm and slider share. The coordinate is the travel from the drawn position (the
+    pulley's ``center``), positive into the belt (the sense that tightens it); the code finds that
+    sense from the layout. Spring load = preload - rate x travel, or a table over travel."""
+
+    friction_asymmetry: float = 1.0    # friction moving away from the belt / moving into it
+    spring_table: Optional[list[list]] = None
+
+    @field_validator("friction_asymmetry")
+    @classmethod
+    def _asym(cls, v):
+        if not 0 < v <= 100:
+            raise ValueError(f"must lie in (0, 100], got {v}")
+        return v
+
+    @model_validator(mode="after")
+    def _stops(self):
+        lo, hi = self.stops
+        if not hi > lo:
+            raise ValueError(f"stops must be [min, max] with max > min, got {list(self.stops)}")
+        if not lo <= 0 <= hi:
+            raise ValueError(f"stops {list(self.stops)} exclude the drawn position (travel 0)")
+        return self
+
+
+class Arm(_Tensioner):
+    """Automatic tensioner: the pulley on an arm that swings about a fixed pivot (seed 000's
+    tensioner idler, made dynamic; design note fead.md). Travel and stops in rad."""
+
+    pivot: tuple[Length, Length]
+    inertia: quantity("kg*m^2", gt=0)            # arm about the pivot, the pulley's mass included
+    preload: quantity("N*m", ge=0) = 0.0         # spring torque at the drawn position
+    rate: quantity("N*m/rad", ge=0) = 0.0
+    damping: quantity("N*m*s/rad", ge=0) = 0.0
+    friction: quantity("N*m", ge=0) = 0.0        # Coulomb torque moving into the belt
+    friction_speed: quantity("rad/s", gt=0) = 0.01   # regularisation of the Coulomb law
+    stops: tuple[quantity("rad"), quantity("rad")] = (-0.5, 0.5)
+    stop_stiffness: quantity("N*m/rad", gt=0) = 1e4
+    stop_damping: quantity("N*m*s/rad", ge=0) = 1.0
+
+    @field_validator("spring_table")
+    @classmethod
+    def _table(cls, v):
+        return None if v is None else table_rows(v, ("rad", "N*m"), "spring_table (travel, torque)", min_rows=2)
+
+
+class Slider(_Tensioner):
+    """Linear tensioner: the pulley on a slide along ``direction``; with rate 0, a fixed-force
+    tensioner. Travel and stops in m."""
+
+    direction: tuple[float, float]
+    mass: quantity("kg", gt=0)
+    preload: quantity("N", ge=0) = 0.0           # spring force at the drawn position
+    rate: quantity("N/m", ge=0) = 0.0
+    damping: quantity("N*s/m", ge=0) = 0.0
+    friction: quantity("N", ge=0) = 0.0
+    friction_speed: quantity("m/s", gt=0) = 1e-3
+    stops: tuple[Length, Length] = (-0.02, 0.02)
+    stop_stiffness: quantity("N/m", gt=0) = 1e6
+    stop_damping: quantity("N*s/m", ge=0) = 100.0
+
+    @field_validator("spring_table")
+    @classmethod
+    def _table(cls, v):
+        return None if v is None else table_rows(v, ("m", "N"), "spring_table (travel, force)", min_rows=2)
+
+    @field_validator("direction")
+    @classmethod
+    def _dir(cls, v):
+        if not (v[0] ** 2 + v[1] ** 2) > 1e-24:
+            raise ValueError("must be a non-zero vector [x, y]")
+        return v
+
+
 class Pulley(Spec):
     """A pulley or idler, in belt order. Counter-clockwise is positive for angles and torques."""
 
@@ -44,6 +118,8 @@ class Pulley(Spec):
     viscous_torque: quantity("N*m*s/rad", ge=0) = 0.0
     harmonics: list[Harmonic] = []
     speed_time: Optional[list[list]] = None
+    arm: Optional[Arm] = None          # a pivoted tensioner carries this pulley
+    slider: Optional[Slider] = None    # a linear tensioner carries this pulley
 
     @field_validator("name")
     @classmethod
@@ -72,7 +148,20 @@ class Pulley(Spec):
         if self.speed_time is not None and (self.torque != 0 or self.torque_time or self.torque_speed
                                             or self.viscous_torque or self.harmonics):
             raise ValueError(f"pulley {self.name!r}: speed_time (prescribed speed) excludes torques")
+        if self.arm is not None and self.slider is not None:
+            raise ValueError(f"pulley {self.name!r}: give arm or slider, not both")
+        if (self.arm is not None or self.slider is not None) and self.speed_time is not None:
+            raise ValueError(f"pulley {self.name!r}: a tensioner pulley cannot have a prescribed speed")
+        if self.arm is not None:
+            d = ((self.center[0] - self.arm.pivot[0]) ** 2 + (self.center[1] - self.arm.pivot[1]) ** 2) ** 0.5
+            if not d > self.radius:
+                raise ValueError(f"pulley {self.name!r}: arm.pivot lies inside the pulley ({d * 1e3:.3g} mm from "
+                                 f"its centre, radius {self.radius * 1e3:.3g} mm)")
         return self
+
+    @property
+    def tensioner(self):
+        return self.arm if self.arm is not None else self.slider
 
 
 class FrictionZone(Spec):
@@ -212,6 +301,8 @@ class Model(Spec):
         for q in self.output.segments:
             if not 0 <= q < self.belt.segments:
                 raise ValueError(f"output.segments: index {q} outside 0..{self.belt.segments - 1}")
+        if self.simulation.method == "rkf45" and any(p.tensioner is not None for p in self.pulleys):
+            raise ValueError("simulation.method: rkf45 does not integrate tensioners yet; use semi-implicit")
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
             raise ValueError("output.steady_window ends after simulation.duration")
         return self

@@ -16,7 +16,7 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
         # the elastic-plastic state z is reset when a segment leaves contact and clipped at
         # Delta_max: jumps an explicit adaptive Runge-Kutta cannot integrate without events
         raise ModelError("rkf45 supports the threlfall friction law only", field="simulation.method")
-    B, C, P = sysm.groups
+    B, C, P, A = sysm.groups
     init = sysm.init
     n, nk = sysm.n, P.nk
     y = np.zeros(6 * n + 2 * nk)
@@ -29,10 +29,11 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
         """Kernel State view of y (pulley speeds as integrated, c and s from phi)."""
         phi = y[2 * n:3 * n]
         return K.State(y[0:n], y[n:2 * n], phi, np.cos(phi), np.sin(phi), y[o:o + n], y[o + n:o + 2 * n],
-                       y[o + 2 * n:o + 3 * n], y[3 * n:3 * n + nk], y[o + 3 * n:], z)
+                       y[o + 2 * n:o + 3 * n], y[3 * n:3 * n + nk], y[o + 3 * n:], z, P.cx, P.cy,
+                       np.zeros(nk), np.zeros(nk), np.zeros(0), np.zeros(0))   # fixed centres (no tensioners)
 
     def energy():
-        return K.energy(B, C, P, state())
+        return K.energy(B, C, P, A, state())
 
     def snapshot(t):
         """Instantaneous element forces at the current state (one extra RHS call)."""
@@ -52,7 +53,7 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
     capture(0.0)
     t, h, steps, work = 0.0, min(sysm.step, interval), 0, 0.0
     rec.rejected, rec.rhs = 0, 0
-    diss = np.zeros(4)
+    diss = np.zeros(5)
     for k in range(nsamples):
         clear_accumulators(W)
         t_end = (k + 1) * interval

@@ -31,7 +31,7 @@ class _Recorder:
         self.span = np.zeros((ns, nspan))
         self.span_speed = np.zeros((ns, nspan))
         self.track = np.zeros((ns, ntrack, 3))
-        self.diss = np.zeros((ns, 4))        # cumulative dissipated energy by mechanism (J)
+        self.diss = np.zeros((ns, 5))        # cumulative dissipated energy by mechanism (J)
         self.work = np.zeros(ns)             # cumulative work in (J)
         self.energy = np.zeros(ns)
         self.frame_t = np.zeros(nframes)
@@ -47,12 +47,12 @@ class _Recorder:
 
 
 def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsamples, steps_per_sample, h, frame_every):
-    B, C, P = sysm.groups
+    B, C, P, A = sysm.groups
     S = new_state(sysm)
     W = new_work(sysm, S)
 
     def energy():
-        return K.energy(B, C, P, S)
+        return K.energy(B, C, P, A, S)
 
     def capture_frame(t):
         k = rec.nf
@@ -70,12 +70,12 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     capture_frame(t)
     interval = steps_per_sample * h
     work = 0.0
-    diss_total = np.zeros(4)
+    diss_total = np.zeros(5)
     last_report = -1.0
     saved_parts = (*S, W.span_joint)         # what a replay restores
 
     def advance(nsteps, t):
-        return K.step_chunk(nsteps, t, h, B, C, P, S, W)
+        return K.step_chunk(nsteps, t, h, B, C, P, A, S, W)
 
     for k in range(nsamples):
         clear_accumulators(W)
@@ -220,7 +220,7 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
             "pulley_radius": variable([p.radius for p in model.pulleys], ("pulley",), "m", "contact radius"),
         },
         coords={"time": rec.t[:ns], "pulley": names, "span": spans, "tracked": tr, "frame_time": ("frame", rec.frame_t[:nf]),
-                "mechanism": ["axial_damping", "bending_damping", "contact_damping", "friction"]},
+                "mechanism": ["axial_damping", "bending_damping", "contact_damping", "friction", "tensioner"]},
         attrs={"model_toml": dumps(model), "title": model.name or "belt drive"},
     )
     ds["time"].attrs["units"] = "s"

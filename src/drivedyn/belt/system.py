@@ -13,6 +13,7 @@ from .equilibrium import relax
 from .initial import InitialState, initial_state
 from ..tables import flatten
 from .layout import Layout, compute_layout
+from . import tensioner
 
 
 @dataclass
@@ -23,11 +24,13 @@ class BeltSystem:
     belt: K.Belt
     contact: K.Contact
     pulleys: K.Pulleys
+    arms: K.Arms       # tensioners (na = 0 without)
     span_mid: np.ndarray
     span_geo: np.ndarray  # per span: midpoint x, y and unit direction x, y (belt order)
     track: np.ndarray
     step: float        # time step (s) of the semi-implicit scheme
     step_limit: float  # stability estimate 2 / omega_max (s)
+    rest: object = None  # tensioner.Equilibrium of belt and tensioners at rest (None without)
 
     @property
     def n(self):
@@ -35,13 +38,18 @@ class BeltSystem:
 
     @property
     def groups(self):
-        """(Belt, Contact, Pulleys): the constant arguments of every kernel, in kernel order."""
-        return self.belt, self.contact, self.pulleys
+        """(Belt, Contact, Pulleys, Arms): the constant arguments of every kernel, in kernel order."""
+        return self.belt, self.contact, self.pulleys, self.arms
 
 
 def build(model, settle: bool = True) -> BeltSystem:
     """The kernels' arrays for ``model``. ``settle``: start the belt from its static equilibrium
-    (equilibrium.relax, 0.2-1.5 s); ``check`` needs only the placement's tension and penetration."""
+    (equilibrium.relax, 0.2-1.5 s); ``check`` needs only the placement's tension and penetration.
+    With tensioners, the belt is placed on the path of their static equilibrium (tensioner.py)."""
+    rest, drawn = None, model
+    if tensioner.indices(model):
+        rest = tensioner.equilibrium(model)
+        model = rest.model            # centres at the equilibrium, belt.length installed
     layout = compute_layout(model)
     init = initial_state(model, layout)
     belt, n = model.belt, model.belt.segments
@@ -71,6 +79,7 @@ def build(model, settle: bool = True) -> BeltSystem:
         mu=mu, pmax=damping_depth(model, init), law=int(K.LAWS[model.friction.law]),
         dv=float(model.friction.velocity_threshold), dmax=float(model.friction.displacement_limit))
     P = _pulleys(model.pulleys)
+    A = tensioner.arms_record(drawn)   # travel measured from the drawn centres
     span_mid = np.array([sp.midpoint for sp in layout.spans])
     span_geo = np.array([[*sp.midpoint, math.cos(sp.angle), math.sin(sp.angle)] for sp in layout.spans])
     track = np.array(model.output.segments, dtype=np.int64)
@@ -80,13 +89,38 @@ def build(model, settle: bool = True) -> BeltSystem:
         raise ModelError(f"the stable step is only {limit:.3g} s ({model.simulation.duration / step:.3g} steps for "
                          f"{model.simulation.duration:g} s, over the {MAX_STEPS:.0e} allowed): check the belt's "
                          "stiffness and damping values and the contact stiffness", field="simulation")
-    sysm = BeltSystem(model, layout, init, B, C, P, span_mid, span_geo, track, step, limit)
+    sysm = BeltSystem(drawn, layout, init, B, C, P, A, span_mid, span_geo, track, step, limit, rest)
     # start from the chain's static equilibrium, so that a drive at rest stays at rest
     eq = relax(sysm, init.x, init.y, init.phi) if settle else None
     if eq is not None:
         x, y, phi, res, _ = eq
+        if rest is not None:
+            x, y, phi = _settle_tensioners(sysm, x, y, phi)
         sysm.init = dataclasses.replace(init, x=x, y=y, phi=phi, residual=res)
     return sysm
+
+
+def _settle_tensioners(sysm, x, y, phi):
+    """Move the tensioners until their spring balances the discrete belt's hub force at rest
+    (the placement's uniform tension is off by the chain's discretisation), relaxing the belt
+    after each move: Newton on the travel with the stiffness of the continuum equilibrium."""
+    rest, A = sysm.rest, sysm.arms
+    scale = max(float(np.max(np.abs(rest.spring))), 1e-9)
+    for _ in range(6):
+        R = tensioner.loads_at_rest(sysm, x, y, rest.travel)
+        rest.residual = float(np.max(np.abs(R))) / scale
+        if rest.residual < 1e-8:
+            break
+        rest.travel = rest.travel - np.linalg.solve(rest.stiffness, R)
+        cx, cy = sysm.pulleys.cx.copy(), sysm.pulleys.cy.copy()
+        for a in range(A.na):
+            cx[A.pulley[a]], cy[A.pulley[a]] = tensioner._centre_record(A, a, rest.travel[a])[:2]
+        sysm.pulleys = sysm.pulleys._replace(cx=cx, cy=cy)
+        eq = relax(sysm, x, y, phi)
+        if eq is None:
+            break
+        x, y, phi = eq[:3]
+    return x, y, phi
 
 
 def _pulleys(P) -> K.Pulleys:
@@ -117,8 +151,10 @@ def new_state(sysm, x=None, y=None, phi=None) -> K.State:
     y = np.array(sysm.init.y if y is None else y, dtype=float)
     phi = np.array(sysm.init.phi if phi is None else phi, dtype=float)
     om = np.array([K.prescribed_speed(P, j, 0.0) if P.mode[j] == 1 else 0.0 for j in range(P.nk)], dtype=float)
+    q = np.array(sysm.rest.travel if sysm.rest is not None else [], dtype=float)
     return K.State(x=x, y=y, phi=phi, c=np.cos(phi), s=np.sin(phi), vx=np.zeros(n), vy=np.zeros(n),
-                   w=np.zeros(n), th=np.zeros(P.nk), om=om, z=np.zeros(n))
+                   w=np.zeros(n), th=np.zeros(P.nk), om=om, z=np.zeros(n), cx=P.cx.copy(), cy=P.cy.copy(),
+                   cvx=np.zeros(P.nk), cvy=np.zeros(P.nk), q=q, qd=np.zeros(len(q)))
 
 
 def new_work(sysm, state=None) -> K.Work:
@@ -138,7 +174,7 @@ def new_work(sysm, state=None) -> K.Work:
                   seg_n=z(n), seg_t=z(n), seg_p=z(n),
                   tq_ext=z(nk), tq_belt=z(nk), hubx=z(nk), huby=z(nk), pin=z(nk), diss=z(4),
                   acc_tq_ext=z(nk), acc_tq_belt=z(nk), acc_hubx=z(nk), acc_huby=z(nk), acc_pin=z(nk),
-                  acc_span=z((nspan, 2)), acc_track=z((ntrack, 3)), acc_diss=z(4), energy=z(1),
+                  acc_span=z((nspan, 2)), acc_track=z((ntrack, 3)), acc_diss=z(5), energy=z(1),
                   span_geo=np.ascontiguousarray(sysm.span_geo, dtype=float).reshape(nspan, 4),
                   span_joint=span_joint, track=np.ascontiguousarray(sysm.track, dtype=np.int64))
 
