@@ -156,8 +156,19 @@ def initial_state(model, layout: Layout) -> InitialState:
             raise ModelError(f"belt too short to wrap the pulleys: unstretched length {belt.length:.4f} m against a path of "
                              f"{layout.length:.4f} m would need {strain * 100:.1f} % strain", field="belt.length")
         T_guess = EA * strain ** e
+        # the chords run inside the arcs, so the closing tension can lie well off the continuum
+        # guess at low strain: widen the bracket until the residual changes sign
+        lo, hi = 0.2 * T_guess, 3.0 * T_guess
+        for _ in range(8):
+            try:
+                r_lo, r_hi = resid_T(lo), resid_T(hi)
+            except ModelError:
+                r_lo = r_hi = 0.0
+            if r_lo * r_hi < 0:
+                break
+            lo, hi = lo / 5, hi * 2
         try:
-            T = brentq(resid_T, 0.2 * T_guess, 3.0 * T_guess, xtol=1e-9 * T_guess)
+            T = brentq(resid_T, lo, hi, xtol=1e-9 * T_guess)
         except ValueError:
             raise ModelError("cannot place the belt on the layout at this length (too short to wrap?)", field="belt.length") from None
     if belt.length is None and l * n < 0.5 * layout.length:

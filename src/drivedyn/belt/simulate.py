@@ -19,8 +19,10 @@ from .system import BeltSystem, build, clear_accumulators, new_state, new_work
 class _Recorder:
     """Preallocated sample arrays; trimmed to what was computed."""
 
-    def __init__(self, ns, nk, nspan, ntrack, nframes, n):
+    def __init__(self, ns, nk, nspan, ntrack, nframes, n, na=0):
         self.t = np.zeros(ns)
+        self.q = np.zeros((ns, na))          # tensioner travel (rad or m) and rate, at the sample
+        self.qd = np.zeros((ns, na))
         self.theta = np.zeros((ns, nk))
         self.omega = np.zeros((ns, nk))
         self.tq_ext = np.zeros((ns, nk))
@@ -91,6 +93,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
         diss_total += W.acc_diss
         rec.t[k] = (k + 1) * interval      # exact sample times (the accumulated t carries round-off)
         rec.theta[k], rec.omega[k] = S.th, S.om
+        rec.q[k], rec.qd[k] = S.q, S.qd
         rec.tq_ext[k], rec.tq_belt[k] = W.acc_tq_ext / interval, W.acc_tq_belt / interval
         rec.hubx[k], rec.huby[k] = W.acc_hubx / interval, W.acc_huby / interval
         rec.pin[k] = W.acc_pin / interval
@@ -157,7 +160,7 @@ def run(model, progress=None) -> Result:
     nk, n = len(sysm.layout.names), sysm.n
     frames = min(out.frames, nsamples)
     frame_every = max(1, nsamples // frames)
-    rec = _Recorder(nsamples, nk, len(sysm.span_mid), len(sysm.track), nsamples // frame_every + 2, n)
+    rec = _Recorder(nsamples, nk, len(sysm.span_mid), len(sysm.track), nsamples // frame_every + 2, n, sysm.arms.na)
     wall0 = _time.perf_counter()
     steps_per_sample = max(1, int(math.ceil(interval / sysm.step)))
     h = interval / steps_per_sample
@@ -223,6 +226,7 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
                 "mechanism": ["axial_damping", "bending_damping", "contact_damping", "friction", "tensioner"]},
         attrs={"model_toml": dumps(model), "title": model.name or "belt drive"},
     )
+    _tensioner_variables(ds, model, sysm, rec, ns)
     ds["time"].attrs["units"] = "s"
     t = rec.t[:ns]
     t_end = float(t[-1]) if ns else 0.0
@@ -250,6 +254,25 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
     return result
 
 
+def _tensioner_variables(ds, model, sysm, rec, ns):
+    """Arm angle and speed (pivoted tensioners), slide position and speed (linear ones), over time."""
+    A = sysm.arms
+    for kind, dim, names in ((0, "arm", "arm"), (1, "slider", "slider")):
+        sel = [a for a in range(A.na) if A.kind[a] == kind]
+        if not sel:
+            continue
+        ds.coords[dim] = [model.pulleys[A.pulley[a]].name for a in sel]
+        q, qd = rec.q[:ns, sel], rec.qd[:ns, sel]
+        if kind == 0:
+            psi = A.psi0[sel] + A.sgn[sel] * q
+            ds["arm_angle"] = variable(psi, ("time", dim), "rad", "tensioner arm angle about its pivot (counter-clockwise from x)")
+            ds["arm_travel"] = variable(q, ("time", dim), "rad", "arm travel from the drawn position, into the belt positive")
+            ds["arm_speed"] = variable(qd, ("time", dim), "rad/s", "arm travel rate")
+        else:
+            ds["slider_travel"] = variable(q, ("time", dim), "m", "slider travel from the drawn position, into the belt positive")
+            ds["slider_speed"] = variable(qd, ("time", dim), "m/s", "slider travel rate")
+
+
 #: units of the summary keys (results.unit_map: first matching pattern wins; "1" for ratios)
 UNITS = {
     "steady_window": "s",
@@ -264,6 +287,10 @@ UNITS = {
     "steady.*": "1", "at_rest.speed_max.*": "rad/s", "at_rest.residual_force": "1",
     "solver.last_step": "s", "solver.step": "s", "solver.stability_limit": "s", "solver.wall_time": "s",
     "solver.simulated_time": "s", "solver.real_time_factor": "1",
+    "tensioners.*.arm_angle_*": "rad", "tensioners.*.travel_*": "rad", "tensioners.*.slide_*": "m",
+    "tensioners.*.hub_load*": "N", "tensioners.*.rest_*_torque": "N*m", "tensioners.*.rest_*_force": "N",
+    "tensioners.*.rest_arm_angle": "rad", "tensioners.*.rest_travel": "rad", "tensioners.*.rest_slide": "m",
+    "tensioners.*.rest_tension": "N",
 }
 
 
@@ -323,7 +350,7 @@ def _summary(model, sysm, ds, solver, sel, window) -> dict:
         resid = ds["energy_residual"].values
         resid_rate = (resid[idx[-1]] - resid[idx[0]]) / (tw[-1] - tw[0])
     else:
-        rates, resid_rate = np.full(4, np.nan), float("nan")
+        rates, resid_rate = np.full(D.shape[1], np.nan), float("nan")
     mech = ds["mechanism"].values.tolist()
     return {
         "driver": names[d],
@@ -339,5 +366,35 @@ def _summary(model, sysm, ds, solver, sel, window) -> dict:
         },
         "belt": {"pretension": sysm.init.tension, "segment_length": sysm.init.seg_length,
                  "segments": sysm.n, "path_length": sysm.layout.length},
+        **_tensioner_summary(ds, sysm, sel),
         "solver": solver,
     }
+
+
+def _tensioner_summary(ds, sysm, sel) -> dict:
+    """Per tensioner: the equilibrium at rest, and over the window the arm angle or slide travel
+    (mean / min / max) and the hub load (mean, max)."""
+    A, rest = sysm.arms, sysm.rest
+    if not A.na:
+        return {}
+    out = {}
+    hub = ds["hub_load"].values
+    for a in range(A.na):
+        j = int(A.pulley[a])
+        name = sysm.model.pulleys[j].name
+        h = hub[sel, j] if np.any(sel) else np.full(1, np.nan)
+        e = {"hub_load": float(np.mean(h)), "hub_load_max": float(np.max(h))}
+        if A.kind[a] == 0:
+            psi = ds["arm_angle"].sel(arm=name).values[sel] if np.any(sel) else np.full(1, np.nan)
+            q = ds["arm_travel"].sel(arm=name).values[sel] if np.any(sel) else np.full(1, np.nan)
+            e.update(arm_angle_mean=float(np.mean(psi)), arm_angle_min=float(np.min(psi)), arm_angle_max=float(np.max(psi)),
+                     travel_mean=float(np.mean(q)), travel_min=float(np.min(q)), travel_max=float(np.max(q)),
+                     rest_arm_angle=float(rest.angle[a]), rest_travel=float(rest.travel[a]),
+                     rest_spring_torque=float(rest.spring[a]))
+        else:
+            q = ds["slider_travel"].sel(slider=name).values[sel] if np.any(sel) else np.full(1, np.nan)
+            e.update(slide_mean=float(np.mean(q)), slide_min=float(np.min(q)), slide_max=float(np.max(q)),
+                     rest_slide=float(rest.travel[a]), rest_spring_force=float(rest.spring[a]))
+        e["rest_tension"] = float(rest.tension)
+        out[name] = e
+    return {"tensioners": out}

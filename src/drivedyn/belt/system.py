@@ -120,6 +120,16 @@ def _settle_tensioners(sysm, x, y, phi):
         if eq is None:
             break
         x, y, phi = eq[:3]
+    # what check and the summary report: the discrete belt's equilibrium
+    A = sysm.arms
+    cx, cy = sysm.pulleys.cx, sysm.pulleys.cy
+    hub = tensioner.hub_at_rest(sysm, x, y, cx, cy)
+    rest.hub = np.array([float(np.hypot(*hub[A.pulley[a]])) for a in range(A.na)])
+    rest.spring = np.array([tensioner._spring(sysm.model.pulleys[A.pulley[a]].tensioner, rest.travel[a]) for a in range(A.na)])
+    rest.angle = np.array([A.psi0[a] + A.sgn[a] * rest.travel[a] if A.kind[a] == 0 else np.nan for a in range(A.na)])
+    S, W = new_state(sysm, x, y, phi), new_work(sysm)
+    K.joint_forces(sysm.belt, S, W, 0.0)
+    rest.tension = float(np.mean(W.jfk * np.hypot(W.jdx, W.jdy)))
     return x, y, phi
 
 

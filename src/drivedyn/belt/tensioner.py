@@ -158,11 +158,15 @@ def equilibrium(model) -> Equilibrium:
     sense = senses(model)
     belt = model.belt
     EA, e, n = belt.axial_stiffness, belt.axial_exponent, belt.segments
-    init0 = initial_state(model, compute_layout(model))
-    L0_chain = init0.seg_length * n                      # the installed (unstretched) chain length
-    # continuum calibration: the discrete chain at the drawn layout has init0.tension on path L(0)
-    L_path0 = compute_layout(model).length
-    L_eff = L_path0 / (1 + (init0.tension / EA) ** (1 / e))
+    if belt.length is not None:       # installed by length: the drawn layout may leave it slack
+        L0_chain = L_eff = belt.length
+        T_drawn = EA * max(compute_layout(model).length / L_eff - 1, 0.0) ** e
+    else:
+        init0 = initial_state(model, compute_layout(model))
+        L0_chain = init0.seg_length * n                  # the installed (unstretched) chain length
+        # continuum calibration: the discrete chain at the drawn layout has init0.tension on path L(0)
+        L_eff = compute_layout(model).length / (1 + (init0.tension / EA) ** (1 / e))
+        T_drawn = init0.tension
 
     def centres(qv):
         return {j: _centre(model, j, q, s) for j, q, s in zip(idx, qv, sense)}
@@ -191,7 +195,7 @@ def equilibrium(model) -> Equilibrium:
         lo, hi = f(qmin[0]), f(qmax[0])
         if lo < 0:
             _no_equilibrium(model, idx[0], qmin[0], "the belt pushes the tensioner onto its stop: the spring cannot "
-                            f"hold the belt tension ({init0.tension:.4g} N at the drawn position)")
+                            f"hold the belt tension ({T_drawn:.4g} N at the drawn position)")
         if hi > 0:
             slack = t_cont(None, compute_layout(_moved(model, centres([qmax[0]]), L0_chain))) <= 0
             _no_equilibrium(model, idx[0], qmax[0], "the belt is slack at the stop: the tensioner cannot reach it"
@@ -202,6 +206,10 @@ def equilibrium(model) -> Equilibrium:
         qv = sol.x
         if not sol.success:
             raise ModelError(f"no static equilibrium of the tensioners found ({sol.message})", field="pulleys")
+    T_rest = t_cont(None, compute_layout(_moved(model, centres(qv), L0_chain)))
+    if len(idx) == 1 and T_rest < 0.05 * T_drawn:
+        _no_equilibrium(model, idx[0], qv[0], f"the spring cannot hold the belt tension: it balances the belt "
+                        f"at {T_rest:.3g} N, against {T_drawn:.4g} N at the drawn position")
     # the discrete placement's tension: Newton steps on q with the continuum's Jacobian
     t_disc = lambda m, lay: initial_state(m, lay).tension
     J = _jacobian(lambda v: loads(v, t_cont), qv)
@@ -282,5 +290,6 @@ def _jacobian(f, x, h=1e-7):
 def _no_equilibrium(model, j, q, why):
     p = model.pulleys[j]
     what, unit = ("arm", "rad") if p.arm is not None else ("slider", "m")
-    raise ModelError(f"tensioner on pulley {p.name!r}: no static equilibrium within the stops "
-                     f"{list(p.tensioner.stops)} {unit} ({why}; travel {q:.4g} {unit})", field=f"pulleys.{j}.{what}")
+    raise ModelError(f"tensioner on pulley {p.name!r}: no usable static equilibrium within the stops "
+                     f"[{p.tensioner.stops[0]:.4g}, {p.tensioner.stops[1]:.4g}] {unit} ({why}; travel {q:.4g} {unit})",
+                     field=f"pulleys.{j}.{what}")
