@@ -22,6 +22,17 @@ def check_data(model, sysm=None) -> dict:
     from .modes import modes
     from .steady import steady_state
 
+    rest = sysm.rest if sysm is not None else None
+    if sysm is None:
+        from . import tensioner
+
+        if tensioner.indices(model):
+            rest = tensioner.equilibrium(model)
+    if rest is not None:
+        # with tensioners: the drive as they hold it at rest, its tension that of the installed
+        # length (the discrete chain's; creep theory's continuum length follows from it)
+        belt = rest.model.belt.model_copy(update={"pretension": float(rest.tension), "length": None})
+        drawn, model = model, rest.model.model_copy(update={"belt": belt})
     lay = sysm.layout if sysm is not None else compute_layout(model)
     st = steady_state(model, lay)
     if sysm is not None:
@@ -40,7 +51,9 @@ def check_data(model, sysm=None) -> dict:
             "state": st.state, "belt_speed": st.speed, "acceleration": st.acceleration,
             "centrifugal_tension": st.centrifugal, "unstretched_length": st.unstretched_length,
             "driver": st.driver, "gross_slip": st.gross_slip or None,
-            "slip_margin": fin(st.margin), "limiting_pulley": st.limiting or None, "notes": st.notes,
+            "slip_margin": fin(st.margin), "limiting_pulley": st.limiting or None,
+            "notes": st.notes + (["tensioners held at their rest position (creep theory here does not move them "
+                                  "under load yet)"] if rest is not None else []),
             "spans": {n: {"tension": t} for n, t in st.spans.items()},
             "pulleys": {p.name: {"torque": p.torque, "speed": p.speed, "wrap": p.wrap,
                                  "tension_in": p.tension_in, "tension_out": p.tension_out,
@@ -51,9 +64,26 @@ def check_data(model, sysm=None) -> dict:
                         for p in st.pulleys.values()},
         },
         "installation": inst,
+        **({"tensioners": _tensioner_data(drawn, rest)} if rest is not None else {}),
         "modes": {"dofs": list(md.dofs), "rigid_modes": md.rigid_modes, "frequencies_hz": md.frequencies_hz,
                   "shapes": md.shapes, "participation": md.participation},
     }
+
+
+def _tensioner_data(model, rest) -> dict:
+    from .tensioner import indices
+
+    out = {}
+    for a, j in enumerate(indices(model)):
+        p = model.pulleys[j]
+        e = {"type": "arm" if p.arm is not None else "slider", "hub_load": float(rest.hub[a]),
+             "tension": float(rest.tension)}
+        if p.arm is not None:
+            e.update(arm_angle=float(rest.angle[a]), travel=float(rest.travel[a]), spring_torque=float(rest.spring[a]))
+        else:
+            e.update(slide=float(rest.travel[a]), spring_force=float(rest.spring[a]))
+        out[p.name] = e
+    return out
 
 
 #: units of check_data's keys (angles in rad, margins and creep are ratios)
@@ -64,7 +94,10 @@ CHECK_UNITS = {"steady.spans.*.tension": "N", "steady.pulleys.*.torque": "N*m", 
                "steady.slip_margin": "1", "installation.tolerance": "1", "installation.spans.*.length": "m",
                "installation.spans.*.tension": "N", "installation.spans.*.frequency*": "Hz",
                "installation.spans.*.band": "Hz", "installation.spans.*.bending_correction": "1",
-               "modes.frequencies_hz": "Hz", "modes.participation*": "1", "modes.shapes*": "rad"}
+               "modes.frequencies_hz": "Hz", "modes.participation*": "1", "modes.shapes*": "rad",
+               "tensioners.*.hub_load": "N", "tensioners.*.tension": "N", "tensioners.*.arm_angle": "rad",
+               "tensioners.*.travel": "rad", "tensioners.*.spring_torque": "N*m", "tensioners.*.slide": "m",
+               "tensioners.*.spring_force": "N", "tensioners.*.type": ""}
 
 
 def check_json(model) -> str:
@@ -99,7 +132,16 @@ def report(model) -> str:
                      f"{math.degrees(lay.wrap[j]):9.2f} {np.hypot(*H):11.1f} {math.degrees(math.atan2(H[1], H[0])):11.1f} "
                      f"{sysm.init.penetration[j] * 1e3:10.4f}")
     lines += [""] + table_lines(installation_table(model, T0, lay))
-    lines += [""] + _steady_lines(check_data(model, sysm), model)
+    data = check_data(model, sysm)
+    for name, t in data.get("tensioners", {}).items():
+        if t["type"] == "arm":
+            lines.append(f"tensioner {name} (arm) at rest: travel {math.degrees(t['travel']):.3f} deg into the belt "
+                         f"(arm angle {math.degrees(t['arm_angle']):.2f} deg), spring torque {t['spring_torque']:.3f} N m, "
+                         f"hub load {t['hub_load']:.1f} N, belt tension {t['tension']:.1f} N")
+        else:
+            lines.append(f"tensioner {name} (slider) at rest: travel {t['slide'] * 1e3:.3f} mm into the belt, spring "
+                         f"force {t['spring_force']:.2f} N, hub load {t['hub_load']:.1f} N, belt tension {t['tension']:.1f} N")
+    lines += [""] + _steady_lines(data, model)
     lines += ["", "static: no load, no gravity sag; span frequencies of the belt at rest (taut beam, pinned ends).",
               f"integration: {model.simulation.method}, step {sysm.step * 1e6:.3f} us (stability limit "
               f"{sysm.step_limit * 1e6:.3f} us), {model.simulation.duration / sysm.step:.3g} steps for "
