@@ -64,16 +64,24 @@ def test_elastic_plastic_law_transmits_the_same_torque(model_factory):
     assert b["pulleys"]["driven"]["slip"] == pytest.approx(a["pulleys"]["driven"]["slip"], abs=5e-4)
 
 
-def test_harmonic_torque_closed_form():
+def test_load_laws_closed_form():
+    # constant, viscous, two harmonics of the angle, bearing drag (Coulomb beyond 1 rad/s), a pump's
+    # c omega |omega| and an alternator's P / (eta omega) (linear below the 2 rad/s cut-in)
     off = np.array([0, 0], dtype=np.int64)
     e = np.zeros(0)
     one = np.ones(1)
     P = K.Pulleys(nk=1, cx=0 * one, cy=0 * one, r=one, inertia=one, inv_i=one, mode=np.zeros(1, dtype=np.int64),
                   tq_const=np.array([2.0]), tq_visc=np.array([0.1]), tt_off=off, tt_x=e, tt_y=e, ts_off=off,
                   ts_x=e, ts_y=e, hm_off=np.array([0, 2], dtype=np.int64), hm_order=np.array([2.0, 4.0]),
-                  hm_amp=np.array([3.0, 1.0]), hm_phase=np.array([0.0, 0.5]), sp_off=off, sp_x=e, sp_y=e)
+                  hm_amp=np.array([3.0, 1.0]), hm_phase=np.array([0.0, 0.5]), sp_off=off, sp_x=e, sp_y=e,
+                  tq_drag=np.array([0.3]), w_drag=one, tq_quad=np.array([0.01]), tq_pow=np.array([100.0]),
+                  w_cut=np.array([2.0]), so_off=off, so_order=e, so_amp=e, so_ang=e, so_phase=e,
+                  cl_kind=np.zeros(1, dtype=np.int64), cl_ir=one, cl_k=0 * one, cl_c=0 * one, cl_s=one)
     M = K.external_torque(P, 0, 0.3, 1.2, 5.0)
-    assert M == pytest.approx(2.0 - 0.1 * 5.0 + 3 * math.sin(2 * 1.2) + math.sin(4 * 1.2 + 0.5))
+    assert M == pytest.approx(2.0 - 0.1 * 5.0 + 3 * math.sin(2 * 1.2) + math.sin(4 * 1.2 + 0.5)
+                              - 0.3 - 0.01 * 25 - 100 / 5.0)
+    M = K.external_torque(P, 0, 0.3, 0.0, -0.5)
+    assert M == pytest.approx(2.0 + 0.05 + 0.3 * 0.5 + 0.01 * 0.25 + 100 * 0.5 / 4 + math.sin(0.5))
 
 
 def test_table_interpolation_and_extrapolation():

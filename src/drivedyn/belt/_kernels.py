@@ -114,6 +114,21 @@ class Pulleys(NamedTuple):
     sp_off: np.ndarray       # prescribed speed over time tables
     sp_x: np.ndarray
     sp_y: np.ndarray
+    tq_drag: np.ndarray      # bearing drag (N m), Coulomb over +-w_drag (rad/s)
+    w_drag: np.ndarray
+    tq_quad: np.ndarray      # pump-like load: torque -tq_quad om |om| (N m s^2/rad^2)
+    tq_pow: np.ndarray       # electrical load / efficiency (W): torque -tq_pow / om above w_cut
+    w_cut: np.ndarray        # rad/s
+    so_off: np.ndarray       # engine orders on a prescribed speed (flattened by pulley)
+    so_order: np.ndarray
+    so_amp: np.ndarray       # speed amplitude (rad/s)
+    so_ang: np.ndarray       # angle amplitude (rad): speed amplitude order x mean speed
+    so_phase: np.ndarray
+    cl_kind: np.ndarray      # int64: 0 none, 1 one-way clutch, 2 decoupler (spring + one-way)
+    cl_ir: np.ndarray        # rotor inertia behind the clutch (kg m^2)
+    cl_k: np.ndarray         # decoupler spring (N m/rad) and damping (N m s/rad)
+    cl_c: np.ndarray
+    cl_s: np.ndarray         # +-1: the rotor's drive sense
 
 
 class Arms(NamedTuple):
@@ -168,6 +183,10 @@ class State(NamedTuple):
     cvy: np.ndarray
     q: np.ndarray            # tensioner travel (rad or m, see Arms) and its rate
     qd: np.ndarray
+    thm: np.ndarray          # mean angle of a prescribed pulley (integral of its mean speed): order phases
+    thr: np.ndarray          # rotor angle and speed behind a clutch, decoupler wind-up (rad)
+    omr: np.ndarray
+    dcp: np.ndarray
 
 
 class Work(NamedTuple):
@@ -199,7 +218,7 @@ class Work(NamedTuple):
     acc_pin: np.ndarray
     acc_span: np.ndarray     # (nspan, 2): mid-span tension, belt speed along the span
     acc_track: np.ndarray    # (ntrack, 3): element force, normal force, friction force
-    acc_diss: np.ndarray     # (5) as diss, and tensioner damping + friction + stop damping
+    acc_diss: np.ndarray     # (6) as diss, then tensioners (damping, friction, stops), clutches
     energy: np.ndarray       # (1) total energy at the end of the last step_chunk (J), see ``energy``
     # probes
     span_geo: np.ndarray     # (nspan, 4): midpoint x, y, unit direction x, y (belt order)
@@ -256,20 +275,40 @@ def solve_threlfall(w, a, dv):
 
 @njit(cache=True, inline="always")
 def external_torque(P, j, t, th, om):
-    """Applied torque on pulley j (N m): constant + table(t) + table(omega) - c omega + harmonics."""
-    return _torque(j, t, th, om, P.tq_const, P.tq_visc, P.tt_off, P.tt_x, P.tt_y, P.ts_off, P.ts_x, P.ts_y,
-                   P.hm_off, P.hm_order, P.hm_amp, P.hm_phase)
+    """Applied torque on pulley j (N m): see ``_torque``."""
+    return _torque(j, t, th, om, P.tq_const, P.tq_visc, P.tq_drag, P.w_drag, P.tq_quad, P.tq_pow, P.w_cut,
+                   P.tt_off, P.tt_x, P.tt_y, P.ts_off, P.ts_x, P.ts_y, P.hm_off, P.hm_order, P.hm_amp, P.hm_phase)
 
 
 @njit(cache=True, inline="always")
-def _torque(j, t, th, om, tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase):
-    """``external_torque`` on plain arrays (for the time loop)."""
+def _torque(j, t, th, om, tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
+            tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase):
+    """Applied torque (N m) at angle th, speed om: constant + table(t) + table(omega) - c omega
+    + harmonics of the angle, bearing drag (Coulomb, linear inside +-w_drag), a pump's
+    -c omega |omega|, an alternator's -P / (eta omega) (linear in omega below the cut-in speed).
+    Plain arrays, for the time loop."""
     M = tq_const[j] - tq_visc[j] * om
     M += table(tt_x, tt_y, tt_off[j], tt_off[j + 1], t, False)
     M += table(ts_x, ts_y, ts_off[j], ts_off[j + 1], om, True)
     for k in range(hm_off[j], hm_off[j + 1]):
         M += hm_amp[k] * math.sin(hm_order[k] * th + hm_phase[k])
+    if tq_drag[j] > 0.0:
+        x = om / w_drag[j]
+        M -= tq_drag[j] * (x if abs(x) < 1.0 else math.copysign(1.0, x))
+    M -= tq_quad[j] * om * abs(om)
+    if tq_pow[j] > 0.0:
+        wc = w_cut[j]
+        M -= tq_pow[j] * (om / (wc * wc) if abs(om) < wc else 1.0 / om)
     return M
+
+
+@njit(cache=True, inline="always")
+def _orders(j, thm, wm, so_off, so_order, so_amp, so_ang, so_phase):
+    """Speed fluctuation of prescribed pulley j (rad/s) at mean angle thm, mean speed wm."""
+    dw = 0.0
+    for k in range(so_off[j], so_off[j + 1]):
+        dw += (so_amp[k] + so_order[k] * so_ang[k] * wm) * math.cos(so_order[k] * thm + so_phase[k])
+    return dw
 
 
 @njit(cache=True, inline="always")
@@ -568,7 +607,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     pulley, acc_pin[j] power into the system through pulley j, acc_span[q, 0:2] mid-span tension
     and belt speed along the span, acc_track[q, 0:3] element force / normal force / friction force
     (along the segment) of tracked segments, acc_diss[0:5] dissipation in axial dampers, bending
-    dampers, contact damping, friction, tensioners. Tensioners (A) move their pulleys' centres
+    dampers, contact damping, friction, tensioners, clutches. Tensioners (A) move their pulleys' centres
     in S (cx, cy, cvx, cvy); contact and friction act on the velocity relative to the centre.
     """
     # every array of the records taken out once, before the loops: reading a record's field in
@@ -586,6 +625,10 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     tq_const, tq_visc, hm_off, hm_order, hm_amp, hm_phase = P.tq_const, P.tq_visc, P.hm_off, P.hm_order, P.hm_amp, P.hm_phase
     tt_off, tt_x, tt_y, ts_off, ts_x, ts_y = P.tt_off, P.tt_x, P.tt_y, P.ts_off, P.ts_x, P.ts_y
     sp_off, sp_x, sp_y = P.sp_off, P.sp_x, P.sp_y
+    tq_drag, w_drag, tq_quad, tq_pow, w_cut = P.tq_drag, P.w_drag, P.tq_quad, P.tq_pow, P.w_cut
+    so_off, so_order, so_amp, so_ang, so_phase = P.so_off, P.so_order, P.so_amp, P.so_ang, P.so_phase
+    cl_kind, cl_ir, cl_k, cl_c, cl_s = P.cl_kind, P.cl_ir, P.cl_k, P.cl_c, P.cl_s
+    thm, thr, omr, dcp = S.thm, S.thr, S.omr, S.dcp
     tq_belt = np.zeros(nk)
     hubx = np.zeros(nk)
     huby = np.zeros(nk)
@@ -610,6 +653,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                                 mz, jfk, jdx, jdy, h, inv_m, inv_i, jmk, jmi)
         pcd = 0.0
         pfr = 0.0
+        diss_cl = 0.0
         for j in range(nk):
             tq_belt[j] = 0.0
             hubx[j] = 0.0
@@ -677,17 +721,59 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
             c[i] = cn
         # pulleys (explicit in the belt torque, which the implicit friction solve bounded)
         for j in range(nk):
+            Mb = tq_belt[j]
             if pmode[j] == 1:
-                om_new = table(sp_x, sp_y, sp_off[j], sp_off[j + 1], t + h, False)
+                # prescribed: mean speed (table) plus engine orders on the mean angle, whose
+                # integral is exact for the piecewise-linear mean speed (trapezoid)
+                wm1 = table(sp_x, sp_y, sp_off[j], sp_off[j + 1], t + h, False)
+                thm[j] += 0.5 * h * (table(sp_x, sp_y, sp_off[j], sp_off[j + 1], t, False) + wm1)
+                om_new = wm1 + _orders(j, thm[j], wm1, so_off, so_order, so_amp, so_ang, so_phase)
                 Mext = 0.0
-                acc_pin[j] += h * (-tq_belt[j]) * om[j]
-            else:
-                Mext = _torque(j, t, th[j], om[j], tq_const, tq_visc, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y,
-                                hm_off, hm_order, hm_amp, hm_phase)
+                acc_pin[j] += h * (-Mb) * om[j]
+            elif cl_kind[j] == 0:
+                Mext = _torque(j, t, th[j], om[j], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
+                               tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
                 acc_pin[j] += h * Mext * om[j]
-                om_new = om[j] + h * (Mext + tq_belt[j]) * pinv_i[j]
+                om_new = om[j] + h * (Mext + Mb) * pinv_i[j]
+            else:
+                # an accessory rotor behind a clutch: the loads act on it, at its angle and speed
+                Mext = _torque(j, t, thr[j], omr[j], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
+                               tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
+                acc_pin[j] += h * Mext * omr[j]
+                sj = cl_s[j]
+                ir = cl_ir[j]
+                if cl_kind[j] == 1:
+                    # one-way clutch: locked exactly when, free, the pulley would pass the rotor in
+                    # the drive sense (then the clutch torque drives the rotor: it is >= 0)
+                    wp = om[j] + h * Mb * pinv_i[j]
+                    wr = omr[j] + h * Mext / ir
+                    if sj * (wp - wr) > 0.0:
+                        ip_ = 1.0 / pinv_i[j]
+                        dw = om[j] - omr[j]
+                        diss_cl += 0.5 * ip_ * ir / (ip_ + ir) * dw * dw     # engagement: the relative kinetic energy
+                        wr = (ip_ * om[j] + ir * omr[j] + h * (Mb + Mext)) / (ip_ + ir)
+                        wp = wr
+                else:
+                    # decoupler: the spring's wind-up dcp >= 0 carries k dcp + c (rate) to the rotor;
+                    # the clutch in series lets the rotor overrun (wind-up held at 0)
+                    rel = sj * (om[j] - omr[j])
+                    Ts = cl_k[j] * dcp[j] + cl_c[j] * rel if (dcp[j] > 0.0 or rel > 0.0) else 0.0
+                    if Ts < 0.0:
+                        Ts = 0.0
+                    if Ts > 0.0:
+                        diss_cl += h * cl_c[j] * rel * rel
+                    wp = om[j] + h * (Mb - sj * Ts) * pinv_i[j]
+                    wr = omr[j] + h * (Mext + sj * Ts) / ir
+                    d_new = dcp[j] + h * sj * (wp - wr)
+                    if d_new < 0.0:
+                        diss_cl += 0.5 * cl_k[j] * dcp[j] * dcp[j]     # unwound through the clutch
+                        d_new = 0.0
+                    dcp[j] = d_new
+                om_new = wp
+                omr[j] = wr
+                thr[j] += h * wr
             acc_tq_ext[j] += h * Mext
-            acc_tq_belt[j] += h * tq_belt[j]
+            acc_tq_belt[j] += h * Mb
             acc_hubx[j] += h * hubx[j]
             acc_huby[j] += h * huby[j]
             om[j] = om_new
@@ -725,6 +811,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
         acc_diss[1] += h * pb
         acc_diss[2] += h * pcd
         acc_diss[3] += h * pfr
+        acc_diss[5] += diss_cl
         t += h
     W.tq_belt[:] = tq_belt
     W.hubx[:] = hubx
@@ -764,6 +851,9 @@ def energy(B, Ct, P, A, S):
     for j in range(P.nk):
         if P.mode[j] == 0:
             E += 0.5 * P.inertia[j] * S.om[j] * S.om[j]
+    for j in range(P.nk):   # accessory rotors behind clutches, decoupler springs
+        if P.cl_kind[j] > 0:
+            E += 0.5 * P.cl_ir[j] * S.omr[j] * S.omr[j] + 0.5 * P.cl_k[j] * S.dcp[j] * S.dcp[j]
     for a in range(A.na):   # arm or slider: kinetic (pulley mass included), spring and stops
         E += 0.5 * A.inertia[a] * S.qd[a] * S.qd[a] + spring_energy(A, a, S.q[a])
     return E
@@ -794,7 +884,8 @@ def rhs(t, yv, dy, B, Ct, P, W, z):
         if P.mode[j] == 1:
             om[j] = prescribed_speed(P, j, t)
     e0 = np.zeros(0)
-    S = State(x, y, phi, np.cos(phi), np.sin(phi), vx, vy, w, th, om, z, P.cx, P.cy, np.zeros(nk), np.zeros(nk), e0, e0)
+    S = State(x, y, phi, np.cos(phi), np.sin(phi), vx, vy, w, th, om, z, P.cx, P.cy, np.zeros(nk), np.zeros(nk), e0, e0,
+              np.zeros(nk), np.zeros(nk), np.zeros(nk), np.zeros(nk))
     pax, pb = joint_forces(B, S, W, 0.0)
     pcd = 0.0
     pfr = 0.0

@@ -30,6 +30,45 @@ class Harmonic(Spec):
     phase: quantity("rad") = 0.0
 
 
+class SpeedOrder(Spec):
+    """An engine order on a prescribed speed: omega = omega_m(t) + sum (amplitude + order angle
+    omega_m) cos(order phi_m + phase), phi_m the integral of the mean speed omega_m (speed_time).
+    Give the order's speed amplitude (rad/s) or its angle amplitude (rad), or both."""
+
+    order: float
+    amplitude: quantity("rad/s") = 0.0
+    angle: quantity("rad") = 0.0
+    phase: quantity("rad") = 0.0
+
+    @field_validator("order")
+    @classmethod
+    def _order(cls, v):
+        if not 0 < v <= 1000:
+            raise ValueError(f"must lie in (0, 1000], got {v}")
+        return v
+
+
+class Clutch(Spec):
+    """An accessory's rotor behind the pulley: an overrunning (one-way) clutch transmits torque
+    only while the pulley drives the rotor; a decoupler adds a torsion spring (rate, damping) in
+    series, which also only transmits drive torque. The pulley's loads (torque, tables,
+    viscous, quadratic, power, harmonics, drag) then act on the rotor. ``sense``: the rotor's
+    running sense (ccw, cw); by default that of the pulley when the belt runs as the crank
+    (the prescribed-speed pulley, else the one with the largest applied torque) drives it."""
+
+    type: Literal["one-way", "decoupler"] = "one-way"
+    inertia: quantity("kg*m^2", gt=0)
+    rate: quantity("N*m/rad", ge=0) = 0.0
+    damping: quantity("N*m*s/rad", ge=0) = 0.0
+    sense: Optional[Literal["ccw", "cw"]] = None
+
+    @model_validator(mode="after")
+    def _spring(self):
+        if self.type == "decoupler" and not self.rate > 0:
+            raise ValueError("a decoupler needs rate > 0 (its torsion spring)")
+        return self
+
+
 class _Tensioner(Spec):
     """What arm and slider share. The coordinate is the travel from the drawn position (the
     pulley's ``center``), positive into the belt (the sense that tightens it); the code finds that
@@ -118,6 +157,14 @@ class Pulley(Spec):
     viscous_torque: quantity("N*m*s/rad", ge=0) = 0.0
     harmonics: list[Harmonic] = []
     speed_time: Optional[list[list]] = None
+    speed_orders: list[SpeedOrder] = []            # engine orders on the prescribed speed
+    drag: quantity("N*m", ge=0) = 0.0              # bearing drag (Coulomb, over +-drag_speed)
+    drag_speed: quantity("rad/s", gt=0) = 1.0
+    quadratic_torque: quantity("N*m*s^2/rad^2", ge=0) = 0.0   # pumps: torque -c omega |omega|
+    power: quantity("W", ge=0) = 0.0               # electrical load of an alternator
+    efficiency: float = 1.0                        # of the alternator: torque -power / (eta omega)
+    cut_in_speed: quantity("rad/s", gt=0) = 100.0  # below it the power load falls linearly to 0
+    clutch: Optional[Clutch] = None
     arm: Optional[Arm] = None          # a pivoted tensioner carries this pulley
     slider: Optional[Slider] = None    # a linear tensioner carries this pulley
 
@@ -146,8 +193,13 @@ class Pulley(Spec):
     @model_validator(mode="after")
     def _excitation(self):
         if self.speed_time is not None and (self.torque != 0 or self.torque_time or self.torque_speed
-                                            or self.viscous_torque or self.harmonics):
-            raise ValueError(f"pulley {self.name!r}: speed_time (prescribed speed) excludes torques")
+                                            or self.viscous_torque or self.harmonics or self.drag
+                                            or self.quadratic_torque or self.power or self.clutch):
+            raise ValueError(f"pulley {self.name!r}: speed_time (prescribed speed) excludes torques, loads and clutches")
+        if self.speed_orders and self.speed_time is None:
+            raise ValueError(f"pulley {self.name!r}: speed_orders need a prescribed mean speed (speed_time)")
+        if not 0 < self.efficiency <= 1:
+            raise ValueError(f"pulley {self.name!r}: efficiency must lie in (0, 1], got {self.efficiency}")
         if self.arm is not None and self.slider is not None:
             raise ValueError(f"pulley {self.name!r}: give arm or slider, not both")
         if (self.arm is not None or self.slider is not None) and self.speed_time is not None:
@@ -301,8 +353,10 @@ class Model(Spec):
         for q in self.output.segments:
             if not 0 <= q < self.belt.segments:
                 raise ValueError(f"output.segments: index {q} outside 0..{self.belt.segments - 1}")
-        if self.simulation.method == "rkf45" and any(p.tensioner is not None for p in self.pulleys):
-            raise ValueError("simulation.method: rkf45 does not integrate tensioners yet; use semi-implicit")
+        if self.simulation.method == "rkf45" and any(p.tensioner is not None or p.clutch is not None or p.speed_orders
+                                                      for p in self.pulleys):
+            raise ValueError("simulation.method: rkf45 does not integrate tensioners, clutches or speed orders yet; "
+                             "use semi-implicit")
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
             raise ValueError("output.steady_window ends after simulation.duration")
         return self

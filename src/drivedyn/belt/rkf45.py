@@ -30,7 +30,8 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
         phi = y[2 * n:3 * n]
         return K.State(y[0:n], y[n:2 * n], phi, np.cos(phi), np.sin(phi), y[o:o + n], y[o + n:o + 2 * n],
                        y[o + 2 * n:o + 3 * n], y[3 * n:3 * n + nk], y[o + 3 * n:], z, P.cx, P.cy,
-                       np.zeros(nk), np.zeros(nk), np.zeros(0), np.zeros(0))   # fixed centres (no tensioners)
+                       np.zeros(nk), np.zeros(nk), np.zeros(0), np.zeros(0),   # fixed centres (no tensioners)
+                       np.zeros(nk), np.zeros(nk), np.zeros(nk), np.zeros(nk))  # no orders, no clutches
 
     def energy():
         return K.energy(B, C, P, A, state())
@@ -53,7 +54,7 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
     capture(0.0)
     t, h, steps, work = 0.0, min(sysm.step, interval), 0, 0.0
     rec.rejected, rec.rhs = 0, 0
-    diss = np.zeros(5)
+    diss = np.zeros(6)
     for k in range(nsamples):
         clear_accumulators(W)
         t_end = (k + 1) * interval

@@ -33,7 +33,7 @@ class _Recorder:
         self.span = np.zeros((ns, nspan))
         self.span_speed = np.zeros((ns, nspan))
         self.track = np.zeros((ns, ntrack, 3))
-        self.diss = np.zeros((ns, 5))        # cumulative dissipated energy by mechanism (J)
+        self.diss = np.zeros((ns, 6))        # cumulative dissipated energy by mechanism (J)
         self.work = np.zeros(ns)             # cumulative work in (J)
         self.energy = np.zeros(ns)
         self.frame_t = np.zeros(nframes)
@@ -72,7 +72,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     capture_frame(t)
     interval = steps_per_sample * h
     work = 0.0
-    diss_total = np.zeros(5)
+    diss_total = np.zeros(6)
     last_report = -1.0
     saved_parts = (*S, W.span_joint)         # what a replay restores
 
@@ -223,7 +223,7 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
             "pulley_radius": variable([p.radius for p in model.pulleys], ("pulley",), "m", "contact radius"),
         },
         coords={"time": rec.t[:ns], "pulley": names, "span": spans, "tracked": tr, "frame_time": ("frame", rec.frame_t[:nf]),
-                "mechanism": ["axial_damping", "bending_damping", "contact_damping", "friction", "tensioner"]},
+                "mechanism": ["axial_damping", "bending_damping", "contact_damping", "friction", "tensioner", "clutch"]},
         attrs={"model_toml": dumps(model), "title": model.name or "belt drive"},
     )
     _tensioner_variables(ds, model, sysm, rec, ns)

@@ -78,7 +78,7 @@ def build(model, settle: bool = True) -> BeltSystem:
         bc=model.contact.damping * l * ones,
         mu=mu, pmax=damping_depth(model, init), law=int(K.LAWS[model.friction.law]),
         dv=float(model.friction.velocity_threshold), dmax=float(model.friction.displacement_limit))
-    P = _pulleys(model.pulleys)
+    P = _pulleys(model.pulleys, running_senses(model, layout))
     A = tensioner.arms_record(drawn)   # travel measured from the drawn centres
     span_mid = np.array([sp.midpoint for sp in layout.spans])
     span_geo = np.array([[*sp.midpoint, math.cos(sp.angle), math.sin(sp.angle)] for sp in layout.spans])
@@ -133,24 +133,62 @@ def _settle_tensioners(sysm, x, y, phi):
     return x, y, phi
 
 
-def _pulleys(P) -> K.Pulleys:
+def _pulleys(P, senses=None) -> K.Pulleys:
+    """The Pulleys record; ``senses``: +-1 per pulley, its running sense (clutches need it)."""
+    f = lambda vals: np.array(vals, dtype=float)
     tt_off, tt_x, tt_y = flatten([p.torque_time for p in P])
     ts_off, ts_x, ts_y = flatten([p.torque_speed for p in P])
     sp_off, sp_x, sp_y = flatten([p.speed_time for p in P])
     hm_off = np.zeros(len(P) + 1, dtype=np.int64)
+    so_off = np.zeros(len(P) + 1, dtype=np.int64)
     for j, p in enumerate(P):
         hm_off[j + 1] = hm_off[j] + len(p.harmonics)
+        so_off[j + 1] = so_off[j] + len(p.speed_orders)
     hs = [hh for p in P for hh in p.harmonics]
+    so = [o for p in P for o in p.speed_orders]
+    senses = np.ones(len(P)) if senses is None else senses
+    cl = [p.clutch for p in P]
     return K.Pulleys(
-        nk=len(P), cx=np.array([p.center[0] for p in P], float), cy=np.array([p.center[1] for p in P], float),
-        r=np.array([p.radius for p in P], float),
-        inertia=np.array([p.inertia for p in P], float), inv_i=np.array([1.0 / p.inertia for p in P], float),
+        nk=len(P), cx=f([p.center[0] for p in P]), cy=f([p.center[1] for p in P]),
+        r=f([p.radius for p in P]),
+        inertia=f([p.inertia for p in P]), inv_i=f([1.0 / p.inertia for p in P]),
         mode=np.array([1 if p.speed_time is not None else 0 for p in P], dtype=np.int64),
-        tq_const=np.array([p.torque for p in P], float), tq_visc=np.array([p.viscous_torque for p in P], float),
+        tq_const=f([p.torque for p in P]), tq_visc=f([p.viscous_torque for p in P]),
         tt_off=tt_off, tt_x=tt_x, tt_y=tt_y, ts_off=ts_off, ts_x=ts_x, ts_y=ts_y,
-        hm_off=hm_off, hm_order=np.array([hh.order for hh in hs], float),
-        hm_amp=np.array([hh.amplitude for hh in hs], float), hm_phase=np.array([hh.phase for hh in hs], float),
-        sp_off=sp_off, sp_x=sp_x, sp_y=sp_y)
+        hm_off=hm_off, hm_order=f([hh.order for hh in hs]),
+        hm_amp=f([hh.amplitude for hh in hs]), hm_phase=f([hh.phase for hh in hs]),
+        sp_off=sp_off, sp_x=sp_x, sp_y=sp_y,
+        tq_drag=f([p.drag for p in P]), w_drag=f([p.drag_speed for p in P]),
+        tq_quad=f([p.quadratic_torque for p in P]), tq_pow=f([p.power / p.efficiency for p in P]),
+        w_cut=f([p.cut_in_speed for p in P]),
+        so_off=so_off, so_order=f([o.order for o in so]), so_amp=f([o.amplitude for o in so]),
+        so_ang=f([o.angle for o in so]), so_phase=f([o.phase for o in so]),
+        cl_kind=np.array([0 if c is None else (1 if c.type == "one-way" else 2) for c in cl], dtype=np.int64),
+        cl_ir=f([1.0 if c is None else c.inertia for c in cl]), cl_k=f([0.0 if c is None else c.rate for c in cl]),
+        cl_c=f([0.0 if c is None else c.damping for c in cl]),
+        cl_s=f([1.0 if c is None else ({"ccw": 1.0, "cw": -1.0}[c.sense] if c.sense else senses[j])
+                for j, c in enumerate(cl)]))
+
+
+def running_senses(model, layout) -> np.ndarray:
+    """+-1 per pulley: the sense it turns in when the drive runs as its driver turns it (the
+    prescribed-speed pulley by its mean speed, else the pulley with the largest applied torque).
+    Pulleys whose signed radius has the driver's sign turn with it."""
+    P = model.pulleys
+    drv, sd = None, 1.0
+    for j, p in enumerate(P):
+        if p.speed_time is not None:
+            w = max((r[1] for r in p.speed_time), key=abs)
+            drv, sd = j, math.copysign(1.0, w) if w else 1.0
+            break
+    if drv is None:
+        peak = [max([abs(p.torque)] + [abs(r[1]) for r in (p.torque_time or [])]) for p in P]
+        drv = int(np.argmax(peak))
+        p = P[drv]
+        tq = p.torque if abs(p.torque) == peak[drv] else max((r[1] for r in (p.torque_time or [[0, 1.0]])), key=abs)
+        sd = math.copysign(1.0, tq) if tq else 1.0
+    rho = np.sign(layout.rho)
+    return sd * rho * rho[drv]
 
 
 def new_state(sysm, x=None, y=None, phi=None) -> K.State:
@@ -164,7 +202,8 @@ def new_state(sysm, x=None, y=None, phi=None) -> K.State:
     q = np.array(sysm.rest.travel if sysm.rest is not None else [], dtype=float)
     return K.State(x=x, y=y, phi=phi, c=np.cos(phi), s=np.sin(phi), vx=np.zeros(n), vy=np.zeros(n),
                    w=np.zeros(n), th=np.zeros(P.nk), om=om, z=np.zeros(n), cx=P.cx.copy(), cy=P.cy.copy(),
-                   cvx=np.zeros(P.nk), cvy=np.zeros(P.nk), q=q, qd=np.zeros(len(q)))
+                   cvx=np.zeros(P.nk), cvy=np.zeros(P.nk), q=q, qd=np.zeros(len(q)),
+                   thm=np.zeros(P.nk), thr=np.zeros(P.nk), omr=np.zeros(P.nk), dcp=np.zeros(P.nk))
 
 
 def new_work(sysm, state=None) -> K.Work:
@@ -184,7 +223,7 @@ def new_work(sysm, state=None) -> K.Work:
                   seg_n=z(n), seg_t=z(n), seg_p=z(n),
                   tq_ext=z(nk), tq_belt=z(nk), hubx=z(nk), huby=z(nk), pin=z(nk), diss=z(4),
                   acc_tq_ext=z(nk), acc_tq_belt=z(nk), acc_hubx=z(nk), acc_huby=z(nk), acc_pin=z(nk),
-                  acc_span=z((nspan, 2)), acc_track=z((ntrack, 3)), acc_diss=z(5), energy=z(1),
+                  acc_span=z((nspan, 2)), acc_track=z((ntrack, 3)), acc_diss=z(6), energy=z(1),
                   span_geo=np.ascontiguousarray(sysm.span_geo, dtype=float).reshape(nspan, 4),
                   span_joint=span_joint, track=np.ascontiguousarray(sysm.track, dtype=np.int64))
 
