@@ -21,6 +21,7 @@ class _Recorder:
 
     def __init__(self, ns, nk, nspan, ntrack, nframes, n, na=0):
         self.t = np.zeros(ns)
+        self.omr = np.zeros((ns, nk))        # rotor speed behind a clutch, at the sample
         self.q = np.zeros((ns, na))          # tensioner travel (rad or m) and rate, at the sample
         self.qd = np.zeros((ns, na))
         self.theta = np.zeros((ns, nk))
@@ -94,6 +95,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
         rec.t[k] = (k + 1) * interval      # exact sample times (the accumulated t carries round-off)
         rec.theta[k], rec.omega[k] = S.th, S.om
         rec.q[k], rec.qd[k] = S.q, S.qd
+        rec.omr[k] = S.omr
         rec.tq_ext[k], rec.tq_belt[k] = W.acc_tq_ext / interval, W.acc_tq_belt / interval
         rec.hubx[k], rec.huby[k] = W.acc_hubx / interval, W.acc_huby / interval
         rec.pin[k] = W.acc_pin / interval
@@ -227,6 +229,7 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
         attrs={"model_toml": dumps(model), "title": model.name or "belt drive"},
     )
     _tensioner_variables(ds, model, sysm, rec, ns)
+    _clutch_variables(ds, model, sysm, rec, ns, float(rec.t[0]) if ns else 1.0)
     ds["time"].attrs["units"] = "s"
     t = rec.t[:ns]
     t_end = float(t[-1]) if ns else 0.0
@@ -252,6 +255,22 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
         run_checks(result, model, sysm, sel)
     result.units = unit_map(result.summary, UNITS)
     return result
+
+
+def _clutch_variables(ds, model, sysm, rec, ns, interval):
+    """Rotor speed behind each clutch and the clutch torque on the rotor in its drive sense (interval
+    mean, exact: I_r d omega_r / dt minus the accessory loads on the rotor)."""
+    P = sysm.pulleys
+    sel = [j for j in range(P.nk) if P.cl_kind[j] > 0]
+    if not sel:
+        return
+    ds.coords["clutch"] = [model.pulleys[j].name for j in sel]
+    omr = rec.omr[:ns, sel]
+    prev = np.vstack([np.zeros((1, len(sel))), omr[:-1]])
+    tc = (P.cl_ir[sel] * (omr - prev) / interval - rec.tq_ext[:ns, sel]) * P.cl_s[sel]
+    ds["rotor_speed"] = variable(omr, ("time", "clutch"), "rad/s", "accessory rotor speed behind the clutch")
+    ds["clutch_torque"] = variable(tc, ("time", "clutch"), "N m", "torque the clutch passes to the rotor, in its drive "
+                                   "sense (interval mean; >= 0 for an overrunning clutch)")
 
 
 def _tensioner_variables(ds, model, sysm, rec, ns):
