@@ -122,6 +122,8 @@ def _print_summary(console, result):
     table.add_column("value", justify="right")
     table.add_column("unit")
     for k, v in flatten(result.summary).items():
+        if k.startswith("runup.") and isinstance(v, list):
+            continue              # per crank-speed bin: the table below
         unit = result.units.get(k, "")
         if isinstance(v, float):
             v = _number(v, unit)
@@ -129,6 +131,12 @@ def _print_summary(console, result):
             v = f"[{len(v)} values]"
         table.add_row(k, str(v), "" if unit == "1" else unit)
     console.print(table)
+    if "runup" in result.summary:
+        from rich.markup import escape
+
+        from .belt.runup import table_lines
+
+        console.print(escape("\n".join(table_lines(result.summary))))
 
 
 def _print_status(console, result):

@@ -51,7 +51,7 @@ def test_overrunning_clutch_passes_drive_torque_only():
     # the crank runs up to 150 rad/s, holds it, and is pulled down in 20 ms; the alternator rotor
     # (3e-3 kg m^2, 300 W) would drive the belt back without its one-way clutch
     crank = {"speed_time": [[0, 0], [0.1, -150.0], [0.5, -150.0], [0.52, -60.0], [0.6, -60.0]]}
-    alt = {"inertia": "2e-4 kg*m^2", "power": "300 W", "efficiency": 0.7, "drag": "0.05 N*m",
+    alt = {"inertia": "2e-4 kg*m^2", "power": "300 W", "efficiency": 0.7, "drag": "0.05 N*m", "cut_in_speed": "50 rad/s",
            "clutch": {"type": "one-way", "inertia": "3e-3 kg*m^2"}}
     r = drivedyn.run(drive(crank, alt, duration=0.6, window=(0.3, 0.5)))
     assert r.status in ("success", "warning"), r.message

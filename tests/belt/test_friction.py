@@ -66,7 +66,7 @@ def test_elastic_plastic_law_transmits_the_same_torque(model_factory):
 
 def test_load_laws_closed_form():
     # constant, viscous, two harmonics of the angle, bearing drag (Coulomb beyond 1 rad/s), a pump's
-    # c omega |omega| and an alternator's P / (eta omega) (linear below the 2 rad/s cut-in)
+    # c omega |omega| and an alternator's P / (eta omega) (none below the 2 rad/s cut-in, full from 4)
     off = np.array([0, 0], dtype=np.int64)
     e = np.zeros(0)
     one = np.ones(1)
@@ -81,7 +81,9 @@ def test_load_laws_closed_form():
     assert M == pytest.approx(2.0 - 0.1 * 5.0 + 3 * math.sin(2 * 1.2) + math.sin(4 * 1.2 + 0.5)
                               - 0.3 - 0.01 * 25 - 100 / 5.0)
     M = K.external_torque(P, 0, 0.3, 0.0, -0.5)
-    assert M == pytest.approx(2.0 + 0.05 + 0.3 * 0.5 + 0.01 * 0.25 + 100 * 0.5 / 4 + math.sin(0.5))
+    assert M == pytest.approx(2.0 + 0.05 + 0.3 * 0.5 + 0.01 * 0.25 + math.sin(0.5))
+    M = K.external_torque(P, 0, 0.3, 0.0, 3.0)      # half the power at 1.5 x cut-in
+    assert M == pytest.approx(2.0 - 0.3 + 3 * 0.0 - 0.3 - 0.09 - 50 / 3.0 + math.sin(0.5))
 
 
 def test_table_interpolation_and_extrapolation():

@@ -285,7 +285,8 @@ def _torque(j, t, th, om, tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w
             tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase):
     """Applied torque (N m) at angle th, speed om: constant + table(t) + table(omega) - c omega
     + harmonics of the angle, bearing drag (Coulomb, linear inside +-w_drag), a pump's
-    -c omega |omega|, an alternator's -P / (eta omega) (linear in omega below the cut-in speed).
+    -c omega |omega|, an alternator's -P / (eta omega) (its power 0 below the cut-in speed w_c,
+    rising linearly to full at 2 w_c).
     Plain arrays, for the time loop."""
     M = tq_const[j] - tq_visc[j] * om
     M += table(tt_x, tt_y, tt_off[j], tt_off[j + 1], t, False)
@@ -296,9 +297,9 @@ def _torque(j, t, th, om, tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w
         x = om / w_drag[j]
         M -= tq_drag[j] * (x if abs(x) < 1.0 else math.copysign(1.0, x))
     M -= tq_quad[j] * om * abs(om)
-    if tq_pow[j] > 0.0:
-        wc = w_cut[j]
-        M -= tq_pow[j] * (om / (wc * wc) if abs(om) < wc else 1.0 / om)
+    if tq_pow[j] > 0.0 and abs(om) > w_cut[j]:
+        # the output rises from 0 at cut-in to the full power at twice the cut-in speed
+        M -= tq_pow[j] * min(abs(om) / w_cut[j] - 1.0, 1.0) / om
     return M
 
 

@@ -68,6 +68,25 @@ def run_checks(result, model, sysm, sel) -> None:
     _coarse(result, model, sysm)
     _at_rest(result, model, sysm)
     _slip_margin(result, model, sysm, sel)
+    _runup_slip(result)
+
+
+#: in a run-up, slip beyond this against the crank over a speed bin is gross slip (creep stays < 1 %)
+RUNUP_SLIP = 0.03
+
+
+def _runup_slip(result):
+    ru = result.summary.get("runup")
+    if not ru:
+        return
+    rpm = np.array(ru["speed_rpm"])
+    for name, vals in ru["slip"].items():
+        v = np.abs(np.array(vals))
+        bad = v > RUNUP_SLIP
+        if np.any(bad):
+            result.diagnose("gross-slip", f"pulley {name} slips {100 * v.max():.1f} % against the crank at "
+                            f"{rpm[bad].min():.0f}-{rpm[bad].max():.0f} rpm in the run-up",
+                            f"runup.slip.{name}", float(v.max()), RUNUP_SLIP, "1")
 
 
 def _slip_margin(result, model, sysm, sel):
@@ -220,6 +239,14 @@ def _steady(result, model, sysm, sel):
     t = ds["time"].values[sel]
     if len(t) < 3:
         return
+    from .runup import crank_index, mean_speed
+
+    j = crank_index(model)
+    if j is not None:
+        wm = np.abs(mean_speed(model.pulleys[j], t))
+        if wm.max() - wm.min() > 0.02 * max(wm.max(), 1e-9):
+            s["steady"] = {"skipped": "run-up: the crank's mean speed sweeps the window (see runup.*)"}
+            return
     init = sysm.init
     r = np.array([p.radius for p in model.pulleys])
     w = ds["speed"].values[sel]

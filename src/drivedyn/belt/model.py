@@ -163,7 +163,7 @@ class Pulley(Spec):
     quadratic_torque: quantity("N*m*s^2/rad^2", ge=0) = 0.0   # pumps: torque -c omega |omega|
     power: quantity("W", ge=0) = 0.0               # electrical load of an alternator
     efficiency: float = 1.0                        # of the alternator: torque -power / (eta omega)
-    cut_in_speed: quantity("rad/s", gt=0) = 100.0  # below it the power load falls linearly to 0
+    cut_in_speed: quantity("rad/s", gt=0) = 100.0  # no power below it, full power from twice it
     clutch: Optional[Clutch] = None
     arm: Optional[Arm] = None          # a pivoted tensioner carries this pulley
     slider: Optional[Slider] = None    # a linear tensioner carries this pulley
@@ -316,6 +316,7 @@ class Output(Spec):
     frames: int = 100
     segments: list[int] = [0]
     steady_window: Optional[tuple[Time, Time]] = None
+    runup_bin: Optional[quantity("rad/s", gt=0)] = None   # width of the crank-speed bins of a run-up
 
     @model_validator(mode="after")
     def _window(self):

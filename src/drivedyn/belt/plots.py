@@ -170,6 +170,16 @@ def plot_all(result, outdir) -> list[Path]:
             plot_campbell(ds, freqs, driver, ax=ax[0])
             save(fig, "campbell.png")
 
+    if "speed_bin" in ds.coords:
+        fig = Figure(figsize=(8, 11), layout="constrained")
+        ax = fig.subplots(4 if "runup_arm_travel_min" in ds else 3, 1, sharex=True)
+        plot_runup(ds, ax)
+        save(fig, "runup.png")
+        fig = Figure(figsize=(8, 5), layout="constrained")
+        tight = str(ds["span"].values[int(np.argmax(ds["runup_tension_mean"].values.mean(axis=0)))])
+        plot_waterfall(ds, tight, fig.add_subplot())
+        save(fig, "waterfall.png")
+
     if ds.sizes.get("frame", 0):
         fig = Figure(figsize=(8, 5), layout="constrained")
         a = fig.add_subplot()
@@ -178,6 +188,77 @@ def plot_all(result, outdir) -> list[Path]:
         save(fig, "belt.png")
         files.append(animate(ds, outdir / "belt.gif"))
     return files
+
+
+def plot_runup(ds, ax):
+    """Run-up per crank-speed bin: span tension bands, largest slip, arm travel, order cuts."""
+    rpm = ds["speed_bin"].values
+    for q, sp in enumerate(ds["span"].values):
+        lo, hi = ds["runup_tension_min"].values[:, q], ds["runup_tension_max"].values[:, q]
+        line, = ax[0].plot(rpm, ds["runup_tension_mean"].values[:, q], label=str(sp))
+        ax[0].fill_between(rpm, lo, hi, color=line.get_color(), alpha=0.15)
+    ax[0].set_ylabel("span tension (N)")
+    ax[0].set_title("span tension per crank-speed bin: mean, band min-max")
+    ax[0].legend(fontsize=7, ncol=2)
+    crank = ds.attrs.get("runup_crank")
+    for nm in ds["pulley"].values:
+        if str(nm) != crank:
+            ax[1].plot(rpm, 100 * ds["runup_slip"].sel(pulley=nm), label=str(nm))
+    ax[1].set_ylabel("slip (%)")
+    ax[1].set_title("slip against the crank (bin mean speeds)")
+    ax[1].legend(fontsize=7, ncol=2)
+    tight = int(np.argmax(ds["runup_tension_mean"].values.mean(axis=0)))
+    for k in ds["order"].values:
+        ax[2].plot(rpm, ds["runup_tension_order"].sel(order=k).values[:, tight], label=f"order {k:g}")
+    ax[2].set_ylabel("amplitude (N)")
+    ax[2].set_title(f"order cuts: tension of span {ds['span'].values[tight]}")
+    ax[2].legend(fontsize=7, ncol=3)
+    if "runup_arm_travel_min" in ds:
+        for a, nm in enumerate(ds["arm"].values):
+            lo = np.degrees(ds["runup_arm_travel_min"].values[:, a])
+            hi = np.degrees(ds["runup_arm_travel_max"].values[:, a])
+            ax[3].fill_between(rpm, lo, hi, alpha=0.4, label=f"{nm}: travel range")
+        ax[3].set_ylabel("arm travel (deg)")
+        ax[3].set_title("tensioner arm travel per bin (into the belt positive)")
+        ax[3].legend(fontsize=7)
+    ax[-1].set_xlabel("crank speed (rpm)")
+    for a in ax:
+        a.grid(alpha=0.3)
+
+
+def plot_waterfall(ds, span, ax):
+    """Spectrum of a span tension against crank speed (short windows along the run-up), with the
+    engine-order lines f = k n / 60."""
+    t = ds["time"].values
+    x = ds["span_tension"].sel(span=span).values
+    rpm_t = np.interp(t, *_crank_rpm(ds))
+    dt = t[1] - t[0]
+    nwin = int(2 ** np.floor(np.log2(max(16, 0.1 / dt))))      # about 0.1 s windows
+    starts = range(0, len(t) - nwin, nwin // 2)
+    f = np.fft.rfftfreq(nwin, dt)
+    S, R = [], []
+    for i in starts:
+        seg = x[i:i + nwin]
+        S.append(np.abs(np.fft.rfft((seg - seg.mean()) * np.hanning(nwin))) * 4 / nwin)
+        R.append(rpm_t[i + nwin // 2])
+    if not S:
+        return
+    S = np.array(S)
+    fmax = min(f[-1], 8 * max(R) / 60)
+    keep = f <= fmax
+    mesh = ax.pcolormesh(f[keep], R, S[:, keep], shading="nearest", cmap="viridis")
+    ax.figure.colorbar(mesh, ax=ax, label="amplitude (N)")
+    for k in ds["order"].values:
+        ax.plot(np.array(R) * k / 60, R, "w--", lw=0.7)
+        ax.text(min(max(R) * k / 60, fmax), max(R), f"{k:g}", color="w", fontsize=7, ha="right", va="top")
+    ax.set_xlim(0, fmax)
+    ax.set_xlabel("frequency (Hz)")
+    ax.set_ylabel("crank speed (rpm)")
+    ax.set_title(f"waterfall: tension of span {span} (dashed: engine orders)")
+
+
+def _crank_rpm(ds):
+    return ds["time"].values, ds["crank_rpm"].values
 
 
 def animate(ds, path, max_frames=60) -> Path:

@@ -248,6 +248,10 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
               "step": float(h), "stability_limit": float(sysm.step_limit),
               "real_time_factor": float(t_end / wall) if wall > 0 else float("nan")}
     summary = _summary(model, sysm, ds, solver, sel, window)
+    if ns:
+        from .runup import add_runup
+
+        summary.update(add_runup(ds, model, model.output.runup_bin))
     result = Result("belt-drive", ds, summary, success=not failure, message=failure)
     if ns:
         from .diagnose import run_checks
@@ -310,6 +314,8 @@ UNITS = {
     "tensioners.*.hub_load*": "N", "tensioners.*.rest_*_torque": "N*m", "tensioners.*.rest_*_force": "N",
     "tensioners.*.rest_arm_angle": "rad", "tensioners.*.rest_travel": "rad", "tensioners.*.rest_slide": "m",
     "tensioners.*.rest_tension": "N",
+    "runup.speed_rpm": "rpm", "runup.span_tension_*": "N", "runup.hub_load_max.*": "N", "runup.slip.*": "1",
+    "runup.arm_travel_range.*": "rad", "runup.orders": "1", "runup.crank": "",
 }
 
 

@@ -1,0 +1,151 @@
+"""Run-up results: a belt-drive run whose crank (the prescribed-speed pulley) sweeps a speed range,
+read per engine-speed bin as a drive engineer reads a run-up on the test bench.
+
+Per bin of crank mean speed (``output.runup_bin`` wide, rpm; default a twentieth of the range):
+min / max / mean of every span tension, the tensioner arms' travel range, the slip of every
+pulley against the crank (from the bin's mean speeds), the peak hub loads; and order tracking: the amplitude of
+engine orders of the span tensions and hub loads, from the Fourier coefficient over the crank's
+mean angle phi_m (the integral of the mean speed) within the bin,
+
+    a_k = | 2 / N sum (x - mean x) exp(-i k phi_m) |,
+
+over the whole engine cycles (two revolutions) in the bin, so that an order keeps its place as
+the speed changes and the orders do not leak into one another (order tracking by angle, as bench
+analysers do; the bins should hold several crank revolutions).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..results import variable
+
+RPM = 60 / (2 * math.pi)
+
+
+def crank_index(model):
+    """The prescribed-speed pulley whose mean speed changes by more than 10 % (a run-up), or None."""
+    for j, p in enumerate(model.pulleys):
+        if p.speed_time is not None:
+            w = np.abs([r[1] for r in p.speed_time])
+            if len(w) >= 2 and w.max() > 0 and (w.max() - w.min()) > 0.1 * w.max():
+                return j
+    return None
+
+
+def mean_speed(p, t):
+    xs = np.array([r[0] for r in p.speed_time])
+    ys = np.array([r[1] for r in p.speed_time])
+    return np.interp(t, xs, ys)
+
+
+def mean_angle(p, t):
+    """Integral of the piecewise-linear mean speed from 0 to each t (exact)."""
+    xs = np.array([r[0] for r in p.speed_time])
+    grid = np.unique(np.concatenate([[0.0], xs[(xs > 0) & (xs < t[-1])], t]))
+    w = mean_speed(p, grid)
+    cum = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(grid))])
+    return np.interp(t, grid, cum)
+
+
+def orders_of(p):
+    return sorted({1.0, 2.0, 3.0, 4.0} | {float(o.order) for o in p.speed_orders})
+
+
+def add_runup(ds, model, bin_width=None) -> dict:
+    """Adds the per-bin variables to ``ds`` (dim ``speed_bin``, coordinate its centre in rpm) and
+    returns the summary entry ``runup`` (lists per bin), or {} when the run is no run-up."""
+    j = crank_index(model)
+    if j is None or ds.sizes.get("time", 0) < 4:
+        return {}
+    p = model.pulleys[j]
+    t = ds["time"].values
+    rpm = np.abs(mean_speed(p, t)) * RPM
+    # a crank spun up from rest: the spin-up (to the table's second row) is no part of the run-up
+    knots = p.speed_time
+    t0 = knots[1][0] if abs(knots[0][1]) < 0.05 * max(abs(r[1]) for r in knots) else -np.inf
+    live = t >= t0
+    if live.sum() < 4:
+        return {}
+    lo, hi = float(rpm[live].min()), float(rpm[live].max())
+    width = bin_width * RPM if bin_width else (hi - lo) / 20
+    if not width > 0:
+        return {}
+    edges = np.arange(math.floor(lo / width) * width, hi + width, width)
+    which = np.where(live, np.clip(np.digitize(rpm, edges) - 1, 0, len(edges) - 2), -1)
+    used = [b for b in range(len(edges) - 1) if np.sum(which == b) >= 4]
+    if not used:
+        return {}
+    centre = np.array([0.5 * (edges[b] + edges[b + 1]) for b in used])
+    phi = mean_angle(p, t)
+    orders = orders_of(p)
+    spans, pulleys = ds["span"].values.tolist(), ds["pulley"].values.tolist()
+    ten, hub = ds["span_tension"].values, ds["hub_load"].values
+    r = ds["pulley_radius"].values
+    speed = ds["speed"].values
+    vd = np.abs(speed[:, j] * r[j])
+    v = np.abs(speed * r)
+
+    def per_bin(x, fn):
+        return np.array([fn(x[which == b], axis=0) for b in used])
+
+    def order_amp(x):
+        out = np.zeros((len(used), len(orders), x.shape[1]))
+        for a, b in enumerate(used):
+            idx = np.nonzero(which == b)[0]
+            # whole engine cycles (two revolutions: half orders too) or revolutions only, so that
+            # the orders stay orthogonal and do not leak into one another
+            span = abs(phi[idx[-1]] - phi[idx[0]])
+            cycle = 4 * math.pi if span >= 4 * math.pi else 2 * math.pi
+            if span >= cycle:
+                idx = idx[np.abs(phi[idx] - phi[idx[0]]) < cycle * math.floor(span / cycle)]
+            xs = x[idx] - x[idx].mean(axis=0)
+            for q, k in enumerate(orders):
+                out[a, q] = np.abs(2 / len(idx) * (np.exp(-1j * k * phi[idx]) @ xs))
+        return out
+
+    dims = ("speed_bin",)
+    ds["crank_rpm"] = variable(rpm, ("time",), "rpm", "crank mean speed (prescribed, without the orders)")
+    ds.attrs["runup_crank"] = p.name
+    ds.coords["speed_bin"] = variable(centre, dims, "rpm", "crank mean speed, bin centre")
+    ds.coords["order"] = orders
+    ds["runup_tension_min"] = variable(per_bin(ten, np.min), dims + ("span",), "N", "span tension, bin minimum")
+    ds["runup_tension_max"] = variable(per_bin(ten, np.max), dims + ("span",), "N", "span tension, bin maximum")
+    ds["runup_tension_mean"] = variable(per_bin(ten, np.mean), dims + ("span",), "N", "span tension, bin mean")
+    ds["runup_hub_load_max"] = variable(per_bin(hub, np.max), dims + ("pulley",), "N", "hub load, bin maximum")
+    # slip as the bin's mean speed ratio: the instantaneous ratio also swings with the torsional
+    # vibration the engine orders excite, which is no slip
+    vd_bin = per_bin(vd, np.mean)
+    slip = 1 - per_bin(v, np.mean) / np.where(vd_bin > 0, vd_bin, np.nan)[:, None]
+    ds["runup_slip"] = variable(slip, dims + ("pulley",), "1",
+                                "slip against the crank over the bin, 1 - mean |w r| / mean |w_c r_c|")
+    ds["runup_tension_order"] = variable(order_amp(ten), dims + ("order", "span"), "N", "span tension, amplitude of engine order")
+    ds["runup_hub_load_order"] = variable(order_amp(hub), dims + ("order", "pulley"), "N", "hub load, amplitude of engine order")
+    out = {"crank": p.name, "speed_rpm": centre.tolist(), "orders": orders,
+           "span_tension_min": {s: ds["runup_tension_min"].values[:, q].tolist() for q, s in enumerate(spans)},
+           "span_tension_max": {s: ds["runup_tension_max"].values[:, q].tolist() for q, s in enumerate(spans)},
+           "slip": {n: ds["runup_slip"].values[:, q].tolist() for q, n in enumerate(pulleys) if q != j},
+           "hub_load_max": {n: ds["runup_hub_load_max"].values[:, q].tolist() for q, n in enumerate(pulleys)}}
+    if "arm_travel" in ds:
+        q = ds["arm_travel"].values
+        ds["runup_arm_travel_min"] = variable(per_bin(q, np.min), dims + ("arm",), "rad", "arm travel, bin minimum")
+        ds["runup_arm_travel_max"] = variable(per_bin(q, np.max), dims + ("arm",), "rad", "arm travel, bin maximum")
+        out["arm_travel_range"] = {a: (ds["runup_arm_travel_max"].values[:, k] - ds["runup_arm_travel_min"].values[:, k]).tolist()
+                                   for k, a in enumerate(ds["arm"].values.tolist())}
+    return {"runup": out}
+
+
+def table_lines(summary) -> list[str]:
+    """The per-bin table the CLI and the closing notes print."""
+    ru = summary.get("runup")
+    if not ru:
+        return []
+    spans = list(ru["span_tension_max"])
+    head = f"{'rpm':>6s} " + " ".join(f"{s[:18]:>18s}" for s in spans) + "  slip %  (largest, pulley)"
+    lines = [f"run-up of {ru['crank']}: span tension min-max (N) per crank-speed bin", head]
+    for b, rpm in enumerate(ru["speed_rpm"]):
+        cells = " ".join(f"{ru['span_tension_min'][s][b]:8.0f}-{ru['span_tension_max'][s][b]:<9.0f}" for s in spans)
+        worst = max(ru["slip"], key=lambda n: abs(ru["slip"][n][b])) if ru["slip"] else ""
+        lines.append(f"{rpm:6.0f} {cells}  {100 * ru['slip'][worst][b]:6.2f}  ({worst})" if worst else f"{rpm:6.0f} {cells}")
+    return lines
