@@ -20,7 +20,7 @@ def flatten(tables):
     return off, np.array(xs, float), np.array(ys, float)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def table(xs, ys, o0, o1, x, extrapolate):
     """y(x) from rows o0..o1-1 (x increasing); 0 for an empty table, held or extrapolated
     linearly beyond the ends."""

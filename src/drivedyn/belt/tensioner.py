@@ -87,14 +87,15 @@ def arms_record(model, sense=None) -> K.Arms:
             dx.append(s * t.direction[0] / n)
             dy.append(s * t.direction[1] / n)
             inertia.append(t.mass)
-    return K.Arms(na=len(idx), pulley=np.array(idx, dtype=np.int64), kind=np.array(kind, dtype=np.int64),
-                  px=f(px), py=f(py), length=f(L), psi0=f(psi0), sgn=f(sgn), dx=f(dx), dy=f(dy),
+    fields = dict(px=f(px), py=f(py), length=f(L), psi0=f(psi0), sgn=f(sgn), dx=f(dx), dy=f(dy),
                   inertia=f(inertia), preload=f([t.preload for t in T]), rate=f([t.rate for t in T]),
                   visc=f([t.damping for t in T]), fric=f([t.friction for t in T]),
                   asym=f([t.friction_asymmetry for t in T]), fv=f([t.friction_speed for t in T]),
                   qmin=f([t.stops[0] for t in T]), qmax=f([t.stops[1] for t in T]),
-                  kstop=f([t.stop_stiffness for t in T]), cstop=f([t.stop_damping for t in T]),
-                  tab_off=off, tab_x=tx, tab_y=ty)
+                  kstop=f([t.stop_stiffness for t in T]), cstop=f([t.stop_damping for t in T]))
+    par = np.ascontiguousarray(np.column_stack([fields[k] for k in K.ARM_FIELDS]).reshape(len(idx), K.ARM_NPAR))
+    return K.Arms(na=len(idx), pulley=np.array(idx, dtype=np.int64), kind=np.array(kind, dtype=np.int64),
+                  tab_off=off, tab_x=tx, tab_y=ty, par=par, **fields)
 
 
 def _centre(model, j, q, s):
