@@ -69,6 +69,8 @@ def test_overrunning_clutch_passes_drive_torque_only():
     over = wr[decel] - wp[decel]
     assert np.all(over < -1.0), over
     assert np.all(tc[decel] < 1e-6 * load)
+    assert r.summary["clutches"]["driven"]["torque_mean"] == pytest.approx(load, rel=0.03)
+    assert r.summary["clutches"]["driven"]["overrun_share"] == 0.0     # the window 0.3-0.5 s: driven
     # energy balance with the clutch's engagement losses
     resid = abs(float(r.ds["energy_residual"].values[-1]))
     work = float(np.max(np.abs(r.ds["work_in"].values)))

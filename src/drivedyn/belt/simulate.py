@@ -314,6 +314,7 @@ UNITS = {
     "tensioners.*.hub_load*": "N", "tensioners.*.rest_*_torque": "N*m", "tensioners.*.rest_*_force": "N",
     "tensioners.*.rest_arm_angle": "rad", "tensioners.*.rest_travel": "rad", "tensioners.*.rest_slide": "m",
     "tensioners.*.rest_tension": "N",
+    "clutches.*.torque_mean": "N*m", "clutches.*.rotor_speed_mean": "rad/s", "clutches.*.overrun_share": "1",
     "runup.speed_rpm": "rpm", "runup.span_tension_*": "N", "runup.hub_load_max.*": "N", "runup.slip.*": "1",
     "runup.arm_travel_range.*": "rad", "runup.orders": "1", "runup.crank": "",
 }
@@ -392,8 +393,23 @@ def _summary(model, sysm, ds, solver, sel, window) -> dict:
         "belt": {"pretension": sysm.init.tension, "segment_length": sysm.init.seg_length,
                  "segments": sysm.n, "path_length": sysm.layout.length},
         **_tensioner_summary(ds, sysm, sel),
+        **_clutch_summary(ds, sel),
         "solver": solver,
     }
+
+
+def _clutch_summary(ds, sel) -> dict:
+    """Per clutch over the window: mean torque passed, rotor speed, and the share of the time the
+    rotor overruns (the clutch passes less than 1 % of its mean torque)."""
+    if "clutch" not in ds.coords or not np.any(sel):
+        return {}
+    out = {}
+    for name in ds["clutch"].values.tolist():
+        tc = ds["clutch_torque"].sel(clutch=name).values[sel]
+        mean = float(np.mean(tc))
+        out[name] = {"torque_mean": mean, "rotor_speed_mean": float(np.mean(ds["rotor_speed"].sel(clutch=name).values[sel])),
+                     "overrun_share": float(np.mean(tc < 0.01 * abs(mean)))}
+    return {"clutches": out}
 
 
 def _tensioner_summary(ds, sysm, sel) -> dict:
