@@ -197,13 +197,19 @@ def margins(d: Drive, M, c, forward, max_factor=1e3):
 
 def applied_torque(p, omega):
     """Mean torque on pulley p at steady speed omega: constant + the last torque_time value +
-    the torque-speed table + viscous; harmonics average out."""
+    the torque-speed table + viscous + bearing drag + pump + alternator power (the laws of
+    ``_kernels._torque``); harmonics average out; a clutch is locked and passes its rotor's load."""
     M = p.torque - p.viscous_torque * omega
     if p.torque_time:
         M += p.torque_time[-1][1]
     if p.torque_speed:   # extrapolated linearly beyond the ends, as the dynamic model reads it
         rows = np.asarray(p.torque_speed, dtype=float)
         M += table(rows[:, 0], rows[:, 1], 0, len(rows), float(omega), True)
+    if p.drag:
+        M -= p.drag * max(-1.0, min(1.0, omega / p.drag_speed))
+    M -= p.quadratic_torque * omega * abs(omega)
+    if p.power and abs(omega) > p.cut_in_speed:
+        M -= p.power / p.efficiency * min(abs(omega) / p.cut_in_speed - 1.0, 1.0) / omega
     return M
 
 
