@@ -131,6 +131,13 @@ def test_arm_free_oscillation_against_linear_model():
     k = 20.0 + m.belt.axial_stiffness * g * g / L_s + T * Lpp
     f_lin = math.sqrt(k / 0.01) / (2 * math.pi)
     assert f_sim == pytest.approx(f_lin, rel=0.03), (f_sim, f_lin)
+    # the drive's linearised modes (modes.py, with the arm as a DOF) have this mode too
+    from drivedyn.belt.modes import modes
+    md = modes(m)
+    f_mode = min(md.frequencies_hz, key=lambda f: abs(f - f_sim))
+    assert f_mode == pytest.approx(f_sim, rel=0.03), (md.frequencies_hz, f_sim)
+    k_arm = max(range(len(md.frequencies_hz)), key=lambda k: md.participation[k].get("idler.arm", 0))
+    assert md.frequencies_hz[k_arm] == f_mode
 
 
 def test_energy_balance_with_tensioner_damping_and_friction():

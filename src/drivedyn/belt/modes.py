@@ -6,6 +6,9 @@ pulley with a prescribed speed is held); span k from pulley a to pulley b in bel
 spring EA / L_k on its stretch rho_b theta_b - rho_a theta_a (signed radii: a pulley turning with
 the belt feeds belt into the span it leaves and draws it from the span it enters). The springs are
 the spans' only (wraps held by adhesion); tension enters through the span lengths only.
+A tensioner (arm or slider) adds its travel q as a DOF (inertia about the pivot, or mass): the
+spans next to its pulley stretch by g_k q (g_k = d L_k / d q from the layout), its spring adds
+its rate and the belt tension T the path's curvature T d^2 L / dq^2 (Beikmann et al.).
 Eigenproblem K phi = omega^2 J phi.
 """
 from __future__ import annotations
@@ -40,12 +43,62 @@ def stiffness(layout: Layout, EA: float) -> np.ndarray:
     return K
 
 
+def _moved(model, j, q):
+    """The layout with tensioner pulley j moved by travel q (rad about the pivot, or m along the
+    slide) from where the model has it."""
+    p = model.pulleys[j]
+    c = np.array(p.center, float)
+    if p.arm is not None:
+        pv = np.array(p.arm.pivot, float)
+        r = c - pv
+        cs, sn = math.cos(q), math.sin(q)
+        c = pv + np.array([cs * r[0] - sn * r[1], sn * r[0] + cs * r[1]])
+    else:
+        d = np.array(p.slider.direction, float)
+        c = c + q * d / np.linalg.norm(d)
+    pulleys = [pp.model_copy(update={"center": tuple(c)}) if k == j else pp for k, pp in enumerate(model.pulleys)]
+    return compute_layout(model.model_copy(update={"pulleys": pulleys}))
+
+
+def _tensioner_rows(model, lay, tension):
+    """Per tensioner: name, inertia, span-stretch gradient g (per span) and stiffness rate + T L''."""
+    out = []
+    for j, p in enumerate(model.pulleys):
+        t = p.tensioner
+        if t is None:
+            continue
+        h = 1e-5 if p.arm is not None else 1e-6
+        lp, lm = _moved(model, j, h), _moved(model, j, -h)
+        g = np.array([(a.length - b.length) / (2 * h) for a, b in zip(lp.spans, lm.spans)])
+        curv = (lp.length - 2 * lay.length + lm.length) / h ** 2
+        inertia = t.inertia if p.arm is not None else t.mass
+        out.append((f"{p.name}.{'arm' if p.arm is not None else 'slider'}", inertia, g, t.rate + tension * curv))
+    return out
+
+
 def modes(model, layout: Layout | None = None) -> Modes:
     lay = layout or compute_layout(model)
     free = [j for j, p in enumerate(model.pulleys) if not p.speed_time]
     K = stiffness(lay, model.belt.axial_stiffness)[np.ix_(free, free)]
     J = np.diag([model.pulleys[j].inertia for j in free])
     names = tuple(lay.names[j] for j in free)
+    rows = _tensioner_rows(model, lay, model.belt.pretension or 0.0)
+    if rows and free:
+        # tensioner DOFs: span stretches rho_b theta_b - rho_a theta_a + g_k q
+        nf, na = len(free), len(rows)
+        G = np.zeros((len(lay.spans), nf + na))
+        for k, sp in enumerate(lay.spans):
+            for jj, sgn in ((sp.end, 1.0), (sp.start, -1.0)):
+                if jj in free:
+                    G[k, free.index(jj)] += sgn * lay.rho[jj]
+            for a, (_, _, g, _) in enumerate(rows):
+                G[k, nf + a] = g[k]
+        EA = model.belt.axial_stiffness
+        K = sum((EA / sp.length) * np.outer(G[k], G[k]) for k, sp in enumerate(lay.spans))
+        for a, (_, _, _, kq) in enumerate(rows):
+            K[nf + a, nf + a] += kq
+        J = np.diag([model.pulleys[j].inertia for j in free] + [r[1] for r in rows])
+        names = names + tuple(r[0] for r in rows)
     if not free:
         return Modes((), [], [], [], 0)
     w2, vec = eigh(K, J)
