@@ -60,11 +60,12 @@ def _progress_bar(console):
 def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         out: Path = typer.Option(Path("out"), "-o", "--out", help="Output folder."),
         plots: bool = typer.Option(True, help="Write the standard PNG plots."),
+        report: bool = typer.Option(True, help="Write report.html (one page: status, results, plots, model)."),
         quiet: bool = typer.Option(False, "-q", "--quiet", help="No progress bar."),
         strict: bool = typer.Option(False, "--strict", help=f"Exit with status {EXIT_WARNING} when the run ends "
                                     "with diagnostics (status 'warning')."),
         ):
-    """Run a model; write results.nc, summary.json and plots into OUT."""
+    """Run a model; write results.nc, summary.json, plots and report.html into OUT."""
     from rich.console import Console
 
     from . import api
@@ -96,6 +97,10 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         result.save(out)
         written = api.plot(result, out) if plots else []
         console.print(f"wrote {out / 'results.nc'}, {out / 'summary.json'} and {len(written)} plot(s)")
+        if report:
+            from .report import write_report
+
+            console.print(f"report: {write_report(result, out, written, model=m, source=model)}")
         _print_summary(console, result)
         _print_status(console, result)
     if failure is not None:

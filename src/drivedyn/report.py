@@ -1,0 +1,167 @@
+"""``report.html``: one self-contained page per run (or study) that an engineer opens in a browser
+and prints to PDF: status and diagnostics, the headline results with units, every plot embedded
+with a caption, and the model's data. Rendered with Jinja2 (templates/report.html.j2); images are
+embedded as base64 data, so the file needs no server, no internet and no other file.
+"""
+from __future__ import annotations
+
+import base64
+import datetime as _dt
+import math
+from pathlib import Path
+
+from . import __version__
+
+#: what each standard plot shows (file name -> caption); a plot not listed gets its file name
+CAPTIONS = {
+    "speeds.png": "Pulley speeds over time (counter-clockwise positive) and the slip of every pulley against the driver.",
+    "tensions.png": "Mid-span tension of every span and the hub load of every pulley over time (interval means).",
+    "segment_forces.png": "Element, normal and friction force on the tracked belt segments as they travel round the drive (seed 000, figs. 11-13).",
+    "energy.png": "Energy balance: work in, energy stored, dissipation by mechanism, and the residual (integration error).",
+    "campbell.png": "Campbell diagram: the drive's rotational natural frequencies (linearised, spans EA/L) against the driver's orders.",
+    "belt.png": "The belt at the last frame, segments coloured by their element force.",
+    "belt.gif": "The belt moving (segments coloured by element force).",
+    "runup.png": "Run-up per crank-speed bin: span tension bands, slip against the crank, order cuts of the tight span, tensioner arm travel.",
+    "waterfall.png": "Waterfall: spectrum of the tight span's tension against crank speed; dashed lines are the engine orders.",
+    "gears-stiffness.png": "Mesh stiffness over time and over the roll angle (time-varying mesh stiffness, seed 003).",
+    "span-chart.png": "Stability chart of the span: parametric resonance regions against belt speed (seed 002).",
+    "span-floquet.png": "Floquet multipliers of the span: growth (unstable) where the largest exceeds 1.",
+    "span-frequencies.png": "Natural frequencies of the span against belt speed (string, beam, moving beam).",
+    "span-response.png": "Transverse response of the span over time.",
+    "span-tongue.png": "The principal resonance region (tongue) of the span near the operating point.",
+    "span-tooth-force.png": "The tooth-force (tension) excitation of the span.",
+    "mesh-interference.png": "Interference of belt teeth and pulley grooves through the engagement (seed 001).",
+    "mesh-contours.png": "Tooth and groove contours in the engagement.",
+    "mesh-flank-map.png": "Where on the flank the tooth touches the groove.",
+    "mesh-maps.png": "Overlap against tooth count and pitch error.",
+    "mesh-comparison.png": "The profiles compared: overlap, clearance and groove depth used.",
+    "mesh-animation.gif": "A tooth entering and leaving the groove.",
+}
+
+ANGULAR_SPEED = "rad/s"
+
+#: the summary keys shown first, per kind (the whole summary follows, folded)
+HEADLINE = {
+    "belt-drive": ["driver", "pulleys.*.speed_mean", "pulleys.*.slip", "pulleys.*.slip_margin", "pulleys.*.hub_load",
+                   "spans.*.tension_mean", "spans.*.tension_min", "spans.*.tension_max", "power.input",
+                   "power.efficiency", "tensioners.*.arm_angle_mean", "tensioners.*.travel_min",
+                   "tensioners.*.travel_max", "tensioners.*.hub_load", "clutches.*.torque_mean",
+                   "clutches.*.overrun_share", "belt.pretension", "solver.wall_time", "solver.real_time_factor"],
+    "gear-train": ["kv*", "*.kv", "meshes.*", "*dynamic_factor*", "solver.wall_time"],
+    "span-stability": ["critical_speed*", "*frequency*", "*stable*", "*speed*"],
+    "toothed-mesh": ["*overlap*", "*clearance*", "*depth*"],
+}
+
+
+def _value(v, unit):
+    if isinstance(v, bool) or v is None:
+        return str(v)
+    if isinstance(v, (int, float)):
+        v = float(v) + 0.0
+        if not math.isfinite(v):
+            return str(v)
+        text = f"{v:.6g}"
+        if unit == ANGULAR_SPEED:
+            text += f" ({v * 30 / math.pi:.5g} rpm)"
+        return text
+    if isinstance(v, (list, tuple)):
+        if len(v) > 8:
+            return f"[{len(v)} values: {_value(v[0], '')} ... {_value(v[-1], '')}]"
+        return "[" + ", ".join(_value(x, "") for x in v) + "]"
+    return str(v)
+
+
+def _rows(flat: dict, units: dict) -> list[dict]:
+    out = []
+    for k, v in flat.items():
+        unit = units.get(k, "")
+        out.append({"key": k, "value": _value(v, unit), "unit": "" if unit == "1" else unit})
+    return out
+
+
+def _model_rows(model) -> list[dict]:
+    from .model import field_unit, to_dict
+
+    rows = []
+
+    def walk(prefix, v, out):
+        # dicts by key, lists of tables by index (pulleys.0.radius), other values as they are
+        if isinstance(v, dict):
+            for k, x in v.items():
+                walk(f"{prefix}.{k}" if prefix else str(k), x, out)
+        elif isinstance(v, list) and v and all(isinstance(x, dict) for x in v):
+            for i, x in enumerate(v):
+                walk(f"{prefix}.{i}", x, out)
+        else:
+            out[prefix] = v
+        return out
+
+    for k, v in walk("", to_dict(model), {}).items():
+        try:
+            unit = field_unit(type(model), k) or ""
+        except Exception:
+            unit = ""
+        rows.append({"key": k, "value": _value(v, unit), "unit": unit})
+    return rows
+
+
+def _figures(files) -> list[dict]:
+    out = []
+    for f in files:
+        f = Path(f)
+        if not f.exists() or f.suffix.lower() not in (".png", ".gif"):
+            continue
+        out.append({"name": f.name, "kind": "png" if f.suffix.lower() == ".png" else "gif",
+                    "caption": CAPTIONS.get(f.name, f.stem.replace("_", " ")),
+                    "data": base64.b64encode(f.read_bytes()).decode("ascii")})
+    return out
+
+
+def render(title, kind, status, message, diagnostics, headline, results, figures, model_rows, model_toml, source="",
+           extra="") -> str:
+    from jinja2 import Environment, PackageLoader, select_autoescape
+
+    env = Environment(loader=PackageLoader("drivedyn", "templates"), autoescape=select_autoescape(["html", "j2"]))
+    return env.get_template("report.html.j2").render(
+        title=title, kind=kind, status=status, message=message, diagnostics=diagnostics, headline=headline, results=results,
+        figures=figures, model_rows=model_rows, model_toml=model_toml, source=source, extra=extra,
+        version=__version__, written=_dt.datetime.now().isoformat(timespec="seconds"))
+
+
+def write_report(result, outdir, files, model=None, source="") -> Path:
+    """Write ``outdir/report.html`` for a run: ``files`` are its plots (embedded)."""
+    from .model import dumps, loads
+
+    outdir = Path(outdir)
+    if model is None and "model_toml" in result.ds.attrs:
+        model = loads(result.ds.attrs["model_toml"])
+    extra = ""
+    if "runup" in result.summary:
+        from .belt.runup import table_lines
+
+        extra = "\n".join(table_lines(result.summary))
+    flat = {k: v for k, v in result.flat_summary().items() if not (k.startswith("runup.") and isinstance(v, list))}
+    import fnmatch
+
+    pats = HEADLINE.get(result.kind, [])
+    head = {k: v for k, v in flat.items() if any(fnmatch.fnmatch(k, p) for p in pats)} or dict(list(flat.items())[:25])
+    html = render(
+        title=(getattr(model, "name", "") or result.kind) if model is not None else result.kind, kind=result.kind,
+        status=result.status, message=result.message,
+        diagnostics=[_diag(d) for d in result.diagnostics], headline=_rows(head, result.units),
+        results=_rows(flat, result.units), figures=_figures(files),
+        model_rows=_model_rows(model) if model is not None else [],
+        model_toml=dumps(model) if model is not None else "", source=str(source), extra=extra)
+    path = outdir / "report.html"
+    path.write_text(html, encoding="utf-8")
+    return path
+
+
+def _diag(d) -> dict:
+    e = d.to_dict()
+    unit = e.get("unit") or ""
+    e["unit"] = "" if unit in ("", "1") else f" {unit}"
+    for k in ("value", "limit"):
+        if isinstance(e.get(k), float):
+            e[k] = f"{e[k]:.4g}"
+    return e
