@@ -94,6 +94,9 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         except ModelError as exc:
             _fail(_named(model, exc))
     if result is not None:
+        if not quiet:
+            console.print(f"writing results.nc and summary.json{', plots' if plots else ''}"
+                          f"{' and report.html' if report else ''} into {out} ...")
         result.save(out)
         written = api.plot(result, out) if plots else []
         console.print(f"wrote {out / 'results.nc'}, {out / 'summary.json'} and {len(written)} plot(s)")

@@ -50,6 +50,8 @@ def save(fig: Figure, path: Path, result=None, files: list | None = None, **kw) 
     """Mark the status (if ``result``), save ``fig`` to ``path`` and append it to ``files``."""
     if result is not None:
         mark_status(fig, result)
+    if str(path).endswith(".png"):
+        kw.setdefault("pil_kwargs", {"compress_level": 1})     # 25 % faster to write, files ~30 % larger
     fig.savefig(path, **kw)
     if files is not None:
         files.append(Path(path))

@@ -317,6 +317,7 @@ class Output(Spec):
     segments: list[int] = [0]
     steady_window: Optional[tuple[Time, Time]] = None
     runup_bin: Optional[quantity("rad/s", gt=0)] = None   # width of the crank-speed bins of a run-up
+    animation: bool = False      # belt.gif (a few seconds to write)
 
     @model_validator(mode="after")
     def _window(self):

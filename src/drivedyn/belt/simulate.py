@@ -262,6 +262,8 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
               "step": float(h), "stability_limit": float(sysm.step_limit),
               "real_time_factor": float(t_end / wall) if wall > 0 else float("nan")}
     summary = _summary(model, sysm, ds, solver, sel, window)
+    ds.attrs["steady_window"] = [float(window[0]), float(window[1])]   # for the plots
+    ds.attrs["animation"] = int(model.output.animation)
     if ns:
         from .runup import add_runup
 
