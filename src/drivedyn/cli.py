@@ -204,9 +204,25 @@ def examples(name: Optional[str] = typer.Argument(None, help="Example to copy ou
     from . import api
 
     if name is None:
+        import textwrap
+
+        width = max(60, shutil.get_terminal_size((100, 20)).columns)
         for stem, path in api.examples().items():
-            first = next((ln.lstrip("# ").strip() for ln in path.read_text().splitlines() if ln.startswith("#")), "")
-            typer.echo(f"{stem:28s} {first}")
+            # the file's first comment paragraph, whole (not cut mid-sentence), wrapped
+            para = []
+            for ln in path.read_text().splitlines():
+                if not ln.startswith("#"):
+                    break
+                text = ln.lstrip("#").strip()
+                if not text:
+                    if para:
+                        break
+                    continue
+                para.append(text)
+            lines = textwrap.wrap(" ".join(para), width - 29) or [""]
+            typer.echo(f"{stem:28s} {lines[0]}")
+            for more in lines[1:]:
+                typer.echo(" " * 29 + more)
         return
     try:
         src = api.example_path(name)
