@@ -33,6 +33,24 @@ def _window(ds):
     return ds.sel(time=slice(w0, w1))
 
 
+def _distinct(ds, var, dim, w=None):
+    """(key, label) for the members of ``dim`` whose ``var`` differs: a member equal to an earlier
+    one (to 1e-9 of its range) joins its label ("m12 = m13") instead of hiding under it."""
+    src = ds if w is None else w
+    keys, labels, vals = [], [], []
+    for k in src[dim].values:
+        x = np.asarray(src[var].sel({dim: k}).values, float)
+        for i, y in enumerate(vals):
+            if x.shape == y.shape and np.allclose(x, y, rtol=1e-9, atol=1e-12 * (np.ptp(y) + abs(y).max() + 1e-300)):
+                labels[i] += f" = {k}"
+                break
+        else:
+            keys.append(k)
+            labels.append(str(k))
+            vals.append(x)
+    return list(zip(keys, labels))
+
+
 def plot_stiffness_time(ds, ax=None, periods=2.5):
     """Mesh stiffness against time over a few mesh periods, each mesh with its phase (seed fig. 5)."""
     ax = _ax(ax)
@@ -77,15 +95,24 @@ def plot_stiffness_roll(ds, mesh=None, ax=None):
 
 
 def plot_vibration(ds, ax=None):
-    """Torsional vibration of every gear: angle minus nominal rigid rotation (seed fig. 7)."""
+    """Torsional vibration of every gear: angle minus nominal rigid rotation (seed fig. 7), less
+    its linear drift over the steady window (a constant speed error would hide the vibration)."""
     ax = _ax(ax)
-    arts = [ax.plot(ds.time, ds.vibration.sel(gear=g) * 1e3, lw=0.7, label=str(g))[0] for g in ds.gear.values]
     w0, w1 = ds.attrs["steady_window"]
-    arts.append(ax.axvspan(w0, w1, color="0.85", zorder=0, label="steady window"))
+    t = ds.time.values
+    sel = (t >= w0) & (t <= w1)
+    arts = []
+    if sel.sum() < 3:
+        sel = np.ones(len(t), bool)
+    for g, label in _distinct(ds, "vibration", "gear"):
+        x = ds.vibration.sel(gear=g).values[sel]
+        drift = np.polyfit(t[sel], x, 1)
+        arts.append(ax.plot(t[sel], (x - np.polyval(drift, t[sel])) * 1e3, lw=0.7,
+                            label=f"{label} (drift {drift[0] * 1e3:.3g} mrad/s removed)")[0])
     ax.set_xlabel("time [s]")
     ax.set_ylabel("angle - nominal rotation [mrad]")
-    ax.set_title("torsional vibration")
-    ax.legend(loc="best")
+    ax.set_title(f"torsional vibration in the steady window {w0:.3g}-{w1:.3g} s (linear drift removed)")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, frameon=False)
     ax.grid(alpha=0.3)
     return arts
 
@@ -95,13 +122,13 @@ def plot_kv_time(ds, ax=None):
     ax = _ax(ax)
     w = _window(ds)
     arts = []
-    for j, m in enumerate(ds.mesh.values):
-        arts.append(ax.plot(w.time, w.kv_t.sel(mesh=m), lw=0.8, label=f"mesh {m}: K_v = {float(ds.kv.sel(mesh=m)):.3f}")[0])
+    for j, (m, label) in enumerate(_distinct(ds, "kv_t", "mesh", w)):
+        arts.append(ax.plot(w.time, w.kv_t.sel(mesh=m), lw=0.8, label=f"mesh {label}: K_v = {float(ds.kv.sel(mesh=m)):.3f}")[0])
         arts.append(ax.axhline(float(ds.kv.sel(mesh=m)), color=f"C{j}", ls="--", lw=0.8))
     ax.set_xlabel("time [s]")
     ax.set_ylabel("F / F_nominal")
     ax.set_title("dynamic factor in the steady window")
-    ax.legend(loc="lower right")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, frameon=False)
     ax.grid(alpha=0.3)
     return arts
 
@@ -113,34 +140,52 @@ def plot_forces(ds, axes=None):
         axes = a[:, 0]
     w = _window(ds)
     arts = []
-    for m in ds.mesh.values:
-        arts.append(axes[0].plot(w.time, w.mesh_force.sel(mesh=m), lw=0.7, label=str(m))[0])
-        arts.append(axes[1].plot(w.time, w.dte.sel(mesh=m) * 1e6, lw=0.7, label=str(m))[0])
-        arts.append(axes[2].plot(w.time, w.load_share.sel(mesh=m), lw=0.7, label=str(m))[0])
+    for m, label in _distinct(ds, "mesh_force", "mesh", w):
+        arts.append(axes[0].plot(w.time, w.mesh_force.sel(mesh=m), lw=0.7, label=label)[0])
+        arts.append(axes[1].plot(w.time, w.dte.sel(mesh=m) * 1e6, lw=0.7, label=label)[0])
+    share = w.load_share.values
+    if np.ptp(share) < 1e-6:      # a constant share is a number, not a curve
+        text = ", ".join(f"{m} {float(w.load_share.sel(mesh=m).values[0]):.3f}" for m in ds.mesh.values)
+        axes[2].text(0.5, 0.5, f"load share constant over the window: {text}", transform=axes[2].transAxes,
+                     ha="center", va="center")
+        axes[2].set_yticks([])
+        axes[2].set_xlim(axes[0].get_xlim())
+    else:
+        for m in ds.mesh.values:
+            arts.append(axes[2].plot(w.time, w.load_share.sel(mesh=m), lw=0.7, label=str(m))[0])
+        axes[2].legend(loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, frameon=False)
     for ax, lab in zip(axes, ("mesh force [N]", "DTE [um]", "load share [-]")):
         ax.set_ylabel(lab)
         ax.grid(alpha=0.3)
-        ax.legend(loc="lower right")
+    for ax in axes[:2]:
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, frameon=False)
     axes[0].set_title("mesh forces, dynamic transmission error, load sharing")
     axes[2].set_xlabel("time [s]")
     return arts
 
 
 def plot_spectrum(ds, ax=None, max_order=25):
-    """Amplitude spectrum of the mesh forces against orders of the first mesh frequency."""
+    """Mesh-force amplitude at each order of the first mesh frequency (bars: the largest line of
+    the spectrum within half an order), natural frequencies dotted."""
     ax = _ax(ax)
-    keep = ds.order.values <= max_order
-    arts = [ax.semilogy(ds.order.values[keep], ds.force_spectrum.sel(mesh=m).values[keep] + 1e-3, lw=0.8, label=str(m))[0]
-            for m in ds.mesh.values]
+    order = ds.order.values
+    ks = np.arange(1, max_order + 1)
+    meshes = _distinct(ds, "force_spectrum", "mesh")
+    width = 0.8 / max(len(meshes), 1)
+    arts = []
+    for i, (m, label) in enumerate(meshes):
+        amp = ds.force_spectrum.sel(mesh=m).values
+        bars = [amp[(order > k - 0.5) & (order <= k + 0.5)].max(initial=0.0) for k in ks]
+        arts.append(ax.bar(ks + (i - (len(meshes) - 1) / 2) * width, bars, width=width, label=label, log=True))
     f_mesh = ds.attrs["mesh_frequency_hz"][0]
     for f in ds.natural_frequency.values:
         if f / f_mesh <= max_order:
             arts.append(ax.axvline(f / f_mesh, color="0.5", ls=":", lw=0.8))
     ax.set_xlabel(f"order of the mesh frequency ({f_mesh:.1f} Hz); dotted: natural frequencies")
     ax.set_ylabel("force amplitude [N]")
-    ax.set_title("mesh-force spectrum (steady window)")
-    ax.legend(loc="upper right")
-    ax.grid(alpha=0.3, which="both")
+    ax.set_title("mesh-force amplitude per mesh order (steady window)")
+    ax.legend(loc="upper right", fontsize=8)
+    ax.grid(alpha=0.3, which="both", axis="y")
     return arts
 
 
