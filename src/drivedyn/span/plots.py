@@ -136,9 +136,15 @@ def plot_frequencies(ds, summary, ax=None):
     fig, ax = _ax(ax)
     F0 = ds["pretension"].values
     arts = []
-    for k, style in (("string", ":"), ("beam", "--"), ("moving_beam", "-")):
-        arts += ax.plot(F0, ds[f"frequency_{k}"].values, style, label=k.replace("_", " ") +
-                        (f" (V = {summary['speed']:.3g} m/s)" if k == "moving_beam" else ""))
+    beam, moving = ds["frequency_beam"].values, ds["frequency_moving_beam"].values
+    gap = float(np.nanmax(np.abs(moving - beam) / np.maximum(np.abs(beam), 1e-300)))
+    # the moving beam drawn first and wide, the beam dashed on top: at low speed they coincide
+    for k, style, lw, z in (("string", ":", 1.5, 3), ("moving_beam", "-", 4, 1), ("beam", "--", 1.5, 2)):
+        label = k.replace("_", " ")
+        if k == "moving_beam":
+            label += f" (V = {summary['speed']:.3g} m/s; differs from the beam by {100 * gap:.2g} % at most)"
+        arts += ax.plot(F0, ds[f"frequency_{k}"].values, style, lw=lw, zorder=z, label=label,
+                        alpha=0.45 if k == "moving_beam" else 1.0)
     me = summary.get("measurement")
     if me:
         arts.append(ax.errorbar([me["tension"]], [me["frequency"]], xerr=[me["uncertainty"]], fmt="o", color="k",
