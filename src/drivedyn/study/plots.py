@@ -92,7 +92,7 @@ def plot_key(ds, key, fig=None):
         if not numeric_x:
             ax.set_xticks(xs, [str(v) for v in x])
         ax.set_xlabel(_label(ds, p))
-        ax.set_ylabel(key)
+        ax.set_ylabel(_label(ds, key))
         ax.grid(True, alpha=0.3)
     elif grid and len(params) == 2:
         py, px = params  # first parameter up the page, second across: the Dataset's (row, column) order
@@ -102,7 +102,7 @@ def plot_key(ds, key, fig=None):
         xs = xv.astype(float) if _monotonic(ds[px]) else np.arange(len(xv), dtype=float)
         ys = yv.astype(float) if _monotonic(ds[py]) else np.arange(len(yv), dtype=float)
         mesh = ax.pcolormesh(xs, ys, np.ma.masked_invalid(z), shading="nearest", cmap="viridis")
-        fig.colorbar(mesh, ax=ax, label=key)
+        fig.colorbar(mesh, ax=ax, label=_label(ds, key))
         # contours only where the grid is fine enough for them to mean something
         if min(len(xs), len(ys)) >= 6 and np.isfinite(z).all() and np.nanmax(z) > np.nanmin(z):
             ax.contour(xs, ys, np.ma.masked_invalid(z), colors="white", linewidths=0.7, alpha=0.8)

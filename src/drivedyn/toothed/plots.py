@@ -171,7 +171,9 @@ def plot_maps(ds):
                         color="w" if val[i, j] > 0.6 * val.max() else "k")
         ax.set_xlabel("pitch error / tooth offset (mm)")
         ax.set_ylabel("pulley teeth z")
+        ax.set_title(label.split(" (")[0] + " over tooth count and pitch error")
         fig.colorbar(im, ax=ax, label=label)
+    fig.suptitle(f"{ds.attrs.get('title', '')}: interference maps", fontsize=11)
     return fig
 
 
@@ -181,12 +183,21 @@ def plot_comparison(ds):
     axes = fig.subplots(1, 2, sharey=True)
     labels = [str(x) for x in ds["pair"].values]
     y = np.arange(len(labels))
-    axes[0].barh(y, ds["compare_max_overlap_area"] * 1e6, color="C3")
-    axes[1].barh(y, ds["compare_max_penetration"] * MM, color="C0")
+    for ax, var, scale, colour, unit in ((axes[0], "compare_max_overlap_area", 1e6, "C3", "mm$^2$"),
+                                         (axes[1], "compare_max_penetration", MM, "C0", "mm")):
+        val = ds[var].values * scale
+        ax.barh(y, val, color=colour)
+        top = max(float(np.nanmax(val)), 1e-12)
+        for k, v in enumerate(val):     # the value beside each bar: a zero bar is otherwise invisible
+            ax.text(v + 0.02 * top, k, f"{v:.3g}" if v else "0 (no overlap)", va="center", fontsize=8)
+        ax.set_xlim(0, 1.3 * top)
     axes[0].set_yticks(y, labels)
     axes[0].invert_yaxis()
     axes[0].set_xlabel("max overlap area (mm$^2$)")
     axes[1].set_xlabel("max penetration (mm)")
+    axes[0].set_title("largest overlap area")
+    axes[1].set_title("largest penetration")
+    fig.suptitle("profile pairs compared (unloaded meshing)", fontsize=11)
     for ax in axes:
         ax.grid(alpha=0.3, axis="x")
     return fig
