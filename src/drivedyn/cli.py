@@ -241,6 +241,7 @@ def study(study_file: Path = typer.Argument(..., help="Study file (TOML)."),
           workers: Optional[int] = typer.Option(None, "--workers", help="Local workers (default: one per core)."),
           retry_failed: bool = typer.Option(False, "--retry-failed", help="Also re-run cases cached as failed."),
           plots: bool = typer.Option(True, help="Draw the study plots."),
+          report: bool = typer.Option(True, help="Write report.html (counts, failed cases, plots, study file)."),
           dry_run: bool = typer.Option(False, "--dry-run", help="List the cases without running them."),
           prune: bool = typer.Option(False, "--prune", help="After the run, delete cached cases that are no longer in the study."),
           quiet: bool = typer.Option(False, "-q", "--quiet", help="No progress bar.")):
@@ -251,7 +252,7 @@ def study(study_file: Path = typer.Argument(..., help="Study file (TOML)."),
         _fail(f"parameter studies are not available in this build ({exc})")
     try:
         code = study_mod.main(study_file, out=out, scheduler=scheduler, workers=workers, retry_failed=retry_failed,
-                              plots=plots, quiet=quiet, dry_run=dry_run, prune=prune)
+                              plots=plots, quiet=quiet, dry_run=dry_run, prune=prune, report=report)
     except ModelError as exc:
         _fail(str(exc))
     except KeyboardInterrupt:

@@ -165,3 +165,38 @@ def _diag(d) -> dict:
         if isinstance(e.get(k), float):
             e[k] = f"{e[k]:.4g}"
     return e
+
+
+def write_study_report(res, study_file, outdir) -> Path:
+    """``outdir/report.html`` for a study: case counts, the cases that warned or did not finish,
+    the parameters and outputs, every study plot, and the study file."""
+    import numpy as np
+
+    ds = res.ds
+    c = res.counts
+    sts = ds["status"].values.ravel()
+    msgs = ds["message"].values.ravel()
+    diags = [{"code": str(st), "text": str(m), "quantity": ""} for st, m in zip(sts, msgs) if st != "success"][:50]
+    results = [{"key": "cases", "value": str(c.get("total", len(sts))), "unit": ""}]
+    for k in ("success", "warning", "failed", "invalid", "error", "ran", "cached"):
+        if k in c:
+            results.append({"key": f"cases {k}", "value": str(c[k]), "unit": ""})
+    for name in ds.data_vars:
+        v = ds[name]
+        if v.dtype.kind in "fi" and name not in ("wall_time",):
+            vals = v.values[np.isin(ds["status"].values, ("success", "warning"))] if v.shape == ds["status"].shape else v.values
+            vals = np.asarray(vals, float)
+            if vals.size and np.isfinite(vals).any():
+                results.append({"key": f"{name} (completed cases: min / max)",
+                                "value": f"{np.nanmin(vals):.4g} / {np.nanmax(vals):.4g}", "unit": v.attrs.get("units", "")})
+    params = [{"key": str(d), "value": _value(list(ds[d].values.tolist()), ""), "unit": ds[d].attrs.get("units", "")}
+              for d in ds.dims if d in ds.coords]
+    text = Path(study_file).read_text() if Path(study_file).exists() else ""
+    status = "success" if c.get("success", 0) == c.get("total", 0) else ("warning" if not any(
+        st not in ("success", "warning") for st in sts) else "failed")
+    html = render(title=f"study {Path(study_file).stem}", kind="parameter study", status=status,
+                  message=f"{c.get('total', 0)} cases", diagnostics=diags, headline=results, results=results,
+                  figures=_figures(res.plots), model_rows=params, model_toml=text, source=str(study_file))
+    path = Path(outdir) / "report.html"
+    path.write_text(html, encoding="utf-8")
+    return path

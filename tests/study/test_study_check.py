@@ -54,3 +54,27 @@ def test_check_mode_refusals(write_study, text, expect):
     path = write_study(text.replace("GEARS", str(drivedyn.example_path("gears-split-path"))))
     with pytest.raises(drivedyn.ModelError, match=expect):
         load_study(path)
+
+
+def test_study_report_in_a_browser(client, write_study, tmp_path):
+    # report.html of a study: counts, plots embedded; the page loads in headless Chromium and every
+    # image decodes (as tests/api/test_report.py does for runs)
+    import re
+    import shutil
+    import subprocess
+
+    from drivedyn.report import write_study_report
+
+    path = write_study(STUDY)
+    res = run_study(path, out=tmp_path / "out", client=client, plots=True)
+    report = write_study_report(res, path, tmp_path / "out")
+    html = report.read_text()
+    n = int(re.search(r'data-images="(\d+)"', html).group(1))
+    assert n == len(res.plots) >= 1 and "cases success" in html
+    browser = shutil.which("chromium") or shutil.which("chromium-browser")
+    if browser is None:
+        pytest.skip("no Chromium on this machine (.ci/run installs it)")
+    proc = subprocess.run([browser, "--headless", "--no-sandbox", "--disable-gpu", "--dump-dom", report.as_uri()],
+                          capture_output=True, text=True, timeout=120)
+    body = re.search(r"<body[^>]*>", proc.stdout).group(0)
+    assert f'data-loaded="{n}"' in body and "broken" not in body, body

@@ -4,7 +4,7 @@ from __future__ import annotations
 from pathlib import Path
 
 
-def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False, plots=True, quiet=False,
+def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False, plots=True, quiet=False, report=True,
          dry_run=False, prune=False) -> int:
     """Run a study file with a progress bar (stderr) and print where everything went.
 
@@ -76,6 +76,10 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
         n, size = prune_cache(outdir / "cases", {c.key for c in cases})
         console.print(f"pruned {n} cached case(s) of other models ({size / 1e6:.1f} MB)")
     console.print(f"wrote {res.path}" + (f" and {len(res.plots)} plot(s) in {Path(res.path).parent / 'plots'}" if res.plots else ""))
+    if report:
+        from ..report import write_study_report
+
+        console.print(f"report: {write_study_report(res, study_file, Path(res.path).parent)}")
     return 0 if not bad.any() else 1
 
 
