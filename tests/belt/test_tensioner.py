@@ -204,3 +204,32 @@ def test_spring_table_matches_preload_and_rate_and_keeps_energy():
     assert t["travel_max"] - t["travel_min"] > 1e-4
     resid = abs(float(r.ds["energy_residual"].values[-1]))
     assert resid < 0.01 * float(r.ds["work_in"].values[-1])
+
+
+def test_running_equilibrium_of_a_fixed_force_slider():
+    # creep theory with the tensioner free to move: a fixed-force slider (rate 0) pushing along its
+    # pulley's bisector holds the spans beside it at T - m v^2 = F / (2 sin(wrap / 2)), whatever
+    # the loads; at rest it holds them at F / (2 sin(wrap / 2)) too (closed form, checked here)
+    from drivedyn.belt.statics import check_data
+    from drivedyn.belt.tensioner import equilibrium, running
+
+    d = to_dict(drivedyn.load(drivedyn.example_path("belt-accessory-loaded")))
+    lay = compute_layout(from_dict(d))
+    hub = lay.hub_load_static(1.0)[3]
+    d["pulleys"][3]["slider"] = {"direction": [float(-hub[0]), float(-hub[1])], "mass": "0.3 kg", "preload": "300 N"}
+    m = from_dict(d)
+    rest = equilibrium(m)
+    q, m_run, lay_run, st = running(m, rest)
+    j = 3
+    wrap = lay_run.wrap[j]
+    names = [sp.name for sp in lay_run.spans]
+    t_in, t_out = st.spans[names[j - 1]], st.spans[names[j]]
+    c = st.centrifugal
+    assert st.state == "running" and c > 0
+    assert t_in - c == pytest.approx(300 / (2 * math.sin(wrap / 2)), rel=1e-4)
+    assert t_out - c == pytest.approx(300 / (2 * math.sin(wrap / 2)), rel=1e-4)
+    wrap0 = compute_layout(rest.model).wrap[j]
+    assert rest.tension == pytest.approx(300 / (2 * math.sin(wrap0 / 2)), rel=0.01)   # discrete belt at rest
+    data = check_data(m)
+    assert data["tensioners"]["idler"]["running_travel"] == pytest.approx(q[0])
+    assert "running equilibrium" in " ".join(data["steady"]["notes"])

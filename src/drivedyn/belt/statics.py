@@ -28,13 +28,18 @@ def check_data(model, sysm=None) -> dict:
 
         if tensioner.indices(model):
             rest = tensioner.equilibrium(model)
+    run = None
     if rest is not None:
         # with tensioners: the drive as they hold it at rest, its tension that of the installed
-        # length (the discrete chain's; creep theory's continuum length follows from it)
+        # length (the discrete chain's; creep theory's continuum length follows from it); under
+        # the running loads the tensioners move to where their springs balance the running tensions
+        from .tensioner import running
+
         belt = rest.model.belt.model_copy(update={"pretension": float(rest.tension), "length": None})
         drawn, model = model, rest.model.model_copy(update={"belt": belt})
+        run = running(drawn, rest)
     lay = sysm.layout if sysm is not None else compute_layout(model)
-    st = steady_state(model, lay)
+    st = steady_state(model, lay) if run is None else run[3]
     if sysm is not None:
         t0 = sysm.init.tension
     elif model.belt.pretension is not None:
@@ -52,8 +57,10 @@ def check_data(model, sysm=None) -> dict:
             "centrifugal_tension": st.centrifugal, "unstretched_length": st.unstretched_length,
             "driver": st.driver, "gross_slip": st.gross_slip or None,
             "slip_margin": fin(st.margin), "limiting_pulley": st.limiting or None,
-            "notes": st.notes + (["tensioners held at their rest position (creep theory here does not move them "
-                                  "under load yet)"] if rest is not None else []),
+            "notes": st.notes + (["tensioners at their running equilibrium (the spring against the running span "
+                                  "tensions less m v^2)"] if run is not None else
+                                 ["tensioners held at their rest position (no steady running balance found)"]
+                                 if rest is not None else []),
             "spans": {n: {"tension": t} for n, t in st.spans.items()},
             "pulleys": {p.name: {"torque": p.torque, "speed": p.speed, "wrap": p.wrap,
                                  "tension_in": p.tension_in, "tension_out": p.tension_out,
@@ -64,15 +71,16 @@ def check_data(model, sysm=None) -> dict:
                         for p in st.pulleys.values()},
         },
         "installation": inst,
-        **({"tensioners": _tensioner_data(drawn, rest)} if rest is not None else {}),
+        **({"tensioners": _tensioner_data(drawn, rest, run)} if rest is not None else {}),
         "modes": {"dofs": list(md.dofs), "rigid_modes": md.rigid_modes, "frequencies_hz": md.frequencies_hz,
                   "shapes": md.shapes, "participation": md.participation},
     }
 
 
-def _tensioner_data(model, rest) -> dict:
-    from .tensioner import indices
+def _tensioner_data(model, rest, run=None) -> dict:
+    from .tensioner import _spring, arms_record, indices
 
+    A = arms_record(model)
     out = {}
     for a, j in enumerate(indices(model)):
         p = model.pulleys[j]
@@ -82,6 +90,12 @@ def _tensioner_data(model, rest) -> dict:
             e.update(arm_angle=float(rest.angle[a]), travel=float(rest.travel[a]), spring_torque=float(rest.spring[a]))
         else:
             e.update(slide=float(rest.travel[a]), spring_force=float(rest.spring[a]))
+        if run is not None:     # under the running loads (creep theory)
+            q = float(run[0][a])
+            e["running_travel"] = q
+            e["running_spring"] = float(_spring(p.tensioner, q))
+            if p.arm is not None:
+                e["running_arm_angle"] = float(A.psi0[a] + A.sgn[a] * q)
         out[p.name] = e
     return out
 
@@ -97,7 +111,8 @@ CHECK_UNITS = {"steady.spans.*.tension": "N", "steady.pulleys.*.torque": "N*m", 
                "modes.frequencies_hz": "Hz", "modes.participation*": "1", "modes.shapes*": "rad",
                "tensioners.*.hub_load": "N", "tensioners.*.tension": "N", "tensioners.*.arm_angle": "rad",
                "tensioners.*.travel": "rad", "tensioners.*.spring_torque": "N*m", "tensioners.*.slide": "m",
-               "tensioners.*.spring_force": "N", "tensioners.*.type": ""}
+               "tensioners.*.spring_force": "N", "tensioners.*.type": "", "tensioners.*.running_travel": "rad",
+               "tensioners.*.running_spring": "N*m", "tensioners.*.running_arm_angle": "rad"}
 
 
 def check_json(model) -> str:
