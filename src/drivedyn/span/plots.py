@@ -128,6 +128,19 @@ def plot_floquet(ds, summary, ax=None):
     ax.set_ylabel("belt speed V (m/s)")
     ax.set_title("Floquet multipliers of the Hill equation (full Phi)")
     ax.legend(loc="upper left", fontsize=8)
+    if "floquet_multiplier_zoom" in ds:
+        # the resonance tongues are far narrower than this grid near V = 0: the zoomed map
+        # (computed on its own fine grid around the model's point) as an inset
+        ins = ax.inset_axes([0.52, 0.08, 0.44, 0.42])
+        rz = ds["floquet_multiplier_zoom"].values.T
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ins.pcolormesh(ds["pretension_zoom"].values, ds["speed_zoom"].values, np.log10(np.maximum(rz, 1e-300)),
+                           cmap="magma_r", shading="nearest", vmin=0.0,
+                           vmax=max(np.nanpercentile(np.log10(rz), 99), 1e-3))
+        _mark_model(ins, summary)
+        ins.set_title("zoom on tongue n = 1 (own grid)", fontsize=7)
+        ins.tick_params(labelsize=6)
+        arts.append(ins)
     return arts
 
 
