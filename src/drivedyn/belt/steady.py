@@ -258,9 +258,10 @@ def _steady_speed(model, d: Drive, T, prescribed):
     return None
 
 
-def steady_state(model, layout: Layout | None = None, loads=None, speed=None) -> Steady:
+def steady_state(model, layout: Layout | None = None, loads=None, speed=None, with_margins=True) -> Steady:
     """Steady state of ``model``. ``loads`` (N m per pulley) and ``speed`` (belt m/s, signed along
-    the listed order) override the model's loads: a run's mean torques and speed."""
+    the listed order) override the model's loads: a run's mean torques and speed.
+    ``with_margins=False`` leaves the slip margins out (inf): they cost most of the time."""
     d = drive_of(model, layout)
     nk = len(d.names)
     pulleys = model.pulleys
@@ -302,10 +303,10 @@ def steady_state(model, layout: Layout | None = None, loads=None, speed=None) ->
             v = v0 * (1 + T[_entry_exit(nk, v0 >= 0)[drv][0]] / d.EA)
             if abs(v0) < 1e-12:
                 state = "at rest"
-    return _solve(d, M, v, accel, state, presc, notes)
+    return _solve(d, M, v, accel, state, presc, notes, with_margins)
 
 
-def _solve(d: Drive, M, v, accel, state, presc, notes) -> Steady:
+def _solve(d: Drive, M, v, accel, state, presc, notes, with_margins=True) -> Steady:
     """Tensions, arcs, creep, speeds and margins for loads M at belt speed v (at the driver's entry)."""
     nk = len(d.names)
     forward = (accel >= 0) if state == "accelerating" else (v >= 0)
@@ -323,7 +324,7 @@ def _solve(d: Drive, M, v, accel, state, presc, notes) -> Steady:
         notes.append("no steady state: a span would go slack under these loads")
     arcs = slip_arcs(d, T, c, forward) if not slack else np.full(nk, math.inf)
     ee = _entry_exit(nk, forward)
-    marg = margins(d, Mb, c, forward)
+    marg = margins(d, Mb, c, forward) if with_margins else np.full(nk, math.inf)
     over = [j for j in range(nk) if arcs[j] > d.wrap[j] and (not slack or Mb[j] != 0)]
     if slack:
         over = [int(np.argmin(marg))]

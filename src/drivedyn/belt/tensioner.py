@@ -311,10 +311,10 @@ def running(model, rest):
     L0 = lay0.length / (1 + (rest.tension / model.belt.axial_stiffness) ** (1 / model.belt.axial_exponent))
     T = [model.pulleys[j].tensioner for j in idx]
 
-    def state(qv):
+    def state(qv, with_margins=False):
         m = _moved(model, {j: _centre(model, j, q, s) for j, q, s in zip(idx, qv, sense)}, L0)
         lay = compute_layout(m)
-        return m, lay, steady_state(m, lay)
+        return m, lay, steady_state(m, lay, with_margins=with_margins)
 
     def loads(qv):
         try:
@@ -368,5 +368,5 @@ def running(model, rest):
             qv = sol.x
     except ValueError:
         return None
-    m, lay, st = state(qv)
+    m, lay, st = state(qv, with_margins=True)
     return qv, m, lay, st
