@@ -88,9 +88,10 @@ class _Tensioner(Spec):
     def _stops(self):
         lo, hi = self.stops
         if not hi > lo:
-            raise ValueError(f"stops must be [min, max] with max > min, got {list(self.stops)}")
+            raise ValueError(f"stops must be [min, max] with max > min, got [{lo:.4g}, {hi:.4g}] (SI)")
         if not lo <= 0 <= hi:
-            raise ValueError(f"stops {list(self.stops)} exclude the drawn position (travel 0)")
+            raise ValueError(f"stops [{lo:.4g}, {hi:.4g}] (SI: rad for an arm, m for a slider) exclude the drawn "
+                             "position (travel 0)")
         return self
 
 
