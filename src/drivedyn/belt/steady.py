@@ -13,7 +13,13 @@ stiffness EA, mass per length m, speed v (centrifugal tension c = m v^2):
   belt at its entry, so the speed ratio of two pulleys is (EA + T_in,b)/(EA + T_in,a) and the creep
   of pulley j (1 - v_exit/v_entry) is (T_in - T_out)/(EA + T_in);
 - the unstretched length L0 is fixed at installation (sum of L_k/(1 + T_k/EA) over spans plus
-  the wraps' integrals of r dphi/(1 + T/EA)); it, not T1 + T2 = 2 T0, sets the tension level.
+  the wraps' integrals of (r - p) dphi/(1 + T/EA)); it, not T1 + T2 = 2 T0, sets the tension level;
+- the belt sinks into the pulley by the depth p at which the contact law carries the pressure
+  (T - c)/r of a belt on an arc (seed eq. 9 per unit length: c1 p^2 + c2 p = (T - c)/r), so a
+  wrap's belt length is (r - p(T)) dphi: a loaded wrap, mostly at the slack side's low tension
+  (T - c ~ e^(mu phi)), rides higher than at installation, the path grows and so does the tension
+  level (measured: the 5PK drive's gross-slip onset 29.0 N m without, 31.1 N m with it, against
+  31.0-31.25 N m in the dynamic model at 150, 300 and 600 segments).
 """
 from __future__ import annotations
 
@@ -71,21 +77,48 @@ def _arc(t_in, t_out, c, mu):
     return abs(math.log((t_out - c) / (t_in - c))) / mu
 
 
-def _wrap_length(r, theta, t_in, t_out, c, mu, EA):
-    """Unstretched belt length on a wrap: adhesion arc at t_in, then the slip arc.
-    Slip arc: int dphi / (1 + T/EA) with T = c + (t_in - c) e^(k phi) is
-    [phi - ln(1 + T/EA)/k] / (1 + c/EA) (elementary integral)."""
+def penetration(q, c1, c2):
+    """Depth p (m) at which the contact law's elastic part carries the pressure q (N/m, per unit
+    length of belt): c1 p^2 + c2 p = q (seed eq. 9, per unit length as in the model's contact
+    data); the root in the form 2 q / (c2 + sqrt(c2^2 + 4 c1 q)), exact also as c1 -> 0."""
+    q = np.maximum(q, 0.0)
+    return 2.0 * q / (c2 + np.sqrt(c2 * c2 + 4.0 * c1 * q))   # c2 = inf: 0 (rigid)
+
+
+#: Gauss-Legendre nodes and weights on [0, 1] for the depth along a slip arc: its integrand
+#: p(T) / (1 + T/EA), T - c ~ e^(mu phi), is smooth (p ~ T or sqrt(T)); 8 nodes leave < 1e-13 m
+_GL = [(0.5 * (x + 1.0), 0.5 * w) for x, w in zip(*np.polynomial.legendre.leggauss(8))]
+
+
+def _sunk_arc(t_in, k, phi, c, r, EA, c1, c2):
+    """int p(T) dphi / (1 + T/EA) (m rad) over a slip arc of phi rad, T = c + (t_in - c) e^(k x)."""
+    out = 0.0
+    for x, w in _GL:
+        T = c + (t_in - c) * math.exp(k * phi * x)
+        q = (T - c) / r
+        out += w * 2.0 * q / (c2 + math.sqrt(c2 * c2 + 4.0 * c1 * q)) / (1.0 + T / EA)
+    return out * phi
+
+
+def _wrap_length(r, theta, t_in, t_out, c, mu, EA, c1=0.0, c2=math.inf):
+    """Unstretched belt length on a wrap: adhesion arc at t_in, then the slip arc, the belt at the
+    depth p(T) of the contact law (``penetration``; c2 = inf: rigid pulleys, p = 0).
+    Slip arc: int r dphi / (1 + T/EA) with T = c + (t_in - c) e^(k phi) is
+    r [phi - ln(1 + T/EA)/k] / (1 + c/EA) (elementary integral), less the depth's share
+    (``_sunk_arc``)."""
+    rigid = not math.isfinite(c2)
+    q_in = max(t_in - c, 0.0) / r
+    p_in = 0.0 if rigid else 2.0 * q_in / (c2 + math.sqrt(c2 * c2 + 4.0 * c1 * q_in))   # ``penetration``
     phi = _arc(t_in, t_out, c, mu)
     phi = min(phi, theta)                         # gross slip: the arc cannot exceed the wrap
-    adh = r * (theta - phi) / (1 + t_in / EA)
     if phi == 0.0 or mu <= 0 or min(t_in, t_out) <= c:   # no steady state there: length at the entry tension
-        return r * theta / (1 + t_in / EA)
-    if phi == 0.0:
-        return adh
+        return (r - p_in) * theta / (1 + t_in / EA)
+    adh = (r - p_in) * (theta - phi) / (1 + t_in / EA)
     k = math.copysign(mu, t_out - t_in)
     t_end = c + (t_in - c) * math.exp(k * phi)
     B = 1 + c / EA
-    return adh + r * (phi - math.log((1 + t_end / EA) / (1 + t_in / EA)) / k) / B
+    sink = 0.0 if rigid else _sunk_arc(t_in, k, phi, c, r, EA, c1, c2)
+    return adh + r * (phi - math.log((1 + t_end / EA) / (1 + t_in / EA)) / k) / B - sink
 
 
 # --- the core: tensions from the loads and the length ------------------------------------------
@@ -102,17 +135,28 @@ class Drive:
     EA: float
     m: float
     L0: float
+    c1: float = 0.0        # contact law per unit length (N/m^3, N/m^2); c2 = inf: rigid pulleys
+    c2: float = math.inf
 
 
 def drive_of(model, layout: Layout | None = None) -> Drive:
     lay = layout or compute_layout(model)
     b = model.belt
     EA = b.axial_stiffness
-    # installation: the belt at rest carries the pretension everywhere (or has the given length)
-    L0 = b.length if b.length is not None else lay.length / (1 + b.pretension / EA)
+    c1, c2 = model.contact.stiffness_quadratic, model.contact.stiffness_linear
+    # installation: the belt at rest carries the pretension everywhere (or has the given length),
+    # sunk into every wrap by the depth p0 of the pretension's pressure T0 / r. The path is the
+    # layout's at the contact radii less sum p0 theta: a taut path is stationary in its tangent
+    # points, so to first order a radius change dr_j lengthens it by theta_j dr_j (p0 ~ 1e-4 m)
+    if b.length is not None:
+        L0 = b.length
+    else:
+        radii = np.abs(lay.rho)
+        sunk = float(np.sum(lay.wrap * penetration(b.pretension / radii, c1, c2)))
+        L0 = (lay.length - sunk) / (1 + b.pretension / EA)
     mu = np.full(len(lay.names), model.friction.coefficient)
     return Drive(lay.names, lay.rho.copy(), lay.wrap.copy(), np.array([sp.length for sp in lay.spans]),
-                 tuple(sp.name for sp in lay.spans), mu, EA, b.mass_per_length, L0)
+                 tuple(sp.name for sp in lay.spans), mu, EA, b.mass_per_length, L0, float(c1), float(c2))
 
 
 def _entry_exit(nk, forward):
@@ -139,7 +183,7 @@ def length_of(d: Drive, T, c, forward):
     """Unstretched length of the belt carrying span tensions T (listed order)."""
     L = float(np.sum(d.span_length / (1 + T / d.EA)))
     for j, (a, b) in enumerate(_entry_exit(len(d.names), forward)):
-        L += _wrap_length(abs(d.rho[j]), d.wrap[j], T[a], T[b], c, d.mu[j], d.EA)
+        L += _wrap_length(abs(d.rho[j]), d.wrap[j], T[a], T[b], c, d.mu[j], d.EA, d.c1, d.c2)
     return L
 
 
