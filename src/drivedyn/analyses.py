@@ -40,8 +40,15 @@ class Analysis:
     def check(self, model) -> str:
         return self._get(self.check_at)(model)
 
-    def plot(self, result, outdir):
-        return self._get(self.plot_at)(result, outdir)
+    def plot(self, result, outdir, meanwhile=None):
+        import inspect
+
+        fn = self._get(self.plot_at)
+        if meanwhile is not None and "meanwhile" in inspect.signature(fn).parameters:
+            return fn(result, outdir, meanwhile=meanwhile)
+        if meanwhile is not None:
+            meanwhile()
+        return fn(result, outdir)
 
     def check_data(self, model) -> dict:
         if not self.check_data_at:

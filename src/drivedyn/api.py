@@ -45,11 +45,13 @@ def check(model) -> str:
         return analysis(m.kind).check(m)
 
 
-def plot(result, outdir) -> list[Path]:
-    """Write the standard PNG plots of a Result into ``outdir``; returns the files written."""
+def plot(result, outdir, meanwhile=None) -> list[Path]:
+    """Write the standard PNG plots of a Result into ``outdir``; returns the files written.
+    ``meanwhile()`` runs while they are drawn where the analysis draws in other processes (belt
+    drives), else first."""
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    return analysis(result.kind).plot(result, outdir)
+    return analysis(result.kind).plot(result, outdir, meanwhile=meanwhile)
 
 
 def examples_dir() -> Path:

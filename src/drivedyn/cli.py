@@ -97,8 +97,11 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         if not quiet:
             console.print(f"writing results.nc and summary.json{', plots' if plots else ''}"
                           f"{' and report.html' if report else ''} into {out} ...")
-        result.save(out)
-        written = api.plot(result, out) if plots else []
+        if plots:     # results.nc is written while the figures are drawn
+            written = api.plot(result, out, meanwhile=lambda: result.save(out))
+        else:
+            result.save(out)
+            written = []
         console.print(f"wrote {out / 'results.nc'}, {out / 'summary.json'} and {len(written)} plot(s)")
         if report:
             from .report import write_report

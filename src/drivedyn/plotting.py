@@ -39,6 +39,17 @@ def status_text(result) -> str:
     return "WARNING: " + ", ".join(codes) + " (see summary.json)"
 
 
+class StatusOnly:
+    """What ``mark_status`` reads of a Result (status, message, diagnostics)."""
+
+    def __init__(self, status, message, diagnostics):
+        self.status, self.message, self.diagnostics = status, message, diagnostics
+
+    @classmethod
+    def of(cls, result):
+        return cls(result.status, result.message, list(result.diagnostics))
+
+
 def mark_status(fig: Figure, result) -> None:
     """Write the run's status across the top of ``fig`` when it is not a clean success."""
     text = status_text(result)
