@@ -34,7 +34,10 @@ def colour(ds, pulley):
 
 
 def _window(ds, ax):
-    """Shade the steady window (the summary's means) on a time axis."""
+    """Shade the steady window (the summary's means) on a time axis; a run-up has none (it is read
+    per crank-speed bin)."""
+    if "speed_bin" in ds.coords:
+        return
     w = ds.attrs.get("steady_window")
     if w is not None and len(w) == 2:
         ax.axvspan(float(w[0]), float(w[1]), color="0.85", alpha=0.5, lw=0, label="steady window")
