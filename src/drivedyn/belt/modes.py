@@ -46,18 +46,9 @@ def stiffness(layout: Layout, EA: float) -> np.ndarray:
 def _moved(model, j, q):
     """The layout with tensioner pulley j moved by travel q (rad about the pivot, or m along the
     slide) from where the model has it."""
-    p = model.pulleys[j]
-    c = np.array(p.center, float)
-    if p.arm is not None:
-        pv = np.array(p.arm.pivot, float)
-        r = c - pv
-        cs, sn = math.cos(q), math.sin(q)
-        c = pv + np.array([cs * r[0] - sn * r[1], sn * r[0] + cs * r[1]])
-    else:
-        d = np.array(p.slider.direction, float)
-        c = c + q * d / np.linalg.norm(d)
-    pulleys = [pp.model_copy(update={"center": tuple(c)}) if k == j else pp for k, pp in enumerate(model.pulleys)]
-    return compute_layout(model.model_copy(update={"pulleys": pulleys}))
+    from .tensioner import centre, with_centres
+
+    return compute_layout(with_centres(model, {j: centre(model, j, q, 1.0)}))
 
 
 def _tensioner_rows(model, lay, tension):

@@ -114,7 +114,7 @@ def _settle_tensioners(sysm, x, y, phi):
         rest.travel = rest.travel - np.linalg.solve(rest.stiffness, R)
         cx, cy = sysm.pulleys.cx.copy(), sysm.pulleys.cy.copy()
         for a in range(A.na):
-            cx[A.pulley[a]], cy[A.pulley[a]] = tensioner._centre_record(A, a, rest.travel[a])[:2]
+            cx[A.pulley[a]], cy[A.pulley[a]] = K.arm_centre(A, a, rest.travel[a])[:2]
         sysm.pulleys = sysm.pulleys._replace(cx=cx, cy=cy)
         eq = relax(sysm, x, y, phi)
         if eq is None:

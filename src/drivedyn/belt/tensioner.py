@@ -24,7 +24,7 @@ import numpy as np
 from scipy.optimize import brentq, root
 
 from ..errors import ModelError
-from ..tables import flatten
+from ..tables import flatten, table
 from . import _kernels as K
 from .initial import initial_state
 from .layout import compute_layout
@@ -47,11 +47,16 @@ def indices(model) -> list[int]:
     return [j for j, p in enumerate(model.pulleys) if p.tensioner is not None]
 
 
-def _moved(model, centres: dict, length: float):
+def with_centres(model, centres: dict):
+    """The model with the pulleys j in ``centres`` moved there (not validated: data only)."""
     pulleys = [p.model_copy(update={"center": tuple(centres[j])}) if j in centres else p
                for j, p in enumerate(model.pulleys)]
+    return model.model_copy(update={"pulleys": pulleys})
+
+
+def _moved(model, centres: dict, length: float):
     belt = model.belt.model_copy(update={"pretension": None, "length": float(length)})
-    return model.model_copy(update={"pulleys": pulleys, "belt": belt})
+    return with_centres(model, centres).model_copy(update={"belt": belt})
 
 
 def arms_record(model, sense=None) -> K.Arms:
@@ -98,7 +103,7 @@ def arms_record(model, sense=None) -> K.Arms:
                   tab_off=off, tab_x=tx, tab_y=ty, par=par, **fields)
 
 
-def _centre(model, j, q, s):
+def centre(model, j, q, s):
     """Centre of tensioner pulley j at travel q, sense s (before the record exists)."""
     p = model.pulleys[j]
     c = p.center
@@ -113,9 +118,7 @@ def _centre(model, j, q, s):
 
 
 def _path_length(model, centres: dict) -> float:
-    pulleys = [p.model_copy(update={"center": tuple(centres[j])}) if j in centres else p
-               for j, p in enumerate(model.pulleys)]
-    return compute_layout(model.model_copy(update={"pulleys": pulleys})).length
+    return compute_layout(with_centres(model, centres)).length
 
 
 def senses(model) -> list[float]:
@@ -126,8 +129,8 @@ def senses(model) -> list[float]:
         arm = p.arm is not None
         eps = 1e-4 if arm else 1e-5       # rad, m
         try:
-            dL = (_path_length(model, {j: _centre(model, j, eps, 1.0)})
-                  - _path_length(model, {j: _centre(model, j, -eps, 1.0)})) / (2 * eps)
+            dL = (_path_length(model, {j: centre(model, j, eps, 1.0)})
+                  - _path_length(model, {j: centre(model, j, -eps, 1.0)})) / (2 * eps)
         except ModelError:
             dL = 0.0
         # the path must lengthen by at least 1e-3 of the travel at the pulley centre
@@ -141,14 +144,10 @@ def senses(model) -> list[float]:
 
 
 def _spring(t, q: float) -> float:
+    """Spring load at travel q (the kernel's law without the stops: tables.table, extrapolated)."""
     if t.spring_table:
-        xs = np.array([r[0] for r in t.spring_table])
-        ys = np.array([r[1] for r in t.spring_table])
-        if q <= xs[0]:
-            return float(ys[0] + (ys[1] - ys[0]) / (xs[1] - xs[0]) * (q - xs[0]))
-        if q >= xs[-1]:
-            return float(ys[-1] + (ys[-1] - ys[-2]) / (xs[-1] - xs[-2]) * (q - xs[-1]))
-        return float(np.interp(q, xs, ys))
+        rows = np.asarray(t.spring_table, dtype=float)
+        return float(table(rows[:, 0], rows[:, 1], 0, len(rows), float(q), True))
     return t.preload - t.rate * q
 
 
@@ -170,7 +169,7 @@ def equilibrium(model) -> Equilibrium:
         T_drawn = init0.tension
 
     def centres(qv):
-        return {j: _centre(model, j, q, s) for j, q, s in zip(idx, qv, sense)}
+        return {j: centre(model, j, q, s) for j, q, s in zip(idx, qv, sense)}
 
     def loads(qv, tension):
         """Generalised load on each tensioner (spring + belt) at travel qv under a uniform tension."""
@@ -180,7 +179,7 @@ def equilibrium(model) -> Equilibrium:
         out = []
         for a, (j, q, s) in enumerate(zip(idx, qv, sense)):
             h = 1e-6 if model.pulleys[j].arm is not None else 1e-7
-            c1, c0 = np.array(_centre(model, j, q + h, s)), np.array(_centre(model, j, q - h, s))
+            c1, c0 = np.array(centre(model, j, q + h, s)), np.array(centre(model, j, q - h, s))
             out.append(_spring(model.pulleys[j].tensioner, q) + float(hub[j] @ ((c1 - c0) / (2 * h))))
         return np.array(out)
 
@@ -253,21 +252,12 @@ def loads_at_rest(sysm, x, y, q) -> np.ndarray:
     cx, cy = sysm.pulleys.cx.copy(), sysm.pulleys.cy.copy()
     jac = []
     for a in range(A.na):
-        c = _centre_record(A, a, q[a])
+        c = K.arm_centre(A, a, q[a])
         cx[A.pulley[a]], cy[A.pulley[a]] = c[0], c[1]
         jac.append(c[2:])
     hub = hub_at_rest(sysm, x, y, cx, cy)
     spring = [_spring(sysm.model.pulleys[A.pulley[a]].tensioner, q[a]) for a in range(A.na)]
     return np.array([spring[a] + hub[A.pulley[a]] @ jac[a] for a in range(A.na)])
-
-
-def _centre_record(A, a, q):
-    """Centre and d centre / dq of tensioner a (as the kernel's ``arm_centre``)."""
-    if A.kind[a] == 0:
-        psi = A.psi0[a] + A.sgn[a] * q
-        L = A.length[a]
-        return (A.px[a] + L * math.cos(psi), A.py[a] + L * math.sin(psi), -A.sgn[a] * L * math.sin(psi), A.sgn[a] * L * math.cos(psi))
-    return (A.px[a] + q * A.dx[a], A.py[a] + q * A.dy[a], A.dx[a], A.dy[a])
 
 
 def _arm_angle(model, j, q, s) -> float:
@@ -312,7 +302,7 @@ def running(model, rest):
     T = [model.pulleys[j].tensioner for j in idx]
 
     def state(qv, with_margins=False):
-        m = _moved(model, {j: _centre(model, j, q, s) for j, q, s in zip(idx, qv, sense)}, L0)
+        m = _moved(model, {j: centre(model, j, q, s) for j, q, s in zip(idx, qv, sense)}, L0)
         lay = compute_layout(m)
         return m, lay, steady_state(m, lay, with_margins=with_margins)
 
@@ -332,7 +322,7 @@ def running(model, rest):
         out = []
         for j, q, s, t in zip(idx, qv, sense, T):
             h = 1e-6 if model.pulleys[j].arm is not None else 1e-7
-            jac = (np.array(_centre(model, j, q + h, s)) - np.array(_centre(model, j, q - h, s))) / (2 * h)
+            jac = (np.array(centre(model, j, q + h, s)) - np.array(centre(model, j, q - h, s))) / (2 * h)
             out.append(_spring(t, q) + float(hub[j] @ jac))
         return np.array(out)
 
