@@ -115,18 +115,10 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         raise typer.Exit(EXIT_WARNING)
 
 
-def _number(v: float, unit: str) -> str:
-    v = v + 0.0  # no "-0"
-    text = f"{v:.6g}"
-    if unit == "rad/s":  # a person reads shaft speeds in rpm
-        text += f" ({v * 30 / 3.141592653589793:.5g} rpm)"
-    return text
-
-
 def _print_summary(console, result):
     from rich.table import Table
 
-    from .results import flatten
+    from .results import flatten, number_text
 
     table = Table(title="summary (SI units)", show_header=True)
     table.add_column("key")
@@ -137,7 +129,7 @@ def _print_summary(console, result):
             continue              # per crank-speed bin: the table below
         unit = result.units.get(k, "")
         if isinstance(v, float):
-            v = _number(v, unit)
+            v = number_text(v, unit)
         elif isinstance(v, list) and len(v) > 6:
             v = f"[{len(v)} values]"
         table.add_row(k, str(v), "" if unit == "1" else unit)

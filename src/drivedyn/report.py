@@ -7,10 +7,10 @@ from __future__ import annotations
 
 import base64
 import datetime as _dt
-import math
 from pathlib import Path
 
 from . import __version__
+from .results import number_text
 
 #: what each standard plot shows (file name -> caption); a plot not listed gets its file name
 CAPTIONS = {
@@ -38,8 +38,6 @@ CAPTIONS = {
     "mesh-animation.gif": "A tooth entering and leaving the groove.",
 }
 
-ANGULAR_SPEED = "rad/s"
-
 #: the summary keys shown first, per kind (the whole summary follows, folded)
 HEADLINE = {
     "belt-drive": ["driver", "pulleys.*.speed_mean", "pulleys.*.slip", "pulleys.*.slip_margin", "pulleys.*.hub_load",
@@ -57,13 +55,7 @@ def _value(v, unit):
     if isinstance(v, bool) or v is None:
         return str(v)
     if isinstance(v, (int, float)):
-        v = float(v) + 0.0
-        if not math.isfinite(v):
-            return str(v)
-        text = f"{v:.6g}"
-        if unit == ANGULAR_SPEED:
-            text += f" ({v * 30 / math.pi:.5g} rpm)"
-        return text
+        return number_text(float(v), unit)
     if isinstance(v, (list, tuple)):
         if len(v) > 8:
             return f"[{len(v)} values: {_value(v[0], '')} ... {_value(v[-1], '')}]"

@@ -91,6 +91,15 @@ class Result:
         return flatten(self.summary)
 
 
+def number_text(v: float, unit: str = "") -> str:
+    """A summary number as people read it: 6 significant digits, no "-0", rpm beside rad/s."""
+    v = v + 0.0
+    text = f"{v:.6g}"
+    if unit == "rad/s":
+        text += f" ({v * 30 / math.pi:.5g} rpm)"
+    return text
+
+
 def open_result(outdir) -> Result:
     """Read a Result written by :meth:`Result.save`."""
     outdir = Path(outdir)

@@ -4,7 +4,8 @@ import json
 import time
 
 import drivedyn
-from drivedyn.cli import _number, main
+from drivedyn.cli import main
+from drivedyn.results import number_text as _number
 
 
 def test_output_path_that_is_a_file_is_refused_before_solving(tmp_path, capsys):

@@ -43,6 +43,17 @@ def _window(ds, ax):
         ax.axvspan(float(w[0]), float(w[1]), color="0.85", alpha=0.5, lw=0, label="steady window")
 
 
+def _steady(ds) -> np.ndarray:
+    """Mask of the samples in the run's steady window (window.py's rule: the model's window as
+    the run recorded it, else the last quarter), all samples if it holds none."""
+    from ..window import in_window, steady_window
+
+    t = ds["time"].values
+    w = ds.attrs.get("steady_window")
+    sel = in_window(t, steady_window(w if w is not None and len(w) == 2 else None, float(t[-1])))
+    return sel if sel.any() else np.ones(len(t), bool)
+
+
 def _legend(ax, **kw):
     """Legend beside the axes, never over the data."""
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False, borderaxespad=0, **kw)
@@ -84,11 +95,7 @@ def plot_slip(ds, driver, ax=None):
 
 def span_labels(ds) -> dict:
     """'a-b (tight), mean 806 N, 800-813' per span, from the steady window."""
-    w = ds.attrs.get("steady_window")
-    t = ds["time"].values
-    sel = (t >= float(w[0])) & (t <= float(w[1])) if w is not None and len(w) == 2 else np.ones(len(t), bool)
-    if not sel.any():
-        sel = np.ones(len(t), bool)
+    sel = _steady(ds)
     T = ds["span_tension"].values[sel]
     mean = T.mean(axis=0)
     tight, slack = int(np.argmax(mean)), int(np.argmin(mean))
@@ -169,8 +176,7 @@ def plot_spectrum(ds, driver, ax):
     """Amplitude spectra over the steady window: tight-span tension, driven speeds, hub loads;
     dotted lines at the driver's orders."""
     t = ds["time"].values
-    w = ds.attrs.get("steady_window")
-    sel = (t >= float(w[0])) & (t <= float(w[1])) if w is not None and len(w) == 2 else t >= t[len(t) * 3 // 4]
+    sel = _steady(ds)
     n = int(sel.sum())
     if n < 16:
         return False
