@@ -581,13 +581,6 @@ def spring_energy(A, a, q):
     return E
 
 
-@njit(cache=True)
-def step_arms(A, S, hubx, huby, h):
-    """One semi-implicit step of every tensioner (``_step_arms``) from records (tests, tools)."""
-    return _step_arms(A.na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y, S.q, S.qd, S.cx, S.cy, S.cvx,
-                      S.cvy, hubx, huby, h)
-
-
 @njit(cache=True, inline="always")
 def _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cvx, cvy, hubx, huby, h):
     """One semi-implicit step of every tensioner under the belt's hub forces of this step: the
