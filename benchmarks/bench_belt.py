@@ -36,6 +36,18 @@ def main():
         w = min(walls)
         print(f"{n:5d} {r.summary['solver']['step'] * 1e6:8.3f} {steps / 0.1:12.0f} {w / steps * 1e6:8.2f} {w / 0.1:17.2f}")
 
+    # the experimental implicit scheme (issue 14) against the semi-implicit reference, one run
+    print(f"{'n':>5s} {'scheme':>14s} {'step us':>8s} {'us/step':>8s} {'wall s per sim s':>17s} {'ratio ref/new':>14s}")
+    for n in (150, 600):
+        walls = {}
+        for method in ("semi-implicit", "implicit"):
+            mn = drivedyn.replace(base, {"belt.segments": n, "simulation.duration": 0.05, "output.segments": [0],
+                                         "simulation.method": method})
+            w, steps, r = timed(mn, repeat=2)
+            walls[method] = min(w)
+            print(f"{n:5d} {method:>14s} {r.summary['solver']['step'] * 1e6:8.3f} {min(w) / steps * 1e6:8.2f} "
+                  f"{min(w) / 0.05:17.2f} {walls['semi-implicit'] / min(w):14.2f}")
+
     # k pulleys of 27 mm on a regular polygon, the 5PK belt (1.2 m path, 150 segments), the
     # seed's driver and load on the first two, free idlers on the others
     print(f"{'pulleys':>7s} {'us/step':>8s} {'wall s per sim s':>17s}")

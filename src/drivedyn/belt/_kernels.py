@@ -44,6 +44,12 @@ segment in contact, the contact damping and the regularised friction are solved 
 segment's new velocity (a scalar monotone equation per contact, pulley speeds frozen during the
 step), which makes the stiff friction law (slope mu N / dv) unconditionally stable; the step is
 limited only by the elastic chain, h < 2 / sqrt(12 k / m) (``system.stability_limit``).
+
+Scheme ``implicit`` (same function, ``Belt.implicit``; experimental, issue 14): the joints and the
+contact normal stiffness and damping through one cyclic block-tridiagonal matrix (``_chain.py``:
+symplectic Euler with a modified mass, no stability limit from the chain), friction per segment
+after that solve. Stable at any step; accurate to the reference only at small steps so far
+(5PK: 0.2 % tension, 0.025 percentage points slip at 5 us), see docs/STATUS.md.
 """
 import math
 from typing import NamedTuple
@@ -52,6 +58,7 @@ import numpy as np
 from numba import njit
 
 from ..tables import table
+from . import _chain
 
 # fast-math without the no-NaN/no-inf assumptions, so that blow-ups still show as NaN/inf
 FAST = {"contract", "arcp", "reassoc", "nsz"}
@@ -78,6 +85,7 @@ class Belt(NamedTuple):
     turn: float              # total turn of the closed path (rad)
     g: float                 # gravity, along -y (m/s^2)
     iscale: float            # rotation mass scaling of the semi-implicit scheme (system.ROTATION_SCALE)
+    implicit: bool           # the `implicit` scheme: joints through the chain solve (_chain.py)
 
 
 class Contact(NamedTuple):
@@ -233,6 +241,19 @@ class Work(NamedTuple):
     span_geo: np.ndarray     # (nspan, 4): midpoint x, y, unit direction x, y (belt order)
     span_joint: np.ndarray   # (nspan,) int64: joint followed nearest each midpoint
     track: np.ndarray        # (ntrack,) int64: tracked segments
+    # the implicit scheme's chain matrix (_chain.py): (n, 9) blocks, (n, 3) right-hand side, (n,)
+    # joint coefficients; size 0 for the other schemes
+    lin_d: np.ndarray
+    lin_o: np.ndarray
+    lin_e: np.ndarray
+    lin_dinv: np.ndarray
+    lin_y: np.ndarray
+    lin_x: np.ndarray
+    lin_r: np.ndarray
+    lin_sig: np.ndarray
+    lin_gam: np.ndarray
+    lin_fk: np.ndarray       # (n,) contact coefficient each segment had when the matrix was factored
+    lin_cnt: np.ndarray      # int64 (2): steps until the next factorisation, factorisations done
 
 
 @njit(cache=True)
@@ -614,7 +635,35 @@ def _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cv
     return P_diss
 
 
-# ---- semi-implicit integrator ---------------------------------------------------------------
+# ---- semi-implicit and implicit integrators ---------------------------------------------------
+
+# the implicit scheme refactors its chain matrix once the fastest segment has turned this far
+# (rad): a stale matrix is a preconditioner still (see _chain.py); the forces are always exact
+REFACTOR_ANGLE = 0.05
+
+
+@njit(cache=True)
+def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jdx, jdy, turn, m, ieff, sig, gam,
+              kap, knx, kny, dmat, omat, emat, dinv, ymat, xmat):
+    """Factor the chain matrix at the current angles (joint tangent stiffnesses at the current
+    gaps); returns the number of steps it serves (turning of the fastest segment, REFACTOR_ANGLE)."""
+    wmax = 0.0
+    for i in range(n):
+        k = i - 1 if i > 0 else n - 1
+        kt = kax[i]
+        if not linear:   # tangent of kax |d|^e (its larger, radial-direction value)
+            kt = kax[i] * max(eax, 1.0) * math.sqrt(jdx[i] * jdx[i] + jdy[i] * jdy[i]) ** (eax - 1.0)
+        sig[i] = 0.5 * h * h * kt + h * bax[i]
+        kbt = kb[i]
+        if eb != 1.0:
+            dphi = phi[i] - phi[k] + (turn if i == 0 else 0.0)
+            kbt = kb[i] * eb * max(abs(dphi), 1e-6) ** (eb - 1.0)
+        gam[i] = 0.5 * h * h * kbt + h * bb[i]
+        wmax = max(wmax, abs(w[i]))
+    _chain.factor(n, hl, c, s, m, ieff, sig, gam, kap, knx, kny, dmat, omat, emat, dinv, ymat, xmat)
+    return max(1, min(1000, int(REFACTOR_ANGLE / (h * wmax + 1e-300))))
+
+
 
 @njit(cache=True)
 def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
@@ -640,6 +689,22 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     acc_pin, acc_tq_ext, acc_tq_belt, acc_hubx, acc_huby = W.acc_pin, W.acc_tq_ext, W.acc_tq_belt, W.acc_hubx, W.acc_huby
     acc_span, acc_track, acc_diss = W.acc_span, W.acc_track, W.acc_diss
     pmode, pinv_i = P.mode, P.inv_i
+    implicit = B.implicit
+    lin_d, lin_o, lin_e, lin_dinv, lin_y, lin_x, lin_r = W.lin_d, W.lin_o, W.lin_e, W.lin_dinv, W.lin_y, W.lin_x, W.lin_r
+    lin_sig, lin_gam, lin_cnt, m_ = W.lin_sig, W.lin_gam, W.lin_cnt, B.m
+    ieff = inertia * iscale
+    hj = 0.0 if implicit else h       # the implicit scheme's dampers are in the chain matrix
+    # per segment: the pulley it touches (-1: none), normal, penetration, normal force, matrix
+    # coefficient; f*: those the chain matrix was factored with
+    cj = np.full(n, -1, dtype=np.int64)
+    cnx = np.zeros(n)
+    cny = np.zeros(n)
+    cp = np.zeros(n)
+    cN = np.zeros(n)
+    ckap = np.zeros(n)
+    fkap = W.lin_fk
+    fnx = np.zeros(n)
+    fny = np.zeros(n)
     tq_const, tq_visc, hm_off, hm_order, hm_amp, hm_phase = P.tq_const, P.tq_visc, P.hm_off, P.hm_order, P.hm_amp, P.hm_phase
     tt_off, tt_x, tt_y, ts_off, ts_x, ts_y = P.tt_off, P.tt_x, P.tt_y, P.ts_off, P.ts_x, P.ts_y
     sp_off, sp_x, sp_y = P.sp_off, P.sp_x, P.sp_y
@@ -670,7 +735,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     hg = h * g
     for _ in range(nsteps):
         pax, pb = _joint_forces(n, eax, eb, hl, turn, linear, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy,
-                                mz, jfk, jdx, jdy, h, inv_m, inv_i, jmk, jmi)
+                                mz, jfk, jdx, jdy, hj, inv_m, inv_i, jmk, jmi)
         pcd = 0.0
         pfr = 0.0
         diss_cl = 0.0
@@ -678,7 +743,98 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
             tq_belt[j] = 0.0
             hubx[j] = 0.0
             huby[j] = 0.0
-        for i in range(n):
+        if implicit:
+            # contact normal forces explicit at (x_n, v_n), their stiffness and damping with the
+            # joints' in the chain matrix (refactored when a segment enters or leaves a pulley);
+            # dv = h A^-1 F; then friction per segment, implicit in its new velocity.
+            # OPEN (issue 14): where the belt sticks, the friction does not see the joint forces
+            # the chain solve spread over the neighbours: slip and tensions drift from the
+            # reference above ~5 us (see docs/STATUS.md)
+            refac = lin_cnt[0] <= 0
+            for i in range(n):
+                cj[i] = -1
+                for j in range(nk):
+                    rx = x[i] - pcx[j]
+                    ry = y[i] - pcy[j]
+                    d2 = rx * rx + ry * ry
+                    if d2 >= pr[j] * pr[j]:
+                        continue
+                    dist = math.sqrt(d2)
+                    nx = rx / dist
+                    ny = ry / dist
+                    p = pr[j] - dist
+                    db = smoothstep(p / pmax) * bc[i]
+                    vn = (vx[i] - pvx[j]) * nx + (vy[i] - pvy[j]) * ny
+                    N = c1[i] * p * p + c2[i] * p - db * vn
+                    cj[i] = j
+                    cnx[i] = nx
+                    cny[i] = ny
+                    cp[i] = p
+                    ckap[i] = 0.5 * h * h * (c2[i] + 2.0 * c1[i] * p) + h * db
+                    if N < 0.0:
+                        N = 0.0
+                    cN[i] = N
+                    fx[i] += N * nx
+                    fy[i] += N * ny
+                    break       # pulleys do not overlap: one contact per segment
+                if (cj[i] >= 0) != (fkap[i] > 0.0):
+                    refac = True
+                fy[i] -= m_[i] * g
+            if refac:
+                for i in range(n):
+                    fkap[i] = ckap[i] if cj[i] >= 0 else 0.0
+                    fnx[i] = cnx[i]
+                    fny[i] = cny[i]
+                lin_cnt[0] = _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jdx, jdy, turn, m_,
+                                       ieff, lin_sig, lin_gam, fkap, fnx, fny, lin_d, lin_o, lin_e, lin_dinv, lin_y,
+                                       lin_x)
+                lin_cnt[1] += 1
+            lin_cnt[0] -= 1
+            _chain.solve(n, fx, fy, mz, lin_dinv, lin_y, lin_x, lin_r)
+            for i in range(n):
+                hm = hm_[i]
+                vxs = vx[i] + h * fx[i]
+                vys = vy[i] + h * fy[i]
+                w[i] += h * mz[i]
+                j = cj[i]
+                if j >= 0:
+                    nx = cnx[i]
+                    ny = cny[i]
+                    N = cN[i]
+                    rvx = vxs - pvx[j]
+                    rvy = vys - pvy[j]
+                    T = 0.0
+                    if N > 0.0:
+                        T, sl = friction(mu[i], law, dv, dmax, N, om[j] * pr[j] - (rvx * -ny + rvy * nx), hm, h, z, i)
+                        pfr += T * sl
+                        vxs += hm * T * -ny
+                        vys += hm * T * nx
+                        vn_new = rvx * nx + rvy * ny
+                        pcd += smoothstep(cp[i] / pmax) * bc[i] * vn_new * vn_new
+                        tq_belt[j] -= pr[j] * T
+                        hubx[j] -= N * nx + T * -ny
+                        huby[j] -= N * ny + T * nx
+                    seg_n[i] = N
+                    seg_t[i] = T
+                    seg_p[i] = cp[i]
+                else:
+                    z[i] = 0.0
+                    seg_n[i] = 0.0
+                    seg_t[i] = 0.0
+                    seg_p[i] = 0.0
+                vx[i] = vxs
+                vy[i] = vys
+                x[i] += h * vxs
+                y[i] += h * vys
+                a = h * w[i]
+                phi[i] += a
+                a2 = a * a
+                ca = 1.0 - 0.5 * a2 * (1.0 - a2 / 12.0)
+                sa = a * (1.0 - a2 / 6.0 * (1.0 - a2 / 20.0))
+                cn = c[i] * ca - s[i] * sa
+                s[i] = s[i] * ca + c[i] * sa
+                c[i] = cn
+        for i in range(n if not implicit else 0):
             hm = hm_[i]
             vxs = vx[i] + hm * fx[i]
             vys = vy[i] + hm * fy[i] - hg

@@ -305,7 +305,7 @@ class Friction(Spec):
 
 class Simulation(Spec):
     duration: quantity("s", gt=0) = 1.0
-    method: Literal["semi-implicit", "rkf45"] = "semi-implicit"
+    method: Literal["implicit", "semi-implicit", "rkf45"] = "semi-implicit"
     step: Optional[quantity("s", gt=0)] = None
     rotation_scaling: bool = False
     rtol: float = 1e-6

@@ -181,7 +181,7 @@ def run(model, progress=None) -> Result:
     steps_per_sample = max(1, int(math.ceil(interval / sysm.step)))
     h = interval / steps_per_sample
     try:
-        if sim.method == "semi-implicit":
+        if sim.method != "rkf45":
             done, failure = _integrate_semi_implicit(sysm, progress, rec, nsamples, steps_per_sample, h, frame_every)
             nsteps = done * steps_per_sample
         else:
@@ -192,7 +192,7 @@ def run(model, progress=None) -> Result:
         # a time limit or Ctrl-C: keep the whole samples recorded so far (rec.ns counts them)
         why = stop_reason(exc)
         failure = f"stopped: {why}"
-        if sim.method == "semi-implicit":
+        if sim.method != "rkf45":
             nsteps = rec.ns * steps_per_sample
         else:
             nsteps, h = rec.steps, rec.step or h
@@ -252,7 +252,7 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
     if not np.any(sel):     # a run stopped before the window: the last quarter of what was computed
         window = steady_window(None, t_end)
         sel = in_window(t, window)
-    semi = model.simulation.method == "semi-implicit"
+    semi = model.simulation.method != "rkf45"
     # the one solver record (same keys in every time integration), extras after it
     solver = {"method": model.simulation.method, "steps": int(nsteps),
               "rejected_steps": 0 if semi else int(rec.rejected),
