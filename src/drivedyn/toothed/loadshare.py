@@ -156,7 +156,8 @@ def _newton(chain: Chain, T1, T2, T_ref, d0=None, tol=1e-10, max_iter=100) -> Sh
             return kt * d, kt
         up, dn = (d - cl) / us, (-d - cl) / us
         q = kt * us * (np.logaddexp(0, up) - np.logaddexp(0, dn))
-        dq = kt * (0.5 * (1 + np.tanh(up / 2)) + 0.5 * (1 + np.tanh(dn / 2)))
+        # floor: a chain whose teeth all float in their play has no stiffness against sliding
+        dq = kt * (0.5 * (1 + np.tanh(up / 2)) + 0.5 * (1 + np.tanh(dn / 2)) + 1e-9)
         return q, dq
 
     def residual(d):
@@ -192,7 +193,10 @@ def _newton(chain: Chain, T1, T2, T_ref, d0=None, tol=1e-10, max_iter=100) -> Sh
     for it in range(1, max_iter + 1):
         if np.max(np.abs(r)) <= tol * scale:
             break
-        step = solve_banded((1, 1), jacobian(d, *aux), -r)
+        try:
+            step = solve_banded((1, 1), jacobian(d, *aux), -r)
+        except np.linalg.LinAlgError:
+            raise _Stalled("singular Jacobian") from None
         norm = np.linalg.norm(r)
         lam = 1.0
         while True:  # backtracking: the tanh friction makes far steps overshoot
