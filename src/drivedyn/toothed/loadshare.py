@@ -63,7 +63,7 @@ class Chain:
     land_share: float = 0.5    # share of a pitch where the belt land rests on the pulley
     friction: float = 0.0      # mu on the lands
     pitch_error: float = 0.0   # e (m per pitch) at the reference tension
-    land_nodes: int = 0        # points per land where friction acts (the angle discretisation)
+    land_nodes: int = 4        # points per land where friction acts (the angle discretisation)
     slip_scale: float = 1e-6   # u_s (m)
     clearance: float = 0.0     # c, sideways play of a seated tooth before it bears on a flank (m)
 
@@ -190,8 +190,10 @@ def _newton(chain: Chain, T1, T2, T_ref, d0=None, tol=1e-10, max_iter=100) -> Sh
         d = np.zeros(K)
     it = 0
     r, aux = residual(d)
+    a_max = float(np.max(aux[0])) if K > 1 else 0.0
     for it in range(1, max_iter + 1):
-        if np.max(np.abs(r)) <= tol * scale:
+        # round-off floor: a cord element's tension is a (d_k - d_(k+1)), a = EA / L
+        if np.max(np.abs(r)) <= max(tol * scale, 16 * np.finfo(float).eps * a_max * np.max(np.abs(d))):
             break
         try:
             step = solve_banded((1, 1), jacobian(d, *aux), -r)
@@ -341,7 +343,7 @@ def tooth_stiffness_per_width(tooth, shear_modulus: float) -> float:
         1 / k' = (4 (h/2)^3 / (3 s^3) + 1.2 (h/2) / s) / G
 
     The root's rotation in the belt body is left out, so this is a stiff estimate."""
-    half = tooth.half(1e-6)
+    half = tooth.half(1e-6 * tooth.height)  # chord tolerance relative: the estimate is scale-free
     v_mid = tooth.land - tooth.height / 2
     order = np.argsort(half[:, 1])
     s = 2 * float(np.interp(v_mid, half[order, 1], np.abs(half[order, 0])))
