@@ -30,6 +30,8 @@ CODES = {
     "above-critical-speed": "the belt speed is at or above the span's critical speed: the span model does not apply",
     "at-rest-drift": "a drive with no load moves away from its initial state",
     "tooth-separation": "the mesh force goes negative: the teeth would separate, the model assumes they stay in mesh",
+    "tooth-jump": "a timing-belt tooth under the given torque climbs out of its groove (ratchets): the torque is at "
+                  "or above the jump torque for the installation tension",
 }
 
 STATUSES = ("success", "warning", "failed")

@@ -36,6 +36,8 @@ CAPTIONS = {
     "mesh-maps.png": "Overlap against tooth count and pitch error.",
     "mesh-comparison.png": "The profiles compared: overlap, clearance and groove depth used.",
     "mesh-animation.gif": "A tooth entering and leaving the groove.",
+    "mesh-load.png": "Under load: the load on each tooth in mesh (tooth 1 next to the tight span) with the load at which it "
+                     "would climb out, the cord tension along the wrap, and the jump torque against the installation tension.",
 }
 
 #: the summary keys shown first, per kind (the whole summary follows, folded)
@@ -47,7 +49,8 @@ HEADLINE = {
                    "clutches.*.overrun_share", "belt.pretension", "solver.wall_time", "solver.real_time_factor"],
     "gear-train": ["kv*", "*.kv", "meshes.*", "*dynamic_factor*", "solver.wall_time"],
     "span-stability": ["critical_speed*", "*frequency*", "*stable*", "*speed*"],
-    "toothed-mesh": ["*overlap*", "*clearance*", "*depth*"],
+    "toothed-mesh": ["*overlap*", "*clearance*", "*depth*", "load.jump_torque_N_m", "load.max_tooth_load_N",
+                     "load.first_tooth_share", "load.slack_tension_N"],
 }
 
 

@@ -17,7 +17,7 @@ from drivedyn.errors import ModelError
 from drivedyn.model import from_dict
 
 EXAMPLES = ["belt-5pk", "belt-accessory", "belt-verification", "gears-split-path", "span-t10",
-            "mesh-htd8m", "mesh-l", "mesh-l-on-htd8m"]
+            "mesh-htd8m", "mesh-l", "mesh-l-on-htd8m", "mesh-l-on-htd-9525", "mesh-load-l"]
 PLAIN = [-1, 0, "abc", 1e30, [], {"x": 1}]
 
 

@@ -11,7 +11,8 @@ from .pair import resolve
 
 
 #: units of the summary keys: the keys carry their unit as a suffix (summary.json keeps mm and deg)
-UNITS = {"*_mm2": "mm^2", "*_mm": "mm", "*_deg": "deg", "*groove_depth_used": "1"}
+UNITS = {"*_mm2": "mm^2", "*_mm": "mm", "*_deg": "deg", "*groove_depth_used": "1", "*_N_m": "N*m", "*_N": "N",
+         "*_N_per_m": "N/m", "load.first_tooth_share": "1", "load.land_share": "1", "load.friction": "1"}
 
 
 def run(model, progress=None) -> Result:
@@ -66,10 +67,23 @@ def run(model, progress=None) -> Result:
         summary["maps"] = {"teeth": list(model.maps.teeth),
                            "pitch_error_mm": [1e3 * e for e in model.maps.pitch_error],
                            "max_overlap_area_mm2": (1e6 * area).tolist(), "max_penetration_mm": (1e3 * pen).tolist()}
+    diags, load_attrs = [], {}
+    if model.load is not None:
+        from .loadcase import run_load
+
+        if progress:
+            progress(0.72, "load sharing")
+        ld_data, ld_coords, summary["load"], diags, load_attrs = run_load(model, pair, progress)
+        data.update(ld_data)
+        coords.update(ld_coords)
     ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update(**load_attrs)
     ds.attrs.update(model_toml=dumps(model), belt_radius=pair.belt_radius, outside_radius=pair.outside_radius,
                     tooth_offset=pair.offset, tooth_land=pair.tooth.land, tooth_tip=pair.tooth.tip,
                     belt_thickness=pair.tooth.thickness, teeth=pair.teeth, title=model.name)
     if progress:
         progress(1.0, "done")
-    return Result("toothed-mesh", ds, summary, units=unit_map(summary, UNITS))
+    result = Result("toothed-mesh", ds, summary, units=unit_map(summary, UNITS))
+    for d in diags:
+        result.diagnose(*d)
+    return result

@@ -71,13 +71,14 @@ def _din7721(name, p, s, ht, r, hs, a, n, se, rk, rf):
 
 def _htd(name, p, ht, hs, a, rt_arc, fillet, groove, note=""):
     """HTD tooth (TB heights, FCG arc construction) with the HTD groove (CS, 14 deg flanks)."""
+    family = "curvilinear HTD (ISO 13050 H)" if "scaled" not in note else "HTD 8M scaled (not a standard)"
     src = "tooth TB (height, PLD) + FCG (arc radius, fillet); groove CS" + note
     tooth = ArcTooth(pitch=p * MM, height=ht * MM, pld=a * MM, thickness=hs * MM, arc_radius=rt_arc * MM,
                      root_radius=fillet * MM, source=src, name=name)
     w, depth, rb, rt = groove
     g = ArcGroove(pitch=p * MM, depth=depth * MM, pld=a * MM, width=w * MM, angle=14 * DEG,
                   bottom_radius=rb * MM, tip_radius=rt * MM, source="CS" + note, name=name)
-    return Entry(name, "curvilinear HTD (ISO 13050 H)", p * MM, tooth, lambda z: g, src)
+    return Entry(name, family, p * MM, tooth, lambda z: g, src)
 
 
 def _gt(name, p, ht, hs, a, tip, flank, offset, fillet):
@@ -122,6 +123,12 @@ _ENTRIES = [
     _htd("HTD14M", 14, 6.02, 10.0, 1.397, 2.46 * 14 / 8, 0.70 * 14 / 8, (9.80, 6.20, 4.65, 1.40),
          note="; 14M arc radius and fillet scaled from 8M by 14/8 (not published); depth NS 6.20 "
               "(CS 6.00 is below the tooth height)"),
+    # Not a standard: the HTD 8M tooth and groove scaled by 9.525/8 to the L pitch, for the seed's
+    # mixed pair at equal pitch (an L belt on an HTD-form pulley of the same pitch, issue 15).
+    # Every length of the 8M entry (TB/FCG tooth, CS groove, PLD) times 9.525/8; angles unchanged.
+    _htd("HTD9.525", 9.525, *(x * 9.525 / 8 for x in (3.38, 6.0, 0.686, 2.46, 0.70)),
+         tuple(x * 9.525 / 8 for x in (5.35, 3.451, 2.57, 0.80)),
+         note="; HTD 8M tooth and groove scaled by 9.525/8 (not a standard profile)"),
     #    name     p   ht    hs    a       tip    flank (offset)  fillet
     _gt("GT2-2M", 2, 0.75, 1.38, 0.254, 0.555, 1.00, 0.40, 0.15),
     _gt("GT2-3M", 3, 1.14, 2.40, 0.381, 0.85, 1.52, 0.61, 0.25),
@@ -130,7 +137,7 @@ _ENTRIES = [
 
 CATALOGUE = {e.name: e for e in _ENTRIES}
 
-_ALIASES = {"3M": "HTD3M", "5M": "HTD5M", "8M": "HTD8M", "14M": "HTD14M",
+_ALIASES = {"HTD9525": "HTD9.525", "3M": "HTD3M", "5M": "HTD5M", "8M": "HTD8M", "14M": "HTD14M",
             "2MGT": "GT2-2M", "3MGT": "GT2-3M", "5MGT": "GT2-5M", "GT2": "GT2-2M",
             "GT22M": "GT2-2M", "GT23M": "GT2-3M", "GT25M": "GT2-5M"}
 
@@ -169,3 +176,23 @@ def groove(name: str, z: int):
     """The standard groove of a catalogue profile for ``z`` teeth, or None if none is defined."""
     e = entry(name)
     return None if e.groove is None else e.groove(z)
+
+
+#: Tension-member stiffness EA per unit belt width (N per m of width), where a source gives it:
+#: ELATECH "specific spring rate" C_spez (polyurethane belts with steel cord; ELA in
+#: shared/design/toothed-profiles.md): T5 90 000 N at 10 mm (catalogue p. 8), HTD 3M 80 000 N at
+#: 10 mm, T2.5 6.0e3-7.5e3 N/mm (lower value kept; BRE gives 2.45e3). Rubber belts with glass cord
+#: (the seed's automotive L and HTD belts) differ; no source for them was found, so the model
+#: file must give ``load.cord_stiffness`` for every other profile.
+CORD_STIFFNESS = {
+    "T5": (9.0e6, "ELATECH C_spez 90 000 N / 10 mm (polyurethane, steel cord)"),
+    "HTD3M": (8.0e6, "ELATECH C_spez 80 000 N / 10 mm (polyurethane, steel cord)"),
+    "T2.5": (6.0e6, "ELATECH C_spez 6.0e3-7.5e3 N/mm (lower kept; BRE 2.45e3) (polyurethane, steel cord)"),
+}
+
+
+def cord_stiffness(name):
+    """(EA per unit width in N/m, source) of a catalogue profile, or None if no source gives it."""
+    if name is None:
+        return None
+    return CORD_STIFFNESS.get(canonical(name))

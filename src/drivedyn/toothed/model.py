@@ -219,6 +219,43 @@ class Pair(Spec):
     _teeth = field_validator("teeth")(classmethod(lambda cls, v: _tooth_count(v)))
 
 
+class Load(Spec):
+    """The belt under load on this pulley: tooth load sharing and the jump torque (loadshare.py).
+
+    Stiffnesses are per unit belt width; the tooth spring comes from ``tooth_stiffness`` or from
+    the tooth's shape and ``tooth_modulus`` (shear modulus of the tooth material); the cord
+    stiffness EA per width from ``cord_stiffness`` or the catalogue (where a source gives it)."""
+
+    width: quantity("m", gt=0, le=10.0)
+    installation_tension: quantity("N", gt=0)
+    torque: quantity("N*m", ge=0) = 0.0
+    wrap: quantity("rad", gt=0, le=2 * np.pi) = float(np.pi)
+    cord_stiffness: Optional[quantity("N/m", gt=0)] = None
+    tooth_stiffness: Optional[quantity("N/m^2", gt=0)] = None
+    tooth_modulus: Optional[quantity("Pa", gt=0)] = None
+    friction: float = Field(0.0, ge=0, le=2.0)
+    flank_angle: Optional[quantity("rad", gt=0, lt=np.pi / 2)] = None
+    pitch_error: Length = 0.0  # added to the pair's own (belt pitch - groove spacing on R_b)
+    clearance: Optional[NonNeg] = None  # sideways play of a seated tooth; default from the contours
+    slip_scale: quantity("m", ge=1e-9, le=1e-3) = 1e-6
+    land_nodes: int = Field(4, ge=1, le=64)
+    tensions: list[quantity("N", gt=0)] = []
+
+    @field_validator("tensions")
+    @classmethod
+    def _tensions(cls, v):
+        if len(v) > 50:  # each is a bisection of load-sharing solves
+            raise ValueError(f"at most 50 installation tensions, got {len(v)}")
+        return v
+
+    @model_validator(mode="after")
+    def _tooth(self):
+        if (self.tooth_stiffness is None) == (self.tooth_modulus is None):
+            raise ValueError("give either tooth_stiffness (per width) or tooth_modulus (shear modulus "
+                             "of the tooth material), not both or neither")
+        return self
+
+
 class Model(Spec):
     """A toothed-belt meshing study (seed 001)."""
 
@@ -230,12 +267,17 @@ class Model(Spec):
     mesh: Mesh = Mesh()
     maps: Optional[Maps] = None
     compare: list[Pair] = []
+    load: Optional[Load] = None
 
     @model_validator(mode="after")
     def _pair(self):
         from .pair import resolve, resolve_row
 
-        resolve(self)
+        pair = resolve(self)
+        if self.load is not None:
+            from .loadcase import check_load
+
+            check_load(self, pair)
         for k, row in enumerate(self.compare):
             try:
                 resolve_row(row, self.mesh)

@@ -203,6 +203,51 @@ def plot_comparison(ds):
     return fig
 
 
+def plot_load(ds):
+    """Load sharing on the pulley: per-tooth loads (with the load at which each would climb), the
+    cord tension along the wrap, and the jump torque against the installation tension."""
+    fig = Figure(figsize=(13, 4.2), layout="constrained")
+    ax0, ax1, ax2 = fig.subplots(1, 3, width_ratios=[1.1, 1.1, 1])
+    teeth = ds["load_tooth"].values
+    q = ds["tooth_load"].values
+    ax0.bar(teeth, q, color="C0", label="tooth load Q")
+    # the load at which each tooth starts to climb: hold / tan(phi - rho), hold = T_local p / R
+    f = float(ds.attrs["load_climb_factor"])
+    if f > 0:
+        climb = ds["tooth_tension"].values * ds.attrs["load_pitch"] / ds.attrs["belt_radius"] / f
+        ax0.plot(teeth, climb, "_", color="C3", ms=14, mew=2, label="load at which it climbs")
+    ax0.set_xlabel("tooth in mesh (1: tight side)")
+    ax0.set_ylabel("N")
+    ax0.set_title(f"tooth loads at {ds.attrs['load_torque']:.3g} N m")
+    ax0.set_xticks(teeth if len(teeth) <= 24 else teeth[:: max(len(teeth) // 12, 1)])
+    ax0.legend(fontsize=8)
+    s = ds["wrap_position"].values * MM
+    ax1.step(s, ds["wrap_tension"].values, where="mid", color="k")
+    for x in (teeth - 1) * ds.attrs["load_pitch"] * MM:
+        ax1.axvline(x, color="0.8", lw=0.6, zorder=0)
+    ax1.axhline(ds.attrs["load_T0"], color="0.5", ls="--", lw=0.8, label="installation tension")
+    ax1.set_xlabel("along the wrap from tooth 1 (mm); grey lines: teeth")
+    ax1.set_ylabel("cord tension (N)")
+    ax1.set_title("tension along the wrap")
+    ax1.set_ylim(bottom=0)
+    ax1.legend(fontsize=8)
+    t0 = ds["jump_tension"].values
+    mj = ds["jump_torque"].values
+    ax2.plot(t0, mj, "o-", color="C3", label="jump torque")
+    ax2.plot(t0, 2 * t0 * ds.attrs["belt_radius"], color="0.6", ls=":", label="slack span at zero: 2 T0 R")
+    ax2.plot([ds.attrs["load_T0"]], [ds.attrs["load_torque"]], "k*", ms=10, label="this run")
+    ax2.set_xlabel("installation tension T0 (N)")
+    ax2.set_ylabel("torque (N m)")
+    ax2.set_title("jump torque against installation tension")
+    ax2.set_xlim(left=0)
+    ax2.set_ylim(bottom=0)
+    ax2.legend(fontsize=8)
+    for ax in (ax0, ax1, ax2):
+        ax.grid(alpha=0.3)
+    fig.suptitle(f"{ds.attrs.get('title', '')}: load sharing and tooth jump", fontsize=11)
+    return fig
+
+
 def animate(ds, path, frames=48, fps=12):
     """GIF of the tooth entering, seating and leaving the groove."""
     from matplotlib.animation import FuncAnimation, PillowWriter
@@ -237,6 +282,8 @@ def plot_all(result, outdir) -> list[Path]:
             "mesh-flank-map.png": plot_flank_map(ds)}
     if "map_overlap_area" in ds:
         figs["mesh-maps.png"] = plot_maps(ds)
+    if "tooth_load" in ds:
+        figs["mesh-load.png"] = plot_load(ds)
     if "pair" in ds.dims and ds.sizes["pair"] > 1:
         figs["mesh-comparison.png"] = plot_comparison(ds)
     from .. import plotting

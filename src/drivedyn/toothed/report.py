@@ -45,4 +45,14 @@ def report(model) -> str:
     if model.maps is not None:
         lines.append(f"  maps          teeth {model.maps.teeth} x pitch error "
                      f"{[round(1e3 * e, 4) for e in model.maps.pitch_error]} mm")
+    if model.load is not None:
+        from .loadcase import chain_of, stiffnesses
+
+        ch = chain_of(model, pair)
+        kt, kt_src, ea, ea_src = stiffnesses(model, pair)
+        ld = model.load
+        lines += [f"  load          {ch.teeth} teeth in mesh over {np.degrees(ld.wrap):.0f} deg, T0 {ld.installation_tension:.4g} N,"
+                  f" torque {ld.torque:.4g} N m, pitch error {1e3 * ch.pitch_error:+.4f} mm per tooth",
+                  f"                tooth spring {1e-3 * ch.tooth_stiffness:.4g} N/mm ({kt_src}); cord EA {ch.cord_stiffness:.4g} N"
+                  f" ({ea_src}); land share {ch.land_share:.2f}, friction {ld.friction:g}"]
     return "\n".join(lines)
