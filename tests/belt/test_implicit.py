@@ -18,10 +18,11 @@ def test_chain_solve_matches_dense(n):
     kap = np.where(rng.uniform(size=n) < 0.5, rng.uniform(0, 1e3, n), 0.0)
     ang = rng.uniform(0, 2 * np.pi, n)
     knx, kny = np.cos(ang), np.sin(ang)
+    kat = np.where(rng.uniform(size=n) < 0.5, rng.uniform(0, 1e3, n), 0.0)
     z = lambda: np.zeros((n, 9))   # noqa: E731
     d, o, e, dinv, y, x = z(), z(), z(), z(), z(), z()
-    _chain.factor(n, 0.4, c, s, m, inertia, sig, gam, kap, knx, kny, d, o, e, dinv, y, x)
-    A = _chain.dense(n, 0.4, c, s, m, inertia, sig, gam, kap, knx, kny)
+    _chain.factor(n, 0.4, c, s, m, inertia, sig, gam, kap, kat, knx, kny, d, o, e, dinv, y, x)
+    A = _chain.dense(n, 0.4, c, s, m, inertia, sig, gam, kap, kat, knx, kny)
     b = rng.normal(size=3 * n)
     fx, fy, mz = b[0::3].copy(), b[1::3].copy(), b[2::3].copy()
     _chain.solve(n, fx, fy, mz, dinv, y, x, np.zeros((n, 3)))

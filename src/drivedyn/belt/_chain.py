@@ -69,7 +69,7 @@ def _sub_tmul(a, b, out):
 
 
 @njit(cache=True)
-def factor(n, hl, c, s, m, inertia, sig, gam, kap, knx, kny, dmat, omat, emat, dinv, ymat, xmat):
+def factor(n, hl, c, s, m, inertia, sig, gam, kap, kat, knx, kny, dmat, omat, emat, dinv, ymat, xmat):
     """Assemble and factor A (see the module doc) at the segment angles (c, s): m, inertia per
     segment (the integrator's, mass-scaled or not); sig[j] = h^2/2 k_j + h b_j per joint (N s/m
     times s: the gap block sig I), gam[j] the same for its bending spring and damper. dmat, omat,
@@ -78,10 +78,12 @@ def factor(n, hl, c, s, m, inertia, sig, gam, kap, knx, kny, dmat, omat, emat, d
         for q in range(9):
             dmat[i, q] = 0.0
             emat[i, q] = 0.0
-        # mass, and a contact's stiffness and damping along its normal: kap n n^T
-        dmat[i, 0] = m[i] + kap[i] * knx[i] * knx[i]
-        dmat[i, 1] = dmat[i, 3] = kap[i] * knx[i] * kny[i]
-        dmat[i, 4] = m[i] + kap[i] * kny[i] * kny[i]
+        # mass, a contact's stiffness and damping along its normal n (kap n n^T) and a stuck
+        # segment's anchor along the tangent t = (-n_y, n_x) (kat t t^T)
+        nx, ny = knx[i], kny[i]
+        dmat[i, 0] = m[i] + kap[i] * nx * nx + kat[i] * ny * ny
+        dmat[i, 1] = dmat[i, 3] = (kap[i] - kat[i]) * nx * ny
+        dmat[i, 4] = m[i] + kap[i] * ny * ny + kat[i] * nx * nx
         dmat[i, 8] = inertia[i]
     for j in range(n):
         k = j - 1 if j > 0 else n - 1
@@ -193,14 +195,15 @@ def solve(n, fx, fy, mz, dinv, ymat, xmat, r):
         u2 = v2
 
 
-def dense(n, hl, c, s, m, inertia, sig, gam, kap, knx, kny):
+def dense(n, hl, c, s, m, inertia, sig, gam, kap, kat, knx, kny):
     """A as a dense (3n, 3n) matrix (tests: the factor against numpy)."""
     A = np.zeros((3 * n, 3 * n))
     for i in range(n):
         A[3 * i, 3 * i] = A[3 * i + 1, 3 * i + 1] = m[i]
         A[3 * i + 2, 3 * i + 2] = inertia[i]
         nv = np.array([knx[i], kny[i]])
-        A[3 * i:3 * i + 2, 3 * i:3 * i + 2] += kap[i] * np.outer(nv, nv)
+        tv = np.array([-kny[i], knx[i]])
+        A[3 * i:3 * i + 2, 3 * i:3 * i + 2] += kap[i] * np.outer(nv, nv) + kat[i] * np.outer(tv, tv)
     for j in range(n):
         k = j - 1 if j > 0 else n - 1
         G = np.zeros((2, 3 * n))

@@ -253,6 +253,8 @@ class Work(NamedTuple):
     lin_sig: np.ndarray
     lin_gam: np.ndarray
     lin_fk: np.ndarray       # (n,) contact coefficient each segment had when the matrix was factored
+    lin_fa: np.ndarray       # (n,) anchor slope (friction, N s/m) it was factored with
+    lin_st: np.ndarray       # (n,) 1: the segment stuck to its pulley at the last step
     lin_cnt: np.ndarray      # int64 (2): steps until the next factorisation, factorisations done
 
 
@@ -644,7 +646,7 @@ REFACTOR_ANGLE = 0.05
 
 @njit(cache=True)
 def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jdx, jdy, turn, m, ieff, sig, gam,
-              kap, knx, kny, dmat, omat, emat, dinv, ymat, xmat):
+              kap, kat, knx, kny, dmat, omat, emat, dinv, ymat, xmat):
     """Factor the chain matrix at the current angles (joint tangent stiffnesses at the current
     gaps); returns the number of steps it serves (turning of the fastest segment, REFACTOR_ANGLE)."""
     wmax = 0.0
@@ -660,7 +662,7 @@ def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jdx, jd
             kbt = kb[i] * eb * max(abs(dphi), 1e-6) ** (eb - 1.0)
         gam[i] = 0.5 * h * h * kbt + h * bb[i]
         wmax = max(wmax, abs(w[i]))
-    _chain.factor(n, hl, c, s, m, ieff, sig, gam, kap, knx, kny, dmat, omat, emat, dinv, ymat, xmat)
+    _chain.factor(n, hl, c, s, m, ieff, sig, gam, kap, kat, knx, kny, dmat, omat, emat, dinv, ymat, xmat)
     return max(1, min(1000, int(REFACTOR_ANGLE / (h * wmax + 1e-300))))
 
 
@@ -705,6 +707,17 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     fkap = W.lin_fk
     fnx = np.zeros(n)
     fny = np.zeros(n)
+    # stuck segments (friction inside its band at the last step): anchored to the pulley surface
+    # in the chain matrix by the secant slope of the friction law, mu N / Delta_v (implicit
+    # scheme, Threlfall law); fca: the slope the matrix was factored with
+    stk = W.lin_st
+    cca = np.zeros(n)
+    fca = W.lin_fa
+    kat = np.zeros(n)
+    cT = np.zeros(n)
+    f0x = np.zeros(n)
+    f0y = np.zeros(n)
+    f0z = np.zeros(n)
     tq_const, tq_visc, hm_off, hm_order, hm_amp, hm_phase = P.tq_const, P.tq_visc, P.hm_off, P.hm_order, P.hm_amp, P.hm_phase
     tt_off, tt_x, tt_y, ts_off, ts_x, ts_y = P.tt_off, P.tt_x, P.tt_y, P.ts_off, P.ts_x, P.ts_y
     sp_off, sp_x, sp_y = P.sp_off, P.sp_x, P.sp_y
@@ -744,15 +757,17 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
             hubx[j] = 0.0
             huby[j] = 0.0
         if implicit:
-            # contact normal forces explicit at (x_n, v_n), their stiffness and damping with the
-            # joints' in the chain matrix (refactored when a segment enters or leaves a pulley);
-            # dv = h A^-1 F; then friction per segment, implicit in its new velocity.
-            # OPEN (issue 14): where the belt sticks, the friction does not see the joint forces
-            # the chain solve spread over the neighbours: slip and tensions drift from the
-            # reference above ~5 us (see docs/STATUS.md)
-            refac = lin_cnt[0] <= 0
+            # Every force through the chain matrix, dv = h A^-1 F (see _chain.py). Contact normal
+            # forces explicit at (x_n, v_n), their stiffness and damping in A. Friction: a
+            # sliding segment carries mu N against its slip (explicit, saturated); a stuck one is
+            # anchored to the pulley surface in A by the friction law's secant slope mu N / dv
+            # (pulley speeds frozen over the step), its friction the anchor's force. An anchor
+            # whose force would exceed mu N lets go and the step is solved again (active set).
             for i in range(n):
+                fy[i] -= m_[i] * g
                 cj[i] = -1
+                cT[i] = 0.0
+                cca[i] = 0.0
                 for j in range(nk):
                     rx = x[i] - pcx[j]
                     ry = y[i] - pcy[j]
@@ -764,7 +779,9 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                     ny = ry / dist
                     p = pr[j] - dist
                     db = smoothstep(p / pmax) * bc[i]
-                    vn = (vx[i] - pvx[j]) * nx + (vy[i] - pvy[j]) * ny
+                    rvx = vx[i] - pvx[j]
+                    rvy = vy[i] - pvy[j]
+                    vn = rvx * nx + rvy * ny
                     N = c1[i] * p * p + c2[i] * p - db * vn
                     cj[i] = j
                     cnx[i] = nx
@@ -774,51 +791,115 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                     if N < 0.0:
                         N = 0.0
                     cN[i] = N
-                    fx[i] += N * nx
-                    fy[i] += N * ny
+                    if N > 0.0:
+                        pcd += db * vn * vn
+                        if stk[i] > 0.0:
+                            cca[i] = mu[i] * N / dv
+                        else:
+                            sl = om[j] * pr[j] - (rvx * -ny + rvy * nx)
+                            cT[i] = math.copysign(mu[i] * N, sl)
+                    fx[i] += N * nx - cT[i] * ny
+                    fy[i] += N * ny + cT[i] * nx
                     break       # pulleys do not overlap: one contact per segment
-                if (cj[i] >= 0) != (fkap[i] > 0.0):
-                    refac = True
-                fy[i] -= m_[i] * g
-            if refac:
+                if cj[i] < 0:
+                    stk[i] = 0.0
+                    z[i] = 0.0
+                f0x[i] = fx[i]
+                f0y[i] = fy[i]
+                f0z[i] = mz[i]
+            for _it in range(4):
+                refac = lin_cnt[0] <= 0
                 for i in range(n):
-                    fkap[i] = ckap[i] if cj[i] >= 0 else 0.0
-                    fnx[i] = cnx[i]
-                    fny[i] = cny[i]
-                lin_cnt[0] = _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jdx, jdy, turn, m_,
-                                       ieff, lin_sig, lin_gam, fkap, fnx, fny, lin_d, lin_o, lin_e, lin_dinv, lin_y,
-                                       lin_x)
-                lin_cnt[1] += 1
+                    if (cj[i] >= 0) != (fkap[i] > 0.0) or (cca[i] > 0.0) != (fca[i] > 0.0):
+                        refac = True
+                        break
+                if refac:
+                    for i in range(n):
+                        fkap[i] = ckap[i] if cj[i] >= 0 else 0.0
+                        fnx[i] = cnx[i]
+                        fny[i] = cny[i]
+                        fca[i] = cca[i]
+                        kat[i] = h * cca[i]
+                    lin_cnt[0] = _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jdx, jdy, turn,
+                                           m_, ieff, lin_sig, lin_gam, fkap, kat, fnx, fny, lin_d, lin_o, lin_e,
+                                           lin_dinv, lin_y, lin_x)
+                    lin_cnt[1] += 1
+                for i in range(n):
+                    fx[i] = f0x[i]
+                    fy[i] = f0y[i]
+                    mz[i] = f0z[i]
+                    if fca[i] > 0.0:
+                        j = cj[i]
+                        tx = -fny[i]
+                        ty = fnx[i]
+                        sl = om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
+                        fx[i] += fca[i] * sl * tx
+                        fy[i] += fca[i] * sl * ty
+                _chain.solve(n, fx, fy, mz, lin_dinv, lin_y, lin_x, lin_r)
+                released = False
+                for i in range(n):
+                    if fca[i] > 0.0:
+                        j = cj[i]
+                        tx = -fny[i]
+                        ty = fnx[i]
+                        sl = om[j] * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * tx - (vy[i] + h * fy[i] - pvy[j]) * ty
+                        T = fca[i] * sl
+                        if abs(T) > mu[i] * cN[i]:
+                            # lets go: slides this step with mu N, solved again
+                            Ts = math.copysign(mu[i] * cN[i], T)
+                            cca[i] = 0.0
+                            stk[i] = 0.0
+                            cT[i] = Ts
+                            f0x[i] += Ts * -cny[i]
+                            f0y[i] += Ts * cnx[i]
+                            released = True
+                        else:
+                            cT[i] = T
+                    elif cT[i] != 0.0 and _it < 3:
+                        # a sliding segment whose slip the step would turn: it sticks, solved again
+                        j = cj[i]
+                        sl = om[j] * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * -cny[i] - (vy[i] + h * fy[i] - pvy[j]) * cnx[i]
+                        if sl * cT[i] < 0.0:
+                            f0x[i] -= cT[i] * -cny[i]
+                            f0y[i] -= cT[i] * cnx[i]
+                            cT[i] = 0.0
+                            cca[i] = mu[i] * cN[i] / dv
+                            stk[i] = 1.0
+                            released = True
+                if not released:
+                    break
             lin_cnt[0] -= 1
-            _chain.solve(n, fx, fy, mz, lin_dinv, lin_y, lin_x, lin_r)
             for i in range(n):
-                hm = hm_[i]
                 vxs = vx[i] + h * fx[i]
                 vys = vy[i] + h * fy[i]
                 w[i] += h * mz[i]
                 j = cj[i]
                 if j >= 0:
+                    N = cN[i]
+                    T = cT[i]
                     nx = cnx[i]
                     ny = cny[i]
-                    N = cN[i]
-                    rvx = vxs - pvx[j]
-                    rvy = vys - pvy[j]
-                    T = 0.0
+                    if fca[i] > 0.0:
+                        tx = -fny[i]
+                        ty = fnx[i]
+                    else:
+                        tx = -ny
+                        ty = nx
                     if N > 0.0:
-                        T, sl = friction(mu[i], law, dv, dmax, N, om[j] * pr[j] - (rvx * -ny + rvy * nx), hm, h, z, i)
+                        sl = om[j] * pr[j] - (vxs - pvx[j]) * tx - (vys - pvy[j]) * ty
                         pfr += T * sl
-                        vxs += hm * T * -ny
-                        vys += hm * T * nx
-                        vn_new = rvx * nx + rvy * ny
-                        pcd += smoothstep(cp[i] / pmax) * bc[i] * vn_new * vn_new
+                        if fca[i] == 0.0:
+                            # a sliding segment whose slip reached the band or turned sticks next step
+                            stk[i] = 1.0 if (abs(sl) < dv or sl * T < 0.0) else 0.0
                         tq_belt[j] -= pr[j] * T
-                        hubx[j] -= N * nx + T * -ny
-                        huby[j] -= N * ny + T * nx
+                        hubx[j] -= N * nx + T * tx
+                        huby[j] -= N * ny + T * ty
+                    else:
+                        stk[i] = 0.0
                     seg_n[i] = N
                     seg_t[i] = T
                     seg_p[i] = cp[i]
                 else:
-                    z[i] = 0.0
                     seg_n[i] = 0.0
                     seg_t[i] = 0.0
                     seg_p[i] = 0.0
