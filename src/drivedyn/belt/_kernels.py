@@ -644,6 +644,37 @@ def _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cv
 REFACTOR_ANGLE = 0.05
 
 
+import os as _os
+ALPHA = float(_os.environ.get("DD_ALPHA", "0"))
+
+
+@njit(cache=True, inline="always")
+def _numerical_damping(n, hl, c, s, vx, vy, w, kax, kb, ah, fx, fy, mz):
+    """Add -ah k (gap velocity) per joint (isotropic) and -ah kb (dw): returns its power."""
+    P = 0.0
+    for i in range(n):
+        k = i - 1 if i > 0 else n - 1
+        ax = hl * c[k]
+        ay = hl * s[k]
+        bx = hl * c[i]
+        by = hl * s[i]
+        gx = (vx[i] + w[i] * by) - (vx[k] - w[k] * ay)
+        gy = (vy[i] - w[i] * bx) - (vy[k] + w[k] * ax)
+        b = ah * kax[i]
+        Fx = b * gx
+        Fy = b * gy
+        dw = w[i] - w[k]
+        M = ah * kb[i] * dw
+        fx[k] += Fx
+        fy[k] += Fy
+        mz[k] += ax * Fy - ay * Fx + M
+        fx[i] -= Fx
+        fy[i] -= Fy
+        mz[i] += bx * Fy - by * Fx - M
+        P += Fx * gx + Fy * gy + M * dw
+    return P
+
+
 @njit(cache=True)
 def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jdx, jdy, turn, m, ieff, sig, gam,
               kap, kat, knx, kny, dmat, omat, emat, dinv, ymat, xmat):
@@ -763,6 +794,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
             # anchored to the pulley surface in A by the friction law's secant slope mu N / dv
             # (pulley speeds frozen over the step), its friction the anchor's force. An anchor
             # whose force would exceed mu N lets go and the step is solved again (active set).
+            if ALPHA > 0.0:
+                _numerical_damping(n, hl, c, s, vx, vy, w, kax, kb, ALPHA * 0.5 * h, fx, fy, mz)
             for i in range(n):
                 fy[i] -= m_[i] * g
                 cj[i] = -1
