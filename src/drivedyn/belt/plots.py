@@ -354,7 +354,10 @@ def _figures(ds, driver):
         fig = Figure(figsize=(8, min(max(8 * aspect * 0.85 + 0.8, 2.6), 9)), layout="constrained")
         a = fig.add_subplot()
         sc = draw_drive(ds, ds.sizes["frame"] - 1, a)
-        fig.colorbar(sc, ax=a, label="element force (N)", shrink=0.8, aspect=30, pad=0.01)
+        # a flat drive (equal aspect) is short: a colour bar beside it would stand taller than it
+        wide = aspect < 0.6
+        fig.colorbar(sc, ax=a, label="element force (N)", location="bottom" if wide else "right",
+                     shrink=0.5 if wide else 0.8, aspect=40 if wide else 30, pad=0.01)
         return fig
 
     jobs += [("speeds.png", speeds), ("tensions.png", tensions), ("segment_forces.png", segment_forces),
