@@ -1,64 +1,61 @@
-"""Where the time of a default `drivedyn run examples/belt-5pk.toml` goes: solving against writing
-the outputs (results.nc + summary.json, each plot, report.html).
+"""The share of a default `drivedyn run examples/belt-5pk.toml` spent writing its outputs
+(results.nc, summary.json, the plots, report.html), as a user sees it: each run in a fresh
+interpreter, timed from the start of the script to the end of the command; "outputs" is the time
+from the end of the solve (drivedyn.run returning) to the end.
 
-Run: python benchmarks/bench_outputs.py [example]   (not a timed test; numbers depend on the machine)
+Run: python benchmarks/bench_outputs.py [example] [runs]   (not a timed test; numbers depend on
+the machine and on what else runs on it: compare numbers measured back to back)
 """
+import json
+import statistics
+import subprocess
 import sys
-import tempfile
 import time
-from pathlib import Path
 
-import drivedyn
-from drivedyn import plotting
+T0 = time.perf_counter()
 
 
-def main(name="belt-5pk"):
-    model = drivedyn.load(drivedyn.example_path(name))
-    drivedyn.run(drivedyn.replace(model, {"simulation.duration": 0.01}))      # kernels loaded once
-    out = Path(tempfile.mkdtemp())
-    t0 = time.perf_counter()
-    r = drivedyn.run(model)
-    t_run = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    r.save(out)
-    t_save = time.perf_counter() - t0
-    times = {}
-    orig = plotting.save
+def one(example):
+    """One `drivedyn run EXAMPLE -o tmp -q` in this process; prints its timings as JSON."""
+    import contextlib
+    import io
+    import tempfile
 
-    def timed_save(fig, path, *a, **k):      # the time each figure takes to draw and write
-        t = time.perf_counter()
-        p = orig(fig, path, *a, **k)
-        times[Path(path).name] = time.perf_counter() - t
-        return p
+    from drivedyn import api, cli
 
-    plotting.save = timed_save
-    t0 = time.perf_counter()
-    files = drivedyn.api.plot(r, out)
-    t_plot = time.perf_counter() - t0
-    plotting.save = orig
-    t0 = time.perf_counter()
-    from drivedyn.report import write_report
+    marks = {}
+    run = api.run
 
-    write_report(r, out, files, model=model)
-    t_report = time.perf_counter() - t0
-    total = t_run + t_save + t_plot + t_report
-    print(f"{name}: run {t_run:.2f} s, save {t_save:.2f} s, plots {t_plot:.2f} s ({len(files)} files), "
-          f"report {t_report:.2f} s; outputs {100 * (total - t_run) / total:.0f} % of {total:.2f} s")
-    for k, v in sorted(times.items(), key=lambda kv: -kv[1]):
-        print(f"  {k:22s} {v:.2f} s (savefig, in this process)")
-    # as the command line does it: the figures drawn in two forked processes while this one
-    # writes results.nc, then report.html
-    out2 = Path(tempfile.mkdtemp())
-    t0 = time.perf_counter()
-    files = drivedyn.api.plot(r, out2, meanwhile=lambda: r.save(out2))
-    write_report(r, out2, files, model=model)
-    t_out = time.perf_counter() - t0
-    print(f"{name} as `drivedyn run` writes them: outputs {t_out:.2f} s, {100 * t_out / (t_run + t_out):.0f} % of "
-          f"{t_run + t_out:.2f} s")
-    gif = [f for f in files if f.suffix == ".gif"]
-    if gif:
-        print(f"  animation: {', '.join(f.name for f in gif)} (written outside plotting.save)")
+    def timed_run(*a, **k):
+        try:
+            return run(*a, **k)
+        finally:
+            marks["solved"] = time.perf_counter() - T0
+
+    api.run = timed_run
+    with tempfile.TemporaryDirectory() as out, contextlib.redirect_stdout(io.StringIO()), \
+            contextlib.redirect_stderr(io.StringIO()):
+        code = cli.main(["run", str(api.example_path(example)), "-o", out, "-q"])
+        end = time.perf_counter() - T0
+    print(json.dumps({"code": code, "total": end, "outputs": end - marks["solved"]}))
+
+
+def main(example="belt-5pk", runs=3):
+    rows = []
+    for _ in range(int(runs)):
+        p = subprocess.run([sys.executable, __file__, "--one", example], capture_output=True, text=True, check=True)
+        rows.append(json.loads(p.stdout.strip().splitlines()[-1]))
+    for r in rows:
+        print(f"  total {r['total']:.2f} s, outputs {r['outputs']:.2f} s ({100 * r['outputs'] / r['total']:.0f} %)")
+    total = statistics.median(r["total"] for r in rows)
+    outputs = statistics.median(r["outputs"] for r in rows)
+    share = statistics.median(r["outputs"] / r["total"] for r in rows)
+    print(f"{example}, median of {len(rows)}: run {total:.2f} s, outputs {outputs:.2f} s, "
+          f"{100 * share:.0f} % of the run")
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:])
+    if sys.argv[1:2] == ["--one"]:
+        one(sys.argv[2])
+    else:
+        main(*sys.argv[1:])

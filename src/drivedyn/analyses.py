@@ -40,15 +40,28 @@ class Analysis:
     def check(self, model) -> str:
         return self._get(self.check_at)(model)
 
-    def plot(self, result, outdir, meanwhile=None):
+    def plot(self, result, outdir, meanwhile=None, painters=None):
         import inspect
 
         fn = self._get(self.plot_at)
+        if painters is not None and "painters" in inspect.signature(fn).parameters:
+            return fn(result, outdir, meanwhile=meanwhile, painters=painters)
         if meanwhile is not None and "meanwhile" in inspect.signature(fn).parameters:
             return fn(result, outdir, meanwhile=meanwhile)
         if meanwhile is not None:
             meanwhile()
         return fn(result, outdir)
+
+    def painters(self):
+        """plotting.Painters forked now to write this analysis's outputs after a solve, or None
+        where its plot function does not use them (or forking is not possible)."""
+        import inspect
+
+        from .plotting import Painters
+
+        if "painters" not in inspect.signature(self._get(self.plot_at)).parameters:
+            return None
+        return Painters.start(f"{self.package}.{self.plot_at.split(':')[0]}")
 
     def check_data(self, model) -> dict:
         if not self.check_data_at:

@@ -45,13 +45,20 @@ def check(model) -> str:
         return analysis(m.kind).check(m)
 
 
-def plot(result, outdir, meanwhile=None) -> list[Path]:
+def plot(result, outdir, meanwhile=None, painters=None) -> list[Path]:
     """Write the standard PNG plots of a Result into ``outdir``; returns the files written.
     ``meanwhile()`` runs while they are drawn where the analysis draws in other processes (belt
-    drives), else first."""
+    drives), else first. ``painters`` (from :func:`painters`) are the processes that draw them."""
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    return analysis(result.kind).plot(result, outdir, meanwhile=meanwhile)
+    return analysis(result.kind).plot(result, outdir, meanwhile=meanwhile, painters=painters)
+
+
+def painters(kind: str):
+    """Processes forked now, before a solve of ``kind``, that load the plotting libraries while
+    it runs and then write its outputs (a ``plotting.Painters``; close it after use), or None
+    where the analysis draws in this process."""
+    return analysis(kind).painters()
 
 
 def examples_dir() -> Path:

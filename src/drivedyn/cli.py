@@ -80,28 +80,41 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
     result, failure = None, None
     import contextlib
 
-    with (contextlib.nullcontext() if quiet else _progress_bar(console)) as bar:
-        task = None if quiet else bar.add_task(f"{m.kind}", total=1.0, info="")
+    # processes that import the plotting libraries while the model is solved, then write results.nc
+    # and the plots (before the progress bar: it runs a thread, and they are forked)
+    painters = api.painters(m.kind) if plots else None
+    with contextlib.ExitStack() as stack:
+        if painters is not None:
+            stack.enter_context(painters)
+        with (contextlib.nullcontext() if quiet else _progress_bar(console)) as bar:
+            task = None if quiet else bar.add_task(f"{m.kind}", total=1.0, info="")
 
-        def progress(frac, info=""):
-            bar.update(task, completed=min(max(frac, 0.0), 1.0), info=info)
+            def progress(frac, info=""):
+                bar.update(task, completed=min(max(frac, 0.0), 1.0), info=info)
 
-        try:
-            result = api.run(m, progress=None if quiet else progress)
-        except SolverError as exc:
-            failure = exc
-            result = exc.partial
-        except ModelError as exc:
-            _fail(_named(model, exc))
+            try:
+                result = api.run(m, progress=None if quiet else progress)
+            except SolverError as exc:
+                failure = exc
+                result = exc.partial
+            except ModelError as exc:
+                _fail(_named(model, exc))
+        if result is not None:
+            if not quiet:
+                console.print(f"writing results.nc and summary.json{', plots' if plots else ''}"
+                              f"{' and report.html' if report else ''} into {out} ...")
+            if plots and painters is not None:     # one painter writes results.nc, the others start drawing
+                from .plotting import save_result
+
+                saved = painters.submit(result, save_result, out)
+                written = api.plot(result, out, painters=painters)
+                saved.result()
+            elif plots:     # results.nc is written while the figures are drawn
+                written = api.plot(result, out, meanwhile=lambda: result.save(out))
+            else:
+                result.save(out)
+                written = []
     if result is not None:
-        if not quiet:
-            console.print(f"writing results.nc and summary.json{', plots' if plots else ''}"
-                          f"{' and report.html' if report else ''} into {out} ...")
-        if plots:     # results.nc is written while the figures are drawn
-            written = api.plot(result, out, meanwhile=lambda: result.save(out))
-        else:
-            result.save(out)
-            written = []
         console.print(f"wrote {out / 'results.nc'}, {out / 'summary.json'} and {len(written)} plot(s)")
         if report:
             from .report import write_report

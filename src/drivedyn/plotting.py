@@ -3,19 +3,21 @@
 Plot functions of the analyses take the data and an optional ``ax`` (``plot_x(ds, ax=None)``);
 ``plot_all(result, outdir)`` draws the standard set, calls :func:`mark_status` on each figure and
 saves it with :func:`save`, so a figure of a run that ended in ``warning`` or ``failed`` says so
-on its face.
+on its face. matplotlib is imported only where a figure is made (importing it costs 0.3 s), so
+that :class:`Painters` forked before a solve import it on the core the solve leaves idle.
 """
 from __future__ import annotations
 
+import os
 from pathlib import Path
-
-from matplotlib.figure import Figure
 
 _COLOURS = {"warning": "#b8860b", "failed": "#b22222"}
 
 
 def figure(nrows: int = 1, ncols: int = 1, size=(8, 3.2), **kw):
     """A constrained-layout Figure and its 2-D array of axes (never pyplot: runs headless)."""
+    from matplotlib.figure import Figure
+
     fig = Figure(figsize=size, layout="constrained")
     axes = fig.subplots(nrows, ncols, squeeze=False, **kw)
     return fig, axes
@@ -50,14 +52,14 @@ class StatusOnly:
         return cls(result.status, result.message, list(result.diagnostics))
 
 
-def mark_status(fig: Figure, result) -> None:
+def mark_status(fig, result) -> None:
     """Write the run's status across the top of ``fig`` when it is not a clean success."""
     text = status_text(result)
     if text:
         fig.suptitle(text, color=_COLOURS[result.status], fontsize=10, fontweight="bold")
 
 
-def save(fig: Figure, path: Path, result=None, files: list | None = None, **kw) -> Path:
+def save(fig, path: Path, result=None, files: list | None = None, **kw) -> Path:
     """Mark the status (if ``result``), save ``fig`` to ``path`` and append it to ``files``."""
     if result is not None:
         mark_status(fig, result)
@@ -67,3 +69,107 @@ def save(fig: Figure, path: Path, result=None, files: list | None = None, **kw) 
     if files is not None:
         files.append(Path(path))
     return Path(path)
+
+
+class Painters:
+    """Processes forked before a long solve that write its outputs after it.
+
+    While the solve runs on one core they import matplotlib, h5netcdf and xarray's writers and
+    write a tiny figure and netCDF file on the other, one painter after the other, so that writing starts at
+    full speed when the result is there. ``submit(result, fn, *args)`` runs ``fn(result, *args)`` in a
+    painter; the result travels once, pickled to a temporary file each painter reads once.
+    :meth:`start` gives None where forking is unsafe (threads running) or pointless (one core).
+    """
+
+    def __init__(self, module: str, workers: int = 2):
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        ctx = multiprocessing.get_context("fork")
+        self._ex = ProcessPoolExecutor(workers, mp_context=ctx, initializer=_painter_start, initargs=(module, ctx.Lock()))
+        self._ex.submit(int)       # with fork, the first job starts every worker: now, before the solve
+        self._pickled = None       # (id of the result, temporary file)
+
+    @classmethod
+    def start(cls, module: str, workers: int = 2):
+        import threading
+
+        if workers < 2 or (os.cpu_count() or 1) < 2 or not hasattr(os, "fork") or threading.active_count() != 1:
+            return None
+        return cls(module, workers)
+
+    def submit(self, result, fn, *args):
+        if self._pickled is None or self._pickled[0] != id(result):
+            import pickle
+            import tempfile
+
+            self._forget()
+            fd, path = tempfile.mkstemp(prefix="drivedyn-", suffix=".pickle")
+            with os.fdopen(fd, "wb") as f:
+                pickle.dump(result, f, protocol=pickle.HIGHEST_PROTOCOL)
+            self._pickled = (id(result), path)
+        return self._ex.submit(_painter_call, self._pickled[1], fn, *args)
+
+    def _forget(self):
+        if self._pickled is not None:
+            Path(self._pickled[1]).unlink(missing_ok=True)
+            self._pickled = None
+
+    def close(self):
+        self._ex.shutdown(wait=True, cancel_futures=True)
+        self._forget()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+_PAINTER_RESULT = None     # (file, Result) last read by this painter
+
+
+def _painter_start(module: str, one_at_a_time):
+    import importlib
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)   # Ctrl-C stops the parent, which ends its painters
+    with one_at_a_time:     # one painter loads at a time: together they would slow the solve on two cores
+        importlib.import_module(module)
+        _rehearse()
+
+
+def _rehearse():
+    """Write a tiny netCDF file and PNG: the first of each costs 0.2-0.3 s more than the next
+    (imports, xarray's backend lookup, which imports dask.distributed, fonts, mathtext), measured."""
+    import io
+    import tempfile
+
+    import numpy as np
+    import xarray as xr
+    from matplotlib.figure import Figure
+
+    with tempfile.TemporaryDirectory() as tmp:
+        xr.Dataset({"x": ("t", np.zeros(3))}).to_netcdf(Path(tmp) / "r.nc", engine="h5netcdf")
+    fig = Figure(figsize=(2, 2))
+    ax = fig.subplots(2, 1)
+    ax[0].plot([1, 2], [1, 2], label="x")
+    ax[0].legend()
+    ax[0].set_title("x")
+    ax[1].semilogy([1, 2], [1, 10])
+    fig.savefig(io.BytesIO(), format="png", dpi=30)
+
+
+def _painter_call(path: str, fn, *args):
+    global _PAINTER_RESULT
+    if _PAINTER_RESULT is None or _PAINTER_RESULT[0] != path:
+        import pickle
+
+        with open(path, "rb") as f:
+            _PAINTER_RESULT = (path, pickle.load(f))
+    return fn(_PAINTER_RESULT[1], *args)
+
+
+def save_result(result, outdir):
+    """``result.save(outdir)`` (a module function, to be run in a painter)."""
+    return result.save(outdir)

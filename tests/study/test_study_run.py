@@ -41,6 +41,9 @@ def test_grid_study_matches_single_runs(client, write_study, tmp_path):
     assert dict(ds.sizes)["belt.pretension"] == 2 and dict(ds.sizes)["load_torque"] == 3
     assert ds["load_torque"].values.tolist() == [5.0, 10.0, 15.0]
     assert ds["belt.pretension"].attrs["units"] == "N"
+    # summary values keep the cases' units (the study plots label axes and colour bars with them)
+    assert ds["spans.driver-driven.tension_mean"].attrs["units"] == "N"
+    assert ds["pulleys.driven.speed_mean"].attrs["units"] == "rad/s"
     assert np.isin(ds["status"], COMPLETED).all()
     assert res.counts["ran"] == 6 and res.counts["cached"] == 0
     assert "[[parameters]]" in ds.attrs["study_toml"] and 'kind = "belt-drive"' in ds.attrs["base_model_toml"]

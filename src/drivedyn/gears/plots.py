@@ -111,7 +111,7 @@ def plot_vibration(ds, ax=None):
                             label=f"{label} (drift {drift[0] * 1e3:.3g} mrad/s removed)")[0])
     ax.set_xlabel("time [s]")
     ax.set_ylabel("angle - nominal rotation [mrad]")
-    ax.set_title(f"torsional vibration in the steady window {w0:.3g}-{w1:.3g} s (linear drift removed)")
+    ax.set_title(f"torsional vibration in the steady window {w0:.3g}-{w1:.3g} s\n(linear drift removed)")
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, frameon=False)
     ax.grid(alpha=0.3)
     return arts
@@ -194,9 +194,12 @@ def plot_sweep(ds, ax=None):
     ax = _ax(ax)
     rpm = ds.sweep_speed.values * 30 / math.pi
     arts = []
-    for j, m in enumerate(ds.mesh.values):
-        arts.append(ax.plot(rpm, ds.kv_sweep.sel(mesh=m), f"C{j}", lw=1, label=f"simulated, mesh {m}")[0])
-        arts.append(ax.plot(rpm, ds.kv_iso_sweep.sel(mesh=m), f"C{j}--", lw=1.2, label=f"ISO 6336-1 method B, mesh {m}")[0])
+    meshes = _distinct(ds, "kv_sweep", "mesh")          # identical meshes: one curve, "m12 = m13"
+    if len(meshes) != len(_distinct(ds, "kv_iso_sweep", "mesh")):
+        meshes = [(m, str(m)) for m in ds.mesh.values]
+    for j, (m, label) in enumerate(meshes):
+        arts.append(ax.plot(rpm, ds.kv_sweep.sel(mesh=m), f"C{j}", lw=1, label=f"simulated, mesh {label}")[0])
+        arts.append(ax.plot(rpm, ds.kv_iso_sweep.sel(mesh=m), f"C{j}--", lw=1.2, label=f"ISO 6336-1 method B, mesh {label}")[0])
     op = ds.attrs["input_speed"] * 30 / math.pi
     arts.append(ax.axvline(op, color="k", lw=0.8, ls=":", label=f"operating speed {op:.0f} rpm"))
     if "sweep_unstable" in ds:
@@ -211,8 +214,8 @@ def plot_sweep(ds, ax=None):
     ax.set_ylim(0.8, max(top * 1.05, 2.8))
     ax.set_xlabel("input speed [rpm]")
     ax.set_ylabel("K_v")
-    ax.set_title("K_v against input speed (shaded: parametric instability of the linear model)")
-    ax.legend(loc="upper left", fontsize=8)
+    ax.set_title("K_v against input speed\n(shaded: parametric instability of the linear model)")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, frameon=False)   # beside: the peaks sit top left
     ax.grid(alpha=0.3)
     return arts
 
@@ -242,7 +245,7 @@ def plot_campbell(ds, ax=None, orders=(1, 2, 3, 4, 5)):
     ax.set_xlabel("input speed [rpm]")
     ax.set_ylabel("frequency [Hz]")
     ax.set_title("Campbell diagram: natural frequencies and mesh orders (circles: resonances)")
-    ax.legend(loc="upper left", fontsize=8)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, frameon=False)   # beside: the low orders sit top left
     ax.grid(alpha=0.3)
     return arts
 

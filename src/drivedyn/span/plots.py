@@ -164,6 +164,8 @@ def plot_frequencies(ds, summary, ax=None):
                                 label=f"measured {me['frequency']:.4g} Hz -> {me['tension']:.4g} +- {me['uncertainty']:.2g} N"))
     ax.set_xlabel("span tension (N)")
     ax.set_ylabel("first span frequency (Hz)")
+    ax.set_title("first span frequency against tension"
+                 + ("\n(and the tension a measured frequency gives)" if me else ""), fontsize=10)
     ax.legend(loc="lower right", fontsize=8)
     ax.grid(alpha=0.3)
     return arts
@@ -180,6 +182,7 @@ def plot_tooth_force(ds, summary, ax=None):
                     label=f"Fourier series, {ds.sizes['harmonic']} harmonics (F1 = {summary['f1']:.4g} N)")
     ax.set_xlabel("phase over one tooth (rad)")
     ax.set_ylabel("force (N)")
+    ax.set_title("tooth force over one tooth pitch and its Fourier series", fontsize=10)
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     return arts

@@ -210,7 +210,7 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
             return done
         journal(cache, key, "start")
     t0 = time.perf_counter()
-    status, message, summary, ds, diagnostics = "success", "", {}, None, []
+    status, message, summary, ds, diagnostics, units = "success", "", {}, None, [], {}
     try:
         model = loads(toml, source=f"case {key}")
         if mode == "check":   # what check knows, as the case's summary (no time series)
@@ -222,7 +222,7 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
             result = Result(model.kind, xr.Dataset(), analysis(model.kind).check_data(model))
         else:
             result = run(model, progress=_deadline(timeout))
-        summary, ds, diagnostics = result.flat_summary(), result.ds, result.diagnostics
+        summary, ds, diagnostics, units = result.flat_summary(), result.ds, result.diagnostics, result.units
         status, message = result.status, result.message
         if status == "warning":  # the diagnostics, one line
             message = "; ".join(d.line() for d in diagnostics)
@@ -230,6 +230,7 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
         status, message = "failed", _one_line(exc)
         if exc.partial is not None:
             summary, ds, diagnostics = exc.partial.flat_summary(), exc.partial.ds, exc.partial.diagnostics
+            units = exc.partial.units
     except ModelError as exc:
         status, message = "invalid", _one_line(exc)
     except Stopped as exc:  # an analysis that keeps nothing when stopped
@@ -238,6 +239,7 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
         status, message = "error", f"{type(exc).__name__}: {_one_line(exc)}"
     record = {
         "key": key, "status": status, "message": message, "summary": _clean(summary),
+        "units": {k: u for k, u in units.items() if k in summary},   # the study's plots label axes with them
         "diagnostics": [d.to_dict() for d in diagnostics],
         "wall_time": time.perf_counter() - t0, "worker": f"{socket.gethostname()}:{os.getpid()}",
         "finished": _dt.datetime.now().isoformat(timespec="seconds"), "drivedyn_version": __version__,

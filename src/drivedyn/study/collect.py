@@ -69,22 +69,27 @@ def assemble(study, design, cases, records, cache) -> xr.Dataset:
 
     data_vars, summary_keys = {}, []
     labels = set(design.labels)
+    units = {}      # summary key -> unit, as the cases' results gave it (older cached records have none)
+    for r in recs:
+        for k, u in (r.get("units") or {}).items():
+            units.setdefault(k, u)
     for k in keys:
         vals = [r.get("summary", {}).get(k) for r in recs]
         kind = _kind_of(vals)
         if kind is None:
             continue
         name = _safe(f"summary.{k}" if k in labels or k in ("case", "status", "message", "diagnostics") else k)
+        attrs = {"long_name": k, **({"units": units[k]} if k in units else {})}
         if kind == "float":
             arr = np.array([np.nan if v is None else float(v) for v in vals])
-            data_vars[name] = (("case",), arr, {"long_name": k})
+            data_vars[name] = (("case",), arr, attrs)
         elif kind == "str":
             arr = np.array(["" if v is None else v for v in vals], dtype=object)
-            data_vars[name] = (("case",), arr, {"long_name": k})
+            data_vars[name] = (("case",), arr, attrs)
         else:
             m = kind[1]
             arr = np.array([[np.nan] * m if v is None else [np.nan if x is None else float(x) for x in v] for v in vals])
-            data_vars[name] = (("case", f"{k}.i"), arr, {"long_name": k})
+            data_vars[name] = (("case", f"{k}.i"), arr, attrs)
         summary_keys.append(name)
     data_vars["status"] = (("case",), status, {"long_name": "case status: " + ", ".join(STATUSES)})
     data_vars["message"] = (("case",), np.array([r.get("message", "") for r in recs], dtype=object),

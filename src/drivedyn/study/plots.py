@@ -16,9 +16,14 @@ import numpy as np
 
 
 def _label(ds, name):
+    """'critical speed margin (m/s)': the key's last part in words, its unit ('ratio' for '1')."""
     var = ds[name]
     unit = var.attrs.get("units", "")
-    return f"{name} ({unit})" if unit else name
+    unit = "ratio" if unit == "1" else unit
+    if name in ds.coords:        # a parameter: its label, as the study file names it
+        return f"{name} ({unit})" if unit else name
+    words = str(var.attrs.get("long_name", name)).split(".")[-1].replace("_", " ")
+    return f"{words} ({unit})" if unit else words
 
 
 def _numeric(ds, name):
