@@ -69,7 +69,7 @@ def _sub_tmul(a, b, out):
 
 
 @njit(cache=True)
-def factor(n, hl, c, s, m, inertia, sig, gam, kap, kat, knx, kny, dmat, omat, emat, dinv, ymat, xmat):
+def factor(n, hl, c, s, m, inertia, sig, gam, geo, kap, kat, knx, kny, dmat, omat, emat, dinv, ymat, xmat):
     """Assemble and factor A (see the module doc) at the segment angles (c, s): m, inertia per
     segment (the integrator's, mass-scaled or not); sig[j] = h^2/2 k_j + h b_j per joint (N s/m
     times s: the gap block sig I), gam[j] the same for its bending spring and damper. dmat, omat,
@@ -84,7 +84,7 @@ def factor(n, hl, c, s, m, inertia, sig, gam, kap, kat, knx, kny, dmat, omat, em
         dmat[i, 0] = m[i] + kap[i] * nx * nx + kat[i] * ny * ny
         dmat[i, 1] = dmat[i, 3] = (kap[i] - kat[i]) * nx * ny
         dmat[i, 4] = m[i] + kap[i] * ny * ny + kat[i] * nx * nx
-        dmat[i, 8] = inertia[i]
+        dmat[i, 8] = inertia[i] + geo[i]
     for j in range(n):
         k = j - 1 if j > 0 else n - 1
         i = j
@@ -195,12 +195,12 @@ def solve(n, fx, fy, mz, dinv, ymat, xmat, r):
         u2 = v2
 
 
-def dense(n, hl, c, s, m, inertia, sig, gam, kap, kat, knx, kny):
+def dense(n, hl, c, s, m, inertia, sig, gam, geo, kap, kat, knx, kny):
     """A as a dense (3n, 3n) matrix (tests: the factor against numpy)."""
     A = np.zeros((3 * n, 3 * n))
     for i in range(n):
         A[3 * i, 3 * i] = A[3 * i + 1, 3 * i + 1] = m[i]
-        A[3 * i + 2, 3 * i + 2] = inertia[i]
+        A[3 * i + 2, 3 * i + 2] = inertia[i] + geo[i]
         nv = np.array([knx[i], kny[i]])
         tv = np.array([-kny[i], knx[i]])
         A[3 * i:3 * i + 2, 3 * i:3 * i + 2] += kap[i] * np.outer(nv, nv) + kat[i] * np.outer(tv, tv)

@@ -254,6 +254,7 @@ class Work(NamedTuple):
     lin_gam: np.ndarray
     lin_fk: np.ndarray       # (n,) contact coefficient each segment had when the matrix was factored
     lin_fa: np.ndarray       # (n,) anchor slope (friction, N s/m) it was factored with
+    lin_geo: np.ndarray      # (n,) scratch: geometric stiffness terms
     lin_st: np.ndarray       # (n,) 1: the segment stuck to its pulley at the last step
     lin_cnt: np.ndarray      # int64 (2): steps until the next factorisation, factorisations done
 
@@ -644,45 +645,24 @@ def _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cv
 REFACTOR_ANGLE = 0.05
 
 
-import os as _os
-ALPHA = float(_os.environ.get("DD_ALPHA", "0"))
-
-
-@njit(cache=True, inline="always")
-def _numerical_damping(n, hl, c, s, vx, vy, w, kax, kb, ah, fx, fy, mz):
-    """Add -ah k (gap velocity) per joint (isotropic) and -ah kb (dw): returns its power."""
-    P = 0.0
-    for i in range(n):
-        k = i - 1 if i > 0 else n - 1
-        ax = hl * c[k]
-        ay = hl * s[k]
-        bx = hl * c[i]
-        by = hl * s[i]
-        gx = (vx[i] + w[i] * by) - (vx[k] - w[k] * ay)
-        gy = (vy[i] - w[i] * bx) - (vy[k] + w[k] * ax)
-        b = ah * kax[i]
-        Fx = b * gx
-        Fy = b * gy
-        dw = w[i] - w[k]
-        M = ah * kb[i] * dw
-        fx[k] += Fx
-        fy[k] += Fy
-        mz[k] += ax * Fy - ay * Fx + M
-        fx[i] -= Fx
-        fy[i] -= Fy
-        mz[i] += bx * Fy - by * Fx - M
-        P += Fx * gx + Fy * gy + M * dw
-    return P
-
-
 @njit(cache=True)
-def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jdx, jdy, turn, m, ieff, sig, gam,
-              kap, kat, knx, kny, dmat, omat, emat, dinv, ymat, xmat):
+def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jdx, jdy, turn, m, ieff, sig, gam,
+              geo, kap, kat, knx, kny, dmat, omat, emat, dinv, ymat, xmat):
     """Factor the chain matrix at the current angles (joint tangent stiffnesses at the current
-    gaps); returns the number of steps it serves (turning of the fastest segment, REFACTOR_ANGLE)."""
+    gaps); returns the number of steps it serves (turning of the fastest segment, REFACTOR_ANGLE).
+    geo: scratch (n), the joints' geometric stiffness on the segments' rotation: the force F of a
+    joint turning the arm a of a segment end stiffens that rotation by F . a (the tension's
+    T l / 2 per end, which sets the segment-scale transverse waves, h < l / sqrt(T / rho),
+    explicitly); taken only where positive so that A stays positive definite."""
     wmax = 0.0
     for i in range(n):
+        geo[i] = 0.0
+    for i in range(n):
         k = i - 1 if i > 0 else n - 1
+        ga = jfk[i] * (jdx[i] * hl * c[k] + jdy[i] * hl * s[k])
+        gb = jfk[i] * (jdx[i] * hl * c[i] + jdy[i] * hl * s[i])
+        geo[k] += 0.5 * h * h * max(ga, 0.0)
+        geo[i] += 0.5 * h * h * max(gb, 0.0)
         kt = kax[i]
         if not linear:   # tangent of kax |d|^e (its larger, radial-direction value)
             kt = kax[i] * max(eax, 1.0) * math.sqrt(jdx[i] * jdx[i] + jdy[i] * jdy[i]) ** (eax - 1.0)
@@ -693,7 +673,7 @@ def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jdx, jd
             kbt = kb[i] * eb * max(abs(dphi), 1e-6) ** (eb - 1.0)
         gam[i] = 0.5 * h * h * kbt + h * bb[i]
         wmax = max(wmax, abs(w[i]))
-    _chain.factor(n, hl, c, s, m, ieff, sig, gam, kap, kat, knx, kny, dmat, omat, emat, dinv, ymat, xmat)
+    _chain.factor(n, hl, c, s, m, ieff, sig, gam, geo, kap, kat, knx, kny, dmat, omat, emat, dinv, ymat, xmat)
     return max(1, min(1000, int(REFACTOR_ANGLE / (h * wmax + 1e-300))))
 
 
@@ -724,7 +704,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     pmode, pinv_i = P.mode, P.inv_i
     implicit = B.implicit
     lin_d, lin_o, lin_e, lin_dinv, lin_y, lin_x, lin_r = W.lin_d, W.lin_o, W.lin_e, W.lin_dinv, W.lin_y, W.lin_x, W.lin_r
-    lin_sig, lin_gam, lin_cnt, m_ = W.lin_sig, W.lin_gam, W.lin_cnt, B.m
+    lin_sig, lin_gam, lin_cnt, m_, lin_geo = W.lin_sig, W.lin_gam, W.lin_cnt, B.m, W.lin_geo
     ieff = inertia * iscale
     hj = 0.0 if implicit else h       # the implicit scheme's dampers are in the chain matrix
     # per segment: the pulley it touches (-1: none), normal, penetration, normal force, matrix
@@ -794,8 +774,6 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
             # anchored to the pulley surface in A by the friction law's secant slope mu N / dv
             # (pulley speeds frozen over the step), its friction the anchor's force. An anchor
             # whose force would exceed mu N lets go and the step is solved again (active set).
-            if ALPHA > 0.0:
-                _numerical_damping(n, hl, c, s, vx, vy, w, kax, kb, ALPHA * 0.5 * h, fx, fy, mz)
             for i in range(n):
                 fy[i] -= m_[i] * g
                 cj[i] = -1
@@ -853,9 +831,9 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                         fny[i] = cny[i]
                         fca[i] = cca[i]
                         kat[i] = h * cca[i]
-                    lin_cnt[0] = _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jdx, jdy, turn,
-                                           m_, ieff, lin_sig, lin_gam, fkap, kat, fnx, fny, lin_d, lin_o, lin_e,
-                                           lin_dinv, lin_y, lin_x)
+                    lin_cnt[0] = _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jdx, jdy,
+                                           turn, m_, ieff, lin_sig, lin_gam, lin_geo, fkap, kat, fnx, fny, lin_d,
+                                           lin_o, lin_e, lin_dinv, lin_y, lin_x)
                     lin_cnt[1] += 1
                 for i in range(n):
                     fx[i] = f0x[i]
