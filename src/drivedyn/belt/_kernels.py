@@ -255,6 +255,7 @@ class Work(NamedTuple):
     lin_fk: np.ndarray       # (n,) contact coefficient each segment had when the matrix was factored
     lin_fa: np.ndarray       # (n,) anchor slope (friction, N s/m) it was factored with
     lin_geo: np.ndarray      # (n,) scratch: geometric stiffness terms
+    lin_u: np.ndarray        # (nk, n, 3): A^-1 of each pulley's anchors (its unit speed change)
     lin_st: np.ndarray       # (n,) 1: the segment stuck to its pulley at the last step
     lin_cnt: np.ndarray      # int64 (2): steps until the next factorisation, factorisations done
 
@@ -642,7 +643,33 @@ def _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cv
 
 # the implicit scheme refactors its chain matrix once the fastest segment has turned this far
 # (rad): a stale matrix is a preconditioner still (see _chain.py); the forces are always exact
-REFACTOR_ANGLE = 0.05
+import os as _os
+REFACTOR_ANGLE = float(_os.environ.get("DD_RA", "0.05"))
+
+
+@njit(cache=True, inline="always")
+def _small_solve(k, a, b):
+    """b <- a^-1 b for a small dense k x k (Gaussian elimination with partial pivoting; a is
+    overwritten)."""
+    for c in range(k):
+        p = c
+        for r in range(c + 1, k):
+            if abs(a[r, c]) > abs(a[p, c]):
+                p = r
+        if p != c:
+            for q in range(k):
+                a[c, q], a[p, q] = a[p, q], a[c, q]
+            b[c], b[p] = b[p], b[c]
+        for r in range(c + 1, k):
+            f = a[r, c] / a[c, c]
+            for q in range(c, k):
+                a[r, q] -= f * a[c, q]
+            b[r] -= f * b[c]
+    for c in range(k - 1, -1, -1):
+        s = b[c]
+        for q in range(c + 1, k):
+            s -= a[c, q] * b[q]
+        b[c] = s / a[c, c]
 
 
 @njit(cache=True)
@@ -726,6 +753,19 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     fca = W.lin_fa
     kat = np.zeros(n)
     cT = np.zeros(n)
+    chg = np.zeros(n, dtype=np.int64)    # a segment changes between stick and slip once per step
+    # pulleys integrated with the chain solve: dynamic, no clutch (the others explicit)
+    ipl = np.zeros(nk, dtype=np.bool_)
+    for j in range(nk):
+        ipl[j] = implicit and pmode[j] == 0 and P.cl_kind[j] == 0
+    npl = int(np.sum(ipl))
+    lin_u = W.lin_u
+    ux = np.zeros(n)
+    uy = np.zeros(n)
+    uz = np.zeros(n)
+    qmat = np.zeros((nk, nk))
+    qb = np.zeros(nk)
+    dom = np.zeros(nk)
     f0x = np.zeros(n)
     f0y = np.zeros(n)
     f0z = np.zeros(n)
@@ -777,6 +817,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
             for i in range(n):
                 fy[i] -= m_[i] * g
                 cj[i] = -1
+                chg[i] = 0
                 cT[i] = 0.0
                 cca[i] = 0.0
                 for j in range(nk):
@@ -818,7 +859,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                 f0x[i] = fx[i]
                 f0y[i] = fy[i]
                 f0z[i] = mz[i]
-            for _it in range(4):
+            for _it in range(6):
                 refac = lin_cnt[0] <= 0
                 for i in range(n):
                     if (cj[i] >= 0) != (fkap[i] > 0.0) or (cca[i] > 0.0) != (fca[i] > 0.0):
@@ -835,6 +876,23 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                                            turn, m_, ieff, lin_sig, lin_gam, lin_geo, fkap, kat, fnx, fny, lin_d,
                                            lin_o, lin_e, lin_dinv, lin_y, lin_x)
                     lin_cnt[1] += 1
+                    # each implicit pulley's unit speed change through its anchors: U_j = A^-1 (sum fca r tau)
+                    for jj in range(nk):
+                        if not ipl[jj]:
+                            continue
+                        for i in range(n):
+                            if fca[i] > 0.0 and cj[i] == jj:
+                                ux[i] = fca[i] * pr[jj] * -fny[i]
+                                uy[i] = fca[i] * pr[jj] * fnx[i]
+                            else:
+                                ux[i] = 0.0
+                                uy[i] = 0.0
+                            uz[i] = 0.0
+                        _chain.solve(n, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r)
+                        for i in range(n):
+                            lin_u[jj, i, 0] = ux[i]
+                            lin_u[jj, i, 1] = uy[i]
+                            lin_u[jj, i, 2] = uz[i]
                 for i in range(n):
                     fx[i] = f0x[i]
                     fy[i] = f0y[i]
@@ -847,16 +905,55 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                         fx[i] += fca[i] * sl * tx
                         fy[i] += fca[i] * sl * ty
                 _chain.solve(n, fx, fy, mz, lin_dinv, lin_y, lin_x, lin_r)
+                if npl > 0:
+                    # pulleys implicit with the belt they anchor: I dw_j = h (M_ext + M_belt(dw)),
+                    # the anchors' targets at the new speeds; a small dense system (Schur complement)
+                    for jj in range(nk):
+                        for kk in range(nk):
+                            qmat[jj, kk] = 0.0
+                        if ipl[jj]:
+                            qmat[jj, jj] = 1.0 / pinv_i[jj]
+                            qb[jj] = h * _torque(jj, t, th[jj], om[jj], tq_const, tq_visc, tq_drag, w_drag, tq_quad,
+                                                 tq_pow, w_cut, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off,
+                                                 hm_order, hm_amp, hm_phase)
+                        else:
+                            qmat[jj, jj] = 1.0
+                            qb[jj] = 0.0
+                    for i in range(n):
+                        j = cj[i]
+                        if j < 0 or not ipl[j] or cN[i] <= 0.0:
+                            continue
+                        if fca[i] > 0.0:
+                            tx = -fny[i]
+                            ty = fnx[i]
+                            sl = om[j] * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * tx - (vy[i] + h * fy[i] - pvy[j]) * ty
+                            qb[j] -= h * pr[j] * fca[i] * sl
+                            qmat[j, j] += h * pr[j] * fca[i] * pr[j]
+                            for kk in range(nk):
+                                if ipl[kk]:
+                                    qmat[j, kk] -= h * pr[j] * fca[i] * (lin_u[kk, i, 0] * tx + lin_u[kk, i, 1] * ty)
+                        else:
+                            qb[j] -= h * pr[j] * cT[i]
+                    _small_solve(nk, qmat, qb)
+                    for i in range(n):
+                        for kk in range(nk):
+                            if ipl[kk] and qb[kk] != 0.0:
+                                fx[i] += qb[kk] * lin_u[kk, i, 0]
+                                fy[i] += qb[kk] * lin_u[kk, i, 1]
+                                mz[i] += qb[kk] * lin_u[kk, i, 2]
+                    for jj in range(nk):
+                        dom[jj] = qb[jj]
                 released = False
                 for i in range(n):
                     if fca[i] > 0.0:
                         j = cj[i]
                         tx = -fny[i]
                         ty = fnx[i]
-                        sl = om[j] * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * tx - (vy[i] + h * fy[i] - pvy[j]) * ty
+                        sl = (om[j] + dom[j]) * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * tx - (vy[i] + h * fy[i] - pvy[j]) * ty
                         T = fca[i] * sl
                         if abs(T) > mu[i] * cN[i]:
                             # lets go: slides this step with mu N, solved again
+                            chg[i] = 1
                             Ts = math.copysign(mu[i] * cN[i], T)
                             cca[i] = 0.0
                             stk[i] = 0.0
@@ -866,11 +963,12 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                             released = True
                         else:
                             cT[i] = T
-                    elif cT[i] != 0.0 and _it < 3:
+                    elif cT[i] != 0.0 and _it < 4:
                         # a sliding segment whose slip the step would turn: it sticks, solved again
                         j = cj[i]
-                        sl = om[j] * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * -cny[i] - (vy[i] + h * fy[i] - pvy[j]) * cnx[i]
+                        sl = (om[j] + dom[j]) * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * -cny[i] - (vy[i] + h * fy[i] - pvy[j]) * cnx[i]
                         if sl * cT[i] < 0.0:
+                            chg[i] = 1
                             f0x[i] -= cT[i] * -cny[i]
                             f0y[i] -= cT[i] * cnx[i]
                             cT[i] = 0.0
@@ -897,7 +995,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                         tx = -ny
                         ty = nx
                     if N > 0.0:
-                        sl = om[j] * pr[j] - (vxs - pvx[j]) * tx - (vys - pvy[j]) * ty
+                        sl = (om[j] + dom[j]) * pr[j] - (vxs - pvx[j]) * tx - (vys - pvy[j]) * ty
                         pfr += T * sl
                         if fca[i] == 0.0:
                             # a sliding segment whose slip reached the band or turned sticks next step
