@@ -31,9 +31,9 @@ from numba import njit
 
 
 @njit(cache=True, inline="always")
-def _sym_inverse(a, out):
-    """out = a^-1 for a symmetric positive definite 3 x 3 (row-major, 9 entries)."""
-    a00, a01, a02, a11, a12, a22 = a[0], a[1], a[2], a[4], a[5], a[8]
+def _sym_inverse(a, ia, out, io):
+    """out[io] = a[ia]^-1 for a symmetric positive definite 3 x 3 (rows of 9, row-major)."""
+    a00, a01, a02, a11, a12, a22 = a[ia, 0], a[ia, 1], a[ia, 2], a[ia, 4], a[ia, 5], a[ia, 8]
     c00 = a11 * a22 - a12 * a12
     c01 = a02 * a12 - a01 * a22
     c02 = a01 * a12 - a02 * a11
@@ -41,31 +41,31 @@ def _sym_inverse(a, out):
     c12 = a01 * a02 - a00 * a12
     c22 = a00 * a11 - a01 * a01
     inv = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02)
-    out[0] = c00 * inv
-    out[1] = c01 * inv
-    out[2] = c02 * inv
-    out[3] = c01 * inv
-    out[4] = c11 * inv
-    out[5] = c12 * inv
-    out[6] = c02 * inv
-    out[7] = c12 * inv
-    out[8] = c22 * inv
+    out[io, 0] = c00 * inv
+    out[io, 1] = c01 * inv
+    out[io, 2] = c02 * inv
+    out[io, 3] = c01 * inv
+    out[io, 4] = c11 * inv
+    out[io, 5] = c12 * inv
+    out[io, 6] = c02 * inv
+    out[io, 7] = c12 * inv
+    out[io, 8] = c22 * inv
 
 
 @njit(cache=True, inline="always")
-def _mul(a, b, out):
-    """out = a b (3 x 3, row-major)."""
+def _mul(a, ia, b, ib, out, io):
+    """out[io] = a[ia] b[ib] (3 x 3 blocks, row-major)."""
     for r in range(3):
         for c in range(3):
-            out[3 * r + c] = a[3 * r] * b[c] + a[3 * r + 1] * b[3 + c] + a[3 * r + 2] * b[6 + c]
+            out[io, 3 * r + c] = a[ia, 3 * r] * b[ib, c] + a[ia, 3 * r + 1] * b[ib, 3 + c] + a[ia, 3 * r + 2] * b[ib, 6 + c]
 
 
 @njit(cache=True, inline="always")
-def _sub_tmul(a, b, out):
-    """out -= a^T b (3 x 3, row-major)."""
+def _sub_tmul(a, ia, b, ib, out, io):
+    """out[io] -= a[ia]^T b[ib] (3 x 3 blocks, row-major)."""
     for r in range(3):
         for c in range(3):
-            out[3 * r + c] -= a[r] * b[c] + a[3 + r] * b[3 + c] + a[6 + r] * b[6 + c]
+            out[io, 3 * r + c] -= a[ia, r] * b[ib, c] + a[ia, 3 + r] * b[ib, 3 + c] + a[ia, 6 + r] * b[ib, 6 + c]
 
 
 @njit(cache=True)
@@ -126,16 +126,16 @@ def factor(n, hl, c, s, m, inertia, sig, gam, geo, kap, kat, knx, kny, dmat, oma
         for q in range(3):
             emat[0, 3 * r + q] += omat[0, 3 * q + r]
             emat[n - 2, 3 * r + q] += omat[n - 1, 3 * r + q]
-    corner = dmat[n - 1]
+    last = n - 1
     for i in range(n - 1):
-        _sym_inverse(dmat[i], dinv[i])
-        _mul(dinv[i], emat[i], xmat[i])
-        _sub_tmul(emat[i], xmat[i], corner)
+        _sym_inverse(dmat, i, dinv, i)
+        _mul(dinv, i, emat, i, xmat, i)
+        _sub_tmul(emat, i, xmat, i, dmat, last)
         if i < n - 2:
-            _mul(dinv[i], omat[i + 1], ymat[i])
-            _sub_tmul(omat[i + 1], ymat[i], dmat[i + 1])
-            _sub_tmul(omat[i + 1], xmat[i], emat[i + 1])
-    _sym_inverse(corner, dinv[n - 1])
+            _mul(dinv, i, omat, i + 1, ymat, i)
+            _sub_tmul(omat, i + 1, ymat, i, dmat, i + 1)
+            _sub_tmul(omat, i + 1, xmat, i, emat, i + 1)
+    _sym_inverse(dmat, last, dinv, last)
 
 
 @njit(cache=True, inline="always")

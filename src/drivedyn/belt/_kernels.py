@@ -645,6 +645,7 @@ def _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cv
 # (rad): a stale matrix is a preconditioner still (see _chain.py); the forces are always exact
 import os as _os
 REFACTOR_ANGLE = float(_os.environ.get("DD_RA", "0.05"))
+RELEASE = float(_os.environ.get("DD_REL", "1.0"))
 
 
 @njit(cache=True, inline="always")
@@ -951,7 +952,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                         ty = fnx[i]
                         sl = (om[j] + dom[j]) * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * tx - (vy[i] + h * fy[i] - pvy[j]) * ty
                         T = fca[i] * sl
-                        if abs(T) > mu[i] * cN[i]:
+                        if abs(T) > RELEASE * mu[i] * cN[i]:
                             # lets go: slides this step with mu N, solved again
                             chg[i] = 1
                             Ts = math.copysign(mu[i] * cN[i], T)
