@@ -256,6 +256,10 @@ class Work(NamedTuple):
     lin_fa: np.ndarray       # (n,) anchor slope (friction, N s/m) it was factored with
     lin_geo: np.ndarray      # (n,) scratch: geometric stiffness terms
     lin_u: np.ndarray        # (nk, n, 3): A^-1 of each pulley's anchors (its unit speed change)
+    lin_zslot: np.ndarray    # (n,) int64: cache slot of a segment's column A_f^-1 w (-1: none)
+    lin_zc: np.ndarray       # (KMAX, n, 3) cached columns, (KMAX,) their directions
+    lin_ztx: np.ndarray
+    lin_zty: np.ndarray
     lin_st: np.ndarray       # (n,) 1: the segment stuck to its pulley at the last step
     lin_cnt: np.ndarray      # int64 (2): steps until the next factorisation, factorisations done
 
@@ -643,9 +647,31 @@ def _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cv
 
 # the implicit scheme refactors its chain matrix once the fastest segment has turned this far
 # (rad): a stale matrix is a preconditioner still (see _chain.py); the forces are always exact
-import os as _os
-REFACTOR_ANGLE = float(_os.environ.get("DD_RA", "0.05"))
-RELEASE = float(_os.environ.get("DD_REL", "1.0"))
+REFACTOR_ANGLE = 0.05
+# stick-slip changes taken as low-rank corrections of the factored matrix, at most this many
+KMAX = 12
+# the anchor slope, x mu N / Delta_v: the secant of the Threlfall law to its saturation, so an
+# anchor lets go where the law saturates (its tangent at zero, 1.5, flickered and drifted at 20 us)
+ANCHOR = 1.0
+
+
+@njit(cache=True, inline="always")
+def _woodbury(n, k, kseg, kslot, kwx, kwy, zc, wm, wtmp, wy, ux, uy, uz):
+    """u <- u - Z (1/dk + W^T Z)^-1 W^T u: A_f^-1 b turned into (A_f + W dk W^T)^-1 b, W the
+    k anchor directions (one segment each), Z = A_f^-1 W cached in zc."""
+    for a in range(k):
+        i = kseg[a]
+        wy[a] = kwx[a] * ux[i] + kwy[a] * uy[i]
+        for b in range(k):
+            wtmp[a, b] = wm[a, b]
+    _small_solve(k, wtmp, wy)
+    for b in range(k):
+        q = kslot[b]
+        cb = wy[b]
+        for r in range(n):
+            ux[r] -= cb * zc[q, r, 0]
+            uy[r] -= cb * zc[q, r, 1]
+            uz[r] -= cb * zc[q, r, 2]
 
 
 @njit(cache=True, inline="always")
@@ -754,7 +780,20 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     fca = W.lin_fa
     kat = np.zeros(n)
     cT = np.zeros(n)
-    chg = np.zeros(n, dtype=np.int64)    # a segment changes between stick and slip once per step
+    ak = np.zeros(n)                     # this pass's anchors: slope (N s/m) and direction
+    atx = np.zeros(n)
+    aty = np.zeros(n)
+    zslot = W.lin_zslot                  # cached columns A_f^-1 w of stick-slip changes
+    zc, ztx, zty = W.lin_zc, W.lin_ztx, W.lin_zty
+    kseg = np.zeros(KMAX, dtype=np.int64)
+    kslot = np.zeros(KMAX, dtype=np.int64)
+    kdk = np.zeros(KMAX)
+    kwx = np.zeros(KMAX)
+    kwy = np.zeros(KMAX)
+    wm = np.zeros((KMAX, KMAX))
+    wtmp = np.zeros((KMAX, KMAX))
+    wy = np.zeros(KMAX)
+    ut = np.zeros((nk, n, 3)) if implicit else np.zeros((0, 0, 3))
     # pulleys integrated with the chain solve: dynamic, no clutch (the others explicit)
     ipl = np.zeros(nk, dtype=np.bool_)
     for j in range(nk):
@@ -818,7 +857,6 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
             for i in range(n):
                 fy[i] -= m_[i] * g
                 cj[i] = -1
-                chg[i] = 0
                 cT[i] = 0.0
                 cca[i] = 0.0
                 for j in range(nk):
@@ -847,7 +885,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                     if N > 0.0:
                         pcd += db * vn * vn
                         if stk[i] > 0.0:
-                            cca[i] = mu[i] * N / dv
+                            cca[i] = ANCHOR * mu[i] * N / dv
                         else:
                             sl = om[j] * pr[j] - (rvx * -ny + rvy * nx)
                             cT[i] = math.copysign(mu[i] * N, sl)
@@ -861,18 +899,37 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                 f0y[i] = fy[i]
                 f0z[i] = mz[i]
             for _it in range(6):
+                # the chain matrix A_f is refactored when the contact set changes or the segments
+                # have turned; a change of stick and slip since (a few segments at the ends of
+                # the slip arcs, nearly every step) enters as a low-rank correction (Woodbury),
+                # each such segment's column A_f^-1 w cached until the next factorisation
                 refac = lin_cnt[0] <= 0
                 for i in range(n):
-                    if (cj[i] >= 0) != (fkap[i] > 0.0) or (cca[i] > 0.0) != (fca[i] > 0.0):
+                    if (cj[i] >= 0) != (fkap[i] > 0.0):
                         refac = True
                         break
+                nkk = 0
+                if not refac:
+                    nnew = 0
+                    for i in range(n):
+                        if (cca[i] > 0.0) != (fca[i] > 0.0):
+                            if zslot[i] < 0:
+                                nnew += 1
+                            if nkk == KMAX or lin_cnt[2] + nnew > KMAX:
+                                refac = True
+                                break
+                            kseg[nkk] = i
+                            nkk += 1
                 if refac:
+                    nkk = 0
                     for i in range(n):
                         fkap[i] = ckap[i] if cj[i] >= 0 else 0.0
                         fnx[i] = cnx[i]
                         fny[i] = cny[i]
                         fca[i] = cca[i]
                         kat[i] = h * cca[i]
+                        zslot[i] = -1
+                    lin_cnt[2] = 0
                     lin_cnt[0] = _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jdx, jdy,
                                            turn, m_, ieff, lin_sig, lin_gam, lin_geo, fkap, kat, fnx, fny, lin_d,
                                            lin_o, lin_e, lin_dinv, lin_y, lin_x)
@@ -894,19 +951,103 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                             lin_u[jj, i, 0] = ux[i]
                             lin_u[jj, i, 1] = uy[i]
                             lin_u[jj, i, 2] = uz[i]
+                # this pass's anchors: slope and direction as the matrix (A_f and its corrections) has them
+                for i in range(n):
+                    if fca[i] > 0.0:
+                        ak[i] = fca[i] if cca[i] > 0.0 else 0.0
+                        atx[i] = -fny[i]
+                        aty[i] = fnx[i]
+                    elif cca[i] > 0.0:
+                        ak[i] = cca[i]
+                        if zslot[i] >= 0:
+                            atx[i] = ztx[zslot[i]]
+                            aty[i] = zty[zslot[i]]
+                        else:
+                            atx[i] = -cny[i]
+                            aty[i] = cnx[i]
+                    else:
+                        ak[i] = 0.0
+                for a in range(nkk):
+                    i = kseg[a]
+                    if fca[i] > 0.0:           # released: the factored anchor taken out
+                        kdk[a] = -h * fca[i]
+                        kwx[a] = -fny[i]
+                        kwy[a] = fnx[i]
+                    else:                      # new anchor
+                        kdk[a] = h * cca[i]
+                        kwx[a] = atx[i]
+                        kwy[a] = aty[i]
+                    if zslot[i] < 0:
+                        q = lin_cnt[2]
+                        lin_cnt[2] += 1
+                        zslot[i] = q
+                        ztx[q] = kwx[a]
+                        zty[q] = kwy[a]
+                        for r in range(n):
+                            ux[r] = 0.0
+                            uy[r] = 0.0
+                            uz[r] = 0.0
+                        ux[i] = kwx[a]
+                        uy[i] = kwy[a]
+                        _chain.solve(n, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r)
+                        for r in range(n):
+                            zc[q, r, 0] = ux[r]
+                            zc[q, r, 1] = uy[r]
+                            zc[q, r, 2] = uz[r]
+                    else:
+                        kwx[a] = ztx[zslot[i]]
+                        kwy[a] = zty[zslot[i]]
+                        if fca[i] == 0.0:
+                            atx[i] = kwx[a]
+                            aty[i] = kwy[a]
+                    kslot[a] = zslot[i]
+                # the small Woodbury matrix 1/dk + w^T A_f^-1 w
+                for a in range(nkk):
+                    for b in range(nkk):
+                        ia = kseg[a]
+                        wm[a, b] = kwx[a] * zc[kslot[b], ia, 0] + kwy[a] * zc[kslot[b], ia, 1]
+                    wm[a, a] += 1.0 / kdk[a]
                 for i in range(n):
                     fx[i] = f0x[i]
                     fy[i] = f0y[i]
                     mz[i] = f0z[i]
-                    if fca[i] > 0.0:
+                    if ak[i] > 0.0:
                         j = cj[i]
-                        tx = -fny[i]
-                        ty = fnx[i]
-                        sl = om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
-                        fx[i] += fca[i] * sl * tx
-                        fy[i] += fca[i] * sl * ty
+                        sl = om[j] * pr[j] - (vx[i] - pvx[j]) * atx[i] - (vy[i] - pvy[j]) * aty[i]
+                        fx[i] += ak[i] * sl * atx[i]
+                        fy[i] += ak[i] * sl * aty[i]
                 _chain.solve(n, fx, fy, mz, lin_dinv, lin_y, lin_x, lin_r)
+                if nkk > 0:
+                    _woodbury(n, nkk, kseg, kslot, kwx, kwy, zc, wm, wtmp, wy, fx, fy, mz)
                 if npl > 0:
+                    # each pulley's unit response with this pass's anchors: A_f^-1 g_j corrected
+                    for jj in range(nk):
+                        if not ipl[jj]:
+                            continue
+                        for i in range(n):
+                            ut[jj, i, 0] = lin_u[jj, i, 0]
+                            ut[jj, i, 1] = lin_u[jj, i, 1]
+                            ut[jj, i, 2] = lin_u[jj, i, 2]
+                        if nkk > 0:
+                            for a in range(nkk):
+                                i = kseg[a]
+                                if cj[i] != jj:
+                                    continue
+                                # new anchors add kappa r w, released ones take the factored one out
+                                f = pr[jj] * (cca[i] if fca[i] == 0.0 else -fca[i])
+                                for r in range(n):
+                                    ut[jj, r, 0] += f * zc[kslot[a], r, 0]
+                                    ut[jj, r, 1] += f * zc[kslot[a], r, 1]
+                                    ut[jj, r, 2] += f * zc[kslot[a], r, 2]
+                            for r in range(n):
+                                ux[r] = ut[jj, r, 0]
+                                uy[r] = ut[jj, r, 1]
+                                uz[r] = ut[jj, r, 2]
+                            _woodbury(n, nkk, kseg, kslot, kwx, kwy, zc, wm, wtmp, wy, ux, uy, uz)
+                            for r in range(n):
+                                ut[jj, r, 0] = ux[r]
+                                ut[jj, r, 1] = uy[r]
+                                ut[jj, r, 2] = uz[r]
                     # pulleys implicit with the belt they anchor: I dw_j = h (M_ext + M_belt(dw)),
                     # the anchors' targets at the new speeds; a small dense system (Schur complement)
                     for jj in range(nk):
@@ -924,37 +1065,36 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                         j = cj[i]
                         if j < 0 or not ipl[j] or cN[i] <= 0.0:
                             continue
-                        if fca[i] > 0.0:
-                            tx = -fny[i]
-                            ty = fnx[i]
+                        if ak[i] > 0.0:
+                            tx = atx[i]
+                            ty = aty[i]
                             sl = om[j] * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * tx - (vy[i] + h * fy[i] - pvy[j]) * ty
-                            qb[j] -= h * pr[j] * fca[i] * sl
-                            qmat[j, j] += h * pr[j] * fca[i] * pr[j]
+                            qb[j] -= h * pr[j] * ak[i] * sl
+                            qmat[j, j] += h * pr[j] * ak[i] * pr[j]
                             for kk in range(nk):
                                 if ipl[kk]:
-                                    qmat[j, kk] -= h * pr[j] * fca[i] * (lin_u[kk, i, 0] * tx + lin_u[kk, i, 1] * ty)
+                                    qmat[j, kk] -= h * pr[j] * ak[i] * (ut[kk, i, 0] * tx + ut[kk, i, 1] * ty)
                         else:
                             qb[j] -= h * pr[j] * cT[i]
                     _small_solve(nk, qmat, qb)
                     for i in range(n):
                         for kk in range(nk):
                             if ipl[kk] and qb[kk] != 0.0:
-                                fx[i] += qb[kk] * lin_u[kk, i, 0]
-                                fy[i] += qb[kk] * lin_u[kk, i, 1]
-                                mz[i] += qb[kk] * lin_u[kk, i, 2]
+                                fx[i] += qb[kk] * ut[kk, i, 0]
+                                fy[i] += qb[kk] * ut[kk, i, 1]
+                                mz[i] += qb[kk] * ut[kk, i, 2]
                     for jj in range(nk):
                         dom[jj] = qb[jj]
                 released = False
                 for i in range(n):
-                    if fca[i] > 0.0:
+                    if ak[i] > 0.0:
                         j = cj[i]
-                        tx = -fny[i]
-                        ty = fnx[i]
+                        tx = atx[i]
+                        ty = aty[i]
                         sl = (om[j] + dom[j]) * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * tx - (vy[i] + h * fy[i] - pvy[j]) * ty
-                        T = fca[i] * sl
-                        if abs(T) > RELEASE * mu[i] * cN[i]:
+                        T = ak[i] * sl
+                        if abs(T) > mu[i] * cN[i]:
                             # lets go: slides this step with mu N, solved again
-                            chg[i] = 1
                             Ts = math.copysign(mu[i] * cN[i], T)
                             cca[i] = 0.0
                             stk[i] = 0.0
@@ -969,11 +1109,10 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                         j = cj[i]
                         sl = (om[j] + dom[j]) * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * -cny[i] - (vy[i] + h * fy[i] - pvy[j]) * cnx[i]
                         if sl * cT[i] < 0.0:
-                            chg[i] = 1
                             f0x[i] -= cT[i] * -cny[i]
                             f0y[i] -= cT[i] * cnx[i]
                             cT[i] = 0.0
-                            cca[i] = mu[i] * cN[i] / dv
+                            cca[i] = ANCHOR * mu[i] * cN[i] / dv
                             stk[i] = 1.0
                             released = True
                 if not released:
@@ -989,16 +1128,16 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                     T = cT[i]
                     nx = cnx[i]
                     ny = cny[i]
-                    if fca[i] > 0.0:
-                        tx = -fny[i]
-                        ty = fnx[i]
+                    if ak[i] > 0.0:
+                        tx = atx[i]
+                        ty = aty[i]
                     else:
                         tx = -ny
                         ty = nx
                     if N > 0.0:
                         sl = (om[j] + dom[j]) * pr[j] - (vxs - pvx[j]) * tx - (vys - pvy[j]) * ty
                         pfr += T * sl
-                        if fca[i] == 0.0:
+                        if ak[i] == 0.0:
                             # a sliding segment whose slip reached the band or turned sticks next step
                             stk[i] = 1.0 if (abs(sl) < dv or sl * T < 0.0) else 0.0
                         tq_belt[j] -= pr[j] * T
