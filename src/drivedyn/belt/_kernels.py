@@ -254,11 +254,14 @@ class Work(NamedTuple):
     lin_gam: np.ndarray
     lin_fk: np.ndarray       # (n,) contact coefficient each segment had when the matrix was factored
     lin_fa: np.ndarray       # (n,) anchor slope (friction, N s/m) it was factored with
+    lin_fnx: np.ndarray      # (n,) contact normal it was factored with
+    lin_fny: np.ndarray
     lin_geo: np.ndarray      # (n,) scratch: geometric stiffness terms
     lin_u: np.ndarray        # (nk, n, 3): A^-1 of each pulley's anchors (its unit speed change)
     lin_zslot: np.ndarray    # (n,) int64: cache slot of a segment's column A_f^-1 w (-1: none)
     lin_zc: np.ndarray       # (KMAX, n, 3) cached columns, (KMAX,) their directions
     lin_ztx: np.ndarray
+    lin_dbg: np.ndarray
     lin_zty: np.ndarray
     lin_st: np.ndarray       # (n,) 1: the segment stuck to its pulley at the last step
     lin_cnt: np.ndarray      # int64 (2): steps until the next factorisation, factorisations done
@@ -653,6 +656,9 @@ KMAX = 12
 # the anchor slope, x mu N / Delta_v: the secant of the Threlfall law to its saturation, so an
 # anchor lets go where the law saturates (its tangent at zero, 1.5, flickered and drifted at 20 us)
 ANCHOR = 1.0
+# passes of the stick-slip active set per step; the last keeps its anchors (a force up to a few
+# per cent over mu N at the edge of a slip arc, for one step)
+PASSES = 6
 
 
 @njit(cache=True, inline="always")
@@ -770,8 +776,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     cN = np.zeros(n)
     ckap = np.zeros(n)
     fkap = W.lin_fk
-    fnx = np.zeros(n)
-    fny = np.zeros(n)
+    fnx = W.lin_fnx
+    fny = W.lin_fny
     # stuck segments (friction inside its band at the last step): anchored to the pulley surface
     # in the chain matrix by the secant slope of the friction law, mu N / Delta_v (implicit
     # scheme, Threlfall law); fca: the slope the matrix was factored with
@@ -898,7 +904,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                 f0x[i] = fx[i]
                 f0y[i] = fy[i]
                 f0z[i] = mz[i]
-            for _it in range(6):
+            for _it in range(PASSES):
                 # the chain matrix A_f is refactored when the contact set changes or the segments
                 # have turned; a change of stick and slip since (a few segments at the ends of
                 # the slip arcs, nearly every step) enters as a low-rank correction (Woodbury),
@@ -1016,6 +1022,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                         sl = om[j] * pr[j] - (vx[i] - pvx[j]) * atx[i] - (vy[i] - pvy[j]) * aty[i]
                         fx[i] += ak[i] * sl * atx[i]
                         fy[i] += ak[i] * sl * aty[i]
+                lin_cnt[3] += 1
                 _chain.solve(n, fx, fy, mz, lin_dinv, lin_y, lin_x, lin_r)
                 if nkk > 0:
                     _woodbury(n, nkk, kseg, kslot, kwx, kwy, zc, wm, wtmp, wy, fx, fy, mz)
@@ -1073,7 +1080,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                             qmat[j, j] += h * pr[j] * ak[i] * pr[j]
                             for kk in range(nk):
                                 if ipl[kk]:
-                                    qmat[j, kk] -= h * pr[j] * ak[i] * (ut[kk, i, 0] * tx + ut[kk, i, 1] * ty)
+                                    qmat[j, kk] -= h * h * pr[j] * ak[i] * (ut[kk, i, 0] * tx + ut[kk, i, 1] * ty)
                         else:
                             qb[j] -= h * pr[j] * cT[i]
                     _small_solve(nk, qmat, qb)
@@ -1093,7 +1100,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                         ty = aty[i]
                         sl = (om[j] + dom[j]) * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * tx - (vy[i] + h * fy[i] - pvy[j]) * ty
                         T = ak[i] * sl
-                        if abs(T) > mu[i] * cN[i]:
+                        if abs(T) > mu[i] * cN[i] and _it < PASSES - 1:
                             # lets go: slides this step with mu N, solved again
                             Ts = math.copysign(mu[i] * cN[i], T)
                             cca[i] = 0.0
@@ -1102,9 +1109,10 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                             f0x[i] += Ts * -cny[i]
                             f0y[i] += Ts * cnx[i]
                             released = True
+                            W.lin_dbg[0] += 1
                         else:
                             cT[i] = T
-                    elif cT[i] != 0.0 and _it < 4:
+                    elif cT[i] != 0.0 and _it < PASSES - 1:
                         # a sliding segment whose slip the step would turn: it sticks, solved again
                         j = cj[i]
                         sl = (om[j] + dom[j]) * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * -cny[i] - (vy[i] + h * fy[i] - pvy[j]) * cnx[i]
@@ -1115,6 +1123,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                             cca[i] = ANCHOR * mu[i] * cN[i] / dv
                             stk[i] = 1.0
                             released = True
+                            W.lin_dbg[1] += 1
                 if not released:
                     break
             lin_cnt[0] -= 1
