@@ -652,7 +652,7 @@ def _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cv
 # (rad): a stale matrix is a preconditioner still (see _chain.py); the forces are always exact
 REFACTOR_ANGLE = 0.05
 # stick-slip changes taken as low-rank corrections of the factored matrix, at most this many
-KMAX = 12
+KMAX = 4
 # the anchor slope, x mu N / Delta_v: the secant of the Threlfall law to its saturation, so an
 # anchor lets go where the law saturates (its tangent at zero, 1.5, flickered and drifted at 20 us)
 ANCHOR = 1.0
