@@ -799,7 +799,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     wm = np.zeros((KMAX, KMAX))
     wtmp = np.zeros((KMAX, KMAX))
     wy = np.zeros(KMAX)
-    ut = np.zeros((nk, n, 3)) if implicit else np.zeros((0, 0, 3))
+    fk = np.zeros((nk, KMAX))
+    ck = np.zeros((nk, KMAX))
     # pulleys integrated with the chain solve: dynamic, no clutch (the others explicit)
     ipl = np.zeros(nk, dtype=np.bool_)
     for j in range(nk):
@@ -1027,34 +1028,34 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                 if nkk > 0:
                     _woodbury(n, nkk, kseg, kslot, kwx, kwy, zc, wm, wtmp, wy, fx, fy, mz)
                 if npl > 0:
-                    # each pulley's unit response with this pass's anchors: A_f^-1 g_j corrected
-                    for jj in range(nk):
-                        if not ipl[jj]:
-                            continue
-                        for i in range(n):
-                            ut[jj, i, 0] = lin_u[jj, i, 0]
-                            ut[jj, i, 1] = lin_u[jj, i, 1]
-                            ut[jj, i, 2] = lin_u[jj, i, 2]
-                        if nkk > 0:
+                    # each pulley's unit response with this pass's anchors, U_k = A_t^-1 g_k, where it
+                    # is needed: at the anchored segments (the pulley equations) and, once the speed
+                    # changes are known, summed over the pulleys. U_k = V_k - Z c_k with
+                    # V_k = A_f^-1 g_k(factored) + sum over changed anchors of k (+-kappa r) Z_a and
+                    # c_k = (1/dk + W^T Z)^-1 W^T V_k (Woodbury)
+                    for kk in range(nk):
+                        for a in range(nkk):
+                            ia = kseg[a]
+                            fk[kk, a] = 0.0
+                            if ipl[kk] and cj[ia] == kk:
+                                fk[kk, a] = pr[kk] * (cca[ia] if fca[ia] == 0.0 else -fca[ia])
+                        if nkk > 0 and ipl[kk]:
                             for a in range(nkk):
-                                i = kseg[a]
-                                if cj[i] != jj:
-                                    continue
-                                # new anchors add kappa r w, released ones take the factored one out
-                                f = pr[jj] * (cca[i] if fca[i] == 0.0 else -fca[i])
-                                for r in range(n):
-                                    ut[jj, r, 0] += f * zc[kslot[a], r, 0]
-                                    ut[jj, r, 1] += f * zc[kslot[a], r, 1]
-                                    ut[jj, r, 2] += f * zc[kslot[a], r, 2]
-                            for r in range(n):
-                                ux[r] = ut[jj, r, 0]
-                                uy[r] = ut[jj, r, 1]
-                                uz[r] = ut[jj, r, 2]
-                            _woodbury(n, nkk, kseg, kslot, kwx, kwy, zc, wm, wtmp, wy, ux, uy, uz)
-                            for r in range(n):
-                                ut[jj, r, 0] = ux[r]
-                                ut[jj, r, 1] = uy[r]
-                                ut[jj, r, 2] = uz[r]
+                                ia = kseg[a]
+                                vx_ = lin_u[kk, ia, 0]
+                                vy_ = lin_u[kk, ia, 1]
+                                for b in range(nkk):
+                                    vx_ += fk[kk, b] * zc[kslot[b], ia, 0]
+                                    vy_ += fk[kk, b] * zc[kslot[b], ia, 1]
+                                wy[a] = kwx[a] * vx_ + kwy[a] * vy_
+                                for b in range(nkk):
+                                    wtmp[a, b] = wm[a, b]
+                            _small_solve(nkk, wtmp, wy)
+                            for a in range(nkk):
+                                ck[kk, a] = fk[kk, a] - wy[a]      # U_k = lin_u[k] + sum_a ck[k, a] Z_a
+                        else:
+                            for a in range(nkk):
+                                ck[kk, a] = 0.0
                     # pulleys implicit with the belt they anchor: I dw_j = h (M_ext + M_belt(dw)),
                     # the anchors' targets at the new speeds; a small dense system (Schur complement)
                     for jj in range(nk):
@@ -1080,18 +1081,34 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                             qmat[j, j] += h * pr[j] * ak[i] * pr[j]
                             for kk in range(nk):
                                 if ipl[kk]:
-                                    qmat[j, kk] -= h * h * pr[j] * ak[i] * (ut[kk, i, 0] * tx + ut[kk, i, 1] * ty)
+                                    ux_ = lin_u[kk, i, 0]
+                                    uy_ = lin_u[kk, i, 1]
+                                    for b in range(nkk):
+                                        ux_ += ck[kk, b] * zc[kslot[b], i, 0]
+                                        uy_ += ck[kk, b] * zc[kslot[b], i, 1]
+                                    qmat[j, kk] -= h * h * pr[j] * ak[i] * (ux_ * tx + uy_ * ty)
                         else:
                             qb[j] -= h * pr[j] * cT[i]
                     _small_solve(nk, qmat, qb)
-                    for i in range(n):
-                        for kk in range(nk):
-                            if ipl[kk] and qb[kk] != 0.0:
-                                fx[i] += qb[kk] * ut[kk, i, 0]
-                                fy[i] += qb[kk] * ut[kk, i, 1]
-                                mz[i] += qb[kk] * ut[kk, i, 2]
                     for jj in range(nk):
                         dom[jj] = qb[jj]
+                    # the velocity change of the speed changes: sum_k dw_k U_k
+                    for b in range(nkk):
+                        cb = 0.0
+                        for kk in range(nk):
+                            cb += dom[kk] * ck[kk, b]
+                        wy[b] = cb
+                    for i in range(n):
+                        for kk in range(nk):
+                            if ipl[kk]:
+                                fx[i] += dom[kk] * lin_u[kk, i, 0]
+                                fy[i] += dom[kk] * lin_u[kk, i, 1]
+                                mz[i] += dom[kk] * lin_u[kk, i, 2]
+                        for b in range(nkk):
+                            q = kslot[b]
+                            fx[i] += wy[b] * zc[q, i, 0]
+                            fy[i] += wy[b] * zc[q, i, 1]
+                            mz[i] += wy[b] * zc[q, i, 2]
                 released = False
                 for i in range(n):
                     if ak[i] > 0.0:
