@@ -1,6 +1,7 @@
-"""The experimental `implicit` belt scheme (issue 14): its banded solve against a dense solve, a
-drive at rest staying at rest with no step limit from the chain, and agreement with the
-semi-implicit reference on the 5PK drive at its default step."""
+"""The `implicit` belt scheme (issue 14): its banded solve and low-rank corrections against dense
+linear algebra, a drive at rest staying at rest beyond the explicit limit, and agreement with
+the semi-implicit reference on the seed's drives at the default step (about ten times the
+reference's), with convergence in the step."""
 import numpy as np
 import pytest
 
@@ -8,28 +9,73 @@ import drivedyn
 from drivedyn.belt import _chain, _kernels as K, system
 
 
+def _random_chain(n, seed):
+    rng = np.random.default_rng(seed)
+    phi = np.cumsum(rng.uniform(-0.3, 0.3, n))
+    ang = rng.uniform(0, 2 * np.pi, n)
+    return dict(hl=0.4, c=np.cos(phi), s=np.sin(phi), m=rng.uniform(1, 2, n), inertia=rng.uniform(0.1, 0.2, n),
+                sig=rng.uniform(0, 1e4, n), gam=rng.uniform(0, 10, n), geo=rng.uniform(0, 0.1, n),
+                kap=np.where(rng.uniform(size=n) < 0.5, rng.uniform(0, 1e3, n), 0.0),
+                kat=np.where(rng.uniform(size=n) < 0.5, 640.0, 0.0), knx=np.cos(ang), kny=np.sin(ang)), rng
+
+
+def _factor(n, a):
+    z = [np.zeros((n, 9)) for _ in range(6)]
+    _chain.factor(n, a["hl"], a["c"], a["s"], a["m"], a["inertia"], a["sig"], a["gam"], a["geo"], a["kap"], a["kat"],
+                  a["knx"], a["kny"], *z)
+    return z[3:]           # dinv, y, x
+
+
+def _dense(n, a, kat=None):
+    return _chain.dense(n, a["hl"], a["c"], a["s"], a["m"], a["inertia"], a["sig"], a["gam"], a["geo"], a["kap"],
+                        a["kat"] if kat is None else kat, a["knx"], a["kny"])
+
+
+def _solve(n, f, b):
+    fx, fy, mz = b[0::3].copy(), b[1::3].copy(), b[2::3].copy()
+    _chain.solve(n, fx, fy, mz, *f, np.zeros((n, 3)))
+    return fx, fy, mz
+
+
 @pytest.mark.parametrize("n", [3, 4, 7, 150])
 def test_chain_solve_matches_dense(n):
-    rng = np.random.default_rng(n)
-    phi = np.cumsum(rng.uniform(-0.3, 0.3, n))
-    c, s = np.cos(phi), np.sin(phi)
-    m, inertia = rng.uniform(1, 2, n), rng.uniform(0.1, 0.2, n)
-    sig, gam = rng.uniform(0, 1e4, n), rng.uniform(0, 10, n)
-    kap = np.where(rng.uniform(size=n) < 0.5, rng.uniform(0, 1e3, n), 0.0)
-    ang = rng.uniform(0, 2 * np.pi, n)
-    knx, kny = np.cos(ang), np.sin(ang)
-    geo = rng.uniform(0, 0.1, n)
-    kat = np.where(rng.uniform(size=n) < 0.5, rng.uniform(0, 1e3, n), 0.0)
-    z = lambda: np.zeros((n, 9))   # noqa: E731
-    d, o, e, dinv, y, x = z(), z(), z(), z(), z(), z()
-    _chain.factor(n, 0.4, c, s, m, inertia, sig, gam, geo, kap, kat, knx, kny, d, o, e, dinv, y, x)
-    A = _chain.dense(n, 0.4, c, s, m, inertia, sig, gam, geo, kap, kat, knx, kny)
+    a, rng = _random_chain(n, n)
     b = rng.normal(size=3 * n)
-    fx, fy, mz = b[0::3].copy(), b[1::3].copy(), b[2::3].copy()
-    _chain.solve(n, fx, fy, mz, dinv, y, x, np.zeros((n, 3)))
     u = np.empty(3 * n)
-    u[0::3], u[1::3], u[2::3] = fx, fy, mz
-    assert np.allclose(u, np.linalg.solve(A, b), rtol=1e-9, atol=1e-12 * np.abs(u).max())
+    u[0::3], u[1::3], u[2::3] = _solve(n, _factor(n, a), b)
+    assert np.allclose(u, np.linalg.solve(_dense(n, a), b), rtol=1e-9, atol=1e-12 * np.abs(u).max())
+
+
+def test_woodbury_matches_refactoring():
+    """A stick-slip change (one anchor taken out, one put in) as a low-rank correction of the
+    factored matrix gives the solution of the changed matrix."""
+    n = 20
+    a, rng = _random_chain(n, 3)
+    f = _factor(n, a)
+    ia, ib = int(np.nonzero(a["kat"] > 0)[0][0]), int(np.nonzero(a["kat"] == 0)[0][0])
+    kat = a["kat"].copy()
+    kat[ia], kat[ib] = 0.0, 300.0
+    km = K.KMAX
+    kseg, kslot = np.array([ia, ib] + [0] * (km - 2)), np.array([0, 1] + [0] * (km - 2))
+    kdk = np.array([-a["kat"][ia], 300.0] + [0.0] * (km - 2))
+    kwx = np.array([-a["kny"][ia], -a["kny"][ib]] + [0.0] * (km - 2))
+    kwy = np.array([a["knx"][ia], a["knx"][ib]] + [0.0] * (km - 2))
+    zc = np.zeros((km, n, 3))
+    for q in range(2):
+        w = np.zeros(3 * n)
+        w[3 * kseg[q]], w[3 * kseg[q] + 1] = kwx[q], kwy[q]
+        zc[q, :, 0], zc[q, :, 1], zc[q, :, 2] = _solve(n, f, w)
+    wm = np.zeros((km, km))
+    for p in range(2):
+        for q in range(2):
+            wm[p, q] = kwx[p] * zc[q, kseg[p], 0] + kwy[p] * zc[q, kseg[p], 1]
+        wm[p, p] += 1 / kdk[p]
+    b = rng.normal(size=3 * n)
+    ux, uy, uz = _solve(n, f, b)
+    K._woodbury(n, 2, kseg, kslot, kwx, kwy, zc, wm, np.zeros((km, km)), np.zeros(km), ux, uy, uz)
+    u = np.empty(3 * n)
+    u[0::3], u[1::3], u[2::3] = ux, uy, uz
+    assert np.allclose(u, np.linalg.solve(_dense(n, a, kat), b), rtol=1e-9, atol=1e-12 * np.abs(u).max())
 
 
 def test_at_rest_and_stable_beyond_the_explicit_limit():
@@ -51,20 +97,50 @@ def test_at_rest_and_stable_beyond_the_explicit_limit():
     K.step_chunk(int(0.005 / h), 0.0, h, B, C, P, A, S, W)
     e5 = W.energy[0]
     K.step_chunk(int(0.005 / h), 0.0, h, B, C, P, A, S, W)
-    # measured with the true mass, the scheme's energy is bounded (not conserved): the kick's
-    # energy in the stiff modes shows magnified by their modified mass, 1.2e-6 of the total here
+    # measured with the true mass, the scheme's energy is bounded, not conserved: the kick's
+    # energy in the stiff modes shows magnified by their modified mass
     assert abs(W.energy[0] - e0) < 1e-5 * e0
     assert abs(W.energy[0] - e5) < 1e-5 * e0
-    assert np.abs(S.om).max() < 1e-4                      # rad/s
+    assert np.abs(S.om).max() < 1e-3                      # rad/s
     assert np.hypot(S.vx, S.vy).max() < 0.01              # the kick spreads, it does not grow
 
 
-def test_agrees_with_semi_implicit_on_5pk():
-    base = drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")),
-                            {"simulation.duration": 1.0, "output.steady_window": [0.7, 1.0]})
+def _pair(name, **over):
+    base = drivedyn.replace(drivedyn.load(drivedyn.example_path(name)),
+                            {"simulation.duration": 1.0, "output.steady_window": [0.7, 1.0], **over})
     ref = drivedyn.run(base).summary
     new = drivedyn.run(drivedyn.replace(base, {"simulation.method": "implicit"})).summary
+    return ref, new
+
+
+@pytest.mark.parametrize("name", ["belt-5pk", "belt-accessory-loaded"])
+def test_agrees_with_semi_implicit(name):
+    """Measured (1 s, window 0.7-1 s): 5PK 806.2 / 255.3 N against 806.3 / 255.4, slip 0.499
+    against 0.501 %; accessory 596.7 / 534.2 / 410.1 / 409.8 N against 596.1 / 533.4 / 409.5 /
+    409.2, slips within 0.021 percentage points, at 34.5 us against 3.1 and 3.8 us."""
+    ref, new = _pair(name)
+    assert new["solver"]["step"] > 8 * ref["solver"]["step"]
     for span in ref["spans"]:
-        assert new["spans"][span]["tension_mean"] == pytest.approx(ref["spans"][span]["tension_mean"], rel=0.01)
-    assert abs(new["pulleys"]["driven"]["slip"] - ref["pulleys"]["driven"]["slip"]) < 4e-4
+        assert new["spans"][span]["tension_mean"] == pytest.approx(ref["spans"][span]["tension_mean"], rel=0.005)
+    for p in ref["pulleys"]:
+        assert abs(new["pulleys"][p]["slip"] - ref["pulleys"][p]["slip"]) < 3e-4
+        assert new["pulleys"][p]["hub_load"] == pytest.approx(ref["pulleys"][p]["hub_load"], rel=0.005)
+        assert new["pulleys"][p]["speed_mean"] == pytest.approx(ref["pulleys"][p]["speed_mean"], rel=0.005)
     assert new["power"]["energy_residual_relative"] < 1e-3
+
+
+def test_converges_in_the_step():
+    """Halving the step changes the span tensions by < 0.1 % and the slip by < 0.01 points."""
+    base = drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")),
+                            {"simulation.duration": 1.0, "output.steady_window": [0.7, 1.0],
+                             "simulation.method": "implicit"})
+    a = drivedyn.run(drivedyn.replace(base, {"simulation.step": 40e-6})).summary
+    b = drivedyn.run(drivedyn.replace(base, {"simulation.step": 20e-6})).summary
+    for span in a["spans"]:
+        assert a["spans"][span]["tension_mean"] == pytest.approx(b["spans"][span]["tension_mean"], rel=1e-3)
+    assert abs(a["pulleys"]["driven"]["slip"] - b["pulleys"]["driven"]["slip"]) < 1e-4
+
+
+def test_refuses_tensioners_in_one_line():
+    with pytest.raises(drivedyn.ModelError, match="implicit does not integrate tensioners"):
+        drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-runup")), {"simulation.method": "implicit"})

@@ -261,10 +261,10 @@ class Work(NamedTuple):
     lin_zslot: np.ndarray    # (n,) int64: cache slot of a segment's column A_f^-1 w (-1: none)
     lin_zc: np.ndarray       # (KMAX, n, 3) cached columns, (KMAX,) their directions
     lin_ztx: np.ndarray
-    lin_dbg: np.ndarray
+    lin_stat: np.ndarray     # (4): stick-slip changes within steps (let go, anchored), unused, unused
     lin_zty: np.ndarray
     lin_st: np.ndarray       # (n,) 1: the segment stuck to its pulley at the last step
-    lin_cnt: np.ndarray      # int64 (2): steps until the next factorisation, factorisations done
+    lin_cnt: np.ndarray      # int64 (4): steps until the next factorisation, factorisations, cached columns, active-set passes
 
 
 @njit(cache=True)
@@ -1126,7 +1126,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                             f0x[i] += Ts * -cny[i]
                             f0y[i] += Ts * cnx[i]
                             released = True
-                            W.lin_dbg[0] += 1
+                            W.lin_stat[0] += 1
                         else:
                             cT[i] = T
                     elif cT[i] != 0.0 and _it < PASSES - 1:
@@ -1140,7 +1140,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                             cca[i] = ANCHOR * mu[i] * cN[i] / dv
                             stk[i] = 1.0
                             released = True
-                            W.lin_dbg[1] += 1
+                            W.lin_stat[1] += 1
                 if not released:
                     break
             lin_cnt[0] -= 1

@@ -356,10 +356,10 @@ class Model(Spec):
         for q in self.output.segments:
             if not 0 <= q < self.belt.segments:
                 raise ValueError(f"output.segments: index {q} outside 0..{self.belt.segments - 1}")
-        if self.simulation.method == "rkf45" and any(p.tensioner is not None or p.clutch is not None or p.speed_orders
-                                                      for p in self.pulleys):
-            raise ValueError("simulation.method: rkf45 does not integrate tensioners, clutches or speed orders yet; "
-                             "use semi-implicit")
+        if self.simulation.method in ("rkf45", "implicit") and any(
+                p.tensioner is not None or p.clutch is not None or p.speed_orders for p in self.pulleys):
+            raise ValueError(f"simulation.method: {self.simulation.method} does not integrate tensioners, clutches or "
+                             "speed orders yet; use semi-implicit")
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
             raise ValueError("output.steady_window ends after simulation.duration")
         return self
