@@ -137,6 +137,8 @@ def span_labels(ds) -> dict:
     for q, sp in enumerate(ds["span"].values):
         role = " (tight)" if q == tight else " (slack)" if q == slack and len(mean) > 1 else ""
         out[str(sp)] = f"{sp}{role}: {mean[q]:.0f} N, {T[:, q].min():.0f}-{T[:, q].max():.0f}"
+    if max(map(len, out.values())) > 40:    # long span names: the numbers on a second line (else cut at the figure's edge)
+        out = {k: v.replace(": ", "\n", 1) for k, v in out.items()}
     return out
 
 
@@ -267,12 +269,10 @@ def plot_spectrum(ds, driver, ax):
     a = ax[0]
     if fd > 0:
         order = a.secondary_xaxis("top", functions=(lambda x: x / fd, lambda o: o * fd))
-        order.set_xlabel(f"order of the driver's mean speed ({fd:.3g} Hz, {60 * fd:.0f} rpm)", fontsize=8)
+        dotted = "; dotted: orders 1-6" if spread else ""
+        order.set_xlabel(f"order of the driver's mean speed ({fd:.3g} Hz, {60 * fd:.0f} rpm){dotted}", fontsize=8)
         order.tick_params(labelsize=8)
         a.set_title(a.get_title(), pad=30)
-        if spread:
-            a.text(fd, 1.0, " driver orders 1-6 (dotted)", transform=a.get_xaxis_transform(), fontsize=7,
-                   va="top", color="0.4")
         _label_peaks(a, f, a_tight, fd)     # at full resolution, not the drawn blocks
     return True
 
@@ -396,7 +396,7 @@ def _figures(ds, driver):
     def runup():
         from matplotlib.figure import Figure
 
-        fig = Figure(figsize=(8, 11), layout="constrained")
+        fig = Figure(figsize=(10, 11), layout="constrained")
         ax = fig.subplots(4 if "runup_arm_travel_min" in ds else 3, 1, sharex=True)
         plot_runup(ds, ax)
         return fig
@@ -520,20 +520,20 @@ def plot_runup(ds, ax):
         ax[0].fill_between(rpm, lo, hi, color=line.get_color(), alpha=0.15)
     ax[0].set_ylabel("span tension (N)")
     ax[0].set_title("span tension per crank-speed bin: mean, band min-max")
-    ax[0].legend(fontsize=7, ncol=2)
+    _legend(ax[0])
     crank = ds.attrs.get("runup_crank")
     for nm in ds["pulley"].values:
         if str(nm) != crank:
-            ax[1].plot(rpm, 100 * ds["runup_slip"].sel(pulley=nm), label=str(nm))
+            ax[1].plot(rpm, 100 * ds["runup_slip"].sel(pulley=nm), label=str(nm), color=colour(ds, nm))
     ax[1].set_ylabel("slip (%)")
     ax[1].set_title("slip against the crank (bin mean speeds)")
-    ax[1].legend(fontsize=7, ncol=2)
+    _legend(ax[1])
     tight = int(np.argmax(ds["runup_tension_mean"].values.mean(axis=0)))
     for k in ds["order"].values:
         ax[2].plot(rpm, ds["runup_tension_order"].sel(order=k).values[:, tight], label=f"order {k:g}")
     ax[2].set_ylabel("amplitude (N)")
     ax[2].set_title(f"order cuts: tension of span {ds['span'].values[tight]}")
-    ax[2].legend(fontsize=7, ncol=3)
+    _legend(ax[2])
     if "runup_arm_travel_min" in ds:
         for a, nm in enumerate(ds["arm"].values):
             lo = np.degrees(ds["runup_arm_travel_min"].values[:, a])
@@ -541,7 +541,7 @@ def plot_runup(ds, ax):
             ax[3].fill_between(rpm, lo, hi, alpha=0.4, label=f"{nm}: travel range")
         ax[3].set_ylabel("arm travel (deg)")
         ax[3].set_title("tensioner arm travel per bin (into the belt positive)")
-        ax[3].legend(fontsize=7)
+        _legend(ax[3])
     ax[-1].set_xlabel("crank speed (rpm)")
     for a in ax:
         a.grid(alpha=0.3)
