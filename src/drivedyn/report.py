@@ -38,15 +38,18 @@ CAPTIONS = {
     "gears-stiffness.png": "Mesh stiffness over time and over the roll angle (time-varying mesh stiffness, seed 003).",
     "span-chart.png": "Stability chart of the span: parametric resonance regions against belt speed (seed 002).",
     "span-floquet.png": "Floquet multipliers of the span: growth (unstable) where the largest exceeds 1.",
-    "span-frequencies.png": "Natural frequencies of the span against belt speed (string, beam, moving beam).",
+    "span-frequencies.png": "First natural frequency of the span against its tension (string, beam, moving beam at the run's speed), "
+                            "and the tension a measured frequency gives.",
     "span-response.png": "Transverse response of the span over time.",
     "span-tongue.png": "The principal resonance region (tongue) of the span near the operating point.",
     "span-tooth-force.png": "The tooth-force (tension) excitation of the span.",
     "mesh-interference.png": "Interference of belt teeth and pulley grooves through the engagement (seed 001).",
     "mesh-contours.png": "Tooth and groove contours in the engagement.",
     "mesh-flank-map.png": "Where on the flank the tooth touches the groove.",
-    "mesh-maps.png": "Overlap against tooth count and pitch error.",
-    "mesh-comparison.png": "The profiles compared: overlap, clearance and groove depth used.",
+    "mesh-maps.png": "Largest overlap area and penetration against the pulley's tooth count and the pitch error "
+                     "(colour scale from 0, pale: no overlap).",
+    "mesh-comparison.png": "The profile pairs compared, unloaded: largest overlap area and penetration of each pair "
+                           "(a pair with none is labelled 0).",
     "mesh-animation.gif": "A tooth entering and leaving the groove.",
     "mesh-load.png": "Under load: the load on each tooth in mesh (tooth 1 next to the tight span) with the load at which it "
                      "would climb out, the cord tension along the wrap, and the jump torque against the installation tension.",
@@ -248,7 +251,8 @@ def write_study_report(res, study_file, outdir) -> Path:
             vals = np.asarray(vals, float)
             if vals.size and np.isfinite(vals).any():
                 results.append({"key": f"{name} (completed cases: min / max)",
-                                "value": f"{np.nanmin(vals):.4g} / {np.nanmax(vals):.4g}", "unit": v.attrs.get("units", "")})
+                                "value": f"{np.nanmin(vals):.4g} / {np.nanmax(vals):.4g}",
+                                "unit": "" if v.attrs.get("units", "") == "1" else v.attrs.get("units", "")})
     params = [{"key": str(d), "value": _value(list(ds[d].values.tolist()), ""), "unit": ds[d].attrs.get("units", "")}
               for d in ds.dims if d in ds.coords]
     text = Path(study_file).read_text() if Path(study_file).exists() else ""
