@@ -61,7 +61,7 @@ def plot_stiffness_time(ds, ax=None, periods=2.5):
     ax.set_xlabel("time [ms]")
     ax.set_ylabel("mesh stiffness [N/um]")
     ax.set_title("time-varying mesh stiffness")
-    ax.legend(loc="lower right")
+    ax.legend(loc="center")     # between the high and low levels (lower right covered the last rise)
     ax.grid(alpha=0.3)
     return arts
 
