@@ -28,6 +28,8 @@ CODES = {
                    "is not converged",
     "step-too-large": "the time step is too large for the integration method",
     "above-critical-speed": "the belt speed is at or above the span's critical speed: the span model does not apply",
+    "parametric-resonance": "the span's operating point lies in a parametric-resonance region: its transverse "
+                            "vibration grows (largest Floquet multiplier above 1)",
     "at-rest-drift": "a drive with no load moves away from its initial state",
     "tooth-separation": "the mesh force goes negative: the teeth would separate, the model assumes they stay in mesh",
     "tooth-jump": "a timing-belt tooth under the given torque climbs out of its groove (ratchets): the torque is at "

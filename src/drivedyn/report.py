@@ -19,22 +19,37 @@ CAPTIONS = {
     "segment_forces.png": "Element, normal and friction force on the tracked belt segments as they travel round the drive (seed 000, figs. 11-13).",
     "energy.png": "Energy balance: work in, energy stored, dissipation by mechanism, and the residual (integration error).",
     "campbell.png": "Campbell diagram: the drive's rotational natural frequencies (linearised, spans EA/L) against the driver's orders.",
+    "spectrum.png": "Amplitude spectra over the steady window of the tight span's tension, the pulley speeds and the hub "
+                    "loads; the top axis reads frequency as orders of the driver's mean speed, the largest tension peaks "
+                    "are named by frequency and order.",
     "belt.png": "The belt at the last frame, segments coloured by their element force.",
     "belt.gif": "The belt moving (segments coloured by element force).",
     "runup.png": "Run-up per crank-speed bin: span tension bands, slip against the crank, order cuts of the tight span, tensioner arm travel.",
     "waterfall.png": "Waterfall: spectrum of the tight span's tension against crank speed; dashed lines are the engine orders.",
+    "gears-vibration.png": "Torsional vibration of each gear in the steady window: angle less the nominal rotation, "
+                           "with the linear drift removed (its rate in the legend).",
+    "gears-kv.png": "Dynamic factor in the steady window: mesh force over its nominal value; dashed: K_v, the largest.",
+    "gears-forces.png": "Mesh forces, dynamic transmission error and load sharing between the meshes in the steady window.",
+    "gears-spectrum.png": "Mesh-force amplitude per order of the mesh frequency (steady window); dotted: natural frequencies.",
+    "gears-sweep.png": "K_v against input speed, simulated and by ISO 6336-1 method B; shaded: speeds where the linear "
+                       "model is parametrically unstable (K_v there is meaningless).",
+    "gears-campbell.png": "Campbell diagram: natural frequencies against input speed with the mesh-frequency orders; "
+                          "circles: resonances.",
     "gears-stiffness.png": "Mesh stiffness over time and over the roll angle (time-varying mesh stiffness, seed 003).",
     "span-chart.png": "Stability chart of the span: parametric resonance regions against belt speed (seed 002).",
     "span-floquet.png": "Floquet multipliers of the span: growth (unstable) where the largest exceeds 1.",
-    "span-frequencies.png": "Natural frequencies of the span against belt speed (string, beam, moving beam).",
+    "span-frequencies.png": "First natural frequency of the span against its tension (string, beam, moving beam at the run's speed), "
+                            "and the tension a measured frequency gives.",
     "span-response.png": "Transverse response of the span over time.",
     "span-tongue.png": "The principal resonance region (tongue) of the span near the operating point.",
     "span-tooth-force.png": "The tooth-force (tension) excitation of the span.",
     "mesh-interference.png": "Interference of belt teeth and pulley grooves through the engagement (seed 001).",
     "mesh-contours.png": "Tooth and groove contours in the engagement.",
     "mesh-flank-map.png": "Where on the flank the tooth touches the groove.",
-    "mesh-maps.png": "Overlap against tooth count and pitch error.",
-    "mesh-comparison.png": "The profiles compared: overlap, clearance and groove depth used.",
+    "mesh-maps.png": "Largest overlap area and penetration against the pulley's tooth count and the pitch error "
+                     "(colour scale from 0, pale: no overlap).",
+    "mesh-comparison.png": "The profile pairs compared, unloaded: largest overlap area and penetration of each pair "
+                           "(a pair with none is labelled 0).",
     "mesh-animation.gif": "A tooth entering and leaving the groove.",
     "mesh-load.png": "Under load: the load on each tooth in mesh (tooth 1 next to the tight span) with the load at which it "
                      "would climb out, the cord tension along the wrap, and the jump torque against the installation tension.",
@@ -70,7 +85,8 @@ def _rows(flat: dict, units: dict) -> list[dict]:
     out = []
     for k, v in flat.items():
         unit = units.get(k, "")
-        out.append({"key": k, "value": _value(v, unit), "unit": "" if unit == "1" else unit})
+        numeric = isinstance(v, (int, float, list, tuple)) and not isinstance(v, bool)
+        out.append({"key": k, "value": _value(v, unit), "unit": "" if unit == "1" or not numeric else unit})
     return out
 
 
@@ -93,33 +109,69 @@ def _model_rows(model) -> list[dict]:
 
     for k, v in walk("", to_dict(model), {}).items():
         try:
-            unit = field_unit(type(model), k) or ""
+            unit = field_unit(type(model), k) or _items_unit(type(model), k)
         except Exception:
             unit = ""
+        unit = unit or TABLE_UNITS.get(k.rsplit(".", 1)[-1], "")
         rows.append({"key": k, "value": _value(v, unit), "unit": unit})
     return rows
 
 
-def _figures(files) -> list[dict]:
+#: columns of the table fields (README, model-file fields), whose schema carries no unit
+TABLE_UNITS = {"torque_time": "rows [s, N*m]", "torque_speed": "rows [rad/s, N*m]", "speed_time": "rows [s, rad/s]"}
+
+
+def _items_unit(model_cls, path) -> str:
+    """The unit of a tuple field whose items all carry one (a pulley's centre: (m, m))."""
+    import typing
+
+    from .model import schema_at, unwrap
+
+    ann = schema_at(model_cls, path)
+    if ann is None:
+        return ""
+    core = unwrap(ann)[0]
+    units = {unwrap(a)[1] for a in typing.get_args(core) if a is not Ellipsis}
+    return units.pop() or "" if len(units) == 1 else ""
+
+
+def _runup_table(summary):
+    """The run-up per bin as table rows (the CLI prints the same as text): rpm, each span's
+    tension min-max, the largest slip and its pulley."""
+    ru = summary.get("runup")
+    if not ru:
+        return None
+    spans = list(ru["span_tension_max"])
+    rows = []
+    for b, rpm in enumerate(ru["speed_rpm"]):
+        cells = [f"{ru['span_tension_min'][s][b]:.0f}-{ru['span_tension_max'][s][b]:.0f}" for s in spans]
+        worst = max(ru["slip"], key=lambda n: abs(ru["slip"][n][b])) if ru["slip"] else ""
+        rows.append([f"{rpm:.0f}"] + cells + ([f"{100 * ru['slip'][worst][b]:.2f}", worst] if worst else []))
+    head = ["crank rpm"] + [s.replace("-", "-\u200b") for s in spans] + (["largest slip (%)", "on"] if ru["slip"] else [])
+    return {"title": f"Run-up of {ru['crank']}: span tension min-max (N) per crank-speed bin", "head": head, "rows": rows}
+
+
+def _figures(files, captions=None) -> list[dict]:
     out = []
     for f in files:
         f = Path(f)
         if not f.exists() or f.suffix.lower() not in (".png", ".gif"):
             continue
         out.append({"name": f.name, "kind": "png" if f.suffix.lower() == ".png" else "gif",
-                    "caption": CAPTIONS.get(f.name, f.stem.replace("_", " ")),
+                    "caption": (captions or {}).get(f.name) or CAPTIONS.get(f.name, f.stem.replace("_", " ")),
                     "data": base64.b64encode(f.read_bytes()).decode("ascii")})
     return out
 
 
 def render(title, kind, status, message, diagnostics, headline, results, figures, model_rows, model_toml, source="",
-           extra="") -> str:
+           extra="", table=None, model_heading="Model") -> str:
     from jinja2 import Environment, PackageLoader, select_autoescape
 
     env = Environment(loader=PackageLoader("drivedyn", "templates"), autoescape=select_autoescape(["html", "j2"]))
     return env.get_template("report.html.j2").render(
         title=title, kind=kind, status=status, message=message, diagnostics=diagnostics, headline=headline, results=results,
-        figures=figures, model_rows=model_rows, model_toml=model_toml, source=source, extra=extra,
+        figures=figures, model_rows=model_rows, model_toml=model_toml, source=source, extra=extra, table=table,
+        model_heading=model_heading,
         version=__version__, written=_dt.datetime.now().isoformat(timespec="seconds"))
 
 
@@ -130,11 +182,6 @@ def write_report(result, outdir, files, model=None, source="") -> Path:
     outdir = Path(outdir)
     if model is None and "model_toml" in result.ds.attrs:
         model = loads(result.ds.attrs["model_toml"])
-    extra = ""
-    if "runup" in result.summary:
-        from .belt.runup import table_lines
-
-        extra = "\n".join(table_lines(result.summary))
     flat = {k: v for k, v in result.flat_summary().items() if not (k.startswith("runup.") and isinstance(v, list))}
     import fnmatch
 
@@ -146,10 +193,28 @@ def write_report(result, outdir, files, model=None, source="") -> Path:
         diagnostics=[_diag(d) for d in result.diagnostics], headline=_rows(head, result.units),
         results=_rows(flat, result.units), figures=_figures(files),
         model_rows=_model_rows(model) if model is not None else [],
-        model_toml=dumps(model) if model is not None else "", source=str(source), extra=extra)
+        model_toml=dumps(model) if model is not None else "", source=str(source),
+        table=_runup_table(result.summary))
     path = outdir / "report.html"
     path.write_text(html, encoding="utf-8")
     return path
+
+
+def _case_names(ds) -> list[str]:
+    """'belt.pretension = 200 N, load_torque = 15 N*m' per case, in the order of ``status.ravel()``."""
+    import itertools
+
+    dims = list(ds["status"].dims)
+    if dims == ["case"] or any(d not in ds.coords for d in dims):
+        return [f"case {k}" for k in range(ds["status"].size)]
+
+    def one(d, v):
+        unit = ds[d].attrs.get("units", "")
+        v = f"{v:.4g}" if isinstance(v, float) else str(v)
+        return f"{d} = {v}{f' {unit}' if unit not in ('', '1') else ''}"
+
+    return [", ".join(one(d, v) for d, v in zip(dims, combo))
+            for combo in itertools.product(*(ds[d].values.tolist() for d in dims))]
 
 
 def _diag(d) -> dict:
@@ -171,7 +236,10 @@ def write_study_report(res, study_file, outdir) -> Path:
     c = res.counts
     sts = ds["status"].values.ravel()
     msgs = ds["message"].values.ravel()
-    diags = [{"code": str(st), "text": str(m), "quantity": ""} for st, m in zip(sts, msgs) if st != "success"][:50]
+    # each case that did not succeed, named by its parameters (the plots mark it, this says why)
+    params_of = _case_names(ds)
+    diags = [{"code": str(st), "text": f"{name}: {m}", "quantity": ""}
+             for st, m, name in zip(sts, msgs, params_of) if st != "success"][:50]
     results = [{"key": "cases", "value": str(c.get("total", len(sts))), "unit": ""}]
     for k in ("success", "warning", "failed", "invalid", "error", "ran", "cached"):
         if k in c:
@@ -183,15 +251,24 @@ def write_study_report(res, study_file, outdir) -> Path:
             vals = np.asarray(vals, float)
             if vals.size and np.isfinite(vals).any():
                 results.append({"key": f"{name} (completed cases: min / max)",
-                                "value": f"{np.nanmin(vals):.4g} / {np.nanmax(vals):.4g}", "unit": v.attrs.get("units", "")})
+                                "value": f"{np.nanmin(vals):.4g} / {np.nanmax(vals):.4g}",
+                                "unit": "" if v.attrs.get("units", "") == "1" else v.attrs.get("units", "")})
     params = [{"key": str(d), "value": _value(list(ds[d].values.tolist()), ""), "unit": ds[d].attrs.get("units", "")}
               for d in ds.dims if d in ds.coords]
     text = Path(study_file).read_text() if Path(study_file).exists() else ""
     status = "success" if c.get("success", 0) == c.get("total", 0) else ("warning" if not any(
         st not in ("success", "warning") for st in sts) else "failed")
+    captions = {}
+    for p in res.plots or []:
+        key = next((k for k in ds.data_vars if k.replace(".", "_").replace("/", "_") == Path(p).stem), Path(p).stem)
+        unit = ds[key].attrs.get("units", "") if key in ds else ""
+        captions[Path(p).name] = (f"{key}{f' ({unit})' if unit not in ('', '1') else ''} of every case against the "
+                                  "study's parameters; cases that warned or failed are marked and left blank (see "
+                                  "Diagnostics for why).")
     html = render(title=f"study {Path(study_file).stem}", kind="parameter study", status=status,
-                  message=f"{c.get('total', 0)} cases", diagnostics=diags, headline=results, results=results,
-                  figures=_figures(res.plots), model_rows=params, model_toml=text, source=str(study_file))
+                  message=f"{c.get('total', 0)} cases", diagnostics=diags, headline=results, results=[],
+                  figures=_figures(res.plots, captions), model_rows=params, model_toml=text, source=str(study_file),
+                  model_heading="Parameters")
     path = Path(outdir) / "report.html"
     path.write_text(html, encoding="utf-8")
     return path

@@ -57,3 +57,15 @@ def test_above_critical_speed_report_has_no_nan():
     from drivedyn.span.report import report
 
     assert "nan" not in report(span(**{"operation.speed": 60.0})).lower()
+
+
+def test_operating_point_in_a_tongue_warns():
+    """span-t10 sits in the principal tongue on purpose (its comment, summary in_resonance): the
+    status says so with the Floquet multiplier; well below the tongue's speeds the span is stable."""
+    r = drivedyn.run(span())
+    d = [x for x in r.diagnostics if x.code == "parametric-resonance"]
+    assert r.summary["in_resonance"] and r.summary["floquet_multiplier"] > 1
+    assert r.status == "warning" and len(d) == 1 and d[0].value == pytest.approx(r.summary["floquet_multiplier"])
+    calm = drivedyn.run(span(**{"operation.speed": 0.3}))
+    assert calm.summary["floquet_multiplier"] <= 1 + 1e-6
+    assert not [x for x in calm.diagnostics if x.code == "parametric-resonance"]

@@ -60,12 +60,44 @@ def _legend(ax, **kw):
     ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False, borderaxespad=0, **kw)
 
 
+def twins(curves: dict, tol=0.01) -> dict:
+    """{name: (earlier name, relative difference)} for each curve that lies within ``tol`` of an
+    earlier one (largest difference over the larger peak): drawn as it is, it would hide it (the
+    two pulleys of a two-pulley drive carry the same hub load)."""
+    out, names = {}, list(curves)
+    for k, nm in enumerate(names):
+        a = np.asarray(curves[nm], float)
+        for ref in names[:k]:
+            if ref in out:
+                continue
+            b = np.asarray(curves[ref], float)
+            top = max(float(np.nanmax(np.abs(a), initial=0)), float(np.nanmax(np.abs(b), initial=0)))
+            rel = float(np.nanmax(np.abs(a - b), initial=0)) / top if top > 0 else 0.0
+            if rel < tol:
+                out[nm] = (ref, rel)
+                break
+    return out
+
+
+def _twin_style(twin, name):
+    """Line style and label tail of a curve drawn over an equal one: dashed, on top, and the
+    legend says which it covers and how closely they agree."""
+    if name not in twin:
+        return {}, ""
+    ref, rel = twin[name]
+    pct = max(np.ceil(rel * 1000) / 10, 0.1)
+    return dict(ls=(0, (4, 3)), lw=1.8, zorder=3), f"\n(same as {ref} within {pct:.1f} %)"
+
+
 def plot_speeds(ds, ax=None):
     ax = plotting.ax_or_new(ax)
     t = ds["time"].values
     _window(ds, ax)
-    for nm in ds["pulley"].values:
-        ax.plot(t, ds["speed"].sel(pulley=nm), label=str(nm), color=colour(ds, nm))
+    names = [str(nm) for nm in ds["pulley"].values]
+    twin = twins({nm: ds["speed"].sel(pulley=nm).values for nm in names})
+    for nm in names:
+        style, tail = _twin_style(twin, nm)
+        ax.plot(t, ds["speed"].sel(pulley=nm), label=nm + tail, color=colour(ds, nm), **style)
     ax.set_ylabel("speed (rad/s)")
     sec = ax.secondary_yaxis("right", functions=(lambda w: w * RPM, lambda n: n / RPM))
     sec.set_ylabel("rpm")
@@ -89,7 +121,8 @@ def plot_slip(ds, driver, ax=None):
         sl = np.where(ok, 1 - v / np.where(ok, vd, 1), np.nan)
         ax.plot(t, 100 * sl, label=f"{nm}", color=colour(ds, nm))
     ax.set_ylabel("slip (%)")
-    ax.set_title(f"slip against the driver {driver}: 1 - |w r| / |w_d r_d|")
+    who = "the driver" if str(driver) == "driver" else f"the driver {driver}"
+    ax.set_title(f"slip against {who}: 1 - |w r| / |w_d r_d|")
     _legend(ax)
     ax.grid(alpha=0.3)
 
@@ -104,6 +137,8 @@ def span_labels(ds) -> dict:
     for q, sp in enumerate(ds["span"].values):
         role = " (tight)" if q == tight else " (slack)" if q == slack and len(mean) > 1 else ""
         out[str(sp)] = f"{sp}{role}: {mean[q]:.0f} N, {T[:, q].min():.0f}-{T[:, q].max():.0f}"
+    if max(map(len, out.values())) > 40:    # long span names: the numbers on a second line (else cut at the figure's edge)
+        out = {k: v.replace(": ", "\n", 1) for k, v in out.items()}
     return out
 
 
@@ -124,11 +159,15 @@ def plot_hub_loads(ds, ax=None):
     ax = plotting.ax_or_new(ax)
     t = ds["time"].values
     _window(ds, ax)
-    for nm in ds["pulley"].values:
+    names = [str(nm) for nm in ds["pulley"].values]
+    twin = twins({nm: ds["hub_load"].sel(pulley=nm).values for nm in names})
+    for nm in names:
         hx = float(ds["hub_force_x"].sel(pulley=nm).values[-1])
         hy = float(ds["hub_force_y"].sel(pulley=nm).values[-1])
         ang = np.degrees(np.arctan2(hy, hx))
-        ax.plot(t, ds["hub_load"].sel(pulley=nm), label=f"{nm} (towards {ang:.0f} deg)", color=colour(ds, nm))
+        style, tail = _twin_style(twin, nm)
+        ax.plot(t, ds["hub_load"].sel(pulley=nm), label=f"{nm} (towards {ang:.0f} deg){tail}",
+                color=colour(ds, nm), **style)
     ax.set_ylim(bottom=0)     # from zero: a ripple of a few per cent looks like one
     ax.set_ylabel("hub load (N)")
     ax.set_title("hub loads (direction of the belt's force on the pulley at the end)")
@@ -201,7 +240,8 @@ def plot_spectrum(ds, driver, ax):
     labels = span_labels(ds)
     tight = int(np.argmax(ds["span_tension"].values[sel].mean(axis=0)))
     sp = str(ds["span"].values[tight])
-    ax[0].semilogy(fb, peaks(amp(ds["span_tension"].values[:, tight])), color=f"C{tight % 10}", lw=0.8, label=labels[sp])
+    a_tight = amp(ds["span_tension"].values[:, tight])
+    ax[0].semilogy(fb, peaks(a_tight), color=f"C{tight % 10}", lw=0.8, label=labels[sp])
     ax[0].set_ylabel("tension (N)")
     ax[0].set_title("spectrum of the tight span's tension (steady window)")
     for nm in ds["pulley"].values:
@@ -215,18 +255,40 @@ def plot_spectrum(ds, driver, ax):
     fd = abs(float(ds["speed"].sel(pulley=driver).values[sel].mean())) / (2 * np.pi)
     from matplotlib.ticker import NullLocator
 
+    # dotted lines at the driver's orders 1-6 only where they stand apart (at 4 Hz on a 500 Hz
+    # axis they crowd the left edge); the order axis on top reads any peak as an order
+    spread = fd > 0 and 6 * fd > 0.15 * f[-1]
     for a in ax:
         a.yaxis.set_minor_locator(NullLocator())    # 8 unlabelled ticks a decade: a third of the figure's time
-        if fd > 0:
+        if spread:
             for k in range(1, 7):
                 if k * fd < f[-1]:
                     a.axvline(k * fd, color="0.5", ls=":", lw=0.8)
         a.grid(alpha=0.3)
         _legend(a)
+    a = ax[0]
     if fd > 0:
-        ax[0].text(fd, 1.0, " driver orders 1, 2, ...", transform=ax[0].get_xaxis_transform(), fontsize=7,
-                   va="top", color="0.4")
+        order = a.secondary_xaxis("top", functions=(lambda x: x / fd, lambda o: o * fd))
+        dotted = "; dotted: orders 1-6" if spread else ""
+        order.set_xlabel(f"order of the driver's mean speed ({fd:.3g} Hz, {60 * fd:.0f} rpm){dotted}", fontsize=8)
+        order.tick_params(labelsize=8)
+        a.set_title(a.get_title(), pad=30)
+        _label_peaks(a, f, a_tight, fd)     # at full resolution, not the drawn blocks
     return True
+
+
+def _label_peaks(ax, f, amp, fd, count=3):
+    """Name the largest peaks of a spectrum by frequency and driver order."""
+    from scipy.signal import find_peaks
+
+    idx, prop = find_peaks(np.log10(np.maximum(amp, 1e-300)), prominence=1.0)
+    top = idx[np.argsort(amp[idx])[::-1][:count]]
+    for i in top:
+        ax.annotate(f"{f[i]:.0f} Hz\norder {f[i] / fd:.1f}", (f[i], amp[i]), xytext=(3, 2),
+                    textcoords="offset points", fontsize=7, va="bottom", color="0.25")
+    if len(top):
+        lo, hi = ax.get_ylim()
+        ax.set_ylim(lo, hi * 8)     # room for the labels above the peaks (log axis)
 
 
 def draw_drive(ds, frame, ax, vmax=None):
@@ -316,6 +378,8 @@ def _figures(ds, driver):
 
     def spectrum():
         fig, ax = _fig(3, 2.6)
+        h = fig.get_figheight()
+        fig.subplots_adjust(top=1 - 0.85 / h)     # room for the order axis above the first panel
         return fig if plot_spectrum(ds, driver, ax) else None
 
     def campbell():   # the drive's rotational modes (modes.py) against the driver's orders
@@ -332,7 +396,7 @@ def _figures(ds, driver):
     def runup():
         from matplotlib.figure import Figure
 
-        fig = Figure(figsize=(8, 11), layout="constrained")
+        fig = Figure(figsize=(10, 11), layout="constrained")
         ax = fig.subplots(4 if "runup_arm_travel_min" in ds else 3, 1, sharex=True)
         plot_runup(ds, ax)
         return fig
@@ -456,20 +520,20 @@ def plot_runup(ds, ax):
         ax[0].fill_between(rpm, lo, hi, color=line.get_color(), alpha=0.15)
     ax[0].set_ylabel("span tension (N)")
     ax[0].set_title("span tension per crank-speed bin: mean, band min-max")
-    ax[0].legend(fontsize=7, ncol=2)
+    _legend(ax[0])
     crank = ds.attrs.get("runup_crank")
     for nm in ds["pulley"].values:
         if str(nm) != crank:
-            ax[1].plot(rpm, 100 * ds["runup_slip"].sel(pulley=nm), label=str(nm))
+            ax[1].plot(rpm, 100 * ds["runup_slip"].sel(pulley=nm), label=str(nm), color=colour(ds, nm))
     ax[1].set_ylabel("slip (%)")
     ax[1].set_title("slip against the crank (bin mean speeds)")
-    ax[1].legend(fontsize=7, ncol=2)
+    _legend(ax[1])
     tight = int(np.argmax(ds["runup_tension_mean"].values.mean(axis=0)))
     for k in ds["order"].values:
         ax[2].plot(rpm, ds["runup_tension_order"].sel(order=k).values[:, tight], label=f"order {k:g}")
     ax[2].set_ylabel("amplitude (N)")
     ax[2].set_title(f"order cuts: tension of span {ds['span'].values[tight]}")
-    ax[2].legend(fontsize=7, ncol=3)
+    _legend(ax[2])
     if "runup_arm_travel_min" in ds:
         for a, nm in enumerate(ds["arm"].values):
             lo = np.degrees(ds["runup_arm_travel_min"].values[:, a])
@@ -477,7 +541,7 @@ def plot_runup(ds, ax):
             ax[3].fill_between(rpm, lo, hi, alpha=0.4, label=f"{nm}: travel range")
         ax[3].set_ylabel("arm travel (deg)")
         ax[3].set_title("tensioner arm travel per bin (into the belt positive)")
-        ax[3].legend(fontsize=7)
+        _legend(ax[3])
     ax[-1].set_xlabel("crank speed (rpm)")
     for a in ax:
         a.grid(alpha=0.3)

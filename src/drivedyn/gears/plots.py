@@ -56,11 +56,12 @@ def plot_stiffness_time(ds, ax=None, periods=2.5):
     ax = _ax(ax)
     t0 = float(ds.time[0])
     sel = ds.sel(time=slice(t0, t0 + periods / ds.attrs["mesh_frequency_hz"][0]))
-    arts = [ax.plot(sel.time * 1e3, sel.mesh_stiffness.sel(mesh=m) / 1e6, label=f"mesh {m}")[0] for m in ds.mesh.values]
+    arts = [ax.plot(sel.time * 1e3, sel.mesh_stiffness.sel(mesh=m) / 1e6, label=f"mesh {label}")[0]
+            for m, label in _distinct(ds, "mesh_stiffness", "mesh", sel)]     # equal meshes: one line
     ax.set_xlabel("time [ms]")
     ax.set_ylabel("mesh stiffness [N/um]")
     ax.set_title("time-varying mesh stiffness")
-    ax.legend(loc="lower right")
+    ax.legend(loc="center")     # between the high and low levels (lower right covered the last rise)
     ax.grid(alpha=0.3)
     return arts
 

@@ -184,6 +184,14 @@ def run(model, progress=None) -> Result:
                         f"{op['v_critical']:.4g} m/s at pretension {op['pretension']:.4g} N: the span diverges (buckles) "
                         f"and the span model does not apply; only the chart is meaningful",
                         "speed", op["speed"], op["v_critical"], "m/s")
+    elif summary["stability"] == "parametric resonance":
+        # the chart shows it; the status must say it too (the report and the CLI list diagnostics)
+        result.diagnose("parametric-resonance",
+                        f"at {op['pretension']:.4g} N and {op['speed']:.4g} m/s the span is in a parametric-resonance "
+                        f"region: largest Floquet multiplier {summary['floquet_multiplier']:.4g} per excitation period "
+                        f"(growth rate {summary['growth_rate']:.3g} 1/s), so its transverse vibration grows; move the "
+                        "pretension or speed out of the tongue or add damping",
+                        "floquet_multiplier", summary["floquet_multiplier"], 1.0, "1")
     result.units = unit_map(summary, UNITS)
     if model.response is not None:
         report(0.9, "modal response")

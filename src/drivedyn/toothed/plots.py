@@ -63,6 +63,18 @@ def _contact_range(ds):
     return min(start, -1e-9)
 
 
+def _zero_based_top(val):
+    """Top of a colour scale that starts at 0: the largest value, or 1 (in the plot's unit) when
+    everything is 0, so an all-zero map shows the palest colour on a 0..1 scale."""
+    top = float(np.nanmax(val, initial=0))
+    return top if top > 0 else 1.0
+
+
+def _say_zero(ax, text):
+    ax.text(0.5, 0.5, text, transform=ax.transAxes, ha="center", va="center", fontsize=10,
+            bbox=dict(boxstyle="round", fc="w", ec="0.6", alpha=0.9))
+
+
 def plot_contours(ds, axes=None):
     """Superposed contours for a sequence of angles, entry and exit (seed figs. 6-8)."""
     fig = None
@@ -127,7 +139,7 @@ def plot_flank_map(ds):
     depth = ds["flank_depth"].values * MM
     worst = depth.max(axis=0)
     segs = np.stack([np.column_stack([u[:-1], v[:-1]]), np.column_stack([u[1:], v[1:]])], axis=1)
-    vmax = max(float(worst.max()), 1e-6)
+    vmax = _zero_based_top(worst)
     lc = LineCollection(segs, array=0.5 * (worst[:-1] + worst[1:]), cmap="inferno_r", linewidths=5,
                         norm=None)
     lc.set_clim(0, vmax)
@@ -149,7 +161,11 @@ def plot_flank_map(ds):
     ax1.set_ylabel("contour length from the trailing land (mm)\ntrailing flank below the tip, leading above")
     ax1.set_xlabel("pulley angle (deg)")
     ax1.set_title("penetration along the contour")
+    if not worst.max() > 0:
+        for ax in (ax0, ax1):
+            _say_zero(ax, "no penetration anywhere")
     fig.colorbar(im, ax=ax1, label="penetration (mm)")
+    fig.suptitle(f"{ds.attrs.get('title', '')}: where the flank penetrates the groove", fontsize=11)
     return fig
 
 
@@ -162,16 +178,21 @@ def plot_maps(ds):
     for ax, var, scale, label in ((axes[0], "map_overlap_area", 1e6, "max overlap area (mm$^2$)"),
                                   (axes[1], "map_penetration", MM, "max penetration (mm)")):
         val = ds[var].values * scale
-        im = ax.imshow(val, origin="lower", aspect="auto", cmap="magma_r")
+        # overlap cannot be negative: the scale starts at 0 with 0 the palest colour (autoscaled,
+        # an all-zero map sat mid-scale on -0.1..0.1, as if negative)
+        top = _zero_based_top(val)
+        im = ax.imshow(val, origin="lower", aspect="auto", cmap="magma_r", vmin=0, vmax=top)
         ax.set_xticks(range(len(e)), [f"{x:g}" for x in e])
         ax.set_yticks(range(len(z)), [str(k) for k in z])
         for i in range(len(z)):
             for j in range(len(e)):
-                ax.text(j, i, f"{val[i, j]:.3g}", ha="center", va="center", fontsize=7,
-                        color="w" if val[i, j] > 0.6 * val.max() else "k")
+                ax.text(j, i, f"{val[i, j]:.3g}", ha="center", va="center", fontsize=8,
+                        color="w" if val[i, j] > 0.6 * top else "k")
         ax.set_xlabel("pitch error / tooth offset (mm)")
         ax.set_ylabel("pulley teeth z")
         ax.set_title(label.split(" (")[0] + " over tooth count and pitch error")
+        if not np.nanmax(val, initial=0) > 0:
+            _say_zero(ax, "0 everywhere: no overlap")
         fig.colorbar(im, ax=ax, label=label)
     fig.suptitle(f"{ds.attrs.get('title', '')}: interference maps", fontsize=11)
     return fig

@@ -1,0 +1,4 @@
+"""``python -m drivedyn`` runs the command-line interface."""
+from drivedyn.cli import main
+
+main()
