@@ -36,17 +36,28 @@ def main():
         w = min(walls)
         print(f"{n:5d} {r.summary['solver']['step'] * 1e6:8.3f} {steps / 0.1:12.0f} {w / steps * 1e6:8.2f} {w / 0.1:17.2f}")
 
-    # the experimental implicit scheme (issue 14) against the semi-implicit reference, one run
-    print(f"{'n':>5s} {'scheme':>14s} {'step us':>8s} {'us/step':>8s} {'wall s per sim s':>17s} {'ratio ref/new':>14s}")
-    for n in (150, 600):
-        walls = {}
+    # the implicit scheme (issue 14) against the semi-implicit reference, in one run: wall time per
+    # simulated second over 0.3 s of the 5PK start (ramp and slip arcs forming), its growth with n
+    print(f"{'n':>5s} {'semi us':>8s} {'impl us':>8s} {'semi s/s':>9s} {'impl s/s':>9s} {'ratio':>6s} "
+          f"{'factor/step':>11s} {'passes/step':>11s}")
+    ns, walls = [], []
+    for n in (50, 100, 150, 300, 600, 1200):
+        row = {}
         for method in ("semi-implicit", "implicit"):
-            mn = drivedyn.replace(base, {"belt.segments": n, "simulation.duration": 0.05, "output.segments": [0],
+            if method == "semi-implicit" and n > 600:
+                continue
+            mn = drivedyn.replace(base, {"belt.segments": n, "simulation.duration": 0.3, "output.segments": [0],
                                          "simulation.method": method})
-            w, steps, r = timed(mn, repeat=2)
-            walls[method] = min(w)
-            print(f"{n:5d} {method:>14s} {r.summary['solver']['step'] * 1e6:8.3f} {min(w) / steps * 1e6:8.2f} "
-                  f"{min(w) / 0.05:17.2f} {walls['semi-implicit'] / min(w):14.2f}")
+            w, steps, r = timed(mn, repeat=1)
+            row[method] = (min(w) / 0.3, r.summary["solver"])
+        si, im = row.get("semi-implicit"), row["implicit"]
+        ns.append(n)
+        walls.append(im[0])
+        print(f"{n:5d} {si[1]['step'] * 1e6 if si else float('nan'):8.3f} {im[1]['step'] * 1e6:8.3f} "
+              f"{si[0] if si else float('nan'):9.2f} {im[0]:9.2f} {si[0] / im[0] if si else float('nan'):6.2f} "
+              f"{im[1]['factorisations'] / im[1]['steps']:11.3f} {im[1]['active_set_passes'] / im[1]['steps']:11.2f}")
+    slope = np.polyfit(np.log(ns), np.log(walls), 1)[0]
+    print(f"implicit: wall per simulated second grows as n^{slope:.2f} over n = {ns[0]}..{ns[-1]}")
 
     # k pulleys of 27 mm on a regular polygon, the 5PK belt (1.2 m path, 150 segments), the
     # seed's driver and load on the first two, free idlers on the others
