@@ -279,10 +279,14 @@ def plot_spectrum(ds, driver, ax):
 
 def _label_peaks(ax, f, amp, fd, count=3):
     """Name the largest peaks of a spectrum by frequency and driver order."""
-    from scipy.signal import find_peaks
-
-    idx, prop = find_peaks(np.log10(np.maximum(amp, 1e-300)), prominence=1.0)
-    top = idx[np.argsort(amp[idx])[::-1][:count]]
+    # local maxima standing a decade above the lowest point within +-5 % of the band on either
+    # side (a prominence test; scipy.signal.find_peaks costs a 0.65 s import in a fresh painter)
+    la = np.log10(np.maximum(amp, 1e-300))
+    w = max(2, len(la) // 20)
+    idx = [i for i in range(1, len(la) - 1) if la[i] > la[i - 1] and la[i] >= la[i + 1]
+           and la[i] - min(la[max(0, i - w):i].min(), la[i + 1:i + 1 + w].min()) >= 1.0]
+    idx = np.array(idx, dtype=int)
+    top = idx[np.argsort(amp[idx])[::-1][:count]] if len(idx) else idx
     for i in top:
         ax.annotate(f"{f[i]:.0f} Hz\norder {f[i] / fd:.1f}", (f[i], amp[i]), xytext=(3, 2),
                     textcoords="offset points", fontsize=7, va="bottom", color="0.25")
