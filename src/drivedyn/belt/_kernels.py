@@ -656,8 +656,8 @@ KMAX = 4
 # the anchor slope, x mu N / Delta_v: the secant of the Threlfall law to its saturation, so an
 # anchor lets go where the law saturates (its tangent at zero, 1.5, flickered and drifted at 20 us)
 ANCHOR = 1.0
-# passes of the stick-slip active set per step; the last keeps its anchors (a force up to a few
-# per cent over mu N at the edge of a slip arc, for one step)
+# passes of the stick-slip active set per step: anchors let go in any of them, sliding segments
+# are anchored in all but the last; one more solve takes the last changes in
 PASSES = 6
 
 
@@ -905,7 +905,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                 f0x[i] = fx[i]
                 f0y[i] = fy[i]
                 f0z[i] = mz[i]
-            for _it in range(PASSES):
+            for _it in range(PASSES + 1):
                 # the chain matrix A_f is refactored when the contact set changes or the segments
                 # have turned; a change of stick and slip since (a few segments at the ends of
                 # the slip arcs, nearly every step) enters as a low-rank correction (Woodbury),
@@ -1117,7 +1117,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                         ty = aty[i]
                         sl = (om[j] + dom[j]) * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * tx - (vy[i] + h * fy[i] - pvy[j]) * ty
                         T = ak[i] * sl
-                        if abs(T) > mu[i] * cN[i] and _it < PASSES - 1:
+                        if abs(T) > mu[i] * cN[i] and _it < PASSES:
                             # lets go: slides this step with mu N, solved again
                             Ts = math.copysign(mu[i] * cN[i], T)
                             cca[i] = 0.0
