@@ -13,7 +13,7 @@ from ..model import dumps
 from ..results import Result, unit_map, variable
 from ..window import in_window, steady_window
 from . import _kernels as K
-from .system import BeltSystem, build, clear_accumulators, new_state, new_work
+from .system import BeltSystem, build, clear_accumulators, new_state, new_work, stability_limit
 
 
 class _Recorder:
@@ -78,21 +78,48 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     saved_parts = (*S, W.span_joint)         # what a replay restores
 
     step = _compiled(K.step_chunk, (1, 0.0, h, B, C, P, A, S, W))
+    hstep = [h]
 
     def advance(nsteps, t):
-        return step(nsteps, t, h, B, C, P, A, S, W)
+        return step(nsteps, t, hstep[0], B, C, P, A, S, W)
 
-    for k in range(nsamples):
+    # the implicit scheme's step control: checkpoints every 10 ms; a run that goes unstable (a
+    # segment turning far faster than any pulley, or a blow-up) goes back two checkpoints and
+    # continues at half the step, down to the semi-implicit scheme's step
+    implicit = B.implicit
+    every = max(1, int(round(0.01 / interval)))
+    checkpoints = []
+    h_min = 0.85 * stability_limit(sysm.model, sysm.init, B, C) if implicit else h
+    rec.step_reductions, rec.steps_done = 0, 0
+    k = 0
+    while k < nsamples:
+        if implicit and k % every == 0:
+            checkpoints = (checkpoints + [(k, t, [a.copy() for a in saved_parts] + [W.lin_st.copy()], work,
+                                           diss_total.copy(), rec.nf, rec.steps_done)])[-3:]
         clear_accumulators(W)
         saved = [a.copy() for a in saved_parts]
         t0 = t
         t = advance(steps_per_sample, t)
+        rec.steps_done += steps_per_sample
+        unstable = _blow_up(S.x, S.y, S.vx, S.vy, S.om, W.seg_p, sysm) or (implicit and _spinning(S, sysm))
+        if unstable and implicit and hstep[0] / 2 >= h_min and checkpoints:
+            k, t, parts, work, diss_total, rec.nf, rec.steps_done = checkpoints[0]
+            diss_total = diss_total.copy()
+            for a, b in zip(saved_parts + (W.lin_st,), parts):
+                a[...] = b
+            checkpoints = checkpoints[:1]
+            steps_per_sample *= 2
+            hstep[0] = interval / steps_per_sample
+            W.lin_cnt[0] = 0                     # refactor at the new step
+            rec.step_reductions += 1
+            continue
         if _blow_up(S.x, S.y, S.vx, S.vy, S.om, W.seg_p, sysm):
             # replay the sample step by step from its start to name the first quantity that ran away
             for a, b in zip(saved_parts, saved):
                 a[...] = b
             W.lin_cnt[0] = 0          # the implicit scheme refactors its chain matrix from there
-            return k, "diverged " + _first_runaway(advance, t0, steps_per_sample, h, S, sysm)
+            rec.steps_done -= steps_per_sample
+            return k, "diverged " + _first_runaway(advance, t0, steps_per_sample, hstep[0], S, sysm)
         work += float(np.sum(W.acc_pin))
         diss_total += W.acc_diss
         rec.t[k] = (k + 1) * interval      # exact sample times (the accumulated t carries round-off)
@@ -116,6 +143,8 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
             progress(last_report, f"t = {t:.3f} s")
         # the implicit scheme's work: chain factorisations, active-set passes, stick-slip changes
         rec.implicit = (int(W.lin_cnt[1]), int(W.lin_cnt[3]), int(W.lin_stat[0] + W.lin_stat[1]))
+        rec.h_final = hstep[0]
+        k += 1
     return nsamples, ""
 
 
@@ -152,6 +181,14 @@ def _first_runaway(advance, t, nsteps, h, state, sysm):
     return f"by t = {t:.6g} s: the belt state ran out of bounds"
 
 
+def _spinning(S, sysm):
+    """A segment turning ten times faster than the fastest pulley (and over 100 rad/s): the
+    implicit scheme's sign that its step is too large (gross slip at 40 us on the 5PK)."""
+    pr = sysm.pulleys.r
+    wp = float(np.max(np.abs(S.om) * pr) / np.min(pr)) if len(pr) else 0.0
+    return float(np.max(np.abs(S.w))) > 10 * wp + 100.0
+
+
 def _blow_up(x, y, vx, vy, om, pen, sysm):
     """Name the quantity that blew up, or return ''."""
     v2 = vx * vx + vy * vy
@@ -186,7 +223,8 @@ def run(model, progress=None) -> Result:
     try:
         if sim.method != "rkf45":
             done, failure = _integrate_semi_implicit(sysm, progress, rec, nsamples, steps_per_sample, h, frame_every)
-            nsteps = done * steps_per_sample
+            nsteps = rec.steps_done
+            h = getattr(rec, "h_final", h)
         else:
             from .rkf45 import integrate_rkf45
 
@@ -196,7 +234,7 @@ def run(model, progress=None) -> Result:
         why = stop_reason(exc)
         failure = f"stopped: {why}"
         if sim.method != "rkf45":
-            nsteps = rec.ns * steps_per_sample
+            nsteps = getattr(rec, "steps_done", rec.ns * steps_per_sample)
         else:
             nsteps, h = rec.steps, rec.step or h
     wall = _time.perf_counter() - wall0
@@ -266,6 +304,7 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
               "real_time_factor": float(t_end / wall) if wall > 0 else float("nan")}
     if model.simulation.method == "implicit" and getattr(rec, "implicit", None):
         solver["factorisations"], solver["active_set_passes"], solver["stick_slip_changes"] = rec.implicit
+        solver["step_reductions"] = int(getattr(rec, "step_reductions", 0))
     summary = _summary(model, sysm, ds, solver, sel, window)
     ds.attrs["steady_window"] = [float(window[0]), float(window[1])]   # for the plots
     ds.attrs["animation"] = int(model.output.animation)
