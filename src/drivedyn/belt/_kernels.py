@@ -786,6 +786,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     fca = W.lin_fa
     kat = np.zeros(n)
     cT = np.zeros(n)
+    clist = np.zeros(n, dtype=np.int64)   # the segments in contact this step
     ak = np.zeros(n)                     # this pass's anchors: slope (N s/m) and direction
     atx = np.zeros(n)
     aty = np.zeros(n)
@@ -861,11 +862,14 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
             # anchored to the pulley surface in A by the friction law's secant slope mu N / dv
             # (pulley speeds frozen over the step), its friction the anchor's force. An anchor
             # whose force would exceed mu N lets go and the step is solved again (active set).
+            nc = 0
+            cchg = False
             for i in range(n):
                 fy[i] -= m_[i] * g
                 cj[i] = -1
                 cT[i] = 0.0
                 cca[i] = 0.0
+                ak[i] = 0.0
                 for j in range(nk):
                     rx = x[i] - pcx[j]
                     ry = y[i] - pcy[j]
@@ -902,6 +906,11 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                 if cj[i] < 0:
                     stk[i] = 0.0
                     z[i] = 0.0
+                else:
+                    clist[nc] = i
+                    nc += 1
+                if (cj[i] >= 0) != (fkap[i] > 0.0):
+                    cchg = True
                 f0x[i] = fx[i]
                 f0y[i] = fy[i]
                 f0z[i] = mz[i]
@@ -910,15 +919,12 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                 # have turned; a change of stick and slip since (a few segments at the ends of
                 # the slip arcs, nearly every step) enters as a low-rank correction (Woodbury),
                 # each such segment's column A_f^-1 w cached until the next factorisation
-                refac = lin_cnt[0] <= 0
-                for i in range(n):
-                    if (cj[i] >= 0) != (fkap[i] > 0.0):
-                        refac = True
-                        break
+                refac = lin_cnt[0] <= 0 or cchg
                 nkk = 0
                 if not refac:
                     nnew = 0
-                    for i in range(n):
+                    for q in range(nc):
+                        i = clist[q]
                         if (cca[i] > 0.0) != (fca[i] > 0.0):
                             if zslot[i] < 0:
                                 nnew += 1
@@ -937,6 +943,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                         kat[i] = h * cca[i]
                         zslot[i] = -1
                     lin_cnt[2] = 0
+                    cchg = False
                     lin_cnt[0] = _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jdx, jdy,
                                            turn, m_, ieff, lin_sig, lin_gam, lin_geo, fkap, kat, fnx, fny, lin_d,
                                            lin_o, lin_e, lin_dinv, lin_y, lin_x)
@@ -959,7 +966,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                             lin_u[jj, i, 1] = uy[i]
                             lin_u[jj, i, 2] = uz[i]
                 # this pass's anchors: slope and direction as the matrix (A_f and its corrections) has them
-                for i in range(n):
+                for q in range(nc):
+                    i = clist[q]
                     if fca[i] > 0.0:
                         ak[i] = fca[i] if cca[i] > 0.0 else 0.0
                         atx[i] = -fny[i]
@@ -1018,6 +1026,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                     fx[i] = f0x[i]
                     fy[i] = f0y[i]
                     mz[i] = f0z[i]
+                for q in range(nc):
+                    i = clist[q]
                     if ak[i] > 0.0:
                         j = cj[i]
                         sl = om[j] * pr[j] - (vx[i] - pvx[j]) * atx[i] - (vy[i] - pvy[j]) * aty[i]
@@ -1069,9 +1079,10 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                         else:
                             qmat[jj, jj] = 1.0
                             qb[jj] = 0.0
-                    for i in range(n):
+                    for q in range(nc):
+                        i = clist[q]
                         j = cj[i]
-                        if j < 0 or not ipl[j] or cN[i] <= 0.0:
+                        if not ipl[j] or cN[i] <= 0.0:
                             continue
                         if ak[i] > 0.0:
                             tx = atx[i]
@@ -1110,7 +1121,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                             fy[i] += wy[b] * zc[q, i, 1]
                             mz[i] += wy[b] * zc[q, i, 2]
                 released = False
-                for i in range(n):
+                for q in range(nc):
+                    i = clist[q]
                     if ak[i] > 0.0:
                         j = cj[i]
                         tx = atx[i]
