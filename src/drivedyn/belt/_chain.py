@@ -12,7 +12,10 @@ the tangent stiffness of its zero-length spring, b_j its damper. For one oscilla
 is symplectic Euler with the stiffness k / (1 + h^2 k / 2m): the update matrix has determinant 1
 (no numerical damping) and trace 2 - 2 h^2 w^2 / (2 + h^2 w^2) > -2 for every h (no stability
 limit); a mode of frequency w is slowed by the relative (h w)^2 / 4, so the modes a user wants
-(w h << 1) are kept and the chain's stiff modes (w h >> 1) no longer set the step. The h b_j term
+(w h << 1) are kept and the chain's stiff modes (w h >> 1) no longer set the step. Per segment A also carries
+(``factor``'s arguments) the contact's normal stiffness and damping (kap n n^T), a stuck
+segment's friction anchor along the tangent (kat t t^T) and the joints' geometric (tension)
+stiffness on its rotation (geo). The h b_j term
 makes each damper backward-Euler. A itself is only a preconditioner of the explicit forces, so
 a slightly stale A (segments turned by a few hundredths of a radian since it was factored) costs
 neither consistency nor stability: the stiff modes sit at h w_eff = sqrt 2, half the limit 2.

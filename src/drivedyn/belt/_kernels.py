@@ -45,11 +45,12 @@ segment's new velocity (a scalar monotone equation per contact, pulley speeds fr
 step), which makes the stiff friction law (slope mu N / dv) unconditionally stable; the step is
 limited only by the elastic chain, h < 2 / sqrt(12 k / m) (``system.stability_limit``).
 
-Scheme ``implicit`` (same function, ``Belt.implicit``; experimental, issue 14): the joints and the
-contact normal stiffness and damping through one cyclic block-tridiagonal matrix (``_chain.py``:
-symplectic Euler with a modified mass, no stability limit from the chain), friction per segment
-after that solve. Stable at any step; accurate to the reference only at small steps so far
-(5PK: 0.2 % tension, 0.025 percentage points slip at 5 us), see docs/STATUS.md.
+Scheme ``implicit`` (same function, ``Belt.implicit``; opt-in, issue 14): the joints (stiffness,
+dampers, tension stiffness), the contact normal stiffness and damping and the stuck segments'
+friction through one cyclic block-tridiagonal matrix (``_chain.py``: symplectic Euler with a
+modified mass, no stability limit from the chain); stick and slip by an active set whose changes
+are low-rank corrections of the factored matrix; pulleys implicit with the segments they anchor.
+Agrees with the semi-implicit scheme at about ten times its step (README, tests/belt/test_implicit.py).
 """
 import math
 from typing import NamedTuple
