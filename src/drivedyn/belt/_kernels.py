@@ -663,6 +663,24 @@ PASSES = 6
 
 
 @njit(cache=True, inline="always")
+def _move(i, h, vxs, vys, x, y, vx, vy, w, phi, c, s):
+    """Segment i takes its new velocity (vxs, vys) and moves over the step; its angle turns by
+    a = h w, (c, s) rotated exactly to round-off (series to a^5; |a| < 2e-2 here)."""
+    vx[i] = vxs
+    vy[i] = vys
+    x[i] += h * vxs
+    y[i] += h * vys
+    a = h * w[i]
+    phi[i] += a
+    a2 = a * a
+    ca = 1.0 - 0.5 * a2 * (1.0 - a2 / 12.0)
+    sa = a * (1.0 - a2 / 6.0 * (1.0 - a2 / 20.0))
+    cn = c[i] * ca - s[i] * sa
+    s[i] = s[i] * ca + c[i] * sa
+    c[i] = cn
+
+
+@njit(cache=True, inline="always")
 def _woodbury(n, k, kseg, kslot, kwx, kwy, zc, wm, wtmp, wy, ux, uy, uz):
     """u <- u - Z (1/dk + W^T Z)^-1 W^T u: A_f^-1 b turned into (A_f + W dk W^T)^-1 b, W the
     k anchor directions (one segment each), Z = A_f^-1 W cached in zc."""
@@ -768,14 +786,15 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     lin_sig, lin_gam, lin_cnt, m_, lin_geo = W.lin_sig, W.lin_gam, W.lin_cnt, B.m, W.lin_geo
     ieff = inertia * iscale
     hj = 0.0 if implicit else h       # the implicit scheme's dampers are in the chain matrix
+    ni = n if implicit else 0          # the implicit scheme's scratch, sized 0 for the other
     # per segment: the pulley it touches (-1: none), normal, penetration, normal force, matrix
     # coefficient; f*: those the chain matrix was factored with
-    cj = np.full(n, -1, dtype=np.int64)
-    cnx = np.zeros(n)
-    cny = np.zeros(n)
-    cp = np.zeros(n)
-    cN = np.zeros(n)
-    ckap = np.zeros(n)
+    cj = np.full(ni, -1, dtype=np.int64)
+    cnx = np.zeros(ni)
+    cny = np.zeros(ni)
+    cp = np.zeros(ni)
+    cN = np.zeros(ni)
+    ckap = np.zeros(ni)
     fkap = W.lin_fk
     fnx = W.lin_fnx
     fny = W.lin_fny
@@ -783,14 +802,14 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
     # in the chain matrix by the secant slope of the friction law, mu N / Delta_v (implicit
     # scheme, Threlfall law); fca: the slope the matrix was factored with
     stk = W.lin_st
-    cca = np.zeros(n)
+    cca = np.zeros(ni)
     fca = W.lin_fa
-    kat = np.zeros(n)
-    cT = np.zeros(n)
-    clist = np.zeros(n, dtype=np.int64)   # the segments in contact this step
-    ak = np.zeros(n)                     # this pass's anchors: slope (N s/m) and direction
-    atx = np.zeros(n)
-    aty = np.zeros(n)
+    kat = np.zeros(ni)
+    cT = np.zeros(ni)
+    clist = np.zeros(ni, dtype=np.int64)   # the segments in contact this step
+    ak = np.zeros(ni)                     # this pass's anchors: slope (N s/m) and direction
+    atx = np.zeros(ni)
+    aty = np.zeros(ni)
     zslot = W.lin_zslot                  # cached columns A_f^-1 w of stick-slip changes
     zc, ztx, zty = W.lin_zc, W.lin_ztx, W.lin_zty
     kseg = np.zeros(KMAX, dtype=np.int64)
@@ -809,15 +828,15 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
         ipl[j] = implicit and pmode[j] == 0 and P.cl_kind[j] == 0
     npl = int(np.sum(ipl))
     lin_u = W.lin_u
-    ux = np.zeros(n)
-    uy = np.zeros(n)
-    uz = np.zeros(n)
+    ux = np.zeros(ni)
+    uy = np.zeros(ni)
+    uz = np.zeros(ni)
     qmat = np.zeros((nk, nk))
     qb = np.zeros(nk)
     dom = np.zeros(nk)
-    f0x = np.zeros(n)
-    f0y = np.zeros(n)
-    f0z = np.zeros(n)
+    f0x = np.zeros(ni)
+    f0y = np.zeros(ni)
+    f0z = np.zeros(ni)
     tq_const, tq_visc, hm_off, hm_order, hm_amp, hm_phase = P.tq_const, P.tq_visc, P.hm_off, P.hm_order, P.hm_amp, P.hm_phase
     tt_off, tt_x, tt_y, ts_off, ts_x, ts_y = P.tt_off, P.tt_x, P.tt_y, P.ts_off, P.ts_x, P.ts_y
     sp_off, sp_x, sp_y = P.sp_off, P.sp_x, P.sp_y
@@ -1191,18 +1210,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
                     seg_n[i] = 0.0
                     seg_t[i] = 0.0
                     seg_p[i] = 0.0
-                vx[i] = vxs
-                vy[i] = vys
-                x[i] += h * vxs
-                y[i] += h * vys
-                a = h * w[i]
-                phi[i] += a
-                a2 = a * a
-                ca = 1.0 - 0.5 * a2 * (1.0 - a2 / 12.0)
-                sa = a * (1.0 - a2 / 6.0 * (1.0 - a2 / 20.0))
-                cn = c[i] * ca - s[i] * sa
-                s[i] = s[i] * ca + c[i] * sa
-                c[i] = cn
+                _move(i, h, vxs, vys, x, y, vx, vy, w, phi, c, s)
         for i in range(n if not implicit else 0):
             hm = hm_[i]
             vxs = vx[i] + hm * fx[i]
@@ -1250,20 +1258,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W):
             seg_n[i] = Ntot
             seg_t[i] = Ttot
             seg_p[i] = pen
-            vx[i] = vxs
-            vy[i] = vys
             w[i] += hi_[i] * mz[i]
-            x[i] += h * vxs
-            y[i] += h * vys
-            # rotate (c, s) by a = h w exactly to round-off (series to a^5; |a| < 1e-2 here)
-            a = h * w[i]
-            phi[i] += a
-            a2 = a * a
-            ca = 1.0 - 0.5 * a2 * (1.0 - a2 / 12.0)
-            sa = a * (1.0 - a2 / 6.0 * (1.0 - a2 / 20.0))
-            cn = c[i] * ca - s[i] * sa
-            s[i] = s[i] * ca + c[i] * sa
-            c[i] = cn
+            _move(i, h, vxs, vys, x, y, vx, vy, w, phi, c, s)
         # pulleys (explicit in the belt torque, which the implicit friction solve bounded)
         for j in range(nk):
             Mb = tq_belt[j]
