@@ -77,11 +77,12 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     last_report = -1.0
     saved_parts = (*S, W.span_joint)         # what a replay restores
 
-    step = _compiled(K.step_chunk, (1, 0.0, h, B, C, P, A, S, W))
+    lin = True if B.implicit else None       # the implicit scheme's compile-time switch
+    step = _compiled(K.step_chunk, (1, 0.0, h, B, C, P, A, S, W, lin))
     hstep = [h]
 
     def advance(nsteps, t):
-        return step(nsteps, t, hstep[0], B, C, P, A, S, W)
+        return step(nsteps, t, hstep[0], B, C, P, A, S, W, lin)
 
     # the implicit scheme's step control: checkpoints every 10 ms; a run that goes unstable (a
     # segment turning far faster than any pulley, or a blow-up) goes back two checkpoints and
