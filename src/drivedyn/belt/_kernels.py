@@ -260,10 +260,9 @@ class Work(NamedTuple):
     lin_geo: np.ndarray      # (n,) scratch: geometric stiffness terms
     lin_u: np.ndarray        # (nk, n, 3): A^-1 of each pulley's anchors (its unit speed change)
     lin_zslot: np.ndarray    # (n,) int64: cache slot of a segment's column A_f^-1 w (-1: none)
-    lin_zc: np.ndarray       # (KMAX, n, 3) cached columns, (KMAX,) their directions
-    lin_ztx: np.ndarray
+    lin_zc: np.ndarray       # (2 ZMAX, n, 3) cached columns A_f^-1 e_x, A_f^-1 e_y at a segment
+    lin_g: np.ndarray        # (nk, nk + 1): the pulleys' coupling g_j . U_k and sum of fca r
     lin_stat: np.ndarray     # (4): stick-slip changes within steps (let go, anchored), unused, unused
-    lin_zty: np.ndarray
     lin_st: np.ndarray       # (n,) 1: the segment stuck to its pulley at the last step
     lin_cnt: np.ndarray      # int64 (4): steps until the next factorisation, factorisations, cached columns, active-set passes
 
@@ -652,8 +651,10 @@ def _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cv
 # the implicit scheme refactors its chain matrix once the fastest segment has turned this far
 # (rad): a stale matrix is a preconditioner still (see _chain.py); the forces are always exact
 REFACTOR_ANGLE = 0.05
-# stick-slip changes taken as low-rank corrections of the factored matrix, at most this many
-KMAX = 4
+# segments whose stick-slip state differs from the factored one within a step (CMAX), and
+# segments whose columns A_f^-1 [e_x e_y] are cached between factorisations (ZMAX)
+CMAX = 8
+ZMAX = 8
 # the anchor slope, x mu N / Delta_v: the secant of the Threlfall law to its saturation, so an
 # anchor lets go where the law saturates (its tangent at zero, 1.5, flickered and drifted at 20 us)
 ANCHOR = 1.0
@@ -678,25 +679,6 @@ def _move(i, h, vxs, vys, x, y, vx, vy, w, phi, c, s):
     cn = c[i] * ca - s[i] * sa
     s[i] = s[i] * ca + c[i] * sa
     c[i] = cn
-
-
-@njit(cache=True, inline="always")
-def _woodbury(n, k, kseg, kslot, kwx, kwy, zc, wm, wtmp, wy, ux, uy, uz):
-    """u <- u - Z (1/dk + W^T Z)^-1 W^T u: A_f^-1 b turned into (A_f + W dk W^T)^-1 b, W the
-    k anchor directions (one segment each), Z = A_f^-1 W cached in zc."""
-    for a in range(k):
-        i = kseg[a]
-        wy[a] = kwx[a] * ux[i] + kwy[a] * uy[i]
-        for b in range(k):
-            wtmp[a, b] = wm[a, b]
-    _small_solve(k, wtmp, wy)
-    for b in range(k):
-        q = kslot[b]
-        cb = wy[b]
-        for r in range(n):
-            ux[r] -= cb * zc[q, r, 0]
-            uy[r] -= cb * zc[q, r, 1]
-            uz[r] -= cb * zc[q, r, 2]
 
 
 @njit(cache=True, inline="always")
@@ -815,29 +797,32 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
     ak = np.zeros(ni)                     # this pass's anchors: slope (N s/m) and direction
     atx = np.zeros(ni)
     aty = np.zeros(ni)
-    zslot = W.lin_zslot                  # cached columns A_f^-1 w of stick-slip changes
-    zc, ztx, zty = W.lin_zc, W.lin_ztx, W.lin_zty
-    kseg = np.zeros(KMAX, dtype=np.int64)
-    kslot = np.zeros(KMAX, dtype=np.int64)
-    kdk = np.zeros(KMAX)
-    kwx = np.zeros(KMAX)
-    kwy = np.zeros(KMAX)
-    wm = np.zeros((KMAX, KMAX))
-    wtmp = np.zeros((KMAX, KMAX))
-    wy = np.zeros(KMAX)
-    fk = np.zeros((nk, KMAX))
-    ck = np.zeros((nk, KMAX))
+    zslot = W.lin_zslot                  # cache slot of a segment's columns A_f^-1 [e_x e_y] (-1: none)
+    zc, lin_g = W.lin_zc, W.lin_g
+    zcap = zc.shape[0] // 2                  # segments with cached columns (ZMAX; 0: refactor at each change)
+    nci = CMAX if implicit else 0
+    cseg = np.zeros(nci, dtype=np.int64)     # the members of C (segments not in their factored state)
+    cslot = np.full(ni, -1, dtype=np.int64)  # a segment's place in C (-1: not a member)
+    pend = np.zeros(ni, dtype=np.int64)      # segments to join C
+    cpar = np.zeros((nci, 11))               # a member's correction, affine in dv and dw
+    msz_ = 2 * nci + nk if implicit else 0
+    qm = np.zeros((msz_, msz_))              # the small system
+    qv = np.zeros(msz_)
+    nC = 0
+    yx = np.zeros(ni)                        # y = A_f^-1 F_base
+    yy = np.zeros(ni)
+    yz = np.zeros(ni)
+    cTb = np.zeros(ni)                       # a sliding segment's friction in F_base
+    s0 = np.zeros(nk)                        # per pulley: base friction sum, g_j . y
+    gyv = np.zeros(nk)
     # pulleys integrated with the chain solve: dynamic, no clutch (the others explicit)
     ipl = np.zeros(nk, dtype=np.bool_)
     for j in range(nk):
         ipl[j] = implicit and pmode[j] == 0 and P.cl_kind[j] == 0
-    npl = int(np.sum(ipl))
     lin_u = W.lin_u
     ux = np.zeros(ni)
     uy = np.zeros(ni)
     uz = np.zeros(ni)
-    qmat = np.zeros((nk, nk))
-    qb = np.zeros(nk)
     dom = np.zeros(nk)
     f0x = np.zeros(ni)
     f0y = np.zeros(ni)
@@ -939,27 +924,22 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                 f0x[i] = fx[i]
                 f0y[i] = fy[i]
                 f0z[i] = mz[i]
-            for _it in range(PASSES + 1):
-                # the chain matrix A_f is refactored when the contact set changes or the segments
-                # have turned; a change of stick and slip since (a few segments at the ends of
-                # the slip arcs, nearly every step) enters as a low-rank correction (Woodbury),
-                # each such segment's column A_f^-1 w cached until the next factorisation
-                refac = lin_cnt[0] <= 0 or cchg
-                nkk = 0
-                if not refac:
-                    nnew = 0
-                    for q in range(nc):
-                        i = clist[q]
-                        if (cca[i] > 0.0) != (fca[i] > 0.0):
-                            if zslot[i] < 0:
-                                nnew += 1
-                            if nkk == KMAX or lin_cnt[2] + nnew > KMAX:
-                                refac = True
-                                break
-                            kseg[nkk] = i
-                            nkk += 1
-                if refac:
-                    nkk = 0
+            # The step's linear system, its stick-slip active set solved in a small space (see the
+            # module notes above KMAX). One banded solve per step gives y = A_f^-1 F_base, F_base the
+            # forces with every contact segment in its factored state (anchored along its factored
+            # tangent with its factored slope, or sliding with its friction at the solve). A segment
+            # whose state differs (set C) adds a force correction phi_c at its centre, a pulley its
+            # speed change dw_k: dv = h (y + sum_k dw_k U_k + sum_c Z_c phi_c), U_k = A_f^-1 g_k and
+            # Z_c = A_f^-1 [e_x e_y]_c cached. phi and dw solve a dense (2 |C| + nk) system; each
+            # pass checks every contact segment (anchors letting go, slips turning) at O(|C| + nk)
+            # each; a segment that changes joins C. The chain matrix is refactored at the current
+            # state when the contact set changes, the segments have turned, or C outgrows its cache.
+            need = lin_cnt[0] <= 0 or cchg
+            base = True
+            npass = 0
+            npend = 0
+            while True:
+                if need:
                     for i in range(n):
                         fkap[i] = ckap[i] if cj[i] >= 0 else 0.0
                         fnx[i] = cnx[i]
@@ -973,7 +953,11 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                                            turn, m_, ieff, lin_sig, lin_gam, lin_geo, fkap, kat, fnx, fny, lin_d,
                                            lin_o, lin_e, lin_dinv, lin_y, lin_x)
                     lin_cnt[1] += 1
-                    # each implicit pulley's unit speed change through its anchors: U_j = A^-1 (sum fca r tau)
+                    # each implicit pulley's anchors g_k = sum fca r tau_f, U_k = A_f^-1 g_k; lin_g
+                    # holds G[j, k] = g_j . U_k and, in column nk, R_j = sum fca r
+                    for jj in range(nk):
+                        for kk in range(nk + 1):
+                            lin_g[jj, kk] = 0.0
                     for jj in range(nk):
                         if not ipl[jj]:
                             continue
@@ -981,6 +965,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                             if fca[i] > 0.0 and cj[i] == jj:
                                 ux[i] = fca[i] * pr[jj] * -fny[i]
                                 uy[i] = fca[i] * pr[jj] * fnx[i]
+                                lin_g[jj, nk] += fca[i] * pr[jj]
                             else:
                                 ux[i] = 0.0
                                 uy[i] = 0.0
@@ -990,196 +975,311 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                             lin_u[jj, i, 0] = ux[i]
                             lin_u[jj, i, 1] = uy[i]
                             lin_u[jj, i, 2] = uz[i]
-                # this pass's anchors: slope and direction as the matrix (A_f and its corrections) has them
-                for q in range(nc):
-                    i = clist[q]
-                    if fca[i] > 0.0:
-                        ak[i] = fca[i] if cca[i] > 0.0 else 0.0
-                        atx[i] = -fny[i]
-                        aty[i] = fnx[i]
-                    elif cca[i] > 0.0:
-                        ak[i] = cca[i]
-                        if zslot[i] >= 0:
-                            atx[i] = ztx[zslot[i]]
-                            aty[i] = zty[zslot[i]]
-                        else:
-                            atx[i] = -cny[i]
-                            aty[i] = cnx[i]
-                    else:
-                        ak[i] = 0.0
-                for a in range(nkk):
-                    i = kseg[a]
-                    if fca[i] > 0.0:           # released: the factored anchor taken out
-                        kdk[a] = -h * fca[i]
-                        kwx[a] = -fny[i]
-                        kwy[a] = fnx[i]
-                    else:                      # new anchor
-                        kdk[a] = h * cca[i]
-                        kwx[a] = atx[i]
-                        kwy[a] = aty[i]
-                    if zslot[i] < 0:
-                        q = lin_cnt[2]
-                        lin_cnt[2] += 1
-                        zslot[i] = q
-                        ztx[q] = kwx[a]
-                        zty[q] = kwy[a]
-                        for r in range(n):
-                            ux[r] = 0.0
-                            uy[r] = 0.0
-                            uz[r] = 0.0
-                        ux[i] = kwx[a]
-                        uy[i] = kwy[a]
-                        _chain.solve(n, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r)
-                        for r in range(n):
-                            zc[q, r, 0] = ux[r]
-                            zc[q, r, 1] = uy[r]
-                            zc[q, r, 2] = uz[r]
-                    else:
-                        kwx[a] = ztx[zslot[i]]
-                        kwy[a] = zty[zslot[i]]
-                        if fca[i] == 0.0:
-                            atx[i] = kwx[a]
-                            aty[i] = kwy[a]
-                    kslot[a] = zslot[i]
-                # the small Woodbury matrix 1/dk + w^T A_f^-1 w
-                for a in range(nkk):
-                    for b in range(nkk):
-                        ia = kseg[a]
-                        wm[a, b] = kwx[a] * zc[kslot[b], ia, 0] + kwy[a] * zc[kslot[b], ia, 1]
-                    wm[a, a] += 1.0 / kdk[a]
-                for i in range(n):
-                    fx[i] = f0x[i]
-                    fy[i] = f0y[i]
-                    mz[i] = f0z[i]
-                for q in range(nc):
-                    i = clist[q]
-                    if ak[i] > 0.0:
-                        j = cj[i]
-                        sl = om[j] * pr[j] - (vx[i] - pvx[j]) * atx[i] - (vy[i] - pvy[j]) * aty[i]
-                        fx[i] += ak[i] * sl * atx[i]
-                        fy[i] += ak[i] * sl * aty[i]
-                lin_cnt[3] += 1
-                _chain.solve(n, fx, fy, mz, lin_dinv, lin_y, lin_x, lin_r)
-                if nkk > 0:
-                    _woodbury(n, nkk, kseg, kslot, kwx, kwy, zc, wm, wtmp, wy, fx, fy, mz)
-                if npl > 0:
-                    # each pulley's unit response with this pass's anchors, U_k = A_t^-1 g_k, where it
-                    # is needed: at the anchored segments (the pulley equations) and, once the speed
-                    # changes are known, summed over the pulleys. U_k = V_k - Z c_k with
-                    # V_k = A_f^-1 g_k(factored) + sum over changed anchors of k (+-kappa r) Z_a and
-                    # c_k = (1/dk + W^T Z)^-1 W^T V_k (Woodbury)
-                    for kk in range(nk):
-                        for a in range(nkk):
-                            ia = kseg[a]
-                            fk[kk, a] = 0.0
-                            if ipl[kk] and cj[ia] == kk:
-                                fk[kk, a] = pr[kk] * (cca[ia] if fca[ia] == 0.0 else -fca[ia])
-                        if nkk > 0 and ipl[kk]:
-                            for a in range(nkk):
-                                ia = kseg[a]
-                                vx_ = lin_u[kk, ia, 0]
-                                vy_ = lin_u[kk, ia, 1]
-                                for b in range(nkk):
-                                    vx_ += fk[kk, b] * zc[kslot[b], ia, 0]
-                                    vy_ += fk[kk, b] * zc[kslot[b], ia, 1]
-                                wy[a] = kwx[a] * vx_ + kwy[a] * vy_
-                                for b in range(nkk):
-                                    wtmp[a, b] = wm[a, b]
-                            _small_solve(nkk, wtmp, wy)
-                            for a in range(nkk):
-                                ck[kk, a] = fk[kk, a] - wy[a]      # U_k = lin_u[k] + sum_a ck[k, a] Z_a
-                        else:
-                            for a in range(nkk):
-                                ck[kk, a] = 0.0
-                    # pulleys implicit with the belt they anchor: I dw_j = h (M_ext + M_belt(dw)),
-                    # the anchors' targets at the new speeds; a small dense system (Schur complement)
+                    for q in range(nc):
+                        i = clist[q]
+                        jj = cj[i]
+                        if fca[i] > 0.0 and ipl[jj]:
+                            gx = fca[i] * pr[jj] * -fny[i]
+                            gy = fca[i] * pr[jj] * fnx[i]
+                            for kk in range(nk):
+                                if ipl[kk]:
+                                    lin_g[jj, kk] += gx * lin_u[kk, i, 0] + gy * lin_u[kk, i, 1]
+                    need = False
+                    base = True
+                if base:
+                    # y = A_f^-1 F_base, and per pulley the base friction sum s0 and g_j . y
+                    for p in range(nC):
+                        cslot[cseg[p]] = -1
+                    nC = 0
+                    npend = 0
+                    for i in range(n):
+                        yx[i] = f0x[i]
+                        yy[i] = f0y[i]
+                        yz[i] = f0z[i]
                     for jj in range(nk):
-                        for kk in range(nk):
-                            qmat[jj, kk] = 0.0
-                        if ipl[jj]:
-                            qmat[jj, jj] = 1.0 / pinv_i[jj]
-                            qb[jj] = h * _torque(jj, t, th[jj], om[jj], tq_const, tq_visc, tq_drag, w_drag, tq_quad,
-                                                 tq_pow, w_cut, tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off,
-                                                 hm_order, hm_amp, hm_phase)
-                        else:
-                            qmat[jj, jj] = 1.0
-                            qb[jj] = 0.0
+                        s0[jj] = 0.0
+                        gyv[jj] = 0.0
                     for q in range(nc):
                         i = clist[q]
                         j = cj[i]
-                        if not ipl[j] or cN[i] <= 0.0:
-                            continue
-                        if ak[i] > 0.0:
-                            tx = atx[i]
-                            ty = aty[i]
-                            sl = om[j] * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * tx - (vy[i] + h * fy[i] - pvy[j]) * ty
-                            qb[j] -= h * pr[j] * ak[i] * sl
-                            qmat[j, j] += h * pr[j] * ak[i] * pr[j]
-                            for kk in range(nk):
-                                if ipl[kk]:
-                                    ux_ = lin_u[kk, i, 0]
-                                    uy_ = lin_u[kk, i, 1]
-                                    for b in range(nkk):
-                                        ux_ += ck[kk, b] * zc[kslot[b], i, 0]
-                                        uy_ += ck[kk, b] * zc[kslot[b], i, 1]
-                                    qmat[j, kk] -= h * h * pr[j] * ak[i] * (ux_ * tx + uy_ * ty)
+                        cTb[i] = cT[i]
+                        if fca[i] > 0.0:
+                            tx = -fny[i]
+                            ty = fnx[i]
+                            sl = om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
+                            yx[i] += fca[i] * sl * tx + cT[i] * cny[i]
+                            yy[i] += fca[i] * sl * ty - cT[i] * cnx[i]
+                            s0[j] += fca[i] * sl
                         else:
-                            qb[j] -= h * pr[j] * cT[i]
-                    _small_solve(nk, qmat, qb)
-                    for jj in range(nk):
-                        dom[jj] = qb[jj]
-                    # the velocity change of the speed changes: sum_k dw_k U_k
-                    for b in range(nkk):
-                        cb = 0.0
-                        for kk in range(nk):
-                            cb += dom[kk] * ck[kk, b]
-                        wy[b] = cb
-                    for i in range(n):
+                            s0[j] += cT[i]
+                        if (fca[i] > 0.0) != (cca[i] > 0.0):
+                            pend[npend] = i
+                            npend += 1
+                    _chain.solve(n, yx, yy, yz, lin_dinv, lin_y, lin_x, lin_r)
+                    for q in range(nc):
+                        i = clist[q]
+                        j = cj[i]
+                        if fca[i] > 0.0 and ipl[j]:
+                            gyv[j] += fca[i] * pr[j] * (-fny[i] * yx[i] + fnx[i] * yy[i])
+                    base = False
+                # the changed segments join C, their columns solved unless cached
+                over = False
+                for a in range(npend):
+                    i = pend[a]
+                    if cslot[i] >= 0:
+                        continue
+                    if nC == CMAX or (zslot[i] < 0 and lin_cnt[2] == zcap):
+                        over = True
+                        break
+                    if zslot[i] < 0:
+                        sl_ = lin_cnt[2]
+                        lin_cnt[2] += 1
+                        zslot[i] = sl_
+                        for col in range(2):
+                            for r in range(n):
+                                ux[r] = 0.0
+                                uy[r] = 0.0
+                                uz[r] = 0.0
+                            if col == 0:
+                                ux[i] = 1.0
+                            else:
+                                uy[i] = 1.0
+                            _chain.solve(n, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r)
+                            for r in range(n):
+                                zc[2 * sl_ + col, r, 0] = ux[r]
+                                zc[2 * sl_ + col, r, 1] = uy[r]
+                                zc[2 * sl_ + col, r, 2] = uz[r]
+                    cseg[nC] = i
+                    cslot[i] = nC
+                    nC += 1
+                npend = 0
+                if over:
+                    need = True
+                    continue
+                # each member's force correction, affine in its velocity change and its pulley's:
+                # phi_c = a + B dv_c + e dw_j, and its torque part alpha + beta . dv_c + gamma dw_j
+                for p in range(nC):
+                    i = cseg[p]
+                    j = cj[i]
+                    ctx = -cny[i]
+                    cty = cnx[i]
+                    a0 = 0.0
+                    a1 = 0.0
+                    b00 = 0.0
+                    b01 = 0.0
+                    b11 = 0.0
+                    e0 = 0.0
+                    e1 = 0.0
+                    al = 0.0
+                    be0 = 0.0
+                    be1 = 0.0
+                    ga = 0.0
+                    if cca[i] > 0.0:
+                        kp = cca[i]
+                        sl = om[j] * pr[j] - (vx[i] - pvx[j]) * ctx - (vy[i] - pvy[j]) * cty
+                        a0 += kp * sl * ctx
+                        a1 += kp * sl * cty
+                        b00 -= kp * ctx * ctx
+                        b01 -= kp * ctx * cty
+                        b11 -= kp * cty * cty
+                        e0 += kp * pr[j] * ctx
+                        e1 += kp * pr[j] * cty
+                        al += kp * sl
+                        be0 -= kp * ctx
+                        be1 -= kp * cty
+                        ga += kp * pr[j]
+                    else:
+                        a0 += cT[i] * ctx
+                        a1 += cT[i] * cty
+                        al += cT[i]
+                    if fca[i] > 0.0:
+                        kp = fca[i]
+                        ftx = -fny[i]
+                        fty = fnx[i]
+                        sl = om[j] * pr[j] - (vx[i] - pvx[j]) * ftx - (vy[i] - pvy[j]) * fty
+                        a0 -= kp * sl * ftx
+                        a1 -= kp * sl * fty
+                        b00 += kp * ftx * ftx
+                        b01 += kp * ftx * fty
+                        b11 += kp * fty * fty
+                        e0 -= kp * pr[j] * ftx
+                        e1 -= kp * pr[j] * fty
+                        al -= kp * sl
+                        be0 += kp * ftx
+                        be1 += kp * fty
+                        ga -= kp * pr[j]
+                    else:
+                        a0 -= cTb[i] * ctx
+                        a1 -= cTb[i] * cty
+                        al -= cTb[i]
+                    cpar[p, 0] = a0
+                    cpar[p, 1] = a1
+                    cpar[p, 2] = b00
+                    cpar[p, 3] = b01
+                    cpar[p, 4] = b11
+                    cpar[p, 5] = e0
+                    cpar[p, 6] = e1
+                    cpar[p, 7] = al
+                    cpar[p, 8] = be0
+                    cpar[p, 9] = be1
+                    cpar[p, 10] = ga
+                # the small system: rows 2p, 2p + 1 for member p, row 2 nC + j for pulley j
+                msz = 2 * nC + nk
+                for r in range(msz):
+                    qv[r] = 0.0
+                    for q in range(msz):
+                        qm[r, q] = 0.0
+                for p in range(nC):
+                    i = cseg[p]
+                    j = cj[i]
+                    b00 = cpar[p, 2]
+                    b01 = cpar[p, 3]
+                    b11 = cpar[p, 4]
+                    r0 = 2 * p
+                    qm[r0, r0] = 1.0
+                    qm[r0 + 1, r0 + 1] = 1.0
+                    for d in range(nC):
+                        sd = 2 * zslot[cseg[d]]
+                        for col in range(2):
+                            z0 = zc[sd + col, i, 0]
+                            z1 = zc[sd + col, i, 1]
+                            qm[r0, 2 * d + col] -= h * (b00 * z0 + b01 * z1)
+                            qm[r0 + 1, 2 * d + col] -= h * (b01 * z0 + b11 * z1)
+                    for kk in range(nk):
+                        if ipl[kk]:
+                            u0 = lin_u[kk, i, 0]
+                            u1 = lin_u[kk, i, 1]
+                            qm[r0, 2 * nC + kk] -= h * (b00 * u0 + b01 * u1)
+                            qm[r0 + 1, 2 * nC + kk] -= h * (b01 * u0 + b11 * u1)
+                    qm[r0, 2 * nC + j] -= cpar[p, 5]
+                    qm[r0 + 1, 2 * nC + j] -= cpar[p, 6]
+                    qv[r0] = cpar[p, 0] + h * (b00 * yx[i] + b01 * yy[i])
+                    qv[r0 + 1] = cpar[p, 1] + h * (b01 * yx[i] + b11 * yy[i])
+                for jj in range(nk):
+                    r0 = 2 * nC + jj
+                    if not ipl[jj]:
+                        qm[r0, r0] = 1.0
+                        continue
+                    rj = pr[jj]
+                    qm[r0, r0] += 1.0 / pinv_i[jj] + h * rj * lin_g[jj, nk]
+                    for kk in range(nk):
+                        qm[r0, 2 * nC + kk] -= h * h * lin_g[jj, kk]
+                    for d in range(nC):
+                        qm[r0, 2 * d] -= h * h * lin_u[jj, cseg[d], 0]
+                        qm[r0, 2 * d + 1] -= h * h * lin_u[jj, cseg[d], 1]
+                    mext = _torque(jj, t, th[jj], om[jj], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
+                                   tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
+                    qv[r0] = h * mext - h * rj * s0[jj] + h * h * gyv[jj]
+                    for p in range(nC):
+                        i = cseg[p]
+                        if cj[i] != jj:
+                            continue
+                        be0 = cpar[p, 8]
+                        be1 = cpar[p, 9]
+                        qm[r0, r0] += h * rj * cpar[p, 10]
                         for kk in range(nk):
                             if ipl[kk]:
-                                fx[i] += dom[kk] * lin_u[kk, i, 0]
-                                fy[i] += dom[kk] * lin_u[kk, i, 1]
-                                mz[i] += dom[kk] * lin_u[kk, i, 2]
-                        for b in range(nkk):
-                            q = kslot[b]
-                            fx[i] += wy[b] * zc[q, i, 0]
-                            fy[i] += wy[b] * zc[q, i, 1]
-                            mz[i] += wy[b] * zc[q, i, 2]
-                released = False
+                                qm[r0, 2 * nC + kk] += h * h * rj * (be0 * lin_u[kk, i, 0] + be1 * lin_u[kk, i, 1])
+                        for d in range(nC):
+                            sd = 2 * zslot[cseg[d]]
+                            for col in range(2):
+                                qm[r0, 2 * d + col] += h * h * rj * (be0 * zc[sd + col, i, 0] + be1 * zc[sd + col, i, 1])
+                        qv[r0] -= h * rj * (cpar[p, 7] + h * (be0 * yx[i] + be1 * yy[i]))
+                _small_solve(msz, qm, qv)
+                for jj in range(nk):
+                    dom[jj] = qv[2 * nC + jj]
+                lin_cnt[3] += 1
+                # check every contact segment at its new velocity
+                changed = False
                 for q in range(nc):
                     i = clist[q]
-                    if ak[i] > 0.0:
-                        j = cj[i]
-                        tx = atx[i]
-                        ty = aty[i]
-                        sl = (om[j] + dom[j]) * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * tx - (vy[i] + h * fy[i] - pvy[j]) * ty
-                        T = ak[i] * sl
-                        if abs(T) > mu[i] * cN[i] and _it < PASSES:
-                            # lets go: slides this step with mu N, solved again
+                    if cN[i] <= 0.0:
+                        continue
+                    j = cj[i]
+                    ax_ = yx[i]
+                    ay_ = yy[i]
+                    for kk in range(nk):
+                        if ipl[kk]:
+                            ax_ += dom[kk] * lin_u[kk, i, 0]
+                            ay_ += dom[kk] * lin_u[kk, i, 1]
+                    for d in range(nC):
+                        sd = 2 * zslot[cseg[d]]
+                        ax_ += qv[2 * d] * zc[sd, i, 0] + qv[2 * d + 1] * zc[sd + 1, i, 0]
+                        ay_ += qv[2 * d] * zc[sd, i, 1] + qv[2 * d + 1] * zc[sd + 1, i, 1]
+                    rvx = vx[i] + h * ax_ - pvx[j]
+                    rvy = vy[i] + h * ay_ - pvy[j]
+                    if cca[i] > 0.0:
+                        if cslot[i] >= 0:
+                            kp = cca[i]
+                            tx = -cny[i]
+                            ty = cnx[i]
+                        else:
+                            kp = fca[i]
+                            tx = -fny[i]
+                            ty = fnx[i]
+                        T = kp * ((om[j] + dom[j]) * pr[j] - rvx * tx - rvy * ty)
+                        if abs(T) > mu[i] * cN[i] and npass < PASSES:
+                            # lets go: slides this step with mu N
                             Ts = math.copysign(mu[i] * cN[i], T)
                             cca[i] = 0.0
                             stk[i] = 0.0
                             cT[i] = Ts
                             f0x[i] += Ts * -cny[i]
                             f0y[i] += Ts * cnx[i]
-                            released = True
+                            changed = True
                             W.lin_stat[0] += 1
-                        else:
-                            cT[i] = T
-                    elif cT[i] != 0.0 and _it < PASSES - 1:
-                        # a sliding segment whose slip the step would turn: it sticks, solved again
-                        j = cj[i]
-                        sl = (om[j] + dom[j]) * pr[j] - (vx[i] + h * fx[i] - pvx[j]) * -cny[i] - (vy[i] + h * fy[i] - pvy[j]) * cnx[i]
+                            if cslot[i] < 0:
+                                pend[npend] = i
+                                npend += 1
+                    elif cT[i] != 0.0 and npass < PASSES - 1:
+                        sl = (om[j] + dom[j]) * pr[j] - rvx * -cny[i] - rvy * cnx[i]
                         if sl * cT[i] < 0.0:
+                            # a sliding segment whose slip the step would turn: it sticks
                             f0x[i] -= cT[i] * -cny[i]
                             f0y[i] -= cT[i] * cnx[i]
                             cT[i] = 0.0
                             cca[i] = ANCHOR * mu[i] * cN[i] / dv
                             stk[i] = 1.0
-                            released = True
+                            changed = True
                             W.lin_stat[1] += 1
-                if not released:
+                            if cslot[i] < 0:
+                                pend[npend] = i
+                                npend += 1
+                npass += 1
+                if not changed:
                     break
+            # the velocity change over A^-1 F, and each contact segment's anchor as solved
+            for i in range(n):
+                fx[i] = yx[i]
+                fy[i] = yy[i]
+                mz[i] = yz[i]
+            for kk in range(nk):
+                if ipl[kk]:
+                    dk = dom[kk]
+                    for i in range(n):
+                        fx[i] += dk * lin_u[kk, i, 0]
+                        fy[i] += dk * lin_u[kk, i, 1]
+                        mz[i] += dk * lin_u[kk, i, 2]
+            for d in range(nC):
+                sd = 2 * zslot[cseg[d]]
+                p0 = qv[2 * d]
+                p1 = qv[2 * d + 1]
+                for i in range(n):
+                    fx[i] += p0 * zc[sd, i, 0] + p1 * zc[sd + 1, i, 0]
+                    fy[i] += p0 * zc[sd, i, 1] + p1 * zc[sd + 1, i, 1]
+                    mz[i] += p0 * zc[sd, i, 2] + p1 * zc[sd + 1, i, 2]
+            for q in range(nc):
+                i = clist[q]
+                ak[i] = 0.0
+                if cca[i] > 0.0:
+                    if cslot[i] >= 0:
+                        ak[i] = cca[i]
+                        atx[i] = -cny[i]
+                        aty[i] = cnx[i]
+                    else:
+                        ak[i] = fca[i]
+                        atx[i] = -fny[i]
+                        aty[i] = fnx[i]
             lin_cnt[0] -= 1
             for i in range(n):
                 vxs = vx[i] + h * fx[i]
@@ -1199,6 +1299,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                         ty = nx
                     if N > 0.0:
                         sl = (om[j] + dom[j]) * pr[j] - (vxs - pvx[j]) * tx - (vys - pvy[j]) * ty
+                        if ak[i] > 0.0:
+                            T = ak[i] * sl        # the anchor's force at the solved velocities
                         pfr += T * sl
                         if ak[i] == 0.0:
                             # a sliding segment whose slip reached the band or turned sticks next step
