@@ -263,6 +263,8 @@ class Work(NamedTuple):
     lin_zc: np.ndarray       # (2 ZMAX, n, 3) cached columns A_f^-1 e_x, A_f^-1 e_y at a segment
     lin_g: np.ndarray        # (nk, nk + 1): the pulleys' coupling g_j . U_k and sum of fca r
     lin_stat: np.ndarray     # (4): stick-slip changes within steps (let go, anchored), unused, unused
+    cand_j: np.ndarray       # int64 (n): contact candidates, the pulley a segment touched (-1: none)
+    cand_skip: np.ndarray    # int64 (n): steps in which a free segment cannot reach a pulley
     lin_st: np.ndarray       # (n,) 1: the segment stuck to its pulley at the last step
     lin_cnt: np.ndarray      # int64 (4): steps until the next factorisation, factorisations, cached columns, active-set passes
 
@@ -681,6 +683,40 @@ def _move(i, h, vxs, vys, x, y, vx, vy, w, phi, c, s):
     c[i] = cn
 
 
+# a free segment's contact test is skipped for at most this many steps (see _contact_candidate)
+SKIP_MAX = 64
+
+
+@njit(cache=True, inline="always")
+def _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb):
+    """The pulley whose circle holds segment i's centre, or -1; pulleys do not overlap, so at most
+    one. Not every pulley is tested every step: a segment on a pulley is tested against that one
+    first; a free segment, once tested against all, is not tested again for as many steps as it
+    needs to cross its clearance to the nearest pulley at the speed bound hvb / h (twice the
+    fastest segment and pulley centre, plus 1 m/s; at most SKIP_MAX steps)."""
+    j0 = cand_j[i]
+    if j0 >= 0:
+        rx = x[i] - pcx[j0]
+        ry = y[i] - pcy[j0]
+        if rx * rx + ry * ry < pr[j0] * pr[j0]:
+            return j0
+    elif cand_skip[i] > 0:
+        cand_skip[i] -= 1
+        return -1
+    gmin = 1e300
+    for j in range(nk):
+        rx = x[i] - pcx[j]
+        ry = y[i] - pcy[j]
+        d2 = rx * rx + ry * ry
+        if d2 < pr[j] * pr[j]:
+            cand_j[i] = j
+            return j
+        gmin = min(gmin, math.sqrt(d2) - pr[j])
+    cand_j[i] = -1
+    cand_skip[i] = min(SKIP_MAX, int(gmin / hvb))
+    return -1
+
+
 @njit(cache=True, inline="always")
 def _small_solve(k, a, b):
     """b <- a^-1 b for a small dense k x k (Gaussian elimination with partial pivoting; a is
@@ -855,6 +891,15 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
         # selective mass scaling of the segments' rotation: inertia x iscale (see system.py)
         hi_[i] = h / (inertia[i] * iscale)
     hg = h * g
+    # contact candidates (_contact_candidate): the speed bound of this chunk, per step
+    cand_j, cand_skip = W.cand_j, W.cand_skip
+    vmax = 0.0
+    for i in range(n):
+        vmax = max(vmax, vx[i] * vx[i] + vy[i] * vy[i])
+    pvmax = 0.0
+    for j in range(nk):
+        pvmax = max(pvmax, pvx[j] * pvx[j] + pvy[j] * pvy[j])
+    hvb = h * (2.0 * math.sqrt(vmax) + 2.0 * math.sqrt(pvmax) + 1.0)
     for _ in range(nsteps):
         pax, pb = _joint_forces(n, eax, eb, hl, turn, linear, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy,
                                 mz, jfk, jdx, jdy, hj, inv_m, inv_i, jmk, jmi)
@@ -880,7 +925,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                 cT[i] = 0.0
                 cca[i] = 0.0
                 ak[i] = 0.0
-                for j in range(nk):
+                jc = _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb)
+                for j in range(max(jc, 0), jc + 1):      # the contact pulley only (none: jc = -1)
                     rx = x[i] - pcx[j]
                     ry = y[i] - pcy[j]
                     d2 = rx * rx + ry * ry
@@ -1326,7 +1372,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
             Ttot = 0.0
             pen = 0.0
             incontact = False
-            for j in range(nk):
+            jc = _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb)
+            for j in range(max(jc, 0), jc + 1):      # the contact pulley only (none: jc = -1)
                 rx = x[i] - pcx[j]
                 ry = y[i] - pcy[j]
                 d2 = rx * rx + ry * ry

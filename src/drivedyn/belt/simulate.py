@@ -113,6 +113,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
             steps_per_sample *= 2
             hstep[0] = interval / steps_per_sample
             W.lin_cnt[0] = 0                     # refactor at the new step
+            W.cand_skip[:] = 0                   # and test every contact again
             rec.step_reductions += 1
             continue
         if _blow_up(S.x, S.y, S.vx, S.vy, S.om, W.seg_p, sysm):
@@ -120,6 +121,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
             for a, b in zip(saved_parts, saved):
                 a[...] = b
             W.lin_cnt[0] = 0          # the implicit scheme refactors its chain matrix from there
+            W.cand_skip[:] = 0        # and tests every contact again
             rec.steps_done -= steps_per_sample
             return k, "diverged " + _first_runaway(advance, t0, steps_per_sample, hstep[0], S, sysm)
         work += float(np.sum(W.acc_pin))
