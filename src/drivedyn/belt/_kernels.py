@@ -238,6 +238,7 @@ class Work(NamedTuple):
     acc_track: np.ndarray    # (ntrack, 3): element force, normal force, friction force
     acc_diss: np.ndarray     # (6) as diss, then tensioners (damping, friction, stops), clutches
     energy: np.ndarray       # (1) total energy at the end of the last step_chunk (J), see ``energy``
+    probe: np.ndarray        # (5) health at its end: finite sum, max v^2, max pulley surface speed, max penetration, max |w|
     # probes
     span_geo: np.ndarray     # (nspan, 4): midpoint x, y, unit direction x, y (belt order)
     span_joint: np.ndarray   # (nspan,) int64: joint followed nearest each midpoint
@@ -1513,6 +1514,28 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
     W.hubx[:] = hubx
     W.huby[:] = huby
     W.energy[0] = energy(B, Ct, P, A, S)   # here, not by a second call from Python (12 us per call)
+    # the run's health for the caller (simulate._healthy) in one pass, 0.5 us against
+    # 50 us for the same checks in numpy per output sample: a sum that is finite only if every
+    # coordinate and speed is, the largest squared segment speed, pulley surface speed,
+    # penetration and segment turning rate
+    fin = 0.0
+    v2m = 0.0
+    pm = 0.0
+    wm_ = 0.0
+    for i in range(n):
+        fin += x[i] + y[i] + vx[i] + vy[i] + w[i]
+        v2m = max(v2m, vx[i] * vx[i] + vy[i] * vy[i])
+        pm = max(pm, seg_p[i])
+        wm_ = max(wm_, abs(w[i]))
+    sm = 0.0
+    for j in range(nk):
+        fin += om[j]
+        sm = max(sm, abs(om[j]) * pr[j])
+    W.probe[0] = fin
+    W.probe[1] = v2m
+    W.probe[2] = sm
+    W.probe[3] = pm
+    W.probe[4] = wm_
     return t
 
 
