@@ -238,7 +238,8 @@ class Work(NamedTuple):
     acc_track: np.ndarray    # (ntrack, 3): element force, normal force, friction force
     acc_diss: np.ndarray     # (6) as diss, then tensioners (damping, friction, stops), clutches
     energy: np.ndarray       # (1) total energy at the end of the last step_chunk (J), see ``energy``
-    probe: np.ndarray        # (5) health at its end: finite sum, max v^2, max pulley surface speed, max penetration, max |w|
+    probe: np.ndarray        # (6) health at its end: finite sum, max v^2, max pulley surface speed, max penetration,
+    #                          max |w|, max pulley speed |om|
     # probes
     span_geo: np.ndarray     # (nspan, 4): midpoint x, y, unit direction x, y (belt order)
     span_joint: np.ndarray   # (nspan,) int64: joint followed nearest each midpoint
@@ -1540,6 +1541,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
     v2m = 0.0
     pm = 0.0
     wm_ = 0.0
+    wc = 0.0
     for i in range(n):
         fin += x[i] + y[i] + vx[i] + vy[i] + w[i]
         v2m = max(v2m, vx[i] * vx[i] + vy[i] * vy[i])
@@ -1549,11 +1551,13 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
     for j in range(nk):
         fin += om[j]
         sm = max(sm, abs(om[j]) * pr[j])
+        wc = max(wc, abs(om[j]))
     W.probe[0] = fin
     W.probe[1] = v2m
     W.probe[2] = sm
     W.probe[3] = pm
     W.probe[4] = wm_
+    W.probe[5] = wc
     return t
 
 

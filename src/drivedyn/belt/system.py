@@ -229,7 +229,7 @@ def new_work(sysm, state=None) -> K.Work:
                   seg_n=z(n), seg_t=z(n), seg_p=z(n),
                   tq_ext=z(nk), tq_belt=z(nk), hubx=z(nk), huby=z(nk), pin=z(nk), diss=z(4),
                   acc_tq_ext=z(nk), acc_tq_belt=z(nk), acc_hubx=z(nk), acc_huby=z(nk), acc_pin=z(nk),
-                  acc_span=z((nspan, 2)), acc_track=z((ntrack, 3)), acc_diss=z(6), energy=z(1), probe=z(5),
+                  acc_span=z((nspan, 2)), acc_track=z((ntrack, 3)), acc_diss=z(6), energy=z(1), probe=z(6),
                   span_geo=np.ascontiguousarray(sysm.span_geo, dtype=float).reshape(nspan, 4),
                   span_joint=span_joint, track=np.ascontiguousarray(sysm.track, dtype=np.int64),
                   lin_d=z((nl, 9)), lin_o=z((nl, 9)), lin_e=z((nl, 9)), lin_dinv=z((nl, 9)), lin_y=z((nl, 9)),
