@@ -16,9 +16,13 @@ limit); a mode of frequency w is slowed by the relative (h w)^2 / 4, so the mode
 (``factor``'s arguments) the contact's normal stiffness and damping (kap n n^T), a stuck
 segment's friction anchor along the tangent (kat t t^T) and the joints' geometric (tension)
 stiffness on its rotation (geo). The h b_j term
-makes each damper backward-Euler. A itself is only a preconditioner of the explicit forces, so
-a slightly stale A (segments turned by a few hundredths of a radian since it was factored) costs
-neither consistency nor stability: the stiff modes sit at h w_eff = sqrt 2, half the limit 2.
+makes each damper backward-Euler. A's extra terms vanish as h -> 0, so a slightly stale A
+(segments turned by a few hundredths of a radian since it was factored) costs neither consistency
+nor stability: the stiff modes sit at h w_eff = sqrt 2, half the limit 2. They act on the whole
+velocity change, though: the contact term kap n n^T would read a segment's turn round its pulley
+(its velocity turning inward by h v^2 / r per step) as a normal velocity and push back by
+(kap / h) h v^2 / r, twice the normal force at 23.6 m/s; the kernel takes that part out (its
+``can``), and limits the turn per step (simulate.TURN_PER_STEP).
 
 A is symmetric positive definite; segment i couples to i-1 and i+1 through joints i and i+1,
 and joint 0 closes the loop (n-1, 0). It is factored by block Gaussian elimination with the last

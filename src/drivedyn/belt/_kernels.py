@@ -653,7 +653,8 @@ def _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cv
 # ---- semi-implicit and implicit integrators ---------------------------------------------------
 
 # the implicit scheme refactors its chain matrix once the fastest segment has turned this far
-# (rad): a stale matrix is a preconditioner still (see _chain.py); the forces are always exact
+# (rad): the explicit forces are exact, the implicit terms act along the factored directions
+# (see _chain.py)
 REFACTOR_ANGLE = 0.05
 # segments whose stick-slip state differs from the factored one within a step (CMAX), and
 # segments whose columns A_f^-1 [e_x e_y] are cached between factorisations (ZMAX)
@@ -662,8 +663,8 @@ ZMAX = 8
 # the anchor slope, x mu N / Delta_v: the secant of the Threlfall law to its saturation, so an
 # anchor lets go where the law saturates (its tangent at zero, 1.5, flickered and drifted at 20 us)
 ANCHOR = 1.0
-# passes of the stick-slip active set per step: anchors let go in any of them, sliding segments
-# are anchored in all but the last; one more solve takes the last changes in
+# passes of the stick-slip active set per step (each a small dense solve): anchors let go in any
+# of them, sliding segments are anchored in all but the last; one more pass takes the last changes in
 PASSES = 6
 
 
@@ -973,8 +974,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                 f0x[i] = fx[i]
                 f0y[i] = fy[i]
                 f0z[i] = mz[i]
-            # The step's linear system, its stick-slip active set solved in a small space (see the
-            # module notes above KMAX). One banded solve per step gives y = A_f^-1 F_base, F_base the
+            # The step's linear system, its stick-slip active set solved in a small space (CMAX,
+            # ZMAX above). One banded solve per step gives y = A_f^-1 F_base, F_base the
             # forces with every contact segment in its factored state (anchored along its factored
             # tangent with its factored slope, or sliding with its friction at the solve). A segment
             # whose state differs (set C) adds a force correction phi_c at its centre, a pulley its
