@@ -192,3 +192,8 @@ def test_fast_belt_takes_the_accuracy_rule():
     for span in ref["spans"]:
         assert new["spans"][span]["tension_mean"] == pytest.approx(ref["spans"][span]["tension_mean"], rel=0.005)
     assert abs(new["pulleys"]["driven"]["slip"] - ref["pulleys"]["driven"]["slip"]) < 2e-4
+    # a step the user sets is kept, and a run that turns its segments too far per step says so
+    d["simulation"]["step"] = 34.5e-6
+    coarse = drivedyn.run(drivedyn.model.from_dict(d))
+    assert coarse.summary["solver"]["turn_per_step"] > 0.006
+    assert coarse.status == "warning" and "step-too-large" in {x.code for x in coarse.diagnostics}
