@@ -116,24 +116,29 @@ def _pair(name, **over):
 
 @pytest.mark.parametrize("name", ["belt-5pk", "belt-accessory-loaded"])
 def test_agrees_with_semi_implicit(name):
-    """Measured (1 s, window 0.7-1 s): 5PK 806.2 / 255.3 N against 806.3 / 255.4, slip 0.499
-    against 0.501 %; accessory 596.7 / 534.2 / 410.1 / 409.8 N against 596.1 / 533.4 / 409.5 /
-    409.2, slips within 0.021 percentage points, at 34.5 us against 3.1 and 3.8 us."""
+    """Measured (1 s, window 0.7-1 s): 5PK 806.20 / 255.26 N against 806.31 / 255.40, slip 0.498
+    against 0.501 %; accessory 596.22 / 533.69 / 409.67 / 409.36 N against 596.07 / 533.41 / 409.46 /
+    409.17, slips within 0.003 points, at 34.5 us against 3.1 and 3.8 us."""
     ref, new = _pair(name)
     assert new["solver"]["step"] > 8 * ref["solver"]["step"]
     for span in ref["spans"]:
         assert new["spans"][span]["tension_mean"] == pytest.approx(ref["spans"][span]["tension_mean"], rel=0.005)
     for p in ref["pulleys"]:
-        assert abs(new["pulleys"][p]["slip"] - ref["pulleys"][p]["slip"]) < 3e-4
+        assert abs(new["pulleys"][p]["slip"] - ref["pulleys"][p]["slip"]) < 2e-4      # the issue's 0.02 points
         assert new["pulleys"][p]["hub_load"] == pytest.approx(ref["pulleys"][p]["hub_load"], rel=0.005)
         assert new["pulleys"][p]["speed_mean"] == pytest.approx(ref["pulleys"][p]["speed_mean"], rel=0.005)
     assert new["power"]["energy_residual_relative"] < 1e-3
+    # the energy balance term by term, against the input power (friction: 2.60 against 2.65 W of 378 W)
+    pin = ref["power"]["input"]
+    for key in ("input", "output"):
+        assert abs(new["power"][key] - ref["power"][key]) < 0.005 * pin
+    for key, loss in ref["power"]["losses"].items():
+        assert abs(new["power"]["losses"][key] - loss) < 0.005 * pin
 
 
 def test_converges_in_the_step():
     """Halving the default step (34.5 us) changes the span tensions by < 0.1 % and the slip by
-    < 0.01 points (measured: 806.40 / 255.43 N, 0.4924 % against 806.32 / 255.33 N, 0.4965 %;
-    at the 40 us cap the slack span is 0.1 % higher, 255.63 N)."""
+    < 0.01 points (measured: 806.20 / 255.26 N, 0.4978 % against 806.36 / 255.41 N, 0.4996 %)."""
     base = drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")),
                             {"simulation.duration": 1.0, "output.steady_window": [0.7, 1.0],
                              "simulation.method": "implicit"})
