@@ -99,7 +99,9 @@ def test_sweep_each_diagnostic_fires_where_it_should(model_factory):
 
 
 def test_energy_residual_fires_on_the_bouncing_contact():
-    r = drivedyn.run(stiff_drive(**{"contact.damping_depth": 1e-3}))
+    # the semi-implicit scheme's explicit contact loses the balance here; the implicit scheme's
+    # (the default) flags the same bouncing as contact-chatter with the balance closed
+    r = drivedyn.run(stiff_drive(**{"contact.damping_depth": 1e-3, "simulation.method": "semi-implicit"}))
     d = {d.code: d for d in r.diagnostics}
     assert "energy-residual" in d and d["energy-residual"].value > 0.01
 

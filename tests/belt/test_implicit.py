@@ -202,3 +202,14 @@ def test_fast_belt_takes_the_accuracy_rule():
     coarse = drivedyn.run(drivedyn.model.from_dict(d))
     assert coarse.summary["solver"]["turn_per_step"] > 0.006
     assert coarse.status == "warning" and "step-too-large" in {x.code for x in coarse.diagnostics}
+
+
+def test_auto_picks_the_implicit_scheme_where_it_integrates_the_drive():
+    from drivedyn.belt.model import integrator
+
+    assert integrator(drivedyn.load(drivedyn.example_path("belt-accessory-loaded"))) == "implicit"
+    assert integrator(drivedyn.load(drivedyn.example_path("belt-verification"))) == "implicit"
+    assert integrator(drivedyn.load(drivedyn.example_path("fead-runup"))) == "semi-implicit"   # tensioner, clutch
+    assert integrator(drivedyn.load(drivedyn.example_path("belt-5pk"))) == "semi-implicit"     # set in the file
+    m = drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")), {"simulation.method": "auto"})
+    assert drivedyn.run(drivedyn.replace(m, {"simulation.duration": 0.01})).summary["solver"]["method"] == "implicit"

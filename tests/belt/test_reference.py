@@ -189,7 +189,8 @@ def test_rotation_mass_scaling_at_low_belt_speed(loaded):
 
 
 def test_rkf45_agrees_with_semi_implicit(model_factory):
-    m = kinematic(model_factory, 3.0, friction__velocity_threshold=5e-2, simulation__duration=0.04, belt__segments=60)
+    m = kinematic(model_factory, 3.0, friction__velocity_threshold=5e-2, simulation__duration=0.04, belt__segments=60,
+                  simulation__method="semi-implicit")
     a = drivedyn.run(m)
     b = drivedyn.run(drivedyn.replace(m, {"simulation.method": "rkf45"}))
     assert b.summary["solver"]["method"] == "rkf45"

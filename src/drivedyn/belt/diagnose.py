@@ -23,6 +23,7 @@ import numpy as np
 from ..errors import ModelError
 from ..window import drift, in_window
 from .equilibrium import FORCE_TOL
+from .model import integrator
 
 #: gross slip: sliding beyond twice the creep band plus the largest discretisation speed error the
 #: coarse-discretisation check lets pass (CHORDAL_LIMIT): then it cannot be creep or chordal action
@@ -306,7 +307,7 @@ def _implicit_turn(result, model, sel):
     segment rolling on the fastest pulley turns per step in the steady window. Beyond twice the
     rule (a step the user set, or the smallest step the rule may take) the results drift: span
     tensions 1.7 % off at 0.0084 rad per step, 2.7 % at 0.016 (accessory drive at 3000 rpm)."""
-    if model.simulation.method != "implicit":
+    if integrator(model) != "implicit":
         return
     from .simulate import TURN_PER_STEP
 

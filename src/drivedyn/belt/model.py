@@ -305,7 +305,7 @@ class Friction(Spec):
 
 class Simulation(Spec):
     duration: quantity("s", gt=0) = 1.0
-    method: Literal["implicit", "semi-implicit", "rkf45"] = "semi-implicit"
+    method: Literal["auto", "implicit", "semi-implicit", "rkf45"] = "auto"
     step: Optional[quantity("s", gt=0)] = None
     rotation_scaling: bool = False
     rtol: float = 1e-6
@@ -363,3 +363,18 @@ class Model(Spec):
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
             raise ValueError("output.steady_window ends after simulation.duration")
         return self
+
+
+def integrator(model) -> str:
+    """The belt integration scheme a run uses: ``simulation.method``, where "auto" (the default)
+    is the implicit scheme (issue 14: the step set by the dynamics, agreeing with the semi-implicit
+    reference on the seed drives) unless the drive has what it does not integrate yet (tensioners,
+    clutches, speed orders, the elastic-plastic friction law) or asks for rotation scaling, a
+    semi-implicit option; then the semi-implicit scheme."""
+    method = model.simulation.method
+    if method != "auto":
+        return method
+    if (any(p.tensioner is not None or p.clutch is not None or p.speed_orders for p in model.pulleys)
+            or model.friction.law == "elastic-plastic" or model.simulation.rotation_scaling):
+        return "semi-implicit"
+    return "implicit"

@@ -14,6 +14,7 @@ from ..results import Result, unit_map, variable
 from ..window import in_window, steady_window
 from . import _kernels as K
 from .system import BeltSystem, build, clear_accumulators, new_state, new_work, stability_limit
+from .model import integrator
 
 # the implicit scheme's accuracy rule: a segment rolling on a pulley turns at most this far per step
 # (rad), measured by the fastest pulley's speed.
@@ -247,7 +248,7 @@ def run(model, progress=None) -> Result:
     steps_per_sample = max(1, int(math.ceil(interval / sysm.step)))
     h = interval / steps_per_sample
     try:
-        if sim.method != "rkf45":
+        if integrator(model) != "rkf45":
             done, failure = _integrate_semi_implicit(sysm, progress, rec, nsamples, steps_per_sample, h, frame_every)
             nsteps = rec.steps_done
             h = getattr(rec, "h_final", h)
@@ -259,7 +260,7 @@ def run(model, progress=None) -> Result:
         # a time limit or Ctrl-C: keep the whole samples recorded so far (rec.ns counts them)
         why = stop_reason(exc)
         failure = f"stopped: {why}"
-        if sim.method != "rkf45":
+        if integrator(model) != "rkf45":
             nsteps = getattr(rec, "steps_done", rec.ns * steps_per_sample)
         else:
             nsteps, h = rec.steps, rec.step or h
@@ -319,16 +320,16 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
     if not np.any(sel):     # a run stopped before the window: the last quarter of what was computed
         window = steady_window(None, t_end)
         sel = in_window(t, window)
-    semi = model.simulation.method != "rkf45"
+    semi = integrator(model) != "rkf45"
     # the one solver record (same keys in every time integration), extras after it
-    solver = {"method": model.simulation.method, "steps": int(nsteps),
+    solver = {"method": integrator(model), "steps": int(nsteps),
               "rejected_steps": 0 if semi else int(rec.rejected),
               "rhs_evaluations": int(nsteps) if semi else int(rec.rhs),   # semi-implicit: one force pass per step
               "last_step": float(h), "wall_time": float(wall), "simulated_time": t_end,
               "status": "failed" if failure else "success",
               "step": float(h), "stability_limit": float(sysm.step_limit),
               "real_time_factor": float(t_end / wall) if wall > 0 else float("nan")}
-    if model.simulation.method == "implicit" and getattr(rec, "implicit", None):
+    if integrator(model) == "implicit" and getattr(rec, "implicit", None):
         solver["factorisations"], solver["active_set_passes"], solver["stick_slip_changes"] = rec.implicit
         solver["step_reductions"] = int(getattr(rec, "step_reductions", 0))      # a run going unstable
         solver["speed_reductions"] = int(getattr(rec, "speed_reductions", 0))    # the accuracy rule

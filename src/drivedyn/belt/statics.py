@@ -7,6 +7,8 @@ import math
 
 import numpy as np
 
+from .model import integrator
+
 
 def capstan_torque(tension, radius, wrap, mu):
     """Largest torque a pulley transmits before gross slip (Euler-Eytelwein, T1/T2 = e^(mu theta)),
@@ -158,7 +160,7 @@ def report(model) -> str:
                          f"force {t['spring_force']:.2f} N, hub load {t['hub_load']:.1f} N, belt tension {t['tension']:.1f} N")
     lines += [""] + _steady_lines(data, model)
     lines += ["", "static: no load, no gravity sag; span frequencies of the belt at rest (taut beam, pinned ends).",
-              f"integration: {model.simulation.method}, step {sysm.step * 1e6:.3f} us (stability limit "
+              f"integration: {integrator(model)}, step {sysm.step * 1e6:.3f} us (stability limit "
               f"{sysm.step_limit * 1e6:.3f} us), {model.simulation.duration / sysm.step:.3g} steps for "
               f"{model.simulation.duration:g} s"]
     return "\n".join(lines)

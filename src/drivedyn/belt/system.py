@@ -14,6 +14,7 @@ from .initial import InitialState, initial_state
 from ..tables import flatten
 from .layout import Layout, compute_layout
 from . import tensioner
+from .model import integrator
 
 
 @dataclass
@@ -58,7 +59,7 @@ def build(model, settle: bool = True) -> BeltSystem:
     ones = np.ones(n)
     m = belt.mass_per_length * l * ones
     inertia = m * l * l / 12.0                                      # eq. 2
-    scaled = model.simulation.method == "semi-implicit" and model.simulation.rotation_scaling
+    scaled = integrator(model) == "semi-implicit" and model.simulation.rotation_scaling
     B = K.Belt(
         n=int(n), m=m, inertia=inertia, inv_m=1.0 / m, inv_i=1.0 / inertia,
         kax=belt.axial_stiffness / l ** e * ones,                     # F = EA (g / l)^e
@@ -67,7 +68,7 @@ def build(model, settle: bool = True) -> BeltSystem:
         bb=belt.bending_damping / l * ones,
         eax=float(e), eb=float(belt.bending_exponent), linear=bool(e == 1.0), hl=float(0.5 * l),
         turn=float(init.turn), g=float(model.gravity), iscale=float(ROTATION_SCALE if scaled else 1.0),
-        implicit=model.simulation.method == "implicit")
+        implicit=integrator(model) == "implicit")
     mu = model.friction.coefficient * ones
     # friction zones by arc length of the segment centre measured from the start of segment 0
     s_mid = (np.arange(n) + 0.5) * (l + init.gap)
