@@ -45,12 +45,13 @@ segment's new velocity (a scalar monotone equation per contact, pulley speeds fr
 step), which makes the stiff friction law (slope mu N / dv) unconditionally stable; the step is
 limited only by the elastic chain, h < 2 / sqrt(12 k / m) (``system.stability_limit``).
 
-Scheme ``implicit`` (same function, ``Belt.implicit``; opt-in, issue 14): the joints (stiffness,
-dampers, tension stiffness), the contact normal stiffness and damping and the stuck segments'
-friction through one cyclic block-tridiagonal matrix (``_chain.py``: symplectic Euler with a
-modified mass, no stability limit from the chain); stick and slip by an active set whose changes
-are low-rank corrections of the factored matrix; pulleys implicit with the segments they anchor.
-Agrees with the semi-implicit scheme at about ten times its step (README, tests/belt/test_implicit.py).
+Scheme ``implicit`` (same function, ``Belt.implicit``; issue 14, the default wherever it integrates
+the drive, ``model.integrator``): the joints (stiffness, dampers, tension stiffness), the contact
+normal stiffness and damping and the stuck segments' friction through one cyclic block-tridiagonal
+matrix (``_chain.py``: symplectic Euler with a modified mass, no stability limit from the chain);
+stick and slip by an active set solved in a small space over the factored matrix; pulleys implicit
+with the segments they anchor. Agrees with the semi-implicit scheme at about ten times its step
+(README, tests/belt/test_implicit.py).
 """
 import math
 from typing import NamedTuple
@@ -1141,44 +1142,31 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                     be0 = 0.0
                     be1 = 0.0
                     ga = 0.0
-                    if cca[i] > 0.0:
-                        kp = cca[i]
-                        sl = om[j] * pr[j] - (vx[i] - pvx[j]) * ctx - (vy[i] - pvy[j]) * cty
-                        a0 += kp * sl * ctx
-                        a1 += kp * sl * cty
-                        b00 -= kp * ctx * ctx
-                        b01 -= kp * ctx * cty
-                        b11 -= kp * cty * cty
-                        e0 += kp * pr[j] * ctx
-                        e1 += kp * pr[j] * cty
-                        al += kp * sl
-                        be0 -= kp * ctx
-                        be1 -= kp * cty
-                        ga += kp * pr[j]
-                    else:
-                        a0 += cT[i] * ctx
-                        a1 += cT[i] * cty
-                        al += cT[i]
-                    if fca[i] > 0.0:
-                        kp = fca[i]
-                        ftx = -fny[i]
-                        fty = fnx[i]
-                        sl = om[j] * pr[j] - (vx[i] - pvx[j]) * ftx - (vy[i] - pvy[j]) * fty
-                        a0 -= kp * sl * ftx
-                        a1 -= kp * sl * fty
-                        b00 += kp * ftx * ftx
-                        b01 += kp * ftx * fty
-                        b11 += kp * fty * fty
-                        e0 -= kp * pr[j] * ftx
-                        e1 -= kp * pr[j] * fty
-                        al -= kp * sl
-                        be0 += kp * ftx
-                        be1 += kp * fty
-                        ga -= kp * pr[j]
-                    else:
-                        a0 -= cTb[i] * ctx
-                        a1 -= cTb[i] * cty
-                        al -= cTb[i]
+                    for side in range(2):
+                        # + its state now (anchor along the current tangent, or its sliding
+                        # friction), - its factored state (anchor along the factored tangent, or
+                        # its friction in F_base)
+                        if side == 0:
+                            sg, kp, tx, ty, Tsl = 1.0, cca[i], ctx, cty, cT[i]
+                        else:
+                            sg, kp, tx, ty, Tsl = -1.0, fca[i], -fny[i], fnx[i], cTb[i]
+                        if kp > 0.0:
+                            sl = om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
+                            a0 += sg * kp * sl * tx
+                            a1 += sg * kp * sl * ty
+                            b00 -= sg * kp * tx * tx
+                            b01 -= sg * kp * tx * ty
+                            b11 -= sg * kp * ty * ty
+                            e0 += sg * kp * pr[j] * tx
+                            e1 += sg * kp * pr[j] * ty
+                            al += sg * kp * sl
+                            be0 -= sg * kp * tx
+                            be1 -= sg * kp * ty
+                            ga += sg * kp * pr[j]
+                        else:
+                            a0 += sg * Tsl * ctx
+                            a1 += sg * Tsl * cty
+                            al += sg * Tsl
                     cpar[p, 0] = a0
                     cpar[p, 1] = a1
                     cpar[p, 2] = b00
@@ -1285,9 +1273,13 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                             tx = -fny[i]
                             ty = fnx[i]
                         T = kp * ((om[j] + dom[j]) * pr[j] - rvx * tx - rvy * ty)
+                        ak[i] = kp           # the anchor as this pass solved it (final loop)
+                        atx[i] = tx
+                        aty[i] = ty
                         if abs(T) > mu[i] * cN[i] and npass < PASSES:
                             # lets go: slides this step with mu N
                             Ts = math.copysign(mu[i] * cN[i], T)
+                            ak[i] = 0.0
                             cca[i] = 0.0
                             stk[i] = 0.0
                             cT[i] = Ts
@@ -1315,7 +1307,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                 npass += 1
                 if not changed:
                     break
-            # the velocity change over A^-1 F, and each contact segment's anchor as solved
+            # the velocity change over A^-1 F
             for i in range(n):
                 fx[i] = yx[i]
                 fy[i] = yy[i]
@@ -1335,18 +1327,6 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                     fx[i] += p0 * zc[sd, i, 0] + p1 * zc[sd + 1, i, 0]
                     fy[i] += p0 * zc[sd, i, 1] + p1 * zc[sd + 1, i, 1]
                     mz[i] += p0 * zc[sd, i, 2] + p1 * zc[sd + 1, i, 2]
-            for q in range(nc):
-                i = clist[q]
-                ak[i] = 0.0
-                if cca[i] > 0.0:
-                    if cslot[i] >= 0:
-                        ak[i] = cca[i]
-                        atx[i] = -cny[i]
-                        aty[i] = cnx[i]
-                    else:
-                        ak[i] = fca[i]
-                        atx[i] = -fny[i]
-                        aty[i] = fnx[i]
             lin_cnt[0] -= 1
             for i in range(n):
                 vxs = vx[i] + h * fx[i]

@@ -356,8 +356,7 @@ class Model(Spec):
         for q in self.output.segments:
             if not 0 <= q < self.belt.segments:
                 raise ValueError(f"output.segments: index {q} outside 0..{self.belt.segments - 1}")
-        if self.simulation.method in ("rkf45", "implicit") and any(
-                p.tensioner is not None or p.clutch is not None or p.speed_orders for p in self.pulleys):
+        if self.simulation.method in ("rkf45", "implicit") and _semi_implicit_only(self.pulleys):
             raise ValueError(f"simulation.method: {self.simulation.method} does not integrate tensioners, clutches or "
                              "speed orders yet; use semi-implicit")
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
@@ -374,7 +373,12 @@ def integrator(model) -> str:
     method = model.simulation.method
     if method != "auto":
         return method
-    if (any(p.tensioner is not None or p.clutch is not None or p.speed_orders for p in model.pulleys)
-            or model.friction.law == "elastic-plastic" or model.simulation.rotation_scaling):
+    if (_semi_implicit_only(model.pulleys) or model.friction.law == "elastic-plastic"
+            or model.simulation.rotation_scaling):
         return "semi-implicit"
     return "implicit"
+
+
+def _semi_implicit_only(pulleys) -> bool:
+    """Pulleys only the semi-implicit scheme integrates: tensioners, clutches, speed orders."""
+    return any(p.tensioner is not None or p.clutch is not None or p.speed_orders for p in pulleys)

@@ -23,6 +23,10 @@ from .model import integrator
 # (23.6 m/s, 843 rad/s on the alternator) 0.2-1.7 % at 0.0084 rad, 2.7 % at 0.016, 34 % slip
 # at 0.032 before A's contact term followed the turn (_kernels: can); 2.4 % at 5000 rpm, 0.014
 TURN_PER_STEP = 0.003
+# a run has blown up once a segment or pulley surface moves faster than this (m/s) or a segment
+# sinks deeper than this share of the smallest pulley radius (_blow_up, _healthy)
+SPEED_MAX = 1e3
+PEN_MAX = 0.5
 
 
 class _Recorder:
@@ -212,7 +216,7 @@ def _healthy(probe, r_min, implicit):
     faster than the fastest pulley (and over 100 rad/s), that scheme's sign that its step is too
     large (gross slip at 40 us on the 5PK). 0.5 us against 50 us for the checks in numpy."""
     fin, v2, surface, pen, w = probe[:5]
-    ok = math.isfinite(fin) and v2 <= 1e6 and surface <= 1e3 and pen <= 0.5 * r_min
+    ok = math.isfinite(fin) and v2 <= SPEED_MAX ** 2 and surface <= SPEED_MAX and pen <= PEN_MAX * r_min
     return ok and not (implicit and w > 10 * surface / r_min + 100.0)
 
 
@@ -222,13 +226,13 @@ def _blow_up(x, y, vx, vy, om, pen, sysm):
     i = int(np.argmax(v2))
     if not np.isfinite(v2[i]) or not np.all(np.isfinite(x)) or not np.all(np.isfinite(y)):
         return f"segment {i} state is not finite"
-    if v2[i] > 1e6:
+    if v2[i] > SPEED_MAX ** 2:
         return f"segment {i} speed {math.sqrt(v2[i]):.3g} m/s"
     pr = sysm.pulleys.r
     j = int(np.argmax(np.abs(om) * pr))
-    if not np.isfinite(om[j]) or abs(om[j]) * pr[j] > 1e3:
+    if not np.isfinite(om[j]) or abs(om[j]) * pr[j] > SPEED_MAX:
         return f"pulley {sysm.layout.names[j]} speed {om[j]:.3g} rad/s"
-    if np.max(pen) > 0.5 * np.min(pr):
+    if np.max(pen) > PEN_MAX * np.min(pr):
         i = int(np.argmax(pen))
         return f"segment {i} penetration {pen[i] * 1e3:.3g} mm"
     return ""
