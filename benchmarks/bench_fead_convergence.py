@@ -13,7 +13,7 @@ import drivedyn
 from drivedyn.model import from_dict, to_dict
 
 
-def held(rpm: float, segments: int, orders: bool = True, duration: float = 0.8):
+def held(rpm: float, segments, orders: bool = True, duration: float = 0.8):
     d = to_dict(drivedyn.load(drivedyn.example_path("fead-runup")))
     w = -rpm * math.pi / 30
     crank = d["pulleys"][0]
@@ -43,14 +43,14 @@ def row(r):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--rpm", type=float, default=3000.0)
-    ap.add_argument("--segments", type=int, nargs="+", default=[150, 300, 600])
+    ap.add_argument("--segments", nargs="+", default=["auto", "150", "300", "600"], help="counts or auto")
     ap.add_argument("--no-orders", action="store_true")
     a = ap.parse_args()
-    drivedyn.run(drivedyn.replace(held(a.rpm, 150), {"simulation.duration": 0.01, "output.steady_window": None}))
+    drivedyn.run(drivedyn.replace(held(a.rpm, 150), {"simulation.duration": 0.01, "output.steady_window": None}))   # compile
     print(f"held at {a.rpm:.0f} rpm, {'no orders' if a.no_orders else 'orders 2 and 4'}")
     names = None
     for n in a.segments:
-        r = drivedyn.run(held(a.rpm, n, orders=not a.no_orders))
+        r = drivedyn.run(held(a.rpm, n if n == "auto" else int(n), orders=not a.no_orders))
         if names is None:
             names = list(r.summary["pulleys"])[1:]
             print(f"{'n':>5s} {'wall s':>7s} {'slip %: ' + ' / '.join(names):>44s} {'span 1 min-max N':>14s} "
@@ -58,7 +58,7 @@ def main():
         print(row(r), flush=True)
     if a.no_orders:
         from drivedyn.belt.steady import steady_state
-        st = steady_state(held(a.rpm, a.segments[0], orders=False))
+        st = steady_state(held(a.rpm, "auto", orders=False))
         print("steady creep theory, slip %:", " / ".join(f"{100 * (1 - abs(st.pulleys[n].speed_ratio)):.3f}" for n in names))
 
 

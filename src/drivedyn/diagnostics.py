@@ -23,7 +23,7 @@ CODES = {
     "window-not-steady": "the quantities drift inside the steady window (or the slowest mode has not decayed): "
                          "the window means are not steady-state values",
     "energy-residual": "the energy balance (work in - dissipated - energy change) misses a large share of the work",
-    "coarse-discretisation": "the belt segments are long against a pulley radius: chordal error in speeds and slip",
+    "coarse-discretisation": "the belt segments are long against a pulley radius or a wrap: chordal error in speeds, a wrap too few segments hold",
     "kv-unstable": "the dynamic factor grows without bound (parametric instability of the linear mesh model) or "
                    "is not converged",
     "step-too-large": "the time step is too large for the integration method",

@@ -131,11 +131,16 @@ def test_arm_free_oscillation_against_linear_model():
     k = 20.0 + m.belt.axial_stiffness * g * g / L_s + T * Lpp
     f_lin = math.sqrt(k / 0.01) / (2 * math.pi)
     assert f_sim == pytest.approx(f_lin, rel=0.03), (f_sim, f_lin)
-    # the drive's linearised modes (modes.py, with the arm as a DOF) have this mode too
+    # the drive's linearised modes (modes.py, with the arm as a DOF) hold the belt to the wraps: the
+    # free idler turns, the wrap on it does not stretch (L1 + L2 in place of L_s). The run, kicked
+    # by 0.02 rad/s, slides at micro-slip speeds inside the friction law's regularisation, so its
+    # wrap stretches too: the two bound the mode (5 % apart here)
     from drivedyn.belt.modes import modes
     md = modes(m)
     f_mode = min(md.frequencies_hz, key=lambda f: abs(f - f_sim))
-    assert f_mode == pytest.approx(f_sim, rel=0.03), (md.frequencies_hz, f_sim)
+    k_held = 20.0 + m.belt.axial_stiffness * g * g / (L_s - lay.radii[j] * lay.wrap[j]) + T * Lpp
+    assert f_mode == pytest.approx(math.sqrt(k_held / 0.01) / (2 * math.pi), rel=0.01), md.frequencies_hz
+    assert f_sim < f_mode < 1.07 * f_sim
     k_arm = max(range(len(md.frequencies_hz)), key=lambda k: md.participation[k].get("idler.arm", 0))
     assert md.frequencies_hz[k_arm] == f_mode
 

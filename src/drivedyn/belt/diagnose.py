@@ -45,6 +45,9 @@ ENERGY_LIMIT = 0.01
 #: segments = 9.9^2/12 (1/27^2 - 1/80^2)). Above 2 % (l > 0.49 r) it exceeds the creep of a
 #: belt at rated load (1-2 %) and would be read as slip.
 CHORDAL_LIMIT = 0.02
+#: segments on a wrap below which its slip is not resolved (resolution.py: 2.8 segments on the
+#: accessory drive's tensioner misread its slip by 0.25 points, 5.6 by 0.004)
+WRAP_LIMIT = 3.0
 
 
 def chordal_error(l: float, r) -> np.ndarray:
@@ -343,6 +346,15 @@ def _coarse(result, model, sysm):
     err = chordal_error(l, [p.radius for p in model.pulleys])
     for j, p in enumerate(model.pulleys):
         result.summary["pulleys"][p.name]["chordal_error"] = float(err[j])
+    disc = result.summary.get("discretisation", {})
+    if disc.get("segments_on_shortest_wrap", math.inf) < WRAP_LIMIT:
+        from .resolution import auto_segments
+
+        name, k = disc["shortest_wrap"], disc["segments_on_shortest_wrap"]
+        result.diagnose("coarse-discretisation", f"the wrap on pulley {name} holds {k:.1f} segments of {l * 1e3:.3g} mm: "
+                        f"its slip and the tensions of its spans are not resolved; belt.segments = \"auto\" takes "
+                        f"{auto_segments(model, sysm.layout)[0]}", "discretisation.segments_on_shortest_wrap", k,
+                        WRAP_LIMIT, "")
     j = int(np.argmax(err))
     if err[j] > CHORDAL_LIMIT:
         need = math.ceil(sysm.layout.length / (model.pulleys[j].radius * math.sqrt(12 * CHORDAL_LIMIT)))

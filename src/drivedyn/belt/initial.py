@@ -111,6 +111,18 @@ def _bracketed_root(f, guess):
     raise ModelError("cannot close the belt on the path with these segments", field="belt.segments")
 
 
+def check_length(model, layout: Layout) -> None:
+    """A belt given by its length must be shorter than the path and stretch less than 5 % on it."""
+    belt = model.belt
+    if belt.length >= layout.length:
+        raise ModelError(f"belt too long to be tensioned: unstretched length {belt.length:.4f} m >= path length "
+                         f"{layout.length:.4f} m", field="belt.length")
+    strain = layout.length / belt.length - 1
+    if (strain > 0.05 and belt.axial_exponent == 1.0) or strain ** belt.axial_exponent > 0.05:
+        raise ModelError(f"belt too short to wrap the pulleys: unstretched length {belt.length:.4f} m against a path of "
+                         f"{layout.length:.4f} m would need {strain * 100:.1f} % strain", field="belt.length")
+
+
 def initial_state(model, layout: Layout) -> InitialState:
     belt, n = model.belt, model.belt.segments
     r_min = min(p.radius for p in model.pulleys)
@@ -143,18 +155,13 @@ def initial_state(model, layout: Layout) -> InitialState:
         l = _bracketed_root(resid, guess)
     else:
         l = belt.length / n
-        if belt.length >= layout.length:
-            raise ModelError(f"belt too long to be tensioned: unstretched length {belt.length:.4f} m >= path length "
-                             f"{layout.length:.4f} m", field="belt.length")
+        check_length(model, layout)
 
         def resid_T(T):
             lay, (_, _, s_end), _ = place(l, T)
             return s_end - _Path(lay).length
 
         strain = layout.length / belt.length - 1
-        if (strain > 0.05 and e == 1.0) or EA * strain ** e > 0.05 * EA:
-            raise ModelError(f"belt too short to wrap the pulleys: unstretched length {belt.length:.4f} m against a path of "
-                             f"{layout.length:.4f} m would need {strain * 100:.1f} % strain", field="belt.length")
         T_guess = EA * strain ** e
         # the chords run inside the arcs, so the closing tension can lie well off the continuum
         # guess at low strain: widen the bracket until the residual changes sign

@@ -12,7 +12,7 @@ map onto them as documented in ``examples/belt-5pk.toml``:
 """
 from __future__ import annotations
 
-from typing import Literal, Optional
+from typing import Literal, Optional, Union
 
 from pydantic import field_validator, model_validator
 
@@ -241,13 +241,15 @@ class Belt(Spec):
     bending_damping: quantity("N*m^2*s", ge=0) = 0.0
     axial_exponent: float = 1.0
     bending_exponent: float = 1.0
-    segments: int = 150
+    segments: Union[int, Literal["auto"]] = "auto"     # "auto": chosen by accuracy (resolution.py)
     pretension: Optional[quantity("N", gt=0)] = None
     length: Optional[quantity("m", gt=0)] = None
 
     @field_validator("segments")
     @classmethod
     def _n(cls, v):
+        if v == "auto":
+            return v
         # upper: the stable step falls with the segment length and the cost grows with n^2;
         # 5000 segments already run ~1000 times longer than the 150 of the examples
         if v < 12:
@@ -354,7 +356,7 @@ class Model(Spec):
         if not any(p.side == "inside" for p in self.pulleys):
             raise ValueError("pulleys: at least one pulley must be inside the belt loop")
         for q in self.output.segments:
-            if not 0 <= q < self.belt.segments:
+            if not 0 <= q < (self.belt.segments if self.belt.segments != "auto" else 5000):
                 raise ValueError(f"output.segments: index {q} outside 0..{self.belt.segments - 1}")
         if self.simulation.method in ("rkf45", "implicit") and _semi_implicit_only(self.pulleys):
             raise ValueError(f"simulation.method: {self.simulation.method} does not integrate tensioners, clutches or "

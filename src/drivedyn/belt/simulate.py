@@ -15,6 +15,7 @@ from ..window import in_window, steady_window
 from . import _kernels as K
 from .system import BeltSystem, build, clear_accumulators, new_state, new_work, stability_limit
 from .model import integrator
+from .resolution import discretisation
 
 # the implicit scheme's accuracy rule: a segment rolling on a pulley turns at most this far per step
 # (rad), measured by the fastest pulley's speed.
@@ -401,6 +402,8 @@ UNITS = {
     "spans.*.tension_*": "N", "spans.*.speed_mean": "m/s",
     "power.efficiency": "1", "power.energy_residual_*": "1", "power.*": "W",
     "belt.pretension": "N", "belt.segment_length": "m", "belt.path_length": "m",
+    "discretisation.segment_length": "m", "discretisation.chordal_speed_error": "1",
+    "discretisation.segments*": "", "discretisation.*": "",
     "steady.*": "1", "at_rest.speed_max.*": "rad/s", "at_rest.residual_force": "1",
     "solver.last_step": "s", "solver.step": "s", "solver.stability_limit": "s", "solver.wall_time": "s",
     "solver.simulated_time": "s", "solver.real_time_factor": "1",
@@ -488,6 +491,7 @@ def _summary(model, sysm, ds, solver, sel, window) -> dict:
         },
         "belt": {"pretension": sysm.init.tension, "segment_length": sysm.init.seg_length,
                  "segments": sysm.n, "path_length": sysm.layout.length},
+        "discretisation": discretisation(model, sysm),
         **_tensioner_summary(ds, sysm, sel),
         **_clutch_summary(ds, sel),
         "solver": solver,

@@ -132,6 +132,7 @@ def check_json(model) -> str:
 
 def report(model) -> str:
     from .installation import installation_table, table_lines
+    from .resolution import auto_segments
     from .system import build
 
     sysm = build(model, settle=False)       # the report needs no settled segment positions
@@ -141,8 +142,9 @@ def report(model) -> str:
     lines = [f"belt drive: {model.name or '(unnamed)'}",
              f"loop: {'counter-clockwise' if lay.orientation > 0 else 'clockwise'} in the listed order; "
              f"path length {lay.length * 1e3:.2f} mm at the contact radii",
-             f"belt: unstretched length {sysm.init.seg_length * belt.segments * 1e3:.2f} mm, pretension {T0:.1f} N "
-             f"(strain {T0 / belt.axial_stiffness * 100:.3f} %), {belt.segments} segments of {sysm.init.seg_length * 1e3:.3f} mm",
+             f"belt: unstretched length {sysm.init.seg_length * sysm.n * 1e3:.2f} mm, pretension {T0:.1f} N "
+             f"(strain {T0 / belt.axial_stiffness * 100:.3f} %), {sysm.n} segments of {sysm.init.seg_length * 1e3:.3f} mm"
+             + (f" (auto: {auto_segments(model)[1]})" if belt.segments == "auto" else ""),
              "", f"{'pulley':14s} {'x mm':>9s} {'y mm':>9s} {'r mm':>7s} {'side':>6s} {'wrap deg':>9s} {'hub load N':>11s} "
              f"{'hub dir deg':>11s} {'penetr. mm':>10s}"]
     hub = lay.hub_load_static(T0)

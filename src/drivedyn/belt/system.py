@@ -10,11 +10,12 @@ import numpy as np
 from ..errors import ModelError
 from . import _kernels as K
 from .equilibrium import relax
-from .initial import InitialState, initial_state
+from .initial import InitialState, check_length, initial_state
 from ..tables import flatten
 from .layout import Layout, compute_layout
 from . import tensioner
 from .model import integrator
+from .resolution import resolved
 
 
 @dataclass
@@ -73,7 +74,9 @@ def build(model, settle: bool = True) -> BeltSystem:
     ``belt.length`` gives the tension creep theory gives that installed length at rest (steady.py,
     the belt's depth in the grooves included), and the chain is placed so that it settles to the
     pretension (the settled chain carries up to a few percent less than its placement: chord sag
-    and the segments' seating; one corrected placement takes that out)."""
+    and the segments' seating; one corrected placement takes that out). ``belt.segments = "auto"``
+    is resolved first (resolution.py)."""
+    model = resolved(model)
     if tensioner.indices(model):
         return _build(model, model, settle)
     target = model.belt.pretension
@@ -81,6 +84,7 @@ def build(model, settle: bool = True) -> BeltSystem:
     if target is None:
         from .steady import drive_of, tensions
 
+        check_length(model, compute_layout(model))
         T = tensions(drive_of(model), np.zeros(len(model.pulleys)), 0.0, True)
         if T is None:
             raise ModelError(f"belt too long to be tensioned: unstretched length {model.belt.length:.4f} m",

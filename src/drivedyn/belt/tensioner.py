@@ -154,6 +154,9 @@ def _spring(t, q: float) -> float:
 def equilibrium(model) -> Equilibrium:
     """Static equilibrium of the belt and the model's tensioners (ModelError when none exists
     within the stops, naming the tensioner and why)."""
+    from .resolution import resolved
+
+    model = resolved(model)
     idx = indices(model)
     sense = senses(model)
     belt = model.belt
