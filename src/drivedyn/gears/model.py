@@ -49,11 +49,21 @@ class Gear(Spec):
     torque_speed: Optional[list[list]] = None
     torque_time: Optional[list[list]] = None
     load_fraction: float = 0.0
+    root_radius: float = 0.25  # rho_fP / m of the basic rack (tool tip radius), for the ISO 6336-3 root
+    steel: Optional[Literal["case-carburized", "through-hardened"]] = None   # this gear's material, else iso's
 
     @field_validator("name")
     @classmethod
     def _n(cls, v):
         return _name(v)
+
+    @field_validator("root_radius")
+    @classmethod
+    def _rho(cls, v):
+        # ISO 53 and DIN 867 racks have 0.2..0.4 m; 0 is a sharp tool, above 0.6 the fillet meets the flank
+        if not 0.0 < v <= 0.6:
+            raise ValueError(f"must lie in (0, 0.6] modules, got {v}")
+        return v
 
     @field_validator("teeth")
     @classmethod
@@ -260,23 +270,70 @@ class Sweep(Spec):
 
 
 class Iso(Spec):
-    """ISO 6336-1:2006 inputs for c', c_gamma and the method B dynamic factor."""
+    """ISO 6336-1:2006 inputs for c', c_gamma and the method B dynamic factor, and the ISO 6336-2/-3
+    rating (method B) of every mesh: material, lubricant, roughness, life and minimum safety factors."""
 
     application_factor: float = 1.0
     low_load: bool = True
     blank_factor: float = 1.0
     pitch_deviation: quantity("m", ge=0) = 7e-6
     profile_deviation: quantity("m", ge=0) = 7e-6
-    material: Literal["St", "Eh", "GG"] = "Eh"
+    material: Literal["St", "V", "Eh", "NT", "GG"] = "Eh"
     sigma_hlim: quantity("Pa", gt=0) = 1500e6
     tip_relief: Optional[quantity("m", ge=0)] = None
+    rating: bool = True
+    steel: Optional[Literal["case-carburized", "through-hardened"]] = None
+    sigma_flim: quantity("Pa", gt=0) = 430e6
+    yield_strength: Optional[quantity("Pa", gt=0)] = None
+    life: quantity("s", gt=0) = 20000 * 3600.0
+    lubricant_viscosity: quantity("m^2/s", gt=0) = 220e-6
+    flank_roughness: quantity("m", ge=0) = 6e-6
+    root_roughness: quantity("m", ge=0) = 10e-6
+    mesh_misalignment: quantity("m", ge=0) = 10e-6
+    face_load_factor: Optional[float] = None
+    transverse_load_factor: Optional[float] = None
+    min_safety_pitting: float = 1.0
+    min_safety_bending: float = 1.0
 
-    @field_validator("application_factor", "blank_factor")
+    @field_validator("application_factor", "blank_factor", "min_safety_pitting", "min_safety_bending")
     @classmethod
     def _pos(cls, v):
         if not v > 0:
             raise ValueError(f"must be > 0, got {v}")
         return v
+
+    @field_validator("face_load_factor", "transverse_load_factor")
+    @classmethod
+    def _factor(cls, v):
+        # ISO 6336-1 load factors are >= 1; above 10 the load distribution model has no meaning
+        if v is not None and not 1.0 <= v <= 10.0:
+            raise ValueError(f"must lie in [1, 10], got {v}")
+        return v
+
+    @field_validator("life")
+    @classmethod
+    def _life(cls, v):
+        if v > 1e6 * 3600:   # a million hours (114 years) is beyond any design life
+            raise ValueError(f"must be <= 1e6 h, got {v / 3600:.4g} h")
+        return v
+
+    @field_validator("lubricant_viscosity")
+    @classmethod
+    def _nu40(cls, v):
+        # ISO 3448 grades run from VG 2 to VG 3200 (mm^2/s at 40 deg C)
+        if not 2e-6 <= v <= 3200e-6:
+            raise ValueError(f"must lie in 2..3200 mm^2/s (ISO VG 2..3200), got {v * 1e6:.4g} mm^2/s")
+        return v
+
+    @model_validator(mode="after")
+    def _steel(self):
+        # a steel from the table sets these four; a value away from its default says the user meant another
+        # (compared with the defaults, not with the fields set, so that a dumped model loads back)
+        given = sorted(k for k in ("sigma_hlim", "sigma_flim", "material", "yield_strength")
+                       if getattr(self, k) != type(self).model_fields[k].default)
+        if self.steel is not None and given:
+            raise ValueError(f"give steel or {', '.join(given)}, not both")
+        return self
 
 
 class Model(Spec):

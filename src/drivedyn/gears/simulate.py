@@ -252,6 +252,8 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
                           f"mesh {name}: the mesh force goes negative ({fmin[j]:.4g} N) in the steady window: the teeth "
                           f"would separate; switch on tooth separation (meshes[{j}].separation = true)",
                           f"meshes.{name}.force_min", fmin[j], 0.0, "N"))
+    rating = _rating(model, sys_, [meshes[n]["kv"] for n in sys_.mesh_names],
+                     [meshes[n]["kv_iso_method_b"] for n in sys_.mesh_names])
     start = model.simulation.start
     how = {"static": "static equilibrium at the start position (no start-up step)",
            "ramp": f"load ramped smoothly over {model.simulation.ramp_time:g} s",
@@ -268,6 +270,8 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
                        "torque": sys_.torque_const[i]} for i, nm in enumerate(sys_.names)},
         "solver": solver,
     }
+    if rating:
+        summary["rating"] = rating
     T0 = 1.0 / f_mesh[0]
     ds = xr.Dataset(
         {
@@ -310,6 +314,23 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
     return result
 
 
+def _rating(model, sys_, kv_dyn, kv_iso) -> dict:
+    """ISO 6336-2/-3 ratings per mesh with K_v from the run (largest over the steady window) and from
+    ISO 6336-1 method B; empty when switched off or when the run has no finite K_v."""
+    from .rating import rate_mesh, summary_of
+
+    if not model.iso.rating:
+        return {}
+    out = {}
+    for j, name in enumerate(sys_.mesh_names):
+        if not (np.isfinite(kv_dyn[j]) and kv_dyn[j] > 0):
+            continue
+        r_dyn = rate_mesh(model, sys_, j, float(kv_dyn[j]))
+        r_iso = rate_mesh(model, sys_, j, float(kv_iso[j]))
+        out[name] = summary_of(r_dyn, r_iso, (model.iso.min_safety_pitting, model.iso.min_safety_bending))
+    return out
+
+
 def _method_b(model, sys_, j, m_red):
     from .iso6336 import MethodB
 
@@ -336,6 +357,8 @@ UNITS = {
     "sweep.speed_*": "rad/s", "sweep.settle": "s", "sweep.wall_time": "s", "sweep.meshes.*.kv*": "1",
     "sweep.meshes.*.speed_at_kv_max": "rad/s", "sweep.meshes.*.unstable_speeds": "rad/s",
     "sweep.meshes.*.separation_speeds": "rad/s", "floquet_growth_rate": "1/s",
+    "rating.*.*_rating.sigma_*": "Pa", "rating.*.*_rating.load_cycles": "1", "rating.*.*_rating.*": "1",
+    "rating.*.Z_E": "Pa^0.5", "rating.*.*": "1",
 }
 
 
