@@ -144,3 +144,59 @@ def test_steel_table_sets_the_limits():
     m2 = drivedyn.replace(seed_model(), {"gears.gear2.steel": "through-hardened"})
     e2 = _rating(m2, assemble(m2), [1.5, 1.5], [1.1, 1.1])["m12"]
     assert e2["pinion_rating"]["sigma_Hlim"] == 1500e6 and e2["wheel_rating"]["sigma_Hlim"] == 740e6
+
+
+def _generated_fillet(z, x, m, alpha, h_fp, rho_fp):
+    """(s_Fn, rho_F) where the fillet that the basic rack's tip rounding generates on a spur gear has its
+    tangent at 30 deg to the tooth centre line: the rounding's centre rolled with the rack (pitch line
+    rolling on the reference circle), its envelope offset by rho along the normal, found numerically."""
+    import numpy as np
+
+    r, rho = 0.5 * z * m, rho_fp * m
+    t = h_fp * m - rho + rho * math.sin(alpha)
+    xc = math.pi * m / 4 + t * math.tan(alpha) + rho * math.cos(alpha)   # centre of the tip rounding
+    yc = r + x * m - h_fp * m + rho
+    phi = np.linspace(-1, 1, 400001) * min(0.6, 8.0 / z)
+    cx = (xc - r * phi) * np.cos(phi) + yc * np.sin(phi)
+    cy = -(xc - r * phi) * np.sin(phi) + yc * np.cos(phi)
+    dx, dy = np.gradient(cx, phi), np.gradient(cy, phi)
+    nx, ny = dy / np.hypot(dx, dy), -dx / np.hypot(dx, dy)
+    if ny[len(phi) // 2] > 0:
+        nx, ny = -nx, -ny
+    px, py = cx + rho * nx, cy + rho * ny
+    tx, ty = np.gradient(px, phi), np.gradient(py, phi)
+    ang = np.degrees(np.arctan2(np.abs(tx), np.abs(ty)))
+    k = np.where((px > 0) & (px < xc))[0]
+    j = k[np.argmin(np.abs(ang[k] - 30.0))]
+    curv = np.abs(tx * np.gradient(ty, phi) - ty * np.gradient(tx, phi)) / np.hypot(tx, ty) ** 3
+    return 2 * px[j], 1 / curv[j]
+
+
+@pytest.mark.parametrize("z,x", [(17, 0.145), (21, 0.29), (25, -0.2), (40, 0.0), (57, 0.29)])
+@pytest.mark.parametrize("h_fp,rho_fp", [(1.25, 0.25), (1.4, 0.39)])
+def test_root_section_against_the_generated_fillet(z, x, h_fp, rho_fp):
+    # ISO 6336-3 method B's closed forms (theta iterated, s_Fn, rho_F) against the fillet the rack
+    # generates: chord to 2e-5 m_n, fillet radius to 2e-4 (numerical curvature)
+    iso = rating.root_section(z, x, 1.0, math.radians(20.0), h_fp, rho_fp)
+    s_fn, rho_f = _generated_fillet(z, x, 1.0, math.radians(20.0), h_fp, rho_fp)
+    assert iso["s_Fn"] == pytest.approx(s_fn, abs=2e-5)
+    assert iso["rho_F"] == pytest.approx(rho_f, rel=2e-4)
+
+
+def test_load_point_is_the_outer_point_of_single_contact():
+    # ISO 6336-3's d_en for a spur pair against the contact geometry of drivedyn.gears.geometry:
+    # the pinion's outer point of single pair contact lies one base pitch beyond the start of contact A
+    from drivedyn.gears.train import assemble
+
+    s = assemble(seed_model())
+    p_ = s.pairs[0]
+    pair = rating.Pair(z1=21, z2=57, mn=2.5, alpha_n=p_.g1.alpha, beta=0.0, x1=0.29, x2=0.29, b=24.0,
+                       da1=2e3 * p_.g1.ra, da2=2e3 * p_.g2.ra, aw=p_.a_w * 1e3)
+    g = rating.geometry(pair)
+    assert g["eps_alpha"] == pytest.approx(p_.contact_ratio, rel=1e-12)
+    mat = rating.Material("Eh", 1500.0, 430.0)
+    r = rating.rate(pair, (mat, mat), rating.Load(torque1=24.7, n1=1450.0, kv=1.0))
+    rho_d = (p_.rho_start + p_.base_pitch) * 1e3
+    assert r.pinion["d_en"] / 2 == pytest.approx(math.hypot(p_.g1.rb * 1e3, rho_d), rel=1e-12)
+    rho_b = (p_.tangent_length - p_.rho_end + p_.base_pitch) * 1e3          # the wheel's, from T2
+    assert r.wheel["d_en"] / 2 == pytest.approx(math.hypot(p_.g2.rb * 1e3, rho_b), rel=1e-12)
