@@ -355,7 +355,7 @@ UNITS = {
     "solver.step": "s", "solver.last_step": "s", "solver.max_step": "s", "solver.wall_time": "s",
     "solver.simulated_time": "s", "solver.rtol": "1",
     "sweep.speed_*": "rad/s", "sweep.settle": "s", "sweep.wall_time": "s", "sweep.meshes.*.kv*": "1",
-    "sweep.meshes.*.speed_at_kv_max": "rad/s", "sweep.meshes.*.unstable_speeds": "rad/s",
+    "sweep.meshes.*.speed_at_kv_max*": "rad/s", "sweep.meshes.*.unstable_speeds": "rad/s",
     "sweep.meshes.*.separation_speeds": "rad/s", "floquet_growth_rate": "1/s",
     "rating.*.*_rating.sigma_*": "Pa", "rating.*.*_rating.load_cycles": "1", "rating.*.*_rating.*": "1",
     "rating.*.Z_E": "Pa^0.5", "rating.*.*": "1",
