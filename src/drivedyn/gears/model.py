@@ -30,12 +30,15 @@ def _table(value, units, field):
 
 
 class Gear(Spec):
-    """A spur gear: tooth data (basic rack in modules), blank and external torque."""
+    """A spur or helical gear: tooth data (basic rack in modules, normal section), blank and external torque."""
 
     name: str
     teeth: int
     module: quantity("m", gt=0)
     pressure_angle: quantity("rad", gt=0, lt=0.8) = 0.3490658503988659  # 20 deg
+    # helical gears run at 8-30 deg (double helical up to 40); 45 deg is the limit of the model's thin slices
+    helix_angle: quantity("rad", ge=0, lt=0.7853981633974483) = 0.0
+    hand: Literal["right", "left"] = "right"
     profile_shift: float = 0.0
     face_width: quantity("m", gt=0)
     inertia: quantity("kg*m^2", gt=0)

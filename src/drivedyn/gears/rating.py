@@ -383,7 +383,7 @@ def rate_mesh(model, sys_, j: int, kv: float) -> Rating:
     if g2.z < g1.z:
         (g1, i1, ga), (g2, i2, gb) = (g2, i2, gb), (g1, i1, ga)
     iso = model.iso
-    pair = Pair(z1=g1.z, z2=g2.z, mn=g1.m * 1e3, alpha_n=g1.alpha, beta=0.0, x1=g1.x, x2=g2.x,
+    pair = Pair(z1=g1.z, z2=g2.z, mn=g1.m * 1e3, alpha_n=g1.alpha, beta=g1.beta, x1=g1.x, x2=g2.x,
                 b=min(g1.b, g2.b) * 1e3, da1=2e3 * g1.ra, da2=2e3 * g2.ra, aw=p_.a_w * 1e3,
                 h_fp=(ga.dedendum, gb.dedendum), rho_fp=(ga.root_radius, gb.root_radius),
                 E=(ga.youngs_modulus / 1e6, gb.youngs_modulus / 1e6), nu=(ga.poisson, gb.poisson),

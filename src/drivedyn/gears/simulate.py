@@ -246,6 +246,9 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
             "stiffness_model": model.meshes[j].stiffness.model, "stiffness_mean": sys_.tables[j].mean,
             "stiffness_min": float(sys_.tables[j].stiffness.min()), "stiffness_max": float(sys_.tables[j].stiffness.max()),
             "iso_c_single": c1, "iso_c_gamma": cg, "damping": sys_.damping[j],
+            "helix_angle": p_.g1.beta, "overlap_ratio": p_.overlap_ratio, "total_contact_ratio": p_.total_contact_ratio,
+            # axial force on each gear's bearings: F_a = F_bt tan(beta_b) (F_bt along the transverse line of action)
+            "axial_force_nominal": F[j] * math.tan(p_.g1.beta_b), "axial_force_max": fmax[j] * math.tan(p_.g1.beta_b),
         }
         if not model.meshes[j].separation and fmin[j] < 0:
             found.append(("tooth-separation",
@@ -281,6 +284,8 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
                                   "torsional vibration: angle minus the nominal rigid rotation"),
             "mesh_force": variable(out_f, ("time", "mesh"), "N", "dynamic mesh force along the line of action"),
             "dte": variable(out_d, ("time", "mesh"), "m", "dynamic transmission error r_ba theta_a - r_bb theta_b"),
+            "axial_force": variable(out_f * np.array([math.tan(p.g1.beta_b) for p in sys_.pairs]), ("time", "mesh"), "N",
+                                    "axial (thrust) force of the mesh on each gear's bearings, F tan(beta_b)"),
             "mesh_stiffness": variable(k_t, ("time", "mesh"), "N/m", "time-varying mesh stiffness"),
             "kv_t": variable(out_f / F, ("time", "mesh"), "1", "mesh force over the nominal force"),
             "load_share": variable(share, ("time", "mesh"), "1", "share of the driving gear's mesh forces"),
@@ -338,7 +343,7 @@ def _method_b(model, sys_, j, m_red):
     iso = sys_.iso[j]
     b_mm = min(p_.g1.b, p_.g2.b) * 1e3
     return MethodB(z1=p_.g1.z, c_single=iso.c_single, c_gamma=iso.c_gamma, m_red=m_red / b_mm,
-                   eps_gamma=p_.contact_ratio, load_per_width=iso.load_per_width,
+                   eps_gamma=p_.total_contact_ratio, load_per_width=iso.load_per_width,
                    f_pb=model.iso.pitch_deviation * 1e6, f_falpha=model.iso.profile_deviation * 1e6,
                    material=model.iso.material, sigma_hlim=model.iso.sigma_hlim / 1e6,
                    c_a=None if model.iso.tip_relief is None else model.iso.tip_relief * 1e6, pitch_radius=p_.g1.r)
@@ -346,7 +351,7 @@ def _method_b(model, sys_, j, m_red):
 
 #: units of the summary keys (fnmatch patterns, first match wins; "1" for ratios)
 UNITS = {
-    "meshes.*.force_*": "N", "meshes.*.kv*": "1", "meshes.*.load_share": "1", "meshes.*.iso_speed_ratio_N": "1",
+    "meshes.*.force_*": "N", "meshes.*.axial_force_*": "N", "meshes.*.helix_angle": "rad", "meshes.*.kv*": "1", "meshes.*.load_share": "1", "meshes.*.iso_speed_ratio_N": "1",
     "meshes.*.iso_resonance_speed_rpm": "rpm", "meshes.*.contact_ratio": "1", "meshes.*.mesh_frequency": "Hz",
     "meshes.*.phase": "1", "meshes.*.stiffness_*": "N/m", "meshes.*.iso_c_*": "N/m", "meshes.*.damping": "N*s/m",
     "meshes.*.window_drift": "1", "meshes.*.window_growth": "1", "natural_frequencies_hz": "Hz", "modal_damping_ratios": "1",
