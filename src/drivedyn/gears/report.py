@@ -33,6 +33,10 @@ def report(model) -> str:
                 f"(zero backlash {p.a_zero_backlash * 1e3:.4f} mm)",
                 f"  base pitch p_bt {p.base_pitch * 1e3:.4f} mm, path of contact g_alpha {p.path_of_contact * 1e3:.4f} mm, "
                 f"contact ratio eps_alpha {p.contact_ratio:.4f}",
+                *([f"  helical: beta {math.degrees(p.g1.beta):.4f} deg ({p.g1.hand}-hand driving gear), beta_b "
+                   f"{math.degrees(p.g1.beta_b):.4f} deg, overlap ratio eps_beta {p.overlap_ratio:.4f}, eps_gamma "
+                   f"{p.total_contact_ratio:.4f}; axial force on the bearings {s.force_nominal[j] * math.tan(p.g1.beta_b):.1f} N"]
+                  if p.g1.beta > 0 else []),
                 f"  T1A {p.rho_start * 1e3:.4f} mm, T1C (pitch point) {p.rho_pitch * 1e3:.4f} mm, T1E {p.rho_end * 1e3:.4f} mm, "
                 f"T1T2 {p.tangent_length * 1e3:.4f} mm",
                 f"  ISO 6336-1: q' {iso.q_prime:.5f}, c'_th {iso.c_th:.3f}, C_M {iso.c_m}, C_R {iso.c_r}, C_B {iso.c_b:.4f}, "
