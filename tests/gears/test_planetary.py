@@ -104,3 +104,64 @@ def test_load_sharing_with_a_position_error_closed_form():
     assert r["load_sharing_factor"] == pytest.approx(expect.max() / expect.mean(), rel=1e-9)
     # a pin 40 um behind unloads that planet: here below zero, so its teeth would lose contact
     assert r["contact_lost"] == (expect.min() < 0)
+
+
+def test_planetary_model_file_run_and_check(tmp_path):
+    import drivedyn
+    from drivedyn.cli import main
+
+    path = drivedyn.example_path("gears-planetary")
+    m = drivedyn.load(path)
+    assert drivedyn.loads(drivedyn.dumps(m)) == m
+    r = drivedyn.run(m)
+    s = r.summary["planetary"]
+    assert r.status == "success"
+    assert s["ring_teeth"] == 71 and s["phase_sun_planet"] == pytest.approx([0, 0.25, 0.5, 0.75])
+    assert s["mode_types"].count("planet") == 3
+    assert [f for f, k in zip(s["natural_frequencies_hz"], s["mode_types"]) if k == "planet"] == pytest.approx(
+        [s["planet_mode_frequency_closed_form_hz"]] * 3, rel=1e-10)
+    # sun in, ring fixed, carrier out: 1 + z_r / z_s
+    assert s["speed_ratio_input_over_output"] == pytest.approx(1 + 71 / 25)
+    # the pin error -10 um on planet 1 (ring and carrier held, 500 N m on the sun): closed form
+    st = pl.stage_of(m.planetary, support={"ring": "fixed", "carrier": "fixed"})
+    rbs = st.radii[0]
+    ke = 5e8 * 7e8 / 12e8
+    e = np.array([-10e-6, 0, 0, 0])
+    expect = 500 / (4 * rbs) + ke * 2 * math.cos(math.radians(20)) * (e.mean() - e)
+    assert s["sun_planet_force"] == pytest.approx(expect, rel=1e-9)
+    assert r.units["planetary.sun_planet_force"] == "N"
+    assert "planet modes by the closed form" in drivedyn.check(path)
+    out = tmp_path / "o"
+    assert main(["run", str(path), "-o", str(out), "-q"]) == 0
+    assert (out / "gears-planetary.png").exists() and (out / "report.html").exists()
+    # a larger pin error unloads the other planets below zero: tooth-separation, named
+    r2 = drivedyn.run(drivedyn.replace(m, {"planetary.position_errors": [-60e-6, 0.0, 0.0, 0.0]}))
+    assert r2.status == "warning" and [d.code for d in r2.diagnostics] == ["tooth-separation"]
+
+
+@pytest.mark.parametrize("edit, expect", [
+    (("planets = 4", "planets = 5"), "5 planets cannot be equally spaced"),
+    (("planets = 4", "planets = 4\nplanet_angles = [0.0, 1.0]"), "planet_angles: 2 angles for 4 planets"),
+    (("planets = 4", 'planets = 4\nplanet_angles = ["0 deg", "10 deg", "180 deg", "270 deg"]'), "neighbouring planets overlap"),
+    (('position_errors = ["-10 um", 0.0, 0.0, 0.0]', "position_errors = [0, 0, 0, 0, 0]"), "position_errors: 5 values"),
+    (('position_errors = ["-10 um", 0.0, 0.0, 0.0]', 'position_errors = ["5 mm"]'), "above one module"),
+    (('input = "sun"', 'input = "ring"'), "input and fixed are both 'ring'"),
+    (("planets = 4", "planets = 0"), "planetary.planets: must lie in 1..24"),
+    (("sun_teeth = 25", "sun_teeth = 3"), "planetary.sun_teeth"),
+    (('torque = "500 N*m"', 'torque = "-5 N*m"'), "planetary.torque"),
+    (('fixed = "ring"', 'fixed = "moon"'), "planetary.fixed"),
+    (('sun_planet_stiffness = "5e8 N/m"', 'sun_planet_stiffness = "0 N/m"'), "planetary.sun_planet_stiffness"),
+    (('planet_mass = "0.9 kg"', ''), "planetary.planet_mass"),
+])
+def test_planetary_bad_input_one_line_exit_2(tmp_path, capsys, edit, expect):
+    import drivedyn
+    from drivedyn.cli import main
+
+    good = drivedyn.example_path("gears-planetary").read_text()
+    old, new = edit
+    assert old in good
+    f = tmp_path / "m.toml"
+    f.write_text(good.replace(old, new, 1))
+    assert main(["check", str(f)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and expect in err, err

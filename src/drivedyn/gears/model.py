@@ -339,22 +339,96 @@ class Iso(Spec):
         return self
 
 
+class Planetary(Spec):
+    """A simple planetary stage (sun, N planets on a carrier, ring; standard spur gears, no profile
+    shift): mesh phasing, lumped torsional modes and static load sharing with pin position errors."""
+
+    sun_teeth: int
+    planet_teeth: int
+    module: quantity("m", gt=0)
+    pressure_angle: quantity("rad", gt=0, lt=0.8) = 0.3490658503988659
+    planets: int
+    planet_angles: Optional[list[quantity("rad")]] = None
+    sun_planet_stiffness: quantity("N/m", gt=0)
+    ring_planet_stiffness: quantity("N/m", gt=0)
+    sun_inertia: quantity("kg*m^2", gt=0)
+    ring_inertia: quantity("kg*m^2", gt=0)
+    carrier_inertia: quantity("kg*m^2", gt=0)
+    planet_inertia: quantity("kg*m^2", gt=0)
+    planet_mass: quantity("kg", gt=0)
+    position_errors: list[quantity("m")] = []
+    fixed: Literal["sun", "ring", "carrier"] = "ring"
+    input: Literal["sun", "ring", "carrier"] = "sun"
+    torque: quantity("N*m", gt=0)
+
+    @field_validator("sun_teeth", "planet_teeth")
+    @classmethod
+    def _z(cls, v):
+        if not 5 <= v <= 2000:
+            raise ValueError(f"must lie in 5..2000, got {v}")
+        return v
+
+    @field_validator("planets")
+    @classmethod
+    def _n(cls, v):
+        # planetary stages carry 2 to 12 planets; 1 is an offset gear, not a stage
+        if not 1 <= v <= 24:
+            raise ValueError(f"must lie in 1..24, got {v}")
+        return v
+
+    @model_validator(mode="after")
+    def _fit(self):
+        import math
+
+        n, zs, zp = self.planets, self.sun_teeth, self.planet_teeth
+        zr = zs + 2 * zp
+        if self.planet_angles is None:
+            if (zs + zr) % n:
+                raise ValueError(f"{n} planets cannot be equally spaced: (sun + ring teeth) / planets = "
+                                 f"{zs + zr}/{n} is not a whole number; give planet_angles")
+            psi = [2 * math.pi * i / n for i in range(n)]
+        else:
+            if len(self.planet_angles) != n:
+                raise ValueError(f"planet_angles: {len(self.planet_angles)} angles for {n} planets")
+            psi = sorted(a % (2 * math.pi) for a in self.planet_angles)
+        # neighbouring planets must clear each other: centre chord above the planet's tip diameter
+        R = 0.5 * (zs + zp) * self.module
+        d_tip = (zp + 2) * self.module
+        gaps = [b - a for a, b in zip(psi, psi[1:])] + [2 * math.pi - psi[-1] + psi[0]] if n > 1 else []
+        if gaps and 2 * R * math.sin(min(gaps) / 2) <= d_tip:
+            raise ValueError(f"neighbouring planets overlap: centre distance {2e3 * R * math.sin(min(gaps) / 2):.4g} mm "
+                             f"<= planet tip diameter {d_tip * 1e3:.4g} mm")
+        if len(self.position_errors) > n:
+            raise ValueError(f"position_errors: {len(self.position_errors)} values for {n} planets")
+        if any(abs(e) > self.module for e in self.position_errors):
+            raise ValueError("position_errors: a pin error above one module is not a position error")
+        if self.fixed == self.input:
+            raise ValueError(f"input and fixed are both {self.fixed!r}: the torque would go to ground")
+        return self
+
+
 class Model(Spec):
-    """A gear train: gears, meshes, shafts, operating point, integration, sweep, ISO data."""
+    """A gear train: gears, meshes, shafts, operating point, integration, sweep, ISO data; or a
+    planetary stage (``planetary``) analysed on its own."""
 
     kind: Literal["gear-train"]
     schema_version: Literal[1] = 1
     name: str = ""
-    gears: list[Gear]
-    meshes: list[Mesh]
+    gears: list[Gear] = []
+    meshes: list[Mesh] = []
     shafts: list[Shaft] = []
-    drive: Drive
+    drive: Optional[Drive] = None
     simulation: Simulation = Simulation()
     sweep: Sweep = Sweep()
     iso: Iso = Iso()
+    planetary: Optional[Planetary] = None
 
     @model_validator(mode="after")
     def _topology(self):
+        if self.planetary is not None and not self.gears and not self.meshes and not self.shafts:
+            return self           # a planetary stage alone: no train to check
+        if self.drive is None:
+            raise ValueError("drive: a gear train needs [drive] (input, speed, power or torque)")
         names = [g.name for g in self.gears]
         for what, items in (("gears", self.gears), ("meshes", self.meshes), ("shafts", self.shafts)):
             seen = [i.name for i in items]

@@ -151,10 +151,9 @@ def modes(st: Stage) -> tuple[np.ndarray, np.ndarray, list[str], list[str]]:
     return f, V, names, kinds
 
 
-def load_sharing(st: Stage, torque_sun: float) -> dict:
-    """Static mesh forces with a torque on the sun (N m), the other supports as given (a free system
-    needs at least one fixed or supported member besides the sun's load path), and the planets'
-    position errors. Returns the sun-planet and ring-planet forces (N) per planet, each planet's share
+def load_sharing(st: Stage, torque: float, member: str = "sun") -> dict:
+    """Static mesh forces with a torque (N m) on ``member``, the other members held or supported as
+    given (the two others held for a stage in service), and the planets' position errors. Returns the sun-planet and ring-planet forces (N) per planet, each planet's share
     of the total and the load sharing factor K_gamma = largest sun-planet force / mean."""
     rbs, rbp, rbr, R = st.radii
     M, K, names = matrices(st)
@@ -164,7 +163,7 @@ def load_sharing(st: Stage, torque_sun: float) -> dict:
     full = len(MEMBERS) + n
     # the error terms: V contains 1/2 k (a.q - e c)^2, so the load vector gains k e c a
     f = np.zeros(full)
-    f[0] = torque_sun
+    f[MEMBERS.index(member)] = torque
     for i in range(n):
         a = np.zeros(full)
         a[0], a[2], a[3 + i] = rbs, -(rbs + rbp), rbp
@@ -184,3 +183,120 @@ def load_sharing(st: Stage, torque_sun: float) -> dict:
     return {"sun_planet_force": F_s, "ring_planet_force": F_r, "share": F_s / F_s.sum(),
             "load_sharing_factor": float(F_s.max() / mean) if mean > 0 else math.inf,
             "contact_lost": bool((F_s < 0).any() or (F_r < 0).any())}
+
+
+def stage_of(spec, support=None) -> Stage:
+    """The Stage of a model's ``planetary`` section (SI)."""
+    n = spec.planets
+    psi = tuple(spec.planet_angles) if spec.planet_angles is not None else tuple(2 * math.pi * i / n for i in range(n))
+    return Stage(z_sun=spec.sun_teeth, z_planet=spec.planet_teeth, module=spec.module, planet_angles=psi,
+                 k_sun_planet=spec.sun_planet_stiffness, k_ring_planet=spec.ring_planet_stiffness,
+                 inertia_sun=spec.sun_inertia, inertia_ring=spec.ring_inertia, inertia_carrier=spec.carrier_inertia,
+                 inertia_planet=spec.planet_inertia, mass_planet=spec.planet_mass, pressure_angle=spec.pressure_angle,
+                 position_errors=tuple(spec.position_errors),
+                 support=support if support is not None else {spec.fixed: "fixed"})
+
+
+def analyse(spec) -> tuple[dict, dict]:
+    """Summary entry and arrays of a model's planetary stage: phasing, modes (the fixed member held),
+    load sharing (the fixed member and the output held, the torque on the input)."""
+    st = stage_of(spec)
+    rbs, rbp, rbr, R = st.radii
+    g_s, g_r = phases(st)
+    f, V, names, kinds = modes(st)
+    rigid = f < 1e-6 * max(f.max(), 1e-300)
+    f_planet = math.sqrt(rbp ** 2 * (st.k_sun_planet + st.k_ring_planet) / st.inertia_planet) / (2 * math.pi)
+    output = next(m for m in MEMBERS if m not in (spec.fixed, spec.input))
+    held = stage_of(spec, support={spec.fixed: "fixed", output: "fixed"})
+    # the sun's share of the torques (T_s : T_r : T_c = 1 : z_r / z_s : -(1 + z_r / z_s), the stage in balance)
+    t_sun = {"sun": spec.torque, "ring": spec.torque * st.z_sun / st.z_ring,
+             "carrier": spec.torque * st.z_sun / (st.z_sun + st.z_ring)}[spec.input]
+    ls = load_sharing(held, spec.torque, spec.input)
+    summary = {
+        "ring_teeth": st.z_ring, "planets": st.n, "planet_angles": [float(a) for a in st.planet_angles],
+        "centre_distance": R, "output": output,
+        "speed_ratio_input_over_output": _speed_ratio(st, spec.input, output),
+        "equally_spaced_assembly": assembly_ok(st.z_sun, st.z_ring, st.n),
+        "phase_sun_planet": [float(x) for x in g_s], "phase_ring_planet": [float(x) for x in g_r],
+        "planets_in_phase": bool(np.allclose(g_s, 0.0) and np.allclose(g_r, 0.0)),
+        "natural_frequencies_hz": [float(x) for x, r in zip(f, rigid) if not r],
+        "mode_types": [k for k, r in zip(kinds, rigid) if not r],
+        "planet_mode_frequency_closed_form_hz": f_planet if st.n > 1 else None,
+        "torque_sun": t_sun,
+        "sun_planet_force": [float(x) for x in ls["sun_planet_force"]],
+        "ring_planet_force": [float(x) for x in ls["ring_planet_force"]],
+        "load_share": [float(x) for x in ls["share"]],
+        "load_sharing_factor": ls["load_sharing_factor"],
+        "position_errors": [float(x) for x in st.errors()],
+    }
+    arrays = {"f": f[~rigid], "V": V[:, ~rigid], "names": names, "forces": ls}
+    return summary, arrays
+
+
+def _speed_ratio(st: Stage, inp: str, out: str) -> float:
+    """Input over output speed with the third member held (Willis: w_s - w_c = -(z_r / z_s)(w_r - w_c))."""
+    zs, zr = st.z_sun, st.z_ring
+    held = next(m for m in MEMBERS if m not in (inp, out))
+    # speeds of (sun, ring, carrier) with the held member at 0 and a unit speed of a free one
+    if held == "ring":
+        w = {"carrier": 1.0, "sun": 1.0 + zr / zs, "ring": 0.0}
+    elif held == "carrier":
+        w = {"carrier": 0.0, "sun": 1.0, "ring": -zs / zr}
+    else:
+        w = {"sun": 0.0, "carrier": 1.0, "ring": 1.0 + zs / zr}
+    return w[inp] / w[out]
+
+
+def run_stage(model, progress=None):
+    """The Result of a model that is a planetary stage alone."""
+    import xarray as xr
+
+    from .. import dumps
+    from ..results import Result, unit_map, variable
+
+    if progress:
+        progress(0.0, "planetary stage")
+    summary, a = analyse(model.planetary)
+    ds = xr.Dataset(
+        {"natural_frequency": variable(a["f"], ("mode",), "Hz", "natural frequency of the stage (fixed member held)"),
+         "mode_shape": variable(a["V"], ("coordinate", "mode"), "1", "mass-normalised mode shape (rotations)"),
+         "sun_planet_force": variable(a["forces"]["sun_planet_force"], ("planet",), "N", "static sun-planet mesh force"),
+         "ring_planet_force": variable(a["forces"]["ring_planet_force"], ("planet",), "N", "static ring-planet mesh force"),
+         "phase_sun_planet": variable(np.array(summary["phase_sun_planet"]), ("planet",), "1", "sun-planet mesh phase (periods)"),
+         "phase_ring_planet": variable(np.array(summary["phase_ring_planet"]), ("planet",), "1", "ring-planet mesh phase (periods)")},
+        coords={"mode": np.arange(len(a["f"])), "coordinate": a["names"], "planet": np.arange(1, len(summary["load_share"]) + 1)},
+        attrs={"model_toml": dumps(model), "title": model.name or "planetary stage", "planetary_only": 1})
+    r = Result(kind="gear-train", ds=ds, summary={"planetary": summary})
+    if summary["load_sharing_factor"] == math.inf or min(summary["sun_planet_force"] + summary["ring_planet_force"]) < 0:
+        fmin = min(summary["sun_planet_force"] + summary["ring_planet_force"])
+        r.diagnose("tooth-separation", f"planetary stage: a planet's mesh force is negative ({fmin:.4g} N) at the "
+                   "given torque and pin position errors: that planet's teeth would lose contact (the linear "
+                   "load sharing does not hold)", "planetary.sun_planet_force", fmin, 0.0, "N")
+    r.units = unit_map(r.summary, PLANETARY_UNITS)
+    if progress:
+        progress(1.0, "done")
+    return r
+
+
+PLANETARY_UNITS = {"planetary.planet_angles": "rad", "planetary.centre_distance": "m",
+                   "planetary.natural_frequencies_hz": "Hz", "planetary.planet_mode_frequency_closed_form_hz": "Hz",
+                   "planetary.torque_sun": "N*m", "planetary.*_force": "N", "planetary.position_errors": "m",
+                   "planetary.*": "1"}
+
+
+def report_lines(spec) -> list[str]:
+    """The ``check`` text of a planetary stage."""
+    s, _ = analyse(spec)
+    out = ["", f"planetary stage: sun {spec.sun_teeth}, planets {spec.planet_teeth} x {spec.planets}, ring {s['ring_teeth']} "
+               f"teeth, module {spec.module * 1e3:g} mm, centre distance {s['centre_distance'] * 1e3:.3f} mm; "
+               f"{spec.input} in, {s['output']} out, {spec.fixed} fixed: speed ratio {s['speed_ratio_input_over_output']:.5g}",
+           f"  mesh phases (periods, planet 1 = 0): sun-planet {[round(x, 4) for x in s['phase_sun_planet']]}, "
+           f"ring-planet {[round(x, 4) for x in s['phase_ring_planet']]}"
+           + (" (in phase)" if s["planets_in_phase"] else ""),
+           f"  natural frequencies ({spec.fixed} held): "
+           + ", ".join(f"{f:.1f} Hz {k}" for f, k in zip(s["natural_frequencies_hz"], s["mode_types"]))
+           + (f"; planet modes by the closed form {s['planet_mode_frequency_closed_form_hz']:.1f} Hz"
+              if s["planet_mode_frequency_closed_form_hz"] else ""),
+           f"  load sharing ({spec.torque:g} N m on the {spec.input}, {s['output']} held): sun-planet forces "
+           + ", ".join(f"{x:.1f}" for x in s["sun_planet_force"]) + f" N, K_gamma {s['load_sharing_factor']:.4f}"]
+    return out

@@ -12,6 +12,10 @@ def report(model) -> str:
     """Text report of what is known without integrating: per gear, per mesh, and the train's modes."""
     from .simulate import _method_b
 
+    if model.planetary is not None and not model.meshes:
+        from .planetary import report_lines
+
+        return "\n".join([f"planetary stage: {model.name or '(unnamed)'}", *report_lines(model.planetary)])
     s = assemble(model)
     out = [f"gear train: {model.name or '(unnamed)'}", ""]
     out.append(f"{'gear':10s} {'z':>4s} {'m mm':>6s} {'x':>6s} {'b mm':>6s} {'d mm':>8s} {'d_b mm':>8s} "
@@ -56,6 +60,10 @@ def report(model) -> str:
         orders = ", ".join(f"{f / fm:.2f}" for fm in sorted(set(np.round(f_mesh, 6))))
         shape = " ".join(f"{v:+.3f}" for v in shapes[:, r] / np.abs(shapes[:, r]).max())
         out.append(f"  {f:10.2f} Hz  zeta {z:.4f}  = {orders} x mesh frequency  shape [{shape}]")
+    if model.planetary is not None:
+        from .planetary import report_lines
+
+        out += report_lines(model.planetary)
     return "\n".join(out)
 
 

@@ -153,6 +153,10 @@ def run(model, progress=None) -> Result:
     """
     from .checks import check_step, diagnose, diagnose_sweep
 
+    if model.planetary is not None and not model.meshes:
+        from .planetary import run_stage
+
+        return run_stage(model, progress)
     t0 = time.perf_counter()
     sys_ = assemble(model)
     sim = model.simulation
@@ -203,6 +207,10 @@ def run(model, progress=None) -> Result:
         _add_sweep(result, sys_, sw)
         diagnose_sweep(result, sys_, sw)
     result.summary["solver"]["wall_time"] = time.perf_counter() - t0
+    if model.planetary is not None:
+        from .planetary import analyse
+
+        result.summary["planetary"] = analyse(model.planetary)[0]
     _units(result)
     if progress:
         progress(1.0, "done")
@@ -364,6 +372,9 @@ UNITS = {
     "sweep.meshes.*.separation_speeds": "rad/s", "floquet_growth_rate": "1/s",
     "rating.*.*_rating.sigma_*": "Pa", "rating.*.*_rating.load_cycles": "1", "rating.*.*_rating.*": "1",
     "rating.*.Z_E": "Pa^0.5", "rating.*.*": "1",
+    "planetary.planet_angles": "rad", "planetary.centre_distance": "m", "planetary.natural_frequencies_hz": "Hz",
+    "planetary.planet_mode_frequency_closed_form_hz": "Hz", "planetary.torque_sun": "N*m", "planetary.*_force": "N",
+    "planetary.position_errors": "m", "planetary.*": "1",
 }
 
 
