@@ -36,6 +36,8 @@ CAPTIONS = {
     "gears-campbell.png": "Campbell diagram: natural frequencies against input speed with the mesh-frequency orders; "
                           "circles: resonances.",
     "gears-stiffness.png": "Mesh stiffness over time and over the roll angle (time-varying mesh stiffness, seed 003).",
+    "gears-planetary.png": "Planetary stage: static mesh force of each planet (pin position errors included) and the "
+                           "stage's natural frequencies with its fixed member held.",
     "span-chart.png": "Stability chart of the span: parametric resonance regions against belt speed (seed 002).",
     "span-floquet.png": "Floquet multipliers of the span: growth (unstable) where the largest exceeds 1.",
     "span-frequencies.png": "First natural frequency of the span against its tension (string, beam, moving beam at the run's speed), "
@@ -62,7 +64,9 @@ HEADLINE = {
                    "power.efficiency", "tensioners.*.arm_angle_mean", "tensioners.*.travel_min",
                    "tensioners.*.travel_max", "tensioners.*.hub_load", "clutches.*.torque_mean",
                    "clutches.*.overrun_share", "belt.pretension", "solver.wall_time", "solver.real_time_factor"],
-    "gear-train": ["kv*", "*.kv", "meshes.*", "*dynamic_factor*", "solver.wall_time"],
+    "gear-train": ["planetary.load_sharing_factor", "planetary.phase_*", "planetary.natural_frequencies_hz",
+                   "rating.*.verdict", "rating.*.*_rating.S_H", "rating.*.*_rating.S_F", "kv*", "*.kv", "meshes.*",
+                   "*dynamic_factor*", "solver.wall_time"],
     "span-stability": ["critical_speed*", "*frequency*", "*stable*", "*speed*"],
     "toothed-mesh": ["*overlap*", "*clearance*", "*depth*", "load.jump_torque_N_m", "load.max_tooth_load_N",
                      "load.first_tooth_share", "load.slack_tension_N"],

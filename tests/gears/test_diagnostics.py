@@ -191,6 +191,14 @@ def test_sweep_marks_unstable_speeds_by_floquet(quiet):
     assert len(d) == 1 and "rpm" in d[0].text and d[0].value == pytest.approx(sigma.max())
     assert r.summary["sweep"]["meshes"]["m12"]["unstable_speeds"]
     assert r.units["sweep.meshes.m12.kv_max"] == "1" and r.units["meshes.m12.force_max"] == "N"
+    # the reported maximum is over the speeds where the model holds only; the largest over every speed
+    # (here in the unstable band) is kept beside it under its own name
+    sm = r.summary["sweep"]["meshes"]["m12"]
+    kv = r.ds.kv_sweep.values[:, 0]
+    ok = ~bad & (r.ds.kv_min_sweep.values[:, 0] >= 0)
+    assert sm["kv_max"] == pytest.approx(kv[ok].max()) and sm["kv_max_all_speeds"] == pytest.approx(np.nanmax(kv))
+    assert sm["kv_max_all_speeds"] > sm["kv_max"]
+    assert r.units["sweep.meshes.m12.speed_at_kv_max_all_speeds"] == "rad/s"
 
 
 def test_plots_are_marked(quiet, tmp_path, monkeypatch):

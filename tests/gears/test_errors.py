@@ -17,6 +17,25 @@ GOOD = drivedyn.example_path("gears-split-path").read_text()
       'module = "3 mm"\npressure_angle = "20 deg"\nprofile_shift = 0.29\nface_width = "24 mm"'), "different modules"),
     (('position_angle = "0 deg"', 'position_angle = "0 deg"\nfrcition = 0.1'), "did you mean 'friction'"),
     (('power = "7.5 kW"', ''), "drive"),
+    # the rating and helical fields
+    (('life = "20000 h"', 'life = "-5 h"'), "iso.life"),
+    (('life = "20000 h"', 'life = "2e6 h"'), "iso.life: must be <= 1e6 h"),
+    (('lubricant_viscosity = "220 mm^2/s"', 'lubricant_viscosity = "5000 mm^2/s"'), "iso.lubricant_viscosity: must lie in 2..3200"),
+    (('steel = "case-carburized"', 'steel = "mild"'), "iso.steel"),
+    (('steel = "case-carburized"', 'steel = "case-carburized"\nsigma_hlim = "900 MPa"'), "give steel or sigma_hlim, not both"),
+    (('steel = "case-carburized"', 'steel = "case-carburized"\nface_load_factor = 0.9'), "iso.face_load_factor: must lie in [1, 10]"),
+    (('steel = "case-carburized"', 'steel = "case-carburized"\ntransverse_load_factor = 11'), "iso.transverse_load_factor"),
+    (('steel = "case-carburized"', 'steel = "case-carburized"\nmin_safety_pitting = 0'), "iso.min_safety_pitting: must be > 0"),
+    (('steel = "case-carburized"', 'steel = "case-carburized"\nflank_roughness = "-1 um"'), "iso.flank_roughness"),
+    (('steel = "case-carburized"', 'steel = "case-carburized"\nmesh_misalignment = "-1 um"'), "iso.mesh_misalignment"),
+    (('steel = "case-carburized"', 'steel = "case-carburized"\nroot_roughness = "-1 um"'), "iso.root_roughness"),
+    (('steel = "case-carburized"', 'steel = "case-carburized"\nyield_strength = "-1 MPa"'), "iso.yield_strength"),
+    (('steel = "case-carburized"', 'steel = "case-carburized"\nrating = 3'), "iso.rating"),
+    (('teeth = 21', 'teeth = 21\nroot_radius = 0.8'), "gears[0].root_radius: must lie in (0, 0.6]"),
+    (('teeth = 21', 'teeth = 21\nsteel = "brass"'), "gears[0].steel"),
+    (('teeth = 21', 'teeth = 21\nhelix_angle = "50 deg"'), "gears[0].helix_angle"),
+    (('teeth = 21', 'teeth = 21\nhand = "up"'), "gears[0].hand"),
+    (('teeth = 21', 'teeth = 21\nhelix_angle = "15 deg"'), "different helix angles"),
 ])
 def test_bad_input_one_line_exit_2(tmp_path, capsys, edit, expect):
     old, new = edit
@@ -56,3 +75,16 @@ def test_check_prints_geometry_stiffness_and_frequencies():
     for key in ("contact ratio eps_alpha 1.5001", "c_gamma_alpha", "natural frequencies",
                 f"{f_anti:10.2f} Hz", f"{f_in:10.2f} Hz"):
         assert key in text, key
+
+
+def test_helical_pair_needs_opposite_hands(tmp_path, capsys):
+    text = GOOD.replace('teeth = 21', 'teeth = 21\nhelix_angle = "15 deg"', 1)
+    text = text.replace('teeth = 57', 'teeth = 57\nhelix_angle = "15 deg"\nhand = "left"', 1)
+    text = text.replace('name = "gear3"\nteeth = 57', 'name = "gear3"\nteeth = 57\nhelix_angle = "15 deg"')
+    for d in ('tip_diameter = "58.712 mm"\n', 'tip_diameter = "148.712 mm"\n'):
+        text = text.replace(d, "")
+    f = tmp_path / "m.toml"
+    f.write_text(text)
+    assert main(["check", str(f)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "meshes[1].gears" in err and "opposite hands" in err, err

@@ -241,7 +241,8 @@ def diagnose_sweep(result, sys_, sw) -> None:
     """kv-unstable and tooth-separation over the speed sweep: one diagnostic each for the meshes
     that share the same speed ranges, naming the ranges; the unstable speeds go to the Dataset
     (``sweep_unstable``) and per mesh to the summary (``unstable_speeds``, ``separation_speeds``,
-    rad/s), with ``kv_max_stable`` the largest K_v over the other speeds."""
+    rad/s), with ``kv_max_stable`` the largest K_v over the other speeds and ``kv_max`` the largest
+    over the speeds where the model holds (stable, no tooth separation in a linear mesh)."""
     from ..results import variable
 
     speeds, kv, growth, sigma = sw["speeds"], sw["kv"], sw["growth"], sw["floquet"]
@@ -259,6 +260,15 @@ def diagnose_sweep(result, sys_, sw) -> None:
         s["separation_speeds"] = [[float(speeds[a]), float(speeds[b])] for a, b in r_sep]
         ok = ~bad[:, j]
         s["kv_max_stable"] = float(np.nanmax(kv[ok, j])) if ok.any() else None
+        # K_v only where the model holds: stable, and (linear meshes) the teeth in contact; the largest
+        # over every speed is kept beside it, named as such
+        valid = ok & ~sep[:, j]
+        s["kv_max_all_speeds"], s["speed_at_kv_max_all_speeds"] = s["kv_max"], s["speed_at_kv_max"]
+        if valid.any():
+            k = int(np.flatnonzero(valid)[np.nanargmax(kv[valid, j])])
+            s["kv_max"], s["speed_at_kv_max"] = float(kv[k, j]), float(speeds[k])
+        else:
+            s["kv_max"], s["speed_at_kv_max"] = None, None
         if r_bad:
             groups["kv-unstable"].setdefault(tuple(r_bad), []).append(j)
         if r_sep:

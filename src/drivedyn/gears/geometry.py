@@ -1,8 +1,11 @@
-"""Involute spur-gear geometry: radii of one gear and the contact of a pair.
+"""Involute spur and helical gear geometry: radii of one gear and the contact of a pair.
 
-Formulas: ISO 21771:2007 (DIN 3960) for radii, working pressure angle and centre distance;
-the path of contact and the transverse contact ratio from the tangent-point construction
-(Niemann & Winter, Maschinenelemente II, 21.3). Lengths in m, angles in rad.
+Formulas: ISO 21771:2007 (DIN 3960) for radii, working pressure angle and centre distance
+(transverse quantities of a helical gear: m_t = m_n / cos beta, tan alpha_t = tan alpha_n / cos beta,
+tan beta_b = tan beta cos alpha_t, inv alpha_wt = inv alpha_t + 2 tan alpha_n (x1 + x2) / (z1 + z2));
+the path of contact and the transverse contact ratio from the tangent-point construction in the
+transverse plane (Niemann & Winter, Maschinenelemente II, 21.3); the overlap ratio
+eps_beta = b sin beta / (pi m_n). Lengths in m, angles in rad.
 """
 from __future__ import annotations
 
@@ -31,7 +34,8 @@ def inv_inverse(y: float) -> float:
 
 @dataclass(frozen=True)
 class GearGeometry:
-    """Radii of one gear (ISO 21771: d = z m, d_b = d cos a, d_a = d + 2 m (h_aP* + x), d_f = d - 2 m (h_fP* - x))."""
+    """Radii of one gear (ISO 21771: d = z m_t, d_b = d cos alpha_t, d_a = d + 2 m_n (h_aP* + x),
+    d_f = d - 2 m_n (h_fP* - x)); ``m`` and ``alpha`` are the normal module and pressure angle."""
 
     z: int
     m: float
@@ -43,22 +47,36 @@ class GearGeometry:
     ra: float
     rf: float
     half_angle_base: float   # alpha_2 of the potential-energy method: half tooth angle at the base circle
+    beta: float = 0.0        # helix angle at the reference cylinder (>= 0)
+    hand: str = "right"
 
     @classmethod
     def of(cls, gear) -> "GearGeometry":
         z, m, a, x = gear.teeth, gear.module, gear.pressure_angle, gear.profile_shift
-        r = 0.5 * z * m
+        beta = getattr(gear, "helix_angle", 0.0)
+        at = math.atan(math.tan(a) / math.cos(beta))
+        r = 0.5 * z * m / math.cos(beta)
         ra = 0.5 * gear.tip_diameter if gear.tip_diameter is not None else r + m * (gear.addendum + x)
         rf = r - m * (gear.dedendum - x)
-        # half tooth thickness angle at the base circle: pi/(2z) + 2 x tan(a)/z + inv(a) (Yang & Lin 1987)
-        a2 = math.pi / (2 * z) + 2 * x * math.tan(a) / z + inv(a)
-        return cls(z=z, m=m, alpha=a, x=x, b=gear.face_width, r=r, rb=r * math.cos(a), ra=ra, rf=rf,
-                   half_angle_base=a2)
+        # half tooth thickness angle at the base circle: pi/(2z) + 2 x tan(a)/z + inv(a) (Yang & Lin 1987; spur)
+        a2 = math.pi / (2 * z) + 2 * x * math.tan(at) / z + inv(at)
+        return cls(z=z, m=m, alpha=a, x=x, b=gear.face_width, r=r, rb=r * math.cos(at), ra=ra, rf=rf,
+                   half_angle_base=a2, beta=beta, hand=getattr(gear, "hand", "right"))
+
+    @property
+    def alpha_t(self) -> float:
+        """Transverse pressure angle."""
+        return math.atan(math.tan(self.alpha) / math.cos(self.beta))
+
+    @property
+    def beta_b(self) -> float:
+        """Base helix angle."""
+        return math.atan(math.tan(self.beta) * math.cos(self.alpha_t))
 
     @property
     def base_pitch(self) -> float:
-        """p_bt = pi m cos(alpha) (spur)."""
-        return math.pi * self.m * math.cos(self.alpha)
+        """Transverse base pitch p_bt = pi m_t cos(alpha_t) (= pi m cos(alpha) for spur)."""
+        return math.pi * self.m / math.cos(self.beta) * math.cos(self.alpha_t)
 
 
 @dataclass(frozen=True)
@@ -94,6 +112,16 @@ class PairGeometry:
         return self.path_of_contact / self.base_pitch
 
     @property
+    def overlap_ratio(self) -> float:
+        """eps_beta = b sin(beta) / (pi m_n), b the common face width."""
+        return min(self.g1.b, self.g2.b) * math.sin(self.g1.beta) / (math.pi * self.g1.m)
+
+    @property
+    def total_contact_ratio(self) -> float:
+        """eps_gamma = eps_alpha + eps_beta."""
+        return self.contact_ratio + self.overlap_ratio
+
+    @property
     def ratio(self) -> float:
         """u = z2 / z1."""
         return self.g2.z / self.g1.z
@@ -113,11 +141,18 @@ def pair(g1: GearGeometry, g2: GearGeometry, center_distance: float | None = Non
         raise ModelError(f"the gears have different modules ({g1.m * 1e3:g} and {g2.m * 1e3:g} mm): they cannot mesh", field=f"{field}.gears")
     if abs(g1.alpha - g2.alpha) > 1e-9:
         raise ModelError("the gears have different pressure angles: they cannot mesh", field=f"{field}.gears")
-    a0 = 0.5 * g1.m * (g1.z + g2.z)
+    if abs(g1.beta - g2.beta) > 1e-9:
+        raise ModelError(f"the gears have different helix angles ({math.degrees(g1.beta):g} and "
+                         f"{math.degrees(g2.beta):g} deg): they cannot mesh", field=f"{field}.gears")
+    if g1.beta > 0 and g1.hand == g2.hand:
+        raise ModelError(f"both gears are {g1.hand}-handed: an external helical pair needs opposite hands",
+                         field=f"{field}.gears")
+    at = g1.alpha_t
+    a0 = g1.r + g2.r
     # zero-backlash working pressure angle (ISO 21771, eq. for inv alpha_wt)
-    inv_w = inv(g1.alpha) + 2 * math.tan(g1.alpha) * (g1.x + g2.x) / (g1.z + g2.z)
+    inv_w = inv(at) + 2 * math.tan(g1.alpha) * (g1.x + g2.x) / (g1.z + g2.z)
     alpha_w0 = inv_inverse(inv_w)
-    a_zb = a0 * math.cos(g1.alpha) / math.cos(alpha_w0)
+    a_zb = a0 * math.cos(at) / math.cos(alpha_w0)
     if center_distance is None:
         alpha_w, a_w = alpha_w0, a_zb
     else:
@@ -125,7 +160,7 @@ def pair(g1: GearGeometry, g2: GearGeometry, center_distance: float | None = Non
             raise ModelError(f"{center_distance * 1e3:.4g} mm is below the zero-backlash centre distance "
                              f"{a_zb * 1e3:.4g} mm: the teeth would interfere", field=f"{field}.center_distance")
         a_w = center_distance
-        alpha_w = math.acos(a0 * math.cos(g1.alpha) / a_w)
+        alpha_w = math.acos(a0 * math.cos(at) / a_w)
     t12 = a_w * math.sin(alpha_w)
     for g, name in ((g1, "driving"), (g2, "driven")):
         if g.ra <= g.rb:

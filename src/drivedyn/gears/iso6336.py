@@ -53,13 +53,21 @@ def basic_rack_factor(h_fp: float, alpha_pn_deg: float) -> float:
 
 
 def single_pair_stiffness(z1, z2, x1, x2, eps_alpha, load_per_width, *, dedendum=(1.25, 1.25),
-                          alpha_deg=20.0, youngs=(206e9, 206e9), blank_factor=1.0, low_load=True) -> IsoStiffness:
-    """ISO 6336-1:2006, 9.3 method B: c' = c'_th C_M C_R C_B cos(beta) for a spur pair.
+                          alpha_deg=20.0, youngs=(206e9, 206e9), blank_factor=1.0, low_load=True,
+                          beta=0.0) -> IsoStiffness:
+    """ISO 6336-1:2006, 9.3 method B: c' = c'_th C_M C_R C_B cos(beta).
 
-    ``load_per_width`` is K_A F_t / b in N/mm; below 100 N/mm c' is multiplied by
-    (K_A F_t / b / 100)^0.25 (9.3.1) when ``low_load``.
+    q' takes the virtual tooth numbers z_n = z / (cos^2 beta_b cos beta) (9.3.2); ``beta`` is the
+    helix angle in rad (0: spur). ``load_per_width`` is K_A F_t / b in N/mm; below 100 N/mm c' is
+    multiplied by (K_A F_t / b / 100)^0.25 (9.3.1) when ``low_load``.
     """
-    q = q_prime(z1, z2, x1, x2)
+    if beta > 0:
+        at = math.atan(math.tan(math.radians(alpha_deg)) / math.cos(beta))
+        bb = math.atan(math.tan(beta) * math.cos(at))
+        zn = [z / (math.cos(bb) ** 2 * math.cos(beta)) for z in (z1, z2)]
+    else:
+        zn = [z1, z2]
+    q = q_prime(zn[0], zn[1], x1, x2)
     c_th = 1.0 / q                                                   # 9.3.2: c'_th = 1/q'
     c_m = 0.8                                                        # 9.3.3: C_M, theoretical -> measured
     c_r = blank_factor                                               # 9.3.4: C_R = 1 for solid blanks
@@ -68,7 +76,7 @@ def single_pair_stiffness(z1, z2, x1, x2, eps_alpha, load_per_width, *, dedendum
     e1, e2 = (y / 1e6 for y in youngs)                              # N/mm^2
     e_factor = (2 * e1 * e2 / (e1 + e2)) / E_STEEL                  # 9.3.1 (eq. 88 as cited by a python-gearbox fork): other materials
     f_ll = (load_per_width / 100.0) ** 0.25 if (low_load and load_per_width < 100.0) else 1.0
-    c1 = c_th * c_m * c_r * c_b * e_factor * f_ll
+    c1 = c_th * c_m * c_r * c_b * e_factor * f_ll * math.cos(beta)
     # 9.4: c_gamma_alpha = c' (0.75 eps_alpha + 0.25), 10 % lower for eps_alpha < 1.2
     cg = c1 * (0.75 * eps_alpha + 0.25) * (0.9 if eps_alpha < 1.2 else 1.0)
     return IsoStiffness(q_prime=q, c_th=c_th, c_m=c_m, c_r=c_r, c_b=c_b, e_factor=e_factor, low_load_factor=f_ll,

@@ -30,12 +30,15 @@ def _table(value, units, field):
 
 
 class Gear(Spec):
-    """A spur gear: tooth data (basic rack in modules), blank and external torque."""
+    """A spur or helical gear: tooth data (basic rack in modules, normal section), blank and external torque."""
 
     name: str
     teeth: int
     module: quantity("m", gt=0)
     pressure_angle: quantity("rad", gt=0, lt=0.8) = 0.3490658503988659  # 20 deg
+    # helical gears run at 8-30 deg (double helical up to 40); 45 deg is the limit of the model's thin slices
+    helix_angle: quantity("rad", ge=0, lt=0.7853981633974483) = 0.0
+    hand: Literal["right", "left"] = "right"
     profile_shift: float = 0.0
     face_width: quantity("m", gt=0)
     inertia: quantity("kg*m^2", gt=0)
@@ -49,11 +52,21 @@ class Gear(Spec):
     torque_speed: Optional[list[list]] = None
     torque_time: Optional[list[list]] = None
     load_fraction: float = 0.0
+    root_radius: float = 0.25  # rho_fP / m of the basic rack (tool tip radius), for the ISO 6336-3 root
+    steel: Optional[Literal["case-carburized", "through-hardened"]] = None   # this gear's material, else iso's
 
     @field_validator("name")
     @classmethod
     def _n(cls, v):
         return _name(v)
+
+    @field_validator("root_radius")
+    @classmethod
+    def _rho(cls, v):
+        # ISO 53 and DIN 867 racks have 0.2..0.4 m; 0 is a sharp tool, above 0.6 the fillet meets the flank
+        if not 0.0 < v <= 0.6:
+            raise ValueError(f"must lie in (0, 0.6] modules, got {v}")
+        return v
 
     @field_validator("teeth")
     @classmethod
@@ -260,41 +273,162 @@ class Sweep(Spec):
 
 
 class Iso(Spec):
-    """ISO 6336-1:2006 inputs for c', c_gamma and the method B dynamic factor."""
+    """ISO 6336-1:2006 inputs for c', c_gamma and the method B dynamic factor, and the ISO 6336-2/-3
+    rating (method B) of every mesh: material, lubricant, roughness, life and minimum safety factors."""
 
     application_factor: float = 1.0
     low_load: bool = True
     blank_factor: float = 1.0
     pitch_deviation: quantity("m", ge=0) = 7e-6
     profile_deviation: quantity("m", ge=0) = 7e-6
-    material: Literal["St", "Eh", "GG"] = "Eh"
+    material: Literal["St", "V", "Eh", "NT", "GG"] = "Eh"
     sigma_hlim: quantity("Pa", gt=0) = 1500e6
     tip_relief: Optional[quantity("m", ge=0)] = None
+    rating: bool = True
+    steel: Optional[Literal["case-carburized", "through-hardened"]] = None
+    sigma_flim: quantity("Pa", gt=0) = 430e6
+    yield_strength: Optional[quantity("Pa", gt=0)] = None
+    life: quantity("s", gt=0) = 20000 * 3600.0
+    lubricant_viscosity: quantity("m^2/s", gt=0) = 220e-6
+    flank_roughness: quantity("m", ge=0) = 6e-6
+    root_roughness: quantity("m", ge=0) = 10e-6
+    mesh_misalignment: quantity("m", ge=0) = 10e-6
+    face_load_factor: Optional[float] = None
+    transverse_load_factor: Optional[float] = None
+    min_safety_pitting: float = 1.0
+    min_safety_bending: float = 1.0
 
-    @field_validator("application_factor", "blank_factor")
+    @field_validator("application_factor", "blank_factor", "min_safety_pitting", "min_safety_bending")
     @classmethod
     def _pos(cls, v):
         if not v > 0:
             raise ValueError(f"must be > 0, got {v}")
         return v
 
+    @field_validator("face_load_factor", "transverse_load_factor")
+    @classmethod
+    def _factor(cls, v):
+        # ISO 6336-1 load factors are >= 1; above 10 the load distribution model has no meaning
+        if v is not None and not 1.0 <= v <= 10.0:
+            raise ValueError(f"must lie in [1, 10], got {v}")
+        return v
+
+    @field_validator("life")
+    @classmethod
+    def _life(cls, v):
+        if v > 1e6 * 3600:   # a million hours (114 years) is beyond any design life
+            raise ValueError(f"must be <= 1e6 h, got {v / 3600:.4g} h")
+        return v
+
+    @field_validator("lubricant_viscosity")
+    @classmethod
+    def _nu40(cls, v):
+        # ISO 3448 grades run from VG 2 to VG 3200 (mm^2/s at 40 deg C)
+        if not 2e-6 <= v <= 3200e-6:
+            raise ValueError(f"must lie in 2..3200 mm^2/s (ISO VG 2..3200), got {v * 1e6:.4g} mm^2/s")
+        return v
+
+    @model_validator(mode="after")
+    def _steel(self):
+        # a steel from the table sets these four; a value away from its default says the user meant another
+        # (compared with the defaults, not with the fields set, so that a dumped model loads back)
+        given = sorted(k for k in ("sigma_hlim", "sigma_flim", "material", "yield_strength")
+                       if getattr(self, k) != type(self).model_fields[k].default)
+        if self.steel is not None and given:
+            raise ValueError(f"give steel or {', '.join(given)}, not both")
+        return self
+
+
+class Planetary(Spec):
+    """A simple planetary stage (sun, N planets on a carrier, ring; standard spur gears, no profile
+    shift): mesh phasing, lumped torsional modes and static load sharing with pin position errors."""
+
+    sun_teeth: int
+    planet_teeth: int
+    module: quantity("m", gt=0)
+    pressure_angle: quantity("rad", gt=0, lt=0.8) = 0.3490658503988659
+    planets: int
+    planet_angles: Optional[list[quantity("rad")]] = None
+    sun_planet_stiffness: quantity("N/m", gt=0)
+    ring_planet_stiffness: quantity("N/m", gt=0)
+    sun_inertia: quantity("kg*m^2", gt=0)
+    ring_inertia: quantity("kg*m^2", gt=0)
+    carrier_inertia: quantity("kg*m^2", gt=0)
+    planet_inertia: quantity("kg*m^2", gt=0)
+    planet_mass: quantity("kg", gt=0)
+    position_errors: list[quantity("m")] = []
+    fixed: Literal["sun", "ring", "carrier"] = "ring"
+    input: Literal["sun", "ring", "carrier"] = "sun"
+    torque: quantity("N*m", gt=0)
+
+    @field_validator("sun_teeth", "planet_teeth")
+    @classmethod
+    def _z(cls, v):
+        if not 5 <= v <= 2000:
+            raise ValueError(f"must lie in 5..2000, got {v}")
+        return v
+
+    @field_validator("planets")
+    @classmethod
+    def _n(cls, v):
+        # planetary stages carry 2 to 12 planets; 1 is an offset gear, not a stage
+        if not 1 <= v <= 24:
+            raise ValueError(f"must lie in 1..24, got {v}")
+        return v
+
+    @model_validator(mode="after")
+    def _fit(self):
+        import math
+
+        n, zs, zp = self.planets, self.sun_teeth, self.planet_teeth
+        zr = zs + 2 * zp
+        if self.planet_angles is None:
+            if (zs + zr) % n:
+                raise ValueError(f"{n} planets cannot be equally spaced: (sun + ring teeth) / planets = "
+                                 f"{zs + zr}/{n} is not a whole number; give planet_angles")
+            psi = [2 * math.pi * i / n for i in range(n)]
+        else:
+            if len(self.planet_angles) != n:
+                raise ValueError(f"planet_angles: {len(self.planet_angles)} angles for {n} planets")
+            psi = sorted(a % (2 * math.pi) for a in self.planet_angles)
+        # neighbouring planets must clear each other: centre chord above the planet's tip diameter
+        R = 0.5 * (zs + zp) * self.module
+        d_tip = (zp + 2) * self.module
+        gaps = [b - a for a, b in zip(psi, psi[1:])] + [2 * math.pi - psi[-1] + psi[0]] if n > 1 else []
+        if gaps and 2 * R * math.sin(min(gaps) / 2) <= d_tip:
+            raise ValueError(f"neighbouring planets overlap: centre distance {2e3 * R * math.sin(min(gaps) / 2):.4g} mm "
+                             f"<= planet tip diameter {d_tip * 1e3:.4g} mm")
+        if len(self.position_errors) > n:
+            raise ValueError(f"position_errors: {len(self.position_errors)} values for {n} planets")
+        if any(abs(e) > self.module for e in self.position_errors):
+            raise ValueError("position_errors: a pin error above one module is not a position error")
+        if self.fixed == self.input:
+            raise ValueError(f"input and fixed are both {self.fixed!r}: the torque would go to ground")
+        return self
+
 
 class Model(Spec):
-    """A gear train: gears, meshes, shafts, operating point, integration, sweep, ISO data."""
+    """A gear train: gears, meshes, shafts, operating point, integration, sweep, ISO data; or a
+    planetary stage (``planetary``) analysed on its own."""
 
     kind: Literal["gear-train"]
     schema_version: Literal[1] = 1
     name: str = ""
-    gears: list[Gear]
-    meshes: list[Mesh]
+    gears: list[Gear] = []
+    meshes: list[Mesh] = []
     shafts: list[Shaft] = []
-    drive: Drive
+    drive: Optional[Drive] = None
     simulation: Simulation = Simulation()
     sweep: Sweep = Sweep()
     iso: Iso = Iso()
+    planetary: Optional[Planetary] = None
 
     @model_validator(mode="after")
     def _topology(self):
+        if self.planetary is not None and not self.gears and not self.meshes and not self.shafts:
+            return self           # a planetary stage alone: no train to check
+        if self.drive is None:
+            raise ValueError("drive: a gear train needs [drive] (input, speed, power or torque)")
         names = [g.name for g in self.gears]
         for what, items in (("gears", self.gears), ("meshes", self.meshes), ("shafts", self.shafts)):
             seen = [i.name for i in items]

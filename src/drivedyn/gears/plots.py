@@ -251,6 +251,34 @@ def plot_campbell(ds, ax=None, orders=(1, 2, 3, 4, 5)):
     return arts
 
 
+def plot_planet_loads(ds, ax=None):
+    """Static sun-planet and ring-planet mesh force of each planet."""
+    if ax is None:
+        _, ax = _figure()
+        ax = ax[0, 0]
+    p = ds.planet.values
+    a = ax.bar(p - 0.18, ds.sun_planet_force.values, 0.36, label="sun-planet")
+    b = ax.bar(p + 0.18, ds.ring_planet_force.values, 0.36, label="ring-planet")
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.set_xlabel("planet")
+    ax.set_ylabel("static mesh force (N)")
+    ax.set_xticks(p)
+    ax.legend()
+    return [a, b]
+
+
+def plot_planetary_modes(ds, ax=None):
+    """Natural frequencies of the stage (fixed member held)."""
+    if ax is None:
+        _, ax = _figure()
+        ax = ax[0, 0]
+    f = ds.natural_frequency.values
+    art = ax.stem(np.arange(1, len(f) + 1), f)
+    ax.set_xlabel("mode")
+    ax.set_ylabel("natural frequency (Hz)")
+    return [art]
+
+
 def plot_all(result, outdir) -> list[Path]:
     """Write the standard PNGs into ``outdir`` (a warned or failed run says so on each); their paths."""
     from .. import plotting
@@ -261,6 +289,13 @@ def plot_all(result, outdir) -> list[Path]:
 
     def save(fig, name):
         plotting.save(fig, outdir / f"gears-{name}.png", result, files)
+
+    if ds.attrs.get("planetary_only"):
+        fig, ax = _figure(1, 2, (10, 4))
+        plot_planet_loads(ds, ax[0, 0])
+        plot_planetary_modes(ds, ax[0, 1])
+        save(fig, "planetary")
+        return files
 
     fig, ax = _figure(2, 1, (8, 7.5))
     plot_stiffness_time(ds, ax[0, 0])

@@ -12,6 +12,10 @@ def report(model) -> str:
     """Text report of what is known without integrating: per gear, per mesh, and the train's modes."""
     from .simulate import _method_b
 
+    if model.planetary is not None and not model.meshes:
+        from .planetary import report_lines
+
+        return "\n".join([f"planetary stage: {model.name or '(unnamed)'}", *report_lines(model.planetary)])
     s = assemble(model)
     out = [f"gear train: {model.name or '(unnamed)'}", ""]
     out.append(f"{'gear':10s} {'z':>4s} {'m mm':>6s} {'x':>6s} {'b mm':>6s} {'d mm':>8s} {'d_b mm':>8s} "
@@ -33,6 +37,10 @@ def report(model) -> str:
                 f"(zero backlash {p.a_zero_backlash * 1e3:.4f} mm)",
                 f"  base pitch p_bt {p.base_pitch * 1e3:.4f} mm, path of contact g_alpha {p.path_of_contact * 1e3:.4f} mm, "
                 f"contact ratio eps_alpha {p.contact_ratio:.4f}",
+                *([f"  helical: beta {math.degrees(p.g1.beta):.4f} deg ({p.g1.hand}-hand driving gear), beta_b "
+                   f"{math.degrees(p.g1.beta_b):.4f} deg, overlap ratio eps_beta {p.overlap_ratio:.4f}, eps_gamma "
+                   f"{p.total_contact_ratio:.4f}; axial force on the bearings {s.force_nominal[j] * math.tan(p.g1.beta_b):.1f} N"]
+                  if p.g1.beta > 0 else []),
                 f"  T1A {p.rho_start * 1e3:.4f} mm, T1C (pitch point) {p.rho_pitch * 1e3:.4f} mm, T1E {p.rho_end * 1e3:.4f} mm, "
                 f"T1T2 {p.tangent_length * 1e3:.4f} mm",
                 f"  ISO 6336-1: q' {iso.q_prime:.5f}, c'_th {iso.c_th:.3f}, C_M {iso.c_m}, C_R {iso.c_r}, C_B {iso.c_b:.4f}, "
@@ -44,10 +52,33 @@ def report(model) -> str:
                 f"  nominal force {s.force_nominal[j]:.2f} N, mesh frequency {f_mesh[j]:.2f} Hz, damping {s.damping[j]:.4g} N s/m, "
                 f"friction mu {s.mu[j]:g}",
                 f"  ISO method B: n_E1 {mb.resonance_speed * 60:.0f} rpm, N {N:.4f} ({region}), K_v {kv:.4f}"]
+        if model.iso.rating:
+            out += _rating_lines(model, s, j, kv)
     freqs, shapes, zeta = s.modes()
     out += ["", "natural frequencies (mean mesh stiffness, rigid-body mode removed):"]
     for r, (f, z) in enumerate(zip(freqs, zeta)):
         orders = ", ".join(f"{f / fm:.2f}" for fm in sorted(set(np.round(f_mesh, 6))))
         shape = " ".join(f"{v:+.3f}" for v in shapes[:, r] / np.abs(shapes[:, r]).max())
         out.append(f"  {f:10.2f} Hz  zeta {z:.4f}  = {orders} x mesh frequency  shape [{shape}]")
+    if model.planetary is not None:
+        from .planetary import report_lines
+
+        out += report_lines(model.planetary)
     return "\n".join(out)
+
+
+def _rating_lines(model, s, j, kv) -> list[str]:
+    """ISO 6336-2/-3 method B at the nominal load with ISO's K_v (the run uses the simulated one)."""
+    from .rating import rate_mesh
+
+    r = rate_mesh(model, s, j, kv)
+    f = r.factors
+    out = [f"  ISO 6336-2/-3 rating with ISO's K_v {kv:.4f} ({r.geometry['pinion']} = pinion): K_Hbeta {f['K_Hbeta']:.4f}, "
+           f"K_Fbeta {f['K_Fbeta']:.4f}, K_Halpha {f['K_Halpha']:.4f}, Z_H {f['Z_H']:.4f}, Z_E {f['Z_E']:.2f} sqrt(N)/mm, "
+           f"Z_eps {f['Z_eps']:.4f}, Z_L {f['Z_L']:.4f}, Z_v {f['Z_v']:.4f}, Z_R {f['Z_R']:.4f}"]
+    for who, g in (("pinion", r.pinion), ("wheel", r.wheel)):
+        out.append(f"    {who:6s}: sigma_H {g['sigma_H']:.1f} / sigma_HP {g['sigma_HP']:.1f} N/mm^2, S_H {g['S_H']:.3f}; "
+                   f"Y_F {g['Y_F']:.4f}, Y_S {g['Y_S']:.4f}, sigma_F {g['sigma_F']:.1f} / sigma_FP {g['sigma_FP']:.1f} N/mm^2, "
+                   f"S_F {g['S_F']:.3f} (Z_NT {g['Z_NT']:.3f}, Y_NT {g['Y_NT']:.3f}, {g['N_L']:.3g} cycles)")
+    out += [f"    note: {n}" for n in dict.fromkeys(r.notes)]
+    return out

@@ -153,6 +153,10 @@ def run(model, progress=None) -> Result:
     """
     from .checks import check_step, diagnose, diagnose_sweep
 
+    if model.planetary is not None and not model.meshes:
+        from .planetary import run_stage
+
+        return run_stage(model, progress)
     t0 = time.perf_counter()
     sys_ = assemble(model)
     sim = model.simulation
@@ -203,6 +207,10 @@ def run(model, progress=None) -> Result:
         _add_sweep(result, sys_, sw)
         diagnose_sweep(result, sys_, sw)
     result.summary["solver"]["wall_time"] = time.perf_counter() - t0
+    if model.planetary is not None:
+        from .planetary import analyse
+
+        result.summary["planetary"] = analyse(model.planetary)[0]
     _units(result)
     if progress:
         progress(1.0, "done")
@@ -246,12 +254,17 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
             "stiffness_model": model.meshes[j].stiffness.model, "stiffness_mean": sys_.tables[j].mean,
             "stiffness_min": float(sys_.tables[j].stiffness.min()), "stiffness_max": float(sys_.tables[j].stiffness.max()),
             "iso_c_single": c1, "iso_c_gamma": cg, "damping": sys_.damping[j],
+            "helix_angle": p_.g1.beta, "overlap_ratio": p_.overlap_ratio, "total_contact_ratio": p_.total_contact_ratio,
+            # axial force on each gear's bearings: F_a = F_bt tan(beta_b) (F_bt along the transverse line of action)
+            "axial_force_nominal": F[j] * math.tan(p_.g1.beta_b), "axial_force_max": fmax[j] * math.tan(p_.g1.beta_b),
         }
         if not model.meshes[j].separation and fmin[j] < 0:
             found.append(("tooth-separation",
                           f"mesh {name}: the mesh force goes negative ({fmin[j]:.4g} N) in the steady window: the teeth "
                           f"would separate; switch on tooth separation (meshes[{j}].separation = true)",
                           f"meshes.{name}.force_min", fmin[j], 0.0, "N"))
+    rating = _rating(model, sys_, [meshes[n]["kv"] for n in sys_.mesh_names],
+                     [meshes[n]["kv_iso_method_b"] for n in sys_.mesh_names])
     start = model.simulation.start
     how = {"static": "static equilibrium at the start position (no start-up step)",
            "ramp": f"load ramped smoothly over {model.simulation.ramp_time:g} s",
@@ -268,6 +281,8 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
                        "torque": sys_.torque_const[i]} for i, nm in enumerate(sys_.names)},
         "solver": solver,
     }
+    if rating:
+        summary["rating"] = rating
     T0 = 1.0 / f_mesh[0]
     ds = xr.Dataset(
         {
@@ -277,6 +292,8 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
                                   "torsional vibration: angle minus the nominal rigid rotation"),
             "mesh_force": variable(out_f, ("time", "mesh"), "N", "dynamic mesh force along the line of action"),
             "dte": variable(out_d, ("time", "mesh"), "m", "dynamic transmission error r_ba theta_a - r_bb theta_b"),
+            "axial_force": variable(out_f * np.array([math.tan(p.g1.beta_b) for p in sys_.pairs]), ("time", "mesh"), "N",
+                                    "axial (thrust) force of the mesh on each gear's bearings, F tan(beta_b)"),
             "mesh_stiffness": variable(k_t, ("time", "mesh"), "N/m", "time-varying mesh stiffness"),
             "kv_t": variable(out_f / F, ("time", "mesh"), "1", "mesh force over the nominal force"),
             "load_share": variable(share, ("time", "mesh"), "1", "share of the driving gear's mesh forces"),
@@ -310,6 +327,23 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
     return result
 
 
+def _rating(model, sys_, kv_dyn, kv_iso) -> dict:
+    """ISO 6336-2/-3 ratings per mesh with K_v from the run (largest over the steady window) and from
+    ISO 6336-1 method B; empty when switched off or when the run has no finite K_v."""
+    from .rating import rate_mesh, summary_of
+
+    if not model.iso.rating:
+        return {}
+    out = {}
+    for j, name in enumerate(sys_.mesh_names):
+        if not (np.isfinite(kv_dyn[j]) and kv_dyn[j] > 0):
+            continue
+        r_dyn = rate_mesh(model, sys_, j, float(kv_dyn[j]))
+        r_iso = rate_mesh(model, sys_, j, float(kv_iso[j]))
+        out[name] = summary_of(r_dyn, r_iso, (model.iso.min_safety_pitting, model.iso.min_safety_bending))
+    return out
+
+
 def _method_b(model, sys_, j, m_red):
     from .iso6336 import MethodB
 
@@ -317,7 +351,7 @@ def _method_b(model, sys_, j, m_red):
     iso = sys_.iso[j]
     b_mm = min(p_.g1.b, p_.g2.b) * 1e3
     return MethodB(z1=p_.g1.z, c_single=iso.c_single, c_gamma=iso.c_gamma, m_red=m_red / b_mm,
-                   eps_gamma=p_.contact_ratio, load_per_width=iso.load_per_width,
+                   eps_gamma=p_.total_contact_ratio, load_per_width=iso.load_per_width,
                    f_pb=model.iso.pitch_deviation * 1e6, f_falpha=model.iso.profile_deviation * 1e6,
                    material=model.iso.material, sigma_hlim=model.iso.sigma_hlim / 1e6,
                    c_a=None if model.iso.tip_relief is None else model.iso.tip_relief * 1e6, pitch_radius=p_.g1.r)
@@ -325,7 +359,7 @@ def _method_b(model, sys_, j, m_red):
 
 #: units of the summary keys (fnmatch patterns, first match wins; "1" for ratios)
 UNITS = {
-    "meshes.*.force_*": "N", "meshes.*.kv*": "1", "meshes.*.load_share": "1", "meshes.*.iso_speed_ratio_N": "1",
+    "meshes.*.force_*": "N", "meshes.*.axial_force_*": "N", "meshes.*.helix_angle": "rad", "meshes.*.kv*": "1", "meshes.*.load_share": "1", "meshes.*.iso_speed_ratio_N": "1",
     "meshes.*.iso_resonance_speed_rpm": "rpm", "meshes.*.contact_ratio": "1", "meshes.*.mesh_frequency": "Hz",
     "meshes.*.phase": "1", "meshes.*.stiffness_*": "N/m", "meshes.*.iso_c_*": "N/m", "meshes.*.damping": "N*s/m",
     "meshes.*.window_drift": "1", "meshes.*.window_growth": "1", "natural_frequencies_hz": "Hz", "modal_damping_ratios": "1",
@@ -334,8 +368,13 @@ UNITS = {
     "solver.step": "s", "solver.last_step": "s", "solver.max_step": "s", "solver.wall_time": "s",
     "solver.simulated_time": "s", "solver.rtol": "1",
     "sweep.speed_*": "rad/s", "sweep.settle": "s", "sweep.wall_time": "s", "sweep.meshes.*.kv*": "1",
-    "sweep.meshes.*.speed_at_kv_max": "rad/s", "sweep.meshes.*.unstable_speeds": "rad/s",
+    "sweep.meshes.*.speed_at_kv_max*": "rad/s", "sweep.meshes.*.unstable_speeds": "rad/s",
     "sweep.meshes.*.separation_speeds": "rad/s", "floquet_growth_rate": "1/s",
+    "rating.*.*_rating.sigma_*": "Pa", "rating.*.*_rating.load_cycles": "1", "rating.*.*_rating.*": "1",
+    "rating.*.Z_E": "Pa^0.5", "rating.*.*": "1",
+    "planetary.planet_angles": "rad", "planetary.centre_distance": "m", "planetary.natural_frequencies_hz": "Hz",
+    "planetary.planet_mode_frequency_closed_form_hz": "Hz", "planetary.torque_sun": "N*m", "planetary.*_force": "N",
+    "planetary.position_errors": "m", "planetary.*": "1",
 }
 
 

@@ -13,6 +13,15 @@ k(u) = sum_j k_pair(u + j) (seed 003, eq. 7 and text), tabulated on ``N_TABLE`` 
 - Potential energy: ``potential_energy.pair_stiffness`` at rho_1 = T1A + s p_b.
 - ``engagement`` > 0 ramps a pair's stiffness in and out over that many mesh periods (smoothstep),
   standing for the gradual take-up of load by real teeth; the mean is kept.
+- Helical meshes: the face is cut into thin transverse slices, each a spur pair of the transverse
+  geometry carrying its share of the face width; the contact lines on the plane of action are
+  inclined at the base helix angle, so the slice at axial position y runs y tan(beta_b) / p_bt mesh
+  periods ahead of the slice at y = 0, and across the face the shift grows to the overlap ratio
+  eps_beta. The helical mesh stiffness is the mean over the slices,
+  k_h(u) = (1/eps_beta) int_0^eps_beta k_t(u + s) ds, taken in the limit of infinitely thin slices
+  (exact on the table's harmonics: harmonic n is multiplied by (exp(2 pi i n eps_beta) - 1) /
+  (2 pi i n eps_beta)); it is constant when eps_beta is a whole number. The friction moment per unit
+  force is averaged the same way, weighted by the slices' stiffness.
 
 Friction (after Vaishya & Singh 2001): pair j carries N_j = f k_j / k; its friction force mu N_j
 acts across the line of action at the contact point, with arms rho_1 (driving gear) and
@@ -56,6 +65,17 @@ class MeshTable:
     pair_s: np.ndarray           # s grid of one pair's contact (mesh periods)
     pair_k: np.ndarray           # that pair's stiffness (N/m), as tabulated
     mean: float
+
+
+def slice_mean(table, eps_beta: float) -> np.ndarray:
+    """(1/eps_beta) int_0^eps_beta f(u + s) ds of a table f over one period (u = k / N), exact on its
+    harmonics: the face of a helical mesh as infinitely many thin transverse slices."""
+    n = len(table)
+    F = np.fft.rfft(table)
+    h = np.arange(len(F))
+    x = 2j * np.pi * h[1:] * eps_beta
+    F[1:] *= (np.exp(x) - 1.0) / x
+    return np.fft.irfft(F, n)
 
 
 def pair_positions(u, eps):
@@ -116,6 +136,12 @@ def build(geo: PairGeometry, spec, iso_single: float, iso_mean: float, *, b: flo
     approach = np.where(rho1 < geo.rho_pitch, 1.0, -1.0)
     arm_a = np.sum(np.where(inside, share * approach * rho1, 0.0), axis=1)
     arm_b = -np.sum(np.where(inside, share * approach * rho2, 0.0), axis=1)
+    eps_b = getattr(geo, "overlap_ratio", 0.0)
+    if eps_b > 0:
+        # helical: the mean over thin slices (module docstring); moments averaged as k x arm
+        ma, mb = slice_mean(k * arm_a, eps_b), slice_mean(k * arm_b, eps_b)
+        k = slice_mean(k, eps_b)
+        arm_a, arm_b = ma / k, mb / k
     # one pair's stiffness over its contact, for plots (taken along the table, pair j = 0 and 1)
     ps = np.concatenate([u, u + 1.0, u + 2.0])
     pk = np.concatenate([kp[:, 0], kp[:, 1], kp[:, 2] if kp.shape[1] > 2 else np.zeros_like(u)])

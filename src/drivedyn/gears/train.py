@@ -231,11 +231,12 @@ def assemble(model) -> System:
     for j, (ms, p) in enumerate(zip(model.meshes, pairs)):
         ga, gb = model.gears[ma[j]], model.gears[mb[j]]
         b = min(p.g1.b, p.g2.b)
-        w = ka * abs(f0[j]) * math.cos(p.g1.alpha) / (b * 1e3)       # K_A F_t / b, N/mm (F_t at the reference circle)
+        w = ka * abs(f0[j]) * math.cos(p.g1.alpha_t) / (b * 1e3)     # K_A F_t / b, N/mm (F_t at the reference circle)
         iso = iso6336.single_pair_stiffness(p.g1.z, p.g2.z, p.g1.x, p.g2.x, p.contact_ratio, max(w, 1e-9),
                                             dedendum=(ga.dedendum, gb.dedendum), alpha_deg=math.degrees(p.g1.alpha),
                                             youngs=(ga.youngs_modulus, gb.youngs_modulus),
-                                            blank_factor=model.iso.blank_factor, low_load=model.iso.low_load)
+                                            blank_factor=model.iso.blank_factor, low_load=model.iso.low_load,
+                                            beta=p.g1.beta)
         sys_.iso.append(iso)
         c1, cg = iso.si(b)
         r_int = tuple(0.5 * g.bore_diameter if g.bore_diameter is not None else 0.5 * geo.rf

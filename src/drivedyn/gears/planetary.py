@@ -1,0 +1,302 @@
+"""A simple planetary stage (sun, planets on a carrier, ring) as a lumped torsional model:
+mesh phasing, natural modes and static load sharing with planet position errors.
+
+Coordinates: absolute rotations of the sun, ring and carrier and of each planet (rad, all positive
+in one sense); sun, planets and ring are standard spur gears (no profile shift, so the ring has
+z_r = z_s + 2 z_p teeth and the planets sit at radius R = (z_s + z_p) m / 2), meshing at the
+pressure angle alpha. In the carrier's frame the stage is an ordinary train with fixed axes, which
+gives the mesh deflections along the lines of action (compressive positive when the sun drives):
+
+    sun-planet n  (external): d_sn = r_bs (th_s - th_c) + r_bp (th_n - th_c) - e_n cos(alpha)
+    ring-planet n (internal): d_rn = r_br (th_r - th_c) - r_bp (th_n - th_c) - e_n cos(alpha)
+
+e_n is the tangential position error of planet n's pin (along the carrier's rotation): moving a
+pin by e acts like turning the carrier by e / R for that planet only, and R cos(alpha) = r_bs + r_bp
+= r_br - r_bp. Potential energy V = 1/2 sum(k_sp d_sn^2 + k_rp d_rn^2) with the mean mesh
+stiffnesses, kinetic energy 1/2 (J_s w_s^2 + J_r w_r^2 + (J_c + N m_p R^2) w_c^2 + J_p sum w_n^2),
+torsional supports k_s, k_r, k_c to ground (a member given as fixed is removed). This is the
+rotational part of Lin & Parker's lumped model (J. Vib. Acoust. 121 (1999) 316-321): the
+translational degrees of freedom, and with them the translational modes, are not modelled.
+
+Closed forms that follow from these equations (tests/gears/test_planetary.py):
+
+- planet modes: with N >= 2 equally spaced identical planets, the central members at rest and the
+  planets moving with amplitudes that sum to zero, every planet obeys J_p th'' = -r_bp^2 (k_sp + k_rp) th:
+  omega^2 = r_bp^2 (k_sp + k_rp) / J_p, multiplicity N - 1;
+- rotational modes: all planets alike; they are the modes of the reduced model with one planet of
+  N times the stiffness and inertia;
+- load sharing (carrier and ring held, torque T on the sun): planet n carries
+  F_n = T / (N r_bs) + k_e 2 cos(alpha) (mean(e) - e_n), k_e = k_sp k_rp / (k_sp + k_rp);
+- mesh phasing (counting rule): seen in the carrier's frame the sun turns past planet n's mesh
+  z_s psi_n / (2 pi) teeth after it passed planet 1's, the ring (turning the other way) z_r psi_n / (2 pi)
+  teeth before: gamma_sn = frac(z_s psi_n / 2 pi), gamma_rn = frac(-z_r psi_n / 2 pi) mesh periods.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Stage:
+    """Data of one stage (SI)."""
+
+    z_sun: int
+    z_planet: int
+    module: float
+    planet_angles: tuple               # psi_n, rad
+    k_sun_planet: float                # mean mesh stiffness, N/m
+    k_ring_planet: float
+    inertia_sun: float
+    inertia_ring: float
+    inertia_carrier: float
+    inertia_planet: float
+    mass_planet: float
+    pressure_angle: float = math.radians(20.0)
+    position_errors: tuple = ()        # e_n, m (tangential, + with the carrier's rotation)
+    support: dict = field(default_factory=dict)   # member -> torsional stiffness (N m/rad) or "fixed"
+
+    @property
+    def z_ring(self) -> int:
+        return self.z_sun + 2 * self.z_planet
+
+    @property
+    def n(self) -> int:
+        return len(self.planet_angles)
+
+    @property
+    def radii(self) -> tuple:
+        """(r_bs, r_bp, r_br, R) in m."""
+        c = math.cos(self.pressure_angle)
+        rs, rp, rr = (0.5 * z * self.module for z in (self.z_sun, self.z_planet, self.z_ring))
+        return rs * c, rp * c, rr * c, rs + rp
+
+    def errors(self) -> np.ndarray:
+        e = np.zeros(self.n)
+        e[:len(self.position_errors)] = self.position_errors
+        return e
+
+
+def assembly_ok(z_sun: int, z_ring: int, n: int) -> bool:
+    """Equally spaced planets fit when (z_s + z_r) / N is a whole number (each planet then meets the
+    sun and the ring teeth as the first one does)."""
+    return (z_sun + z_ring) % n == 0
+
+
+def phases(st: Stage) -> tuple[np.ndarray, np.ndarray]:
+    """Mesh phases (mesh periods, relative to planet 1) of the sun-planet and ring-planet meshes."""
+    psi = np.asarray(st.planet_angles, dtype=float) - st.planet_angles[0]
+    g_s = np.mod(st.z_sun * psi / (2 * math.pi), 1.0)
+    g_r = np.mod(-st.z_ring * psi / (2 * math.pi), 1.0)
+    # whole numbers within rounding are 0 (in phase), not 0.9999999
+    g_s[np.isclose(g_s, 1.0, atol=1e-9)] = 0.0
+    g_r[np.isclose(g_r, 1.0, atol=1e-9)] = 0.0
+    return g_s, g_r
+
+
+MEMBERS = ("sun", "ring", "carrier")
+
+
+def matrices(st: Stage) -> tuple[np.ndarray, np.ndarray, list[str]]:
+    """Mass and stiffness matrices over the free coordinates [sun, ring, carrier, planet 1..N]
+    (fixed members removed) and the coordinate names."""
+    rbs, rbp, rbr, R = st.radii
+    n = st.n
+    names = [*MEMBERS, *(f"planet{i + 1}" for i in range(n))]
+    M = np.diag([st.inertia_sun, st.inertia_ring, st.inertia_carrier + n * st.mass_planet * R ** 2,
+                 *([st.inertia_planet] * n)])
+    K = np.zeros((3 + n, 3 + n))
+    for i in range(n):
+        # d_sn = a . q, d_rn = b . q (the e_n terms are loads, not stiffness)
+        a = np.zeros(3 + n)
+        a[0], a[2], a[3 + i] = rbs, -(rbs + rbp), rbp
+        b = np.zeros(3 + n)
+        b[1], b[2], b[3 + i] = rbr, -(rbr - rbp), -rbp
+        K += st.k_sun_planet * np.outer(a, a) + st.k_ring_planet * np.outer(b, b)
+    keep = []
+    for j, m in enumerate(MEMBERS):
+        s = st.support.get(m, 0.0)
+        if s == "fixed":
+            continue
+        K[j, j] += float(s)
+        keep.append(j)
+    keep += list(range(3, 3 + n))
+    return M[np.ix_(keep, keep)], K[np.ix_(keep, keep)], [names[j] for j in keep]
+
+
+def modes(st: Stage) -> tuple[np.ndarray, np.ndarray, list[str], list[str]]:
+    """Natural frequencies (Hz, ascending, rigid-body modes at 0), mass-normalised shapes, the
+    coordinate names, and each mode's type: "rotational" (the planets move alike), "planet" (the
+    central members at rest, the planets' amplitudes summing to zero) or "mixed"."""
+    from scipy.linalg import eigh
+
+    M, K, names = matrices(st)
+    w2, V = eigh(K, M)
+    f = np.sqrt(np.clip(w2, 0.0, None)) / (2 * math.pi)
+    planets = [i for i, nm in enumerate(names) if nm.startswith("planet")]
+    central = [i for i, nm in enumerate(names) if not nm.startswith("planet")]
+    kinds = []
+    scale = np.abs(V).max(axis=0)
+    for r in range(V.shape[1]):
+        v = V[:, r] / scale[r]
+        p = v[planets]
+        if np.abs(v[central]).max(initial=0.0) < 1e-8 and abs(p.sum()) < 1e-8:
+            kinds.append("planet")
+        elif np.ptp(p) < 1e-8 * max(np.abs(p).max(), 1e-300) or np.abs(p).max() < 1e-12:
+            kinds.append("rotational")
+        else:
+            kinds.append("mixed")
+    return f, V, names, kinds
+
+
+def load_sharing(st: Stage, torque: float, member: str = "sun") -> dict:
+    """Static mesh forces with a torque (N m) on ``member``, the other members held or supported as
+    given (the two others held for a stage in service), and the planets' position errors. Returns the sun-planet and ring-planet forces (N) per planet, each planet's share
+    of the total and the load sharing factor K_gamma = largest sun-planet force / mean."""
+    rbs, rbp, rbr, R = st.radii
+    M, K, names = matrices(st)
+    n = st.n
+    e = st.errors()
+    c = math.cos(st.pressure_angle)
+    full = len(MEMBERS) + n
+    # the error terms: V contains 1/2 k (a.q - e c)^2, so the load vector gains k e c a
+    f = np.zeros(full)
+    f[MEMBERS.index(member)] = torque
+    for i in range(n):
+        a = np.zeros(full)
+        a[0], a[2], a[3 + i] = rbs, -(rbs + rbp), rbp
+        b = np.zeros(full)
+        b[1], b[2], b[3 + i] = rbr, -(rbr - rbp), -rbp
+        f += st.k_sun_planet * e[i] * c * a + st.k_ring_planet * e[i] * c * b
+    keep = [MEMBERS.index(nm) if nm in MEMBERS else 3 + int(nm[6:]) - 1 for nm in names]
+    q_free = np.linalg.solve(K, f[keep])
+    q = np.zeros(full)
+    q[keep] = q_free
+    ths, thr, thc = q[0], q[1], q[2]
+    thp = q[3:]
+    d_s = rbs * (ths - thc) + rbp * (thp - thc) - e * c
+    d_r = rbr * (thr - thc) - rbp * (thp - thc) - e * c
+    F_s, F_r = st.k_sun_planet * d_s, st.k_ring_planet * d_r
+    mean = F_s.mean()
+    return {"sun_planet_force": F_s, "ring_planet_force": F_r, "share": F_s / F_s.sum(),
+            "load_sharing_factor": float(F_s.max() / mean) if mean > 0 else math.inf,
+            "contact_lost": bool((F_s < 0).any() or (F_r < 0).any())}
+
+
+def stage_of(spec, support=None) -> Stage:
+    """The Stage of a model's ``planetary`` section (SI)."""
+    n = spec.planets
+    psi = tuple(spec.planet_angles) if spec.planet_angles is not None else tuple(2 * math.pi * i / n for i in range(n))
+    return Stage(z_sun=spec.sun_teeth, z_planet=spec.planet_teeth, module=spec.module, planet_angles=psi,
+                 k_sun_planet=spec.sun_planet_stiffness, k_ring_planet=spec.ring_planet_stiffness,
+                 inertia_sun=spec.sun_inertia, inertia_ring=spec.ring_inertia, inertia_carrier=spec.carrier_inertia,
+                 inertia_planet=spec.planet_inertia, mass_planet=spec.planet_mass, pressure_angle=spec.pressure_angle,
+                 position_errors=tuple(spec.position_errors),
+                 support=support if support is not None else {spec.fixed: "fixed"})
+
+
+def analyse(spec) -> tuple[dict, dict]:
+    """Summary entry and arrays of a model's planetary stage: phasing, modes (the fixed member held),
+    load sharing (the fixed member and the output held, the torque on the input)."""
+    st = stage_of(spec)
+    rbs, rbp, rbr, R = st.radii
+    g_s, g_r = phases(st)
+    f, V, names, kinds = modes(st)
+    rigid = f < 1e-6 * max(f.max(), 1e-300)
+    f_planet = math.sqrt(rbp ** 2 * (st.k_sun_planet + st.k_ring_planet) / st.inertia_planet) / (2 * math.pi)
+    output = next(m for m in MEMBERS if m not in (spec.fixed, spec.input))
+    held = stage_of(spec, support={spec.fixed: "fixed", output: "fixed"})
+    # the sun's share of the torques (T_s : T_r : T_c = 1 : z_r / z_s : -(1 + z_r / z_s), the stage in balance)
+    t_sun = {"sun": spec.torque, "ring": spec.torque * st.z_sun / st.z_ring,
+             "carrier": spec.torque * st.z_sun / (st.z_sun + st.z_ring)}[spec.input]
+    ls = load_sharing(held, spec.torque, spec.input)
+    summary = {
+        "ring_teeth": st.z_ring, "planets": st.n, "planet_angles": [float(a) for a in st.planet_angles],
+        "centre_distance": R, "output": output,
+        "speed_ratio_input_over_output": _speed_ratio(st, spec.input, output),
+        "equally_spaced_assembly": assembly_ok(st.z_sun, st.z_ring, st.n),
+        "phase_sun_planet": [float(x) for x in g_s], "phase_ring_planet": [float(x) for x in g_r],
+        "planets_in_phase": bool(np.allclose(g_s, 0.0) and np.allclose(g_r, 0.0)),
+        "natural_frequencies_hz": [float(x) for x, r in zip(f, rigid) if not r],
+        "mode_types": [k for k, r in zip(kinds, rigid) if not r],
+        "planet_mode_frequency_closed_form_hz": f_planet if st.n > 1 else None,
+        "torque_sun": t_sun,
+        "sun_planet_force": [float(x) for x in ls["sun_planet_force"]],
+        "ring_planet_force": [float(x) for x in ls["ring_planet_force"]],
+        "load_share": [float(x) for x in ls["share"]],
+        "load_sharing_factor": ls["load_sharing_factor"],
+        "position_errors": [float(x) for x in st.errors()],
+    }
+    arrays = {"f": f[~rigid], "V": V[:, ~rigid], "names": names, "forces": ls}
+    return summary, arrays
+
+
+def _speed_ratio(st: Stage, inp: str, out: str) -> float:
+    """Input over output speed with the third member held (Willis: w_s - w_c = -(z_r / z_s)(w_r - w_c))."""
+    zs, zr = st.z_sun, st.z_ring
+    held = next(m for m in MEMBERS if m not in (inp, out))
+    # speeds of (sun, ring, carrier) with the held member at 0 and a unit speed of a free one
+    if held == "ring":
+        w = {"carrier": 1.0, "sun": 1.0 + zr / zs, "ring": 0.0}
+    elif held == "carrier":
+        w = {"carrier": 0.0, "sun": 1.0, "ring": -zs / zr}
+    else:
+        w = {"sun": 0.0, "carrier": 1.0, "ring": 1.0 + zs / zr}
+    return w[inp] / w[out]
+
+
+def run_stage(model, progress=None):
+    """The Result of a model that is a planetary stage alone."""
+    import xarray as xr
+
+    from .. import dumps
+    from ..results import Result, unit_map, variable
+
+    if progress:
+        progress(0.0, "planetary stage")
+    summary, a = analyse(model.planetary)
+    ds = xr.Dataset(
+        {"natural_frequency": variable(a["f"], ("mode",), "Hz", "natural frequency of the stage (fixed member held)"),
+         "mode_shape": variable(a["V"], ("coordinate", "mode"), "1", "mass-normalised mode shape (rotations)"),
+         "sun_planet_force": variable(a["forces"]["sun_planet_force"], ("planet",), "N", "static sun-planet mesh force"),
+         "ring_planet_force": variable(a["forces"]["ring_planet_force"], ("planet",), "N", "static ring-planet mesh force"),
+         "phase_sun_planet": variable(np.array(summary["phase_sun_planet"]), ("planet",), "1", "sun-planet mesh phase (periods)"),
+         "phase_ring_planet": variable(np.array(summary["phase_ring_planet"]), ("planet",), "1", "ring-planet mesh phase (periods)")},
+        coords={"mode": np.arange(len(a["f"])), "coordinate": a["names"], "planet": np.arange(1, len(summary["load_share"]) + 1)},
+        attrs={"model_toml": dumps(model), "title": model.name or "planetary stage", "planetary_only": 1})
+    r = Result(kind="gear-train", ds=ds, summary={"planetary": summary})
+    if summary["load_sharing_factor"] == math.inf or min(summary["sun_planet_force"] + summary["ring_planet_force"]) < 0:
+        fmin = min(summary["sun_planet_force"] + summary["ring_planet_force"])
+        r.diagnose("tooth-separation", f"planetary stage: a planet's mesh force is negative ({fmin:.4g} N) at the "
+                   "given torque and pin position errors: that planet's teeth would lose contact (the linear "
+                   "load sharing does not hold)", "planetary.sun_planet_force", fmin, 0.0, "N")
+    r.units = unit_map(r.summary, PLANETARY_UNITS)
+    if progress:
+        progress(1.0, "done")
+    return r
+
+
+PLANETARY_UNITS = {"planetary.planet_angles": "rad", "planetary.centre_distance": "m",
+                   "planetary.natural_frequencies_hz": "Hz", "planetary.planet_mode_frequency_closed_form_hz": "Hz",
+                   "planetary.torque_sun": "N*m", "planetary.*_force": "N", "planetary.position_errors": "m",
+                   "planetary.*": "1"}
+
+
+def report_lines(spec) -> list[str]:
+    """The ``check`` text of a planetary stage."""
+    s, _ = analyse(spec)
+    out = ["", f"planetary stage: sun {spec.sun_teeth}, planets {spec.planet_teeth} x {spec.planets}, ring {s['ring_teeth']} "
+               f"teeth, module {spec.module * 1e3:g} mm, centre distance {s['centre_distance'] * 1e3:.3f} mm; "
+               f"{spec.input} in, {s['output']} out, {spec.fixed} fixed: speed ratio {s['speed_ratio_input_over_output']:.5g}",
+           f"  mesh phases (periods, planet 1 = 0): sun-planet {[round(x, 4) for x in s['phase_sun_planet']]}, "
+           f"ring-planet {[round(x, 4) for x in s['phase_ring_planet']]}"
+           + (" (in phase)" if s["planets_in_phase"] else ""),
+           f"  natural frequencies ({spec.fixed} held): "
+           + ", ".join(f"{f:.1f} Hz {k}" for f, k in zip(s["natural_frequencies_hz"], s["mode_types"]))
+           + (f"; planet modes by the closed form {s['planet_mode_frequency_closed_form_hz']:.1f} Hz"
+              if s["planet_mode_frequency_closed_form_hz"] else ""),
+           f"  load sharing ({spec.torque:g} N m on the {spec.input}, {s['output']} held): sun-planet forces "
+           + ", ".join(f"{x:.1f}" for x in s["sun_planet_force"]) + f" N, K_gamma {s['load_sharing_factor']:.4f}"]
+    return out
