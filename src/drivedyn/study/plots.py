@@ -169,11 +169,14 @@ def plot_study(ds, outdir, keys=None) -> list[Path]:
         chosen = [k for k in available if any(fnmatch.fnmatchcase(k.lower(), p.lower()) for p in keys)]
     if not chosen or not np.isin(ds["status"].values, ("success", "warning")).any():
         return []
-    outdir.mkdir(parents=True, exist_ok=True)
+    from ..outputs import file_stem, make_folder
+    from ..plotting import savefig
+
+    make_folder(outdir)
     files = []
     for k in chosen:
         fig = plot_key(ds, k)
-        path = outdir / f"{k.replace('.', '_').replace('/', '_')}.png"
-        fig.savefig(path, dpi=110)
+        path = outdir / f"{file_stem(k.replace('.', '_'))}.png"
+        savefig(fig, path, dpi=110)
         files.append(path)
     return files
