@@ -303,6 +303,9 @@ def study(study_file: Path = typer.Argument(..., help="Study file (TOML)."),
                               plots=plots, quiet=quiet, dry_run=dry_run, prune=prune, report=report)
     except ModelError as exc:
         _fail(str(exc))
+    except OSError as exc:     # a write after the up-front check of the folder (finished cases are cached)
+        _fail(f"writing the study's outputs failed: {exc if isinstance(exc, DrivedynError) else exc.strerror or exc}; "
+              "finished cases are kept in its cases/ folder", code=1)
     except KeyboardInterrupt:
         _fail("interrupted; finished cases are kept, run the same command again to finish", code=130)
     if code:
@@ -311,18 +314,34 @@ def study(study_file: Path = typer.Argument(..., help="Study file (TOML)."),
 
 def main(argv=None):
     """Entry point; ``main(["run", "model.toml"])`` runs in-process (tests)."""
+    try:    # typer ships its own copy of click
+        from typer._click import exceptions as click_errors
+    except ImportError:
+        from click import exceptions as click_errors
+
+    code = 0
     try:
-        app(args=argv, prog_name="drivedyn", standalone_mode=True)
+        # click's own error handling would print a usage box: a mistyped option is one line here
+        rv = typer.main.get_command(app).main(args=argv, prog_name="drivedyn", standalone_mode=False)
+        code = rv if isinstance(rv, int) else 0
     except SystemExit as exc:
-        if argv is None:
-            raise
-        return exc.code or 0
+        code = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
+    except click_errors.NoArgsIsHelpError as exc:    # plain "drivedyn": the help
+        exc.show()
+        code = 0
+    except click_errors.UsageError as exc:
+        command = exc.ctx.command_path if exc.ctx is not None else "drivedyn"
+        typer.echo(f"drivedyn: error: {' '.join(exc.format_message().split())} (see '{command} --help')", err=True)
+        code = 2
+    except click_errors.ClickException as exc:
+        typer.echo(f"drivedyn: error: {' '.join(exc.format_message().split())}", err=True)
+        code = exc.exit_code
     except DrivedynError as exc:  # last resort: never a traceback for a drivedyn error
         typer.echo(f"drivedyn: error: {exc}", err=True)
-        if argv is None:
-            sys.exit(2)
-        return 2
-    return 0
+        code = 2
+    if argv is None:
+        sys.exit(code)
+    return code
 
 
 if __name__ == "__main__":
