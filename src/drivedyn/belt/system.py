@@ -91,10 +91,14 @@ def build(model, settle: bool = True) -> BeltSystem:
         step = model.simulation.step if model.simulation.step is not None else limit
     else:
         step = model.simulation.step if model.simulation.step is not None else 0.85 * limit
-    if not model.simulation.duration / step < MAX_STEPS:
-        raise ModelError(f"the stable step is only {limit:.3g} s ({model.simulation.duration / step:.3g} steps for "
-                         f"{model.simulation.duration:g} s, over the {MAX_STEPS:.0e} allowed): check the belt's "
-                         "stiffness and damping values and the contact stiffness", field="simulation")
+    from ..limits import max_steps
+
+    steps = model.simulation.duration / min(step, model.output.interval)
+    if not steps <= max_steps():
+        raise ModelError(f"{steps:.3g} integration steps of {step:.3g} s (stable step {limit:.3g} s) for "
+                         f"{model.simulation.duration:g} s, more than the {max_steps():.3g} a run may take: a shorter "
+                         "duration, or check the belt's stiffness and damping values and the contact stiffness "
+                         "(or set DRIVEDYN_MAX_STEPS)", field="simulation")
     sysm = BeltSystem(drawn, layout, init, B, C, P, A, span_mid, span_geo, track, step, limit, rest)
     # start from the chain's static equilibrium, so that a drive at rest stays at rest
     eq = relax(sysm, init.x, init.y, init.phi) if settle else None
@@ -257,8 +261,6 @@ def damping_depth(model, init) -> float:
 # changes span forces by < 0.5 % and slip by < 1e-4, but at 11 m/s it raises the contact losses
 # where segments land on a pulley by a third.
 ROTATION_SCALE = 3.3
-# more steps than this (days of computing at microseconds per step) means an input error
-MAX_STEPS = 1e11
 
 
 def effective_inertia(sysm) -> np.ndarray:
