@@ -95,7 +95,7 @@ def test_rich_markup_in_a_name_is_printed_as_written(tmp_path):
 
 def test_a_100000_character_name_is_shortened_on_the_terminal_and_kept_in_the_summary(tmp_path):
     name = "p" * 100_000
-    path = write(tmp_path, short_belt(**{"pulleys.1.name": name}))
+    path = write(tmp_path, short_belt(**{"pulleys.0.name": name}))    # the driver: a summary value too
     code, err, _, seconds = cli("run", path, "-o", tmp_path / "out", "-q", "--no-plots", "--no-report")
     assert code == 0, err
     assert seconds < 60             # 232 s before (the terminal wrapped the cell)
@@ -266,6 +266,20 @@ def test_a_torque_speed_table_read_the_wrong_way_round_is_flagged():
     r = drivedyn.run(drivedyn.loads(tomli_w.dumps(d)))
     assert not {"table-extrapolated", "load-delivers-power"} & {x.code for x in r.diagnostics}
     assert r.summary["pulleys"]["driven"]["power_mean"] < 0
+
+
+@pytest.mark.parametrize("w2, refused", [(-100.0, True), (150.0, True), (100.0, False), (101.0, False)])
+def test_two_prescribed_speeds_must_agree_on_the_belt_speed(tmp_path, w2, refused):
+    d = example("belt-5pk")
+    d["pulleys"][0].pop("torque_time")
+    d["pulleys"][1].pop("torque_speed", None)
+    d["pulleys"][0]["speed_time"] = [[0, 100.0], [1, 100.0]]       # equal radii: the same speed, same sense
+    d["pulleys"][1]["speed_time"] = [[0, w2], [1, w2]]
+    code, err, out, _ = cli("check", write(tmp_path, d))
+    if refused:
+        assert code == 2 and "the belt would slide on one of them" in one_line(err)
+    else:
+        assert code == 0 and "running steady" in out
 
 
 # ------------------------------------------------------------------ toothed [load]

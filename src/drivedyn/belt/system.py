@@ -52,6 +52,7 @@ def build(model, settle: bool = True) -> BeltSystem:
         rest = tensioner.equilibrium(model)
         model = rest.model            # centres at the equilibrium, belt.length installed
     layout = compute_layout(model)
+    _one_belt_speed(model, layout)
     init = initial_state(model, layout)
     belt, n = model.belt, model.belt.segments
     l = init.seg_length
@@ -108,6 +109,31 @@ def build(model, settle: bool = True) -> BeltSystem:
             x, y, phi = _settle_tensioners(sysm, x, y, phi)
         sysm.init = dataclasses.replace(init, x=x, y=y, phi=phi, residual=res)
     return sysm
+
+
+#: prescribed speeds whose belt speeds differ by more than this share cannot all hold without gross
+#: slip (creep is below 2 % on any drive the belt model applies to)
+SPEED_MISMATCH = 0.05
+
+
+def _one_belt_speed(model, layout) -> None:
+    """Two pulleys with prescribed speeds set the belt speed twice: refuse them (one line) unless
+    they agree, at every row of their tables, within creep; otherwise the belt slides on one of
+    them and check would report a steady state that cannot exist."""
+    presc = [j for j, p in enumerate(model.pulleys) if p.speed_time is not None]
+    if len(presc) < 2:
+        return
+    a = presc[0]
+    for b in presc[1:]:
+        times = sorted({r[0] for j in (a, b) for r in model.pulleys[j].speed_time})
+        for t in times:
+            va, vb = (np.interp(t, *np.array(model.pulleys[j].speed_time).T) * layout.rho[j] for j in (a, b))
+            if abs(va - vb) > SPEED_MISMATCH * max(abs(va), abs(vb)) and max(abs(va), abs(vb)) > 0:
+                pa, pb = model.pulleys[a].name, model.pulleys[b].name
+                raise ModelError(f"pulleys {pa!r} and {pb!r} both have a prescribed speed (speed_time) and at "
+                                 f"t = {t:g} s they move the belt at {va:.4g} and {vb:.4g} m/s (signed along the "
+                                 "loop): the belt would slide on one of them; prescribe one and load the other",
+                                 field=f"pulleys[{b}].speed_time")
 
 
 def _settle_tensioners(sysm, x, y, phi):
