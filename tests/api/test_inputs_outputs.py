@@ -180,6 +180,7 @@ def test_a_study_base_on_a_device_is_refused(tmp_path):
     ("belt-5pk", {"output.interval": "1e-9 s"}, "GB"),
     ("belt-5pk", {"output.interval": "1e-30 s"}, "GB"),
     ("belt-5pk", {"simulation.step": "1e-12 s"}, "integration steps"),
+    ("belt-5pk", {"simulation.method": "rkf45"}, "rkf45 is explicit"),
     ("fead-runup", {"output.runup_bin": "1e-6 rpm"}, "bins"),
     ("gears-split-path", {"simulation.step": "1e-13 s"}, "integration steps"),
     ("gears-split-path", {"simulation.output_interval": "1e-12 s", "simulation.step": "1e-6 s",

@@ -95,6 +95,21 @@ def build(model, settle: bool = True) -> BeltSystem:
     from ..limits import max_steps
 
     steps = model.simulation.duration / min(step, model.output.interval)
+    if integrator(model) == "rkf45":
+        # explicit: a sticking segment's friction force mu N v / velocity_threshold is a damper of
+        # rate mu N / dv on its mass m = rho l, with N = T l / r on a pulley of radius r; explicit
+        # Runge-Kutta schemes are stable for h < ~2.8 m / (mu N / dv) = 2.8 rho r dv / (mu T)
+        # (the real-axis stability limit of RK4/5, Hairer & Wanner, Solving ODEs II, IV.2)
+        mu = max([model.friction.coefficient] + [z.coefficient for z in model.friction.zones])
+        r = min(p.radius for p in model.pulleys)
+        if mu > 0 and init.tension > 0:
+            h_f = 2.8 * belt.mass_per_length * r * model.friction.velocity_threshold / (mu * init.tension)
+            if model.simulation.duration / h_f > max_steps():
+                raise ModelError(f"rkf45 is explicit: the friction law's slope (mu N / velocity_threshold) limits its "
+                                 f"step to about {h_f:.2g} s, {model.simulation.duration / h_f:.2g} steps for "
+                                 f"{model.simulation.duration:g} s, more than the {max_steps():.3g} a run may take: use "
+                                 "the implicit or semi-implicit scheme, or a larger friction.velocity_threshold "
+                                 "(or set DRIVEDYN_MAX_STEPS)", field="simulation.method")
     if not steps <= max_steps():
         raise ModelError(f"{steps:.3g} integration steps of {step:.3g} s (stable step {limit:.3g} s) for "
                          f"{model.simulation.duration:g} s, more than the {max_steps():.3g} a run may take: a shorter "
