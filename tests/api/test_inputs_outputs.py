@@ -283,6 +283,47 @@ def test_two_prescribed_speeds_must_agree_on_the_belt_speed(tmp_path, w2, refuse
         assert code == 0 and "running steady" in out
 
 
+def test_check_says_when_a_table_is_read_outside_its_range():
+    d = example("belt-5pk")
+    d["pulleys"][0]["torque_time"] = [[0, -15.0], [1, -15.0]]
+    d["pulleys"][1]["torque_speed"] = [["-20 rad/s", "10 N*m"], ["-10 rad/s", "5 N*m"]]    # balances at -30 rad/s
+    text = drivedyn.check(drivedyn.loads(tomli_w.dumps(d)))
+    assert "warning: pulley driven runs at -30 rad/s, outside its torque_speed table [-20, -10] rad/s" in text
+    assert "outside its torque_speed" not in drivedyn.check(drivedyn.example_path("belt-5pk"))
+
+
+def test_a_disk_that_fills_up_ends_the_run_in_one_line(tmp_path, monkeypatch):
+    import errno
+
+    import drivedyn.outputs as outputs
+
+    def full(src, dst):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+    monkeypatch.setattr(outputs.os, "replace", full)
+    out = tmp_path / "out"
+    code, err, _, _ = cli("run", write(tmp_path, short_belt()), "-o", out, "-q", "--no-plots")
+    assert code == 1 and "No space left on device" in one_line(err) and "written: nothing" in one_line(err)
+    assert not list(out.iterdir())                  # no temporary file left behind
+
+
+@pytest.mark.parametrize("name, old", [("gears-split-path", '"pinion"'), ("mesh-htd8m", '"L / L z20 (fig. 7)"')])
+def test_math_text_in_gear_names_and_compare_labels_is_drawn_literally(tmp_path, name, old):
+    d = example(name)
+    if d["kind"] == "gear-train":
+        d["sweep"] = {"enabled": False}
+        d["simulation"].update(duration="2 ms", steady_window=["1 ms", "2 ms"])
+    else:
+        d["mesh"]["angles"] = 15
+        d.setdefault("maps", {})["angles"] = 5
+    text = tomli_w.dumps(d)
+    assert old in text
+    path = tmp_path / "m.toml"
+    path.write_text(text.replace(old, '"$\\\\undefinedcmd$"'))      # every reference to the name
+    code, err, _, _ = cli("run", path, "-o", tmp_path / "out", "-q")
+    assert code == 0, err
+    assert (tmp_path / "out" / "report.html").exists()
+
+
 # ------------------------------------------------------------------ toothed [load]
 
 @pytest.mark.parametrize("changes, code, words", [

@@ -292,6 +292,8 @@ def animate(ds, path, frames=48, fps=12):
         ax.set_xlabel("x (mm)")
         return []
 
+    from .. import plotting
+
     plotting.save_animation(FuncAnimation(fig, frame, frames=frames, blit=False), path, writer=PillowWriter(fps=fps))
     return path
 
