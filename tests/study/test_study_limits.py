@@ -96,7 +96,7 @@ def test_an_output_folder_that_cannot_be_written_is_refused_before_any_case(writ
      "more than the 100000"),
     ('[[parameters]]\npath = "belt.pretension"\nrange = ["300 N", "600 N"]\nnum = 1000\n'
      '[[parameters]]\npath = "belt.axial_damping"\nrange = [0.1, 0.2]\nnum = 1000\n', "", "the grid has 1e+06 cases"),
-])
+], ids=["num-1e9", "lhs-1e9", "grid-1e6"])
 def test_a_study_too_large_is_refused_at_once(write_study, params, sampler, words):
     path = write_study(f'base = "{{belt}}"\n{params}{sampler}')
     code, err, seconds = cli("study", path, "--dry-run")
