@@ -318,14 +318,30 @@ def draw_drive(ds, frame, ax, vmax=None):
     return sc
 
 
-def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), rpm_max=None):
-    """Campbell diagram: the drive's rotational modes (horizontal) against the orders of the
-    driver's rotation (k x driver speed); crossings are resonances a run-up passes through."""
+def _mean_tensions(ds):
+    """Span tensions over the steady window (the modes' geometric stiffness), None without spans."""
+    if "span_tension" not in ds or ds.sizes.get("time", 0) == 0:
+        return None
+    w = ds.attrs.get("steady_window")
+    t = ds["time"].values
+    sel = (t >= w[0]) & (t <= w[1]) if w is not None else np.ones(len(t), bool)
+    ten = ds["span_tension"].values[sel if np.any(sel) else slice(None)].mean(axis=0)
+    return ten if np.all(np.isfinite(ten)) else None
+
+
+def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), rpm_max=None, free_rotor_hz=()):
+    """Campbell diagram: the drive's rotational modes (horizontal; one-way clutches locked, and
+    dotted with their rotors free) against the orders of the driver's rotation (k x driver
+    speed); crossings are resonances a run-up passes through."""
     ax = plotting.ax_or_new(ax)
+    for f in free_rotor_hz:
+        ax.axhline(f, color="C0", lw=0.9, ls=":", alpha=0.8)
+        ax.text(0.01, f, f"{f:.1f} Hz (clutch overrunning)", va="bottom", ha="left",
+                fontsize=7, color="C0", alpha=0.8, transform=ax.get_yaxis_transform())
     w = np.abs(ds["speed"].sel(pulley=driver).values)
     rpm_run = float(w.max()) * 30 / np.pi if len(w) else 0.0
     top_rpm = rpm_max or max(1.25 * rpm_run, 1.0)
-    f_top = max([1.1 * f for f in frequencies_hz] + [orders[-1] * top_rpm / 60])
+    f_top = max([1.1 * f for f in list(frequencies_hz) + list(free_rotor_hz)] + [orders[-1] * top_rpm / 60])
     for f in frequencies_hz:
         ax.axhline(f, color="C0", lw=1.2)
         ax.text(top_rpm * 0.99, f, f" {f:.1f} Hz", va="bottom", ha="right", fontsize=8, color="C0")
@@ -343,7 +359,7 @@ def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), r
     ax.set_ylim(0, f_top)
     ax.set_xlabel(f"{driver} speed (rpm)")
     ax.set_ylabel("frequency (Hz)")
-    ax.set_title("Campbell diagram: rotational modes (spans EA/L) and orders of the driver (dashed)")
+    ax.set_title("Campbell diagram: rotational modes and orders of the driver (dashed)")
     ax.grid(alpha=0.3)
     return ax
 
@@ -388,13 +404,13 @@ def _figures(ds, driver):
 
     def campbell():   # the drive's rotational modes (modes.py) against the driver's orders
         from ..model import loads
-        from .modes import modes
+        from .modes import drive_modes
 
-        freqs = modes(loads(ds.attrs["model_toml"])).frequencies_hz
-        if not freqs:
+        md = drive_modes(loads(ds.attrs["model_toml"]), tensions=_mean_tensions(ds))
+        if not md.frequencies_hz:
             return None
         fig, ax = _fig(1, 4)
-        plot_campbell(ds, freqs, driver, ax=ax[0])
+        plot_campbell(ds, md.frequencies_hz, driver, ax=ax[0], free_rotor_hz=md.free_rotor_hz)
         return fig
 
     def runup():
