@@ -48,6 +48,20 @@ def check_outdir(out: Path) -> None:
         _fail(f"{out}: cannot write the output folder ({exc.strerror or exc})")
 
 
+def _write_failed(out: Path, exc: OSError, since: float):
+    """A write that failed after the up-front check: one line, the run failed (exit 1), what was
+    written kept and named."""
+    from .outputs import OutputError
+
+    text = str(exc) if isinstance(exc, OutputError) else f"cannot write into {out}: {exc.strerror or exc}"
+    try:
+        kept = sorted(p.name for p in out.iterdir() if p.is_file() and not p.name.startswith(".")
+                      and not p.is_symlink() and p.stat().st_mtime >= since - 1)
+    except OSError:
+        kept = []
+    _fail(f"writing the outputs failed: {text}; written: {', '.join(kept) if kept else 'nothing'}", code=1)
+
+
 def _progress_bar(console):
     from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 
@@ -77,6 +91,9 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
     except ModelError as exc:
         _fail(str(exc))
     check_outdir(out)
+    import time
+
+    started = time.time()
     result, failure = None, None
     import contextlib
 
@@ -103,23 +120,29 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
             if not quiet:
                 console.print(f"writing results.nc and summary.json{', plots' if plots else ''}"
                               f"{' and report.html' if report else ''} into {out} ...")
-            if plots and painters is not None:     # one painter writes results.nc, the others start drawing
-                from .plotting import save_result
+            try:
+                if plots and painters is not None:     # one painter writes results.nc, the others start drawing
+                    from .plotting import save_result
 
-                saved = painters.submit(result, save_result, out)
-                written = api.plot(result, out, painters=painters)
-                saved.result()
-            elif plots:     # results.nc is written while the figures are drawn
-                written = api.plot(result, out, meanwhile=lambda: result.save(out))
-            else:
-                result.save(out)
-                written = []
+                    saved = painters.submit(result, save_result, out)
+                    written = api.plot(result, out, painters=painters)
+                    saved.result()
+                elif plots:     # results.nc is written while the figures are drawn
+                    written = api.plot(result, out, meanwhile=lambda: result.save(out))
+                else:
+                    result.save(out)
+                    written = []
+            except OSError as exc:      # after the up-front check: permissions changed, disk full, ...
+                _write_failed(out, exc, started)
     if result is not None:
         console.print(f"wrote {out / 'results.nc'}, {out / 'summary.json'} and {len(written)} plot(s)")
         if report:
             from .report import write_report
 
-            console.print(f"report: {write_report(result, out, written, model=m, source=model)}")
+            try:
+                console.print(f"report: {write_report(result, out, written, model=m, source=model)}")
+            except OSError as exc:
+                _write_failed(out, exc, started)
         _print_summary(console, result)
         _print_status(console, result)
     if failure is not None:
@@ -133,11 +156,18 @@ def _print_summary(console, result):
 
     from .results import flatten, number_text
 
+    from rich.markup import escape
+
+    from .outputs import shorten
+
     table = Table(title="summary (SI units)", show_header=True)
     table.add_column("key")
     table.add_column("value", justify="right")
     table.add_column("unit")
     for k, v in flatten(result.summary).items():
+        # names are data: no rich markup read from them, and a very long one shortened (the terminal
+        # wraps a cell in a time that grows with the square of its length); summary.json has them whole
+        k = escape(shorten(k, 120))
         if k.startswith("runup.") and isinstance(v, list):
             continue              # per crank-speed bin: the table below
         unit = result.units.get(k, "")
@@ -145,7 +175,7 @@ def _print_summary(console, result):
             v = number_text(v, unit)
         elif isinstance(v, list) and len(v) > 6:
             v = f"[{len(v)} values]"
-        table.add_row(k, str(v), "" if unit == "1" else unit)
+        table.add_row(k, escape(shorten(str(v), 200)), "" if unit == "1" else unit)
     console.print(table)
     if "runup" in result.summary:
         from rich.markup import escape
@@ -201,7 +231,14 @@ def plot(outdir: Path = typer.Argument(..., help="Folder written by 'drivedyn ru
 
     if not (outdir / "results.nc").exists():
         _fail(f"{outdir}: no results.nc here (run 'drivedyn run MODEL -o {outdir}' first)")
-    files = api.plot(open_result(outdir), outdir)
+    try:
+        res = open_result(outdir)
+    except (OSError, ValueError) as exc:
+        _fail(f"{outdir}: cannot read the run's results.nc and summary.json ({' '.join(str(exc).split())[:200]})")
+    try:
+        files = api.plot(res, outdir)
+    except OSError as exc:
+        _fail(str(exc) if isinstance(exc, DrivedynError) else f"{outdir}: cannot write: {exc.strerror or exc}", code=1)
     typer.echo("\n".join(str(f) for f in files))
 
 
@@ -236,9 +273,12 @@ def examples(name: Optional[str] = typer.Argument(None, help="Example to copy ou
         src = api.example_path(name)
     except ModelError as exc:
         _fail(str(exc))
-    to.mkdir(parents=True, exist_ok=True)
-    dest = to / src.name
-    shutil.copyfile(src, dest)
+    from .outputs import make_folder, write_bytes
+
+    try:
+        dest = write_bytes(make_folder(to) / src.name, src.read_bytes())    # replaces a link, never follows it
+    except OSError as exc:
+        _fail(str(exc))
     typer.echo(str(dest))
 
 
@@ -263,6 +303,9 @@ def study(study_file: Path = typer.Argument(..., help="Study file (TOML)."),
                               plots=plots, quiet=quiet, dry_run=dry_run, prune=prune, report=report)
     except ModelError as exc:
         _fail(str(exc))
+    except OSError as exc:     # a write after the up-front check of the folder (finished cases are cached)
+        _fail(f"writing the study's outputs failed: {exc if isinstance(exc, DrivedynError) else exc.strerror or exc}; "
+              "finished cases are kept in its cases/ folder", code=1)
     except KeyboardInterrupt:
         _fail("interrupted; finished cases are kept, run the same command again to finish", code=130)
     if code:
@@ -271,18 +314,34 @@ def study(study_file: Path = typer.Argument(..., help="Study file (TOML)."),
 
 def main(argv=None):
     """Entry point; ``main(["run", "model.toml"])`` runs in-process (tests)."""
+    try:    # typer ships its own copy of click
+        from typer._click import exceptions as click_errors
+    except ImportError:
+        from click import exceptions as click_errors
+
+    code = 0
     try:
-        app(args=argv, prog_name="drivedyn", standalone_mode=True)
+        # click's own error handling would print a usage box: a mistyped option is one line here
+        rv = typer.main.get_command(app).main(args=argv, prog_name="drivedyn", standalone_mode=False)
+        code = rv if isinstance(rv, int) else 0
     except SystemExit as exc:
-        if argv is None:
-            raise
-        return exc.code or 0
+        code = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
+    except click_errors.NoArgsIsHelpError as exc:    # plain "drivedyn": the help
+        exc.show()
+        code = 0
+    except click_errors.UsageError as exc:
+        command = exc.ctx.command_path if exc.ctx is not None else "drivedyn"
+        typer.echo(f"drivedyn: error: {' '.join(exc.format_message().split())} (see '{command} --help')", err=True)
+        code = 2
+    except click_errors.ClickException as exc:
+        typer.echo(f"drivedyn: error: {' '.join(exc.format_message().split())}", err=True)
+        code = exc.exit_code
     except DrivedynError as exc:  # last resort: never a traceback for a drivedyn error
         typer.echo(f"drivedyn: error: {exc}", err=True)
-        if argv is None:
-            sys.exit(2)
-        return 2
-    return 0
+        code = 2
+    if argv is None:
+        sys.exit(code)
+    return code
 
 
 if __name__ == "__main__":

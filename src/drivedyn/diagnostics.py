@@ -32,6 +32,10 @@ CODES = {
                             "vibration grows (largest Floquet multiplier above 1)",
     "at-rest-drift": "a drive with no load moves away from its initial state",
     "tooth-separation": "the mesh force goes negative: the teeth would separate, the model assumes they stay in mesh",
+    "table-extrapolated": "a pulley runs outside the speed range of its torque_speed table: its load is "
+                          "extrapolated linearly from the table's last rows",
+    "load-delivers-power": "a pulley loaded by a torque_speed table delivers net power into the belt: a load read "
+                           "the wrong way round (the table's speed sign, or extrapolated through zero)",
     "tooth-jump": "a timing-belt tooth under the given torque climbs out of its groove (ratchets): the torque is at "
                   "or above the jump torque for the installation tension",
 }

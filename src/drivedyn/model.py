@@ -290,18 +290,46 @@ def parse_toml(text: str, source: str = "model") -> dict:
 def read_toml(path, what: str = "model") -> tuple[dict, str]:
     """(data, text) of a TOML file (a model or a study: ``what`` names it in messages)."""
     path = Path(path)
-    if not path.exists():
-        raise ModelError(f"{path}: file not found")
-    if path.is_dir():
-        raise ModelError(f"{path}: is a directory, expected a {what} file")
-    try:
-        if path.stat().st_size > MAX_BYTES:
-            raise ModelError(f"{path}: {path.stat().st_size / 1e6:.1f} MB is too large for a {what} file "
-                             f"(at most {MAX_BYTES / 1e6:g} MB)")
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ModelError(f"{path}: cannot read: {exc}") from None
+    text = read_capped(path, what)
     return parse_toml(text, str(path)), text
+
+
+def read_capped(path, what: str = "model", limit: int = MAX_BYTES) -> str:
+    """The UTF-8 text of a regular file of at most ``limit`` bytes, counted while reading (a
+    device reports size 0 and never ends; a named pipe would block the open): every failure one
+    ModelError line naming the file."""
+    import os
+    import stat
+
+    path = Path(path)
+    try:
+        st = os.stat(path)
+    except FileNotFoundError:
+        raise ModelError(f"{path}: file not found") from None
+    except OSError as exc:
+        raise ModelError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    if stat.S_ISDIR(st.st_mode):
+        raise ModelError(f"{path}: is a directory, expected a {what} file")
+    if not stat.S_ISREG(st.st_mode):
+        raise ModelError(f"{path}: not a regular file (a device, pipe or socket), expected a {what} file")
+    too_large = f"{path}: too large for a {what} file (at most {limit / 1e6:g} MB)"
+    if st.st_size > limit:
+        raise ModelError(f"{path}: {st.st_size / 1e6:.1f} MB is too large for a {what} file (at most {limit / 1e6:g} MB)")
+    try:
+        # O_NONBLOCK: if the file was swapped for a pipe since the stat, the open does not wait
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        with os.fdopen(fd, "rb") as f:
+            if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
+                raise ModelError(f"{path}: not a regular file, expected a {what} file")
+            data = f.read(limit + 1)
+    except OSError as exc:
+        raise ModelError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    if len(data) > limit:
+        raise ModelError(too_large)
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ModelError(f"{path}: cannot read: not UTF-8 text ({exc.reason} at byte {exc.start})") from None
 
 
 def loads(text: str, source: str = "model", base_dir=None):

@@ -59,13 +59,52 @@ def mark_status(fig, result) -> None:
         fig.suptitle(text, color=_COLOURS[result.status], fontsize=10, fontweight="bold")
 
 
+def literal(fig) -> None:
+    """Draw every text of ``fig`` as written: names are data, and a ``$`` in a pulley name or a
+    study value is not matplotlib math text (an unknown command in it would end the drawing).
+    The package's own labels use Unicode (mm\u00b2), not math text."""
+    from matplotlib.text import Text
+
+    for t in fig.findobj(Text):
+        t.set_parse_math(False)
+
+
+def savefig(fig, path, **kw) -> Path:
+    """``fig.savefig`` with every text literal (tick labels made while drawing too), written by
+    replacing ``path`` (never through a link there; see :mod:`drivedyn.outputs`)."""
+    import matplotlib
+
+    from .outputs import replace_write
+
+    path = Path(path)
+    literal(fig)
+    kw.setdefault("format", path.suffix.lstrip(".") or "png")
+
+    def write(tmp):
+        with matplotlib.rc_context({"text.parse_math": False}):
+            fig.savefig(tmp, **kw)
+    return replace_write(path, write)
+
+
+def save_animation(anim, path, **kw) -> Path:
+    """``anim.save`` with literal texts, written by replacing ``path`` (as :func:`savefig`)."""
+    import matplotlib
+
+    from .outputs import replace_write
+
+    def write(tmp):
+        with matplotlib.rc_context({"text.parse_math": False}):
+            anim.save(str(tmp), **kw)
+    return replace_write(path, write)
+
+
 def save(fig, path: Path, result=None, files: list | None = None, **kw) -> Path:
     """Mark the status (if ``result``), save ``fig`` to ``path`` and append it to ``files``."""
     if result is not None:
         mark_status(fig, result)
     if str(path).endswith(".png"):
         kw.setdefault("pil_kwargs", {"compress_level": 1})     # 25 % faster to write, files ~30 % larger
-    fig.savefig(path, **kw)
+    savefig(fig, path, **kw)
     if files is not None:
         files.append(Path(path))
     return Path(path)

@@ -199,9 +199,9 @@ def write_report(result, outdir, files, model=None, source="") -> Path:
         model_rows=_model_rows(model) if model is not None else [],
         model_toml=dumps(model) if model is not None else "", source=str(source),
         table=_runup_table(result.summary))
-    path = outdir / "report.html"
-    path.write_text(html, encoding="utf-8")
-    return path
+    from .outputs import write_text
+
+    return write_text(outdir / "report.html", html)
 
 
 def _case_names(ds) -> list[str]:
@@ -259,12 +259,14 @@ def write_study_report(res, study_file, outdir) -> Path:
                                 "unit": "" if v.attrs.get("units", "") == "1" else v.attrs.get("units", "")})
     params = [{"key": str(d), "value": _value(list(ds[d].values.tolist()), ""), "unit": ds[d].attrs.get("units", "")}
               for d in ds.dims if d in ds.coords]
-    text = Path(study_file).read_text() if Path(study_file).exists() else ""
+    text = ds.attrs.get("study_toml", "")      # as read (a file is read once, with its size capped)
     status = "success" if c.get("success", 0) == c.get("total", 0) else ("warning" if not any(
         st not in ("success", "warning") for st in sts) else "failed")
+    from .outputs import file_stem
+
     captions = {}
     for p in res.plots or []:
-        key = next((k for k in ds.data_vars if k.replace(".", "_").replace("/", "_") == Path(p).stem), Path(p).stem)
+        key = next((k for k in ds.data_vars if file_stem(k.replace(".", "_")) == Path(p).stem), Path(p).stem)
         unit = ds[key].attrs.get("units", "") if key in ds else ""
         captions[Path(p).name] = (f"{key}{f' ({unit})' if unit not in ('', '1') else ''} of every case against the "
                                   "study's parameters; cases that warned or failed are marked and left blank (see "
@@ -273,6 +275,6 @@ def write_study_report(res, study_file, outdir) -> Path:
                   message=f"{c.get('total', 0)} cases", diagnostics=diags, headline=results, results=[],
                   figures=_figures(res.plots, captions), model_rows=params, model_toml=text, source=str(study_file),
                   model_heading="Parameters")
-    path = Path(outdir) / "report.html"
-    path.write_text(html, encoding="utf-8")
-    return path
+    from .outputs import write_text
+
+    return write_text(Path(outdir) / "report.html", html)

@@ -70,13 +70,15 @@ class Result:
 
     def save(self, outdir) -> Path:
         """Write ``results.nc`` and ``summary.json`` into ``outdir`` (created if needed)."""
-        outdir = Path(outdir)
-        outdir.mkdir(parents=True, exist_ok=True)
+        from .outputs import make_folder, replace_write, write_text
+
+        outdir = make_folder(outdir)
         ds = self.ds.copy()
         ds.attrs.update(kind=self.kind, status=self.status, message=self.message, drivedyn_version=__version__,
                         diagnostics=json.dumps([d.to_dict() for d in self.diagnostics]))
-        ds.to_netcdf(outdir / "results.nc", engine="h5netcdf")
-        (outdir / "summary.json").write_text(json.dumps(self.summary_document(), indent=2, default=_jsonable))
+        # written by replacing (never through a link planted in the folder); strict JSON: null, not NaN
+        replace_write(outdir / "results.nc", lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))
+        write_text(outdir / "summary.json", dumps_json(self.summary_document(), indent=2))
         return outdir
 
     def summary_document(self) -> dict:
@@ -157,6 +159,12 @@ def _clean(obj):
 
 def _jsonable(obj):
     return _clean(obj)
+
+
+def dumps_json(obj, **kw) -> str:
+    """Strict JSON (RFC 8259) of ``obj``: NaN and infinities become ``null`` (a browser's
+    ``JSON.parse`` rejects ``NaN``), numpy scalars plain numbers."""
+    return json.dumps(_clean(obj), allow_nan=False, default=_jsonable, **kw)
 
 
 def variable(data, dims, units: str, long_name: str) -> xr.Variable:

@@ -97,7 +97,16 @@ def _parse(text: str, unit: str) -> float:
             return float(q.to("dimensionless").magnitude)
         return float(q.to(unit).magnitude)
     except Exception:
-        raise ModelError(f"{text!r} is not compatible with {unit!r}") from None
+        hint = ""
+        if re.search(r"(?<![A-Za-z])Nm(?![A-Za-z])", text):
+            # engineers write newton-metres as "Nm": pint (and SI) read it as nanometre
+            hint = f": 'Nm' reads as nanometre, write newton-metres as 'N*m' (e.g. '{text.replace('Nm', 'N*m')}')"
+        else:
+            try:
+                hint = f" (it reads as {q.units:~P}, a {q.dimensionality})"
+            except Exception:
+                pass
+        raise ModelError(f"{text!r} is not compatible with {unit!r}{hint}") from None
 
 
 def to_si(value, unit: str) -> float:

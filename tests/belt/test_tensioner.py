@@ -24,8 +24,9 @@ def accessory(arm=None, slider=None, **sim):
     d = to_dict(drivedyn.load(drivedyn.example_path("belt-accessory")))
     d["pulleys"][0].pop("torque_time", None)
     if arm is not None:
+        spring = {} if "spring_table" in arm else {"preload": "24 N*m", "rate": "20 N*m/rad"}   # the table is the spring
         d["pulleys"][3]["arm"] = {"pivot": [f"{PIVOT[0]} m", f"{PIVOT[1]} m"], "inertia": "1.5e-3 kg*m^2",
-                                  "preload": "24 N*m", "rate": "20 N*m/rad", **arm}
+                                  **spring, **arm}
     if slider is not None:
         d["pulleys"][3]["slider"] = {"direction": [1.0, 0.0], "mass": "0.5 kg", "preload": "340 N", **slider}
     d["simulation"] = {"duration": 0.05, **sim.pop("simulation", {})}

@@ -68,6 +68,9 @@ def run_checks(result, model, sysm, sel) -> None:
     _slip_margin(result, model, sysm, sel)
     _runup_slip(result)
     _implicit_turn(result, model, sel)
+    from .loadcheck import check_loads
+
+    check_loads(result, model, sel)
 
 
 #: in a run-up, slip beyond this against the crank over a speed bin is gross slip (creep stays < 1 %)

@@ -29,6 +29,14 @@ class Harmonic(Spec):
     amplitude: quantity("N*m")
     phase: quantity("rad") = 0.0
 
+    @field_validator("order")
+    @classmethod
+    def _order(cls, v):
+        # as the speed orders: an order above 1000 asks for steps no drive needs (and -1e29 is a typo)
+        if not 0 < v <= 1000:
+            raise ValueError(f"must lie in (0, 1000], got {v}")
+        return v
+
 
 class SpeedOrder(Spec):
     """An engine order on a prescribed speed: omega = omega_m(t) + sum (amplitude + order angle
@@ -86,6 +94,10 @@ class _Tensioner(Spec):
 
     @model_validator(mode="after")
     def _stops(self):
+        if self.spring_table is not None and (self.rate or self.preload):
+            # the table replaces the linear spring: a rate or preload beside it would be ignored
+            raise ValueError("give spring_table or preload and rate, not both (the table is the whole spring: "
+                             f"preload {self.preload:g}, rate {self.rate:g} would be ignored)")
         lo, hi = self.stops
         if not hi > lo:
             raise ValueError(f"stops must be [min, max] with max > min, got [{lo:.4g}, {hi:.4g}] (SI)")
@@ -199,6 +211,11 @@ class Pulley(Spec):
             raise ValueError(f"pulley {self.name!r}: speed_time (prescribed speed) excludes torques, loads and clutches")
         if self.speed_orders and self.speed_time is None:
             raise ValueError(f"pulley {self.name!r}: speed_orders need a prescribed mean speed (speed_time)")
+        if self.speed_orders and not any(abs(r[1]) > 0 for r in self.speed_time):
+            # an engine order is a ripple on a turning crank; at a standing crank its speed term
+            # would be a steady speed (cos of a constant angle), turning the crank at rest
+            raise ValueError(f"pulley {self.name!r}: speed_orders on a crank whose mean speed (speed_time) is 0 "
+                             "throughout: an engine order needs a turning crank")
         if not 0 < self.efficiency <= 1:
             raise ValueError(f"pulley {self.name!r}: efficiency must lie in (0, 1], got {self.efficiency}")
         if self.arm is not None and self.slider is not None:
@@ -363,7 +380,57 @@ class Model(Spec):
                              "speed orders yet; use semi-implicit")
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
             raise ValueError("output.steady_window ends after simulation.duration")
+        self._clutch_on_driver()
+        self._cost()
         return self
+
+    def _clutch_on_driver(self):
+        """An overrunning clutch or decoupler carries drive from the belt into an accessory; on the
+        pulley that drives the belt (no prescribed speed: the largest applied torque) it would
+        never pass that torque on, and the drive would stand still with status success."""
+        if any(p.speed_time is not None for p in self.pulleys):
+            return
+        peak = [max([abs(p.torque)] + [abs(r[1]) for r in (p.torque_time or [])]) for p in self.pulleys]
+        drv = max(range(len(peak)), key=peak.__getitem__)
+        p = self.pulleys[drv]
+        if p.clutch is not None and peak[drv] > 0:
+            raise ValueError(f"pulleys[{drv}].clutch: pulley {p.name!r} drives the belt (the largest applied torque, "
+                             f"{peak[drv]:g} N*m), and a {p.clutch.type} clutch only carries drive from the belt "
+                             "into an accessory: it would never pass this torque on")
+
+    def _cost(self):
+        """Samples, frames and run-up bins known from the model: refuse what would not fit."""
+        from ..limits import bytes_problem
+
+        sim, out = self.simulation, self.output
+        samples = sim.duration / out.interval
+        nk, na = len(self.pulleys), sum(p.tensioner is not None for p in self.pulleys)
+        # the recorder's doubles per sample (simulate._Recorder), about three times over once the
+        # Dataset, its derived variables and the netCDF writer hold copies
+        per_sample = 8 * (8 * nk + 2 * na + 2 * nk + 3 * len(out.segments) + 9)
+        frames = min(out.frames, samples)
+        nbytes = 3 * (samples * per_sample + frames * 5 * 8 * self.belt.segments)
+        problem = bytes_problem(nbytes, "output.interval", f"{samples:.3g} samples of {out.interval:.3g} s over "
+                                f"{sim.duration:.3g} s: a longer output.interval or a shorter simulation.duration")
+        if problem:
+            raise ValueError(problem)
+        if out.interval < 1e-9:
+            raise ValueError(f"output.interval: {out.interval:.3g} s is shorter than any belt step (at least 1e-9 s)")
+        if out.runup_bin is not None:
+            speeds = [abs(r[1]) for p in self.pulleys if p.speed_time is not None for r in p.speed_time]
+            if speeds:
+                bins = (max(speeds) - min(speeds)) / out.runup_bin
+                if bins > 10_000 or bins > samples / 4:
+                    raise ValueError(f"output.runup_bin: {out.runup_bin:.3g} rad/s makes {bins:.3g} bins of the crank's "
+                                     f"speed range, more than {min(10_000, samples / 4):.4g} (at most 10 000, and 4 "
+                                     "samples per bin): a wider bin")
+        if sim.step is not None:
+            from ..limits import steps_problem
+
+            problem = steps_problem(sim.duration / min(sim.step, out.interval), "simulation.step",
+                                    "a longer step, or leave step out for the stable one")
+            if problem:
+                raise ValueError(problem)
 
 
 def integrator(model) -> str:

@@ -619,5 +619,4 @@ def animate(ds, path, max_frames=60) -> Path:
         return []
 
     anim = FuncAnimation(fig, draw, frames=len(idx), blit=False)
-    anim.save(str(path), writer=PillowWriter(fps=10), dpi=70)
-    return Path(path)
+    return plotting.save_animation(anim, path, writer=PillowWriter(fps=10), dpi=70)

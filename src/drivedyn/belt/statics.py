@@ -121,13 +121,11 @@ CHECK_UNITS = {"steady.spans.*.tension": "N", "steady.pulleys.*.torque": "N*m", 
 
 
 def check_json(model) -> str:
-    import json
-
-    from ..results import unit_map
+    from ..results import dumps_json, unit_map
 
     data = check_data(model)
     data["units"] = unit_map(data, CHECK_UNITS)
-    return json.dumps(data, indent=1)
+    return dumps_json(data, indent=1)     # strict JSON: null where no steady state exists
 
 
 def report(model) -> str:

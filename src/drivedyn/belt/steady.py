@@ -347,7 +347,25 @@ def steady_state(model, layout: Layout | None = None, loads=None, speed=None, wi
             v = v0 * (1 + T[_entry_exit(nk, v0 >= 0)[drv][0]] / d.EA)
             if abs(v0) < 1e-12:
                 state = "at rest"
+            notes += _table_notes(pulleys, w, M, drv)
     return _solve(d, M, v, accel, state, presc, notes, with_margins)
+
+
+def _table_notes(pulleys, w, M, drv) -> list:
+    """A torque_speed table read outside its speed range at the steady speed, or a load pulley
+    that would deliver power (the run reports both as diagnostics: belt/loadcheck.py)."""
+    out = []
+    for j, p in enumerate(pulleys):
+        if not p.torque_speed or j == drv or p.clutch is not None:
+            continue
+        lo, hi = p.torque_speed[0][0], p.torque_speed[-1][0]
+        if not lo <= w[j] <= hi:
+            out.append(f"warning: pulley {p.name} runs at {w[j]:.4g} rad/s, outside its torque_speed table "
+                       f"[{lo:.4g}, {hi:.4g}] rad/s (speeds signed, counter-clockwise positive): extrapolated")
+        if M[j] * w[j] > 0:
+            out.append(f"warning: pulley {p.name}'s torque_speed load delivers {M[j] * w[j]:.4g} W into the belt: "
+                       "check the table's speed sign")
+    return out
 
 
 def _solve(d: Drive, M, v, accel, state, presc, notes, with_margins=True) -> Steady:

@@ -119,6 +119,7 @@ def _build(model, drawn, settle: bool) -> BeltSystem:
         rest = tensioner.equilibrium(model)
         model = rest.model            # centres at the equilibrium, belt.length installed
     layout = compute_layout(model)
+    _one_belt_speed(model, layout)
     init = initial_state(model, layout)
     belt, n = model.belt, model.belt.segments
     l = init.seg_length
@@ -158,10 +159,29 @@ def _build(model, drawn, settle: bool) -> BeltSystem:
         step = model.simulation.step if model.simulation.step is not None else limit
     else:
         step = model.simulation.step if model.simulation.step is not None else 0.85 * limit
-    if not model.simulation.duration / step < MAX_STEPS:
-        raise ModelError(f"the stable step is only {limit:.3g} s ({model.simulation.duration / step:.3g} steps for "
-                         f"{model.simulation.duration:g} s, over the {MAX_STEPS:.0e} allowed): check the belt's "
-                         "stiffness and damping values and the contact stiffness", field="simulation")
+    from ..limits import max_steps
+
+    steps = model.simulation.duration / min(step, model.output.interval)
+    if integrator(model) == "rkf45":
+        # explicit: a sticking segment's friction force mu N v / velocity_threshold is a damper of
+        # rate mu N / dv on its mass m = rho l, with N = T l / r on a pulley of radius r; explicit
+        # Runge-Kutta schemes are stable for h < ~2.8 m / (mu N / dv) = 2.8 rho r dv / (mu T)
+        # (the real-axis stability limit of RK4/5, Hairer & Wanner, Solving ODEs II, IV.2)
+        mu = max([model.friction.coefficient] + [z.coefficient for z in model.friction.zones])
+        r = min(p.radius for p in model.pulleys)
+        if mu > 0 and init.tension > 0:
+            h_f = 2.8 * belt.mass_per_length * r * model.friction.velocity_threshold / (mu * init.tension)
+            if model.simulation.duration / h_f > max_steps():
+                raise ModelError(f"rkf45 is explicit: the friction law's slope (mu N / velocity_threshold) limits its "
+                                 f"step to about {h_f:.2g} s, {model.simulation.duration / h_f:.2g} steps for "
+                                 f"{model.simulation.duration:g} s, more than the {max_steps():.3g} a run may take: use "
+                                 "the implicit or semi-implicit scheme, or a larger friction.velocity_threshold "
+                                 "(or set DRIVEDYN_MAX_STEPS)", field="simulation.method")
+    if not steps <= max_steps():
+        raise ModelError(f"{steps:.3g} integration steps of {step:.3g} s (stable step {limit:.3g} s) for "
+                         f"{model.simulation.duration:g} s, more than the {max_steps():.3g} a run may take: a shorter "
+                         "duration, or check the belt's stiffness and damping values and the contact stiffness "
+                         "(or set DRIVEDYN_MAX_STEPS)", field="simulation")
     sysm = BeltSystem(drawn, layout, init, B, C, P, A, span_mid, span_geo, track, step, limit, rest)
     # start from the chain's static equilibrium, so that a drive at rest stays at rest
     eq = relax(sysm, init.x, init.y, init.phi) if settle else None
@@ -171,6 +191,31 @@ def _build(model, drawn, settle: bool) -> BeltSystem:
             x, y, phi = _settle_tensioners(sysm, x, y, phi)
         sysm.init = dataclasses.replace(init, x=x, y=y, phi=phi, residual=res)
     return sysm
+
+
+#: prescribed speeds whose belt speeds differ by more than this share cannot all hold without gross
+#: slip (creep is below 2 % on any drive the belt model applies to)
+SPEED_MISMATCH = 0.05
+
+
+def _one_belt_speed(model, layout) -> None:
+    """Two pulleys with prescribed speeds set the belt speed twice: refuse them (one line) unless
+    they agree, at every row of their tables, within creep; otherwise the belt slides on one of
+    them and check would report a steady state that cannot exist."""
+    presc = [j for j, p in enumerate(model.pulleys) if p.speed_time is not None]
+    if len(presc) < 2:
+        return
+    a = presc[0]
+    for b in presc[1:]:
+        times = sorted({r[0] for j in (a, b) for r in model.pulleys[j].speed_time})
+        for t in times:
+            va, vb = (np.interp(t, *np.array(model.pulleys[j].speed_time).T) * layout.rho[j] for j in (a, b))
+            if abs(va - vb) > SPEED_MISMATCH * max(abs(va), abs(vb)) and max(abs(va), abs(vb)) > 0:
+                pa, pb = model.pulleys[a].name, model.pulleys[b].name
+                raise ModelError(f"pulleys {pa!r} and {pb!r} both have a prescribed speed (speed_time) and at "
+                                 f"t = {t:g} s they move the belt at {va:.4g} and {vb:.4g} m/s (signed along the "
+                                 "loop): the belt would slide on one of them; prescribe one and load the other",
+                                 field=f"pulleys[{b}].speed_time")
 
 
 def _settle_tensioners(sysm, x, y, phi):
@@ -323,8 +368,6 @@ def damping_depth(model, init) -> float:
 # changes span forces by < 0.5 % and slip by < 1e-4, but at 11 m/s it raises the contact losses
 # where segments land on a pulley by a third.
 ROTATION_SCALE = 3.3
-# more steps than this (days of computing at microseconds per step) means an input error
-MAX_STEPS = 1e11
 
 
 def effective_inertia(sysm) -> np.ndarray:

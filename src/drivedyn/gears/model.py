@@ -246,6 +246,20 @@ class Simulation(Spec):
             raise ValueError("start = 'ramp' needs ramp_time > 0")
         if self.step > self.duration:
             raise ValueError("step is longer than duration")
+        from ..limits import bytes_problem, steps_problem
+
+        if self.method == "rk4":
+            problem = steps_problem(self.duration / self.step, "step", "a longer step or a shorter duration")
+            if problem:
+                raise ValueError(problem)
+        # samples: every step (rk4) or duration/20000 (dopri5) unless output_interval is given;
+        # about 100 doubles a sample for a train of a few gears, three copies on the way to the file
+        interval = self.output_interval or (self.step if self.method == "rk4" else self.duration / 20000)
+        samples = self.duration / interval
+        problem = bytes_problem(3 * 800 * samples, "output_interval",
+                                f"{samples:.3g} samples: a longer output_interval or a shorter duration")
+        if problem:
+            raise ValueError(problem)
         return self
 
 

@@ -136,15 +136,24 @@ def from_series(t, force, period: float, n: int = 10) -> Harmonics:
     return _from_complex(coef[0], a - 1j * b)
 
 
+#: largest series file read (bytes): a million rows of two numbers
+SERIES_BYTES = 50_000_000
+
+
 def read_series(path) -> tuple[np.ndarray, np.ndarray]:
     """Read a CSV (or whitespace) file with columns time (s), force (N); '#' comments allowed."""
     from pathlib import Path
+
+    from ..model import read_capped
 
     p = Path(path)
     if not p.exists():
         raise ModelError(f"file {str(p)!r} not found", field="tooth_force.series")
     try:
-        text = p.read_text().replace(",", " ")
+        text = read_capped(p, "series", limit=SERIES_BYTES).replace(",", " ")
+    except ModelError as exc:
+        raise ModelError(str(exc), field="tooth_force.series") from None
+    try:
         data = np.loadtxt(text.splitlines(), comments="#", ndmin=2)
     except ValueError as exc:
         raise ModelError(f"cannot read {str(p)!r} as two numeric columns: {exc}", field="tooth_force.series") from None

@@ -74,6 +74,8 @@ def read_belt_run(path: str, span_name: str, field: str = "span.belt_results"):
     p = Path(path)
     if not p.exists():
         raise ModelError(f"file {str(p)!r} not found", field=field)
+    if not p.is_file():
+        raise ModelError(f"{str(p)!r} is not a regular file", field=field)
     try:
         ds = xr.load_dataset(p, engine="h5netcdf")
     except Exception as exc:

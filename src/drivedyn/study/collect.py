@@ -10,8 +10,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import fnmatch
-import os
-import uuid
+import json
 from pathlib import Path
 
 import numpy as np
@@ -46,7 +45,9 @@ def _kind_of(values):
 
 
 def _safe(name: str) -> str:
-    return name.replace("/", "_")  # HDF5 reads "/" as a group separator
+    from ..outputs import nc_name
+
+    return nc_name(name)  # HDF5 reads "/" as a group separator; names over 200 characters shortened
 
 
 def assemble(study, design, cases, records, cache) -> xr.Dataset:
@@ -89,7 +90,7 @@ def assemble(study, design, cases, records, cache) -> xr.Dataset:
         else:
             m = kind[1]
             arr = np.array([[np.nan] * m if v is None else [np.nan if x is None else float(x) for x in v] for v in vals])
-            data_vars[name] = (("case", f"{k}.i"), arr, attrs)
+            data_vars[name] = (("case", _safe(f"{k}.i")), arr, attrs)
         summary_keys.append(name)
     data_vars["status"] = (("case",), status, {"long_name": "case status: " + ", ".join(STATUSES)})
     data_vars["message"] = (("case",), np.array([r.get("message", "") for r in recs], dtype=object),
@@ -121,6 +122,7 @@ def assemble(study, design, cases, records, cache) -> xr.Dataset:
         study_toml=study.text, base_model_toml=dumps(study.base),
         base_model_path=str(study.base_path), sampler=sp.sampler.method,
         samples=len(cases), seed=sp.sampler.seed, parameters=", ".join(design.labels),
+        parameter_names=json.dumps(design.labels),    # exact (a name may hold a comma)
         summary_keys="\n".join(summary_keys), series=", ".join(sp.outputs.series),
         unmatched_outputs=", ".join(unmatched),
         drivedyn_version=__version__, created=_dt.datetime.now().isoformat(timespec="seconds"),
@@ -181,8 +183,6 @@ def _to_grid(ds: xr.Dataset, design) -> xr.Dataset:
 
 def write_dataset(ds: xr.Dataset, path) -> Path:
     """Write the study netCDF atomically (so a reader never sees half a file)."""
-    path = Path(path)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
-    ds.to_netcdf(tmp, engine="h5netcdf")
-    os.replace(tmp, path)
-    return path
+    from ..outputs import replace_write
+
+    return replace_write(path, lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))

@@ -22,18 +22,23 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
     from .cases import prune as prune_cache
     from .execute import prepare, run_study
 
+    from rich.markup import escape
+
     console = Console(stderr=True)
-    study, design, cases, outdir = prepare(study_file, out)
-    distinct = len({c.key for c in cases if c.toml is not None})
-    shape = " x ".join(f"{n} {k}" for k, n in zip(design.labels, design.shape)) if design.grid else f"{len(cases)} samples"
-    console.print(f"study [bold]{study.name}[/]: {study.base.kind} model {study.base_path}, "
-                  f"{study.spec.sampler.method} ({shape}) = {len(cases)} cases, {distinct} distinct models")
+    # a dry run resolves only the cases it lists (a large grid is listed in seconds)
+    study, design, cases, outdir = prepare(study_file, out, first=50 if dry_run and not prune else None)
+    total = len(design.cases)
+    distinct = (f"{len({c.key for c in cases if c.toml is not None})} distinct models" if len(cases) == total
+                else "distinct models counted when it runs")
+    shape = " x ".join(f"{n} {k}" for k, n in zip(design.labels, design.shape)) if design.grid else f"{total} samples"
+    console.print(f"study [bold]{escape(study.name)}[/]: {study.base.kind} model {escape(str(study.base_path))}, "
+                  + escape(f"{study.spec.sampler.method} ({shape}) = {total} cases, {distinct}"))
     if dry_run:
         for c in cases[:50]:
-            console.print(f"  {c.index:4d} {c.key[:12]}  " + ", ".join(f"{k}={v}" for k, v in c.values.items())
-                          + (f"  [red]invalid: {c.message}[/]" if c.toml is None else ""))
-        if len(cases) > 50:
-            console.print(f"  ... and {len(cases) - 50} more")
+            console.print(escape(f"  {c.index:4d} {c.key[:12]}  " + ", ".join(f"{k}={v}" for k, v in c.values.items()))
+                          + (f"  [red]invalid: {escape(c.message)}[/]" if c.toml is None else ""))
+        if total > 50:
+            console.print(f"  ... and {total - 50} more")
         if prune:
             n, size = prune_cache(outdir / "cases", {c.key for c in cases}, dry_run=True)
             console.print(f"--prune would remove {n} cached case(s) of other models ({size / 1e6:.1f} MB)")
@@ -69,13 +74,13 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
     bad = ~np.isin(sts, COMPLETED)
     for label, mask, colour in (("warned", sts == "warning", "yellow"), ("did not finish", bad, "red")):
         for s, m in list(zip(sts[mask], msgs[mask]))[:5]:
-            console.print(f"  [{colour}]{s}[/]: {m}")
+            console.print(f"  [{colour}]{s}[/]: {escape(str(m))}")
         if mask.sum() > 5:
             console.print(f"  ... {mask.sum() - 5} more {label} (see the status, diagnostics and message variables)")
     if prune:
         n, size = prune_cache(outdir / "cases", {c.key for c in cases})
         console.print(f"pruned {n} cached case(s) of other models ({size / 1e6:.1f} MB)")
-    console.print(f"wrote {res.path}" + (f" and {len(res.plots)} plot(s) in {Path(res.path).parent / 'plots'}" if res.plots else ""))
+    console.print(escape(f"wrote {res.path}" + (f" and {len(res.plots)} plot(s) in {Path(res.path).parent / 'plots'}" if res.plots else "")))
     if report:
         from ..report import write_study_report
 

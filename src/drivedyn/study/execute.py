@@ -10,6 +10,7 @@ cached, runs again on the next resume.
 from __future__ import annotations
 
 import os
+import tempfile
 import time
 import uuid
 from dataclasses import dataclass, field
@@ -71,17 +72,32 @@ def _executing(prefix):
     return count
 
 
-def prepare(study, out):
-    """Load, design and resolve a study; create its output folders. Returns (study, design, cases, out)."""
+def prepare(study, out, first=None):
+    """Load, design and resolve a study; create its output folders. Returns (study, design, cases, out).
+
+    ``first``: resolve only that many cases and create nothing (a dry run lists a large grid in
+    seconds: validating a case costs about a millisecond)."""
     if not isinstance(study, Study):
         study = load_study(study)
     design = make_design(study)
-    cases = resolve(study, design, overrides_of)
+    if first is not None:
+        from dataclasses import replace as _replace
+
+        cases = resolve(study, _replace(design, cases=design.cases[:first]), overrides_of)
+        return study, design, cases, Path(out) if out is not None else study.default_out()
     out = Path(out) if out is not None else study.default_out()
     cache = out / "cases"
-    cache.mkdir(parents=True, exist_ok=True)
-    if not (cache / TOKEN).exists():
-        (cache / TOKEN).write_text(uuid.uuid4().hex)
+    try:     # the up-front check of the output folder: one line before any case runs
+        if out.exists() and not out.is_dir():
+            raise NotADirectoryError(20, "the output path is a file, not a folder")
+        cache.mkdir(parents=True, exist_ok=True)
+        if not (cache / TOKEN).exists():
+            (cache / TOKEN).write_text(uuid.uuid4().hex)
+        with tempfile.TemporaryFile(dir=out):
+            pass
+    except OSError as exc:
+        raise ModelError(f"{out}: cannot write the study's output folder ({exc.strerror or exc})") from None
+    cases = resolve(study, design, overrides_of)
     return study, design, cases, out
 
 
@@ -147,7 +163,7 @@ def run_study(study, out=None, *, client=None, scheduler=None, workers=None, ret
         except KeyboardInterrupt as exc:  # keep what finished; the rest stays "missing"
             interrupted = exc
     ds = assemble(study, design, cases, records, cache)
-    path = write_dataset(ds, out / "study.nc")
+    path = write_dataset(ds, out / "study.nc")      # OutputError (one line) if the folder changed meanwhile
     for s in STATUSES:
         counts[s] = int((ds["status"].values == s).sum())
     files = []

@@ -26,6 +26,15 @@ def _label(ds, name):
     return f"{words} ({unit})" if unit else words
 
 
+def parameter_names(ds) -> list[str]:
+    """The study's parameters, exactly (``parameter_names``: JSON; older files: comma-separated)."""
+    import json
+
+    if "parameter_names" in ds.attrs:
+        return list(json.loads(ds.attrs["parameter_names"]))
+    return [p.strip() for p in ds.attrs.get("parameters", "").split(",") if p.strip()]
+
+
 def _numeric(ds, name):
     return ds[name].dtype.kind in "fiub"
 
@@ -70,7 +79,7 @@ def plot_key(ds, key, fig=None):
     if not _numeric(ds, key):
         raise TypeError(f"{key!r} is not numeric and cannot be plotted")
     var = ds[key]
-    params = [p.strip() for p in ds.attrs.get("parameters", "").split(",") if p.strip()]
+    params = parameter_names(ds)
     fig = fig or Figure(figsize=(6.4, 4.8), layout="constrained")
     ok, marks = _masks(ds)
     grid = "case" not in var.dims
@@ -169,11 +178,14 @@ def plot_study(ds, outdir, keys=None) -> list[Path]:
         chosen = [k for k in available if any(fnmatch.fnmatchcase(k.lower(), p.lower()) for p in keys)]
     if not chosen or not np.isin(ds["status"].values, ("success", "warning")).any():
         return []
-    outdir.mkdir(parents=True, exist_ok=True)
+    from ..outputs import file_stem, make_folder
+    from ..plotting import savefig
+
+    make_folder(outdir)
     files = []
     for k in chosen:
         fig = plot_key(ds, k)
-        path = outdir / f"{k.replace('.', '_').replace('/', '_')}.png"
-        fig.savefig(path, dpi=110)
+        path = outdir / f"{file_stem(k.replace('.', '_'))}.png"
+        savefig(fig, path, dpi=110)
         files.append(path)
     return files

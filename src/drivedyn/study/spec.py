@@ -17,6 +17,7 @@ in ``belt.pretension`` costs a second, not a cluster start::
 from __future__ import annotations
 
 import difflib
+import math
 from pathlib import Path
 from typing import Any, Literal, Optional, Union
 
@@ -25,6 +26,22 @@ from pydantic import ValidationError, field_validator, model_validator
 from ..errors import ModelError
 from ..model import Spec, field_unit, format_validation_error, from_dict, quantity, read_toml, schema_step, set_path, to_dict
 from ..model import unwrap as _unwrap
+
+#: most cases a study may have (a grid's product of points, or samples): 100 000 cases of the
+#: fastest kind (check mode, ~5 ms each) take minutes; more is a typo or a job for several studies
+MAX_CASES = 100_000
+CASES_VARIABLE = "DRIVEDYN_MAX_CASES"
+
+
+def max_cases() -> int:
+    """The case limit: :data:`MAX_CASES`, or the environment's ``DRIVEDYN_MAX_CASES``."""
+    import os
+
+    try:
+        return max(1, int(float(os.environ.get(CASES_VARIABLE, MAX_CASES))))
+    except ValueError:
+        return MAX_CASES
+
 
 #: accepted sampler names -> canonical name (the aliases are what people type)
 SAMPLERS = {
@@ -68,6 +85,9 @@ class Parameter(Spec):
     def _num(cls, v):
         if v is not None and v < 1:
             raise ValueError(f"must be >= 1, got {v}")
+        if v is not None and v > max_cases():
+            raise ValueError(f"{v} points are more than the {max_cases()} cases a study may have "
+                             f"(set {CASES_VARIABLE} to allow more)")
         return v
 
     @model_validator(mode="after")
@@ -94,8 +114,11 @@ class Parameter(Spec):
 
     @property
     def label(self) -> str:
-        """The dimension / coordinate name in the study Dataset."""
-        return self.name or self.paths[0]
+        """The dimension / coordinate name in the study Dataset (a '/' in it, which netCDF reads as
+        a group separator, written as '_'; a very long one shortened with a stable hash)."""
+        from ..outputs import nc_name
+
+        return nc_name(self.name or self.paths[0])
 
 
 class Sampler(Spec):
@@ -121,6 +144,9 @@ class Sampler(Spec):
             raise ValueError("sampler.samples does not apply to a grid (its size is the product of the parameters' num)")
         if self.method != "grid" and (self.samples is None or self.samples < 1):
             raise ValueError(f"the {self.method} sampler needs samples = N (>= 1)")
+        if self.samples is not None and self.samples > max_cases():
+            raise ValueError(f"samples: {self.samples} cases are more than the {max_cases()} a study may have "
+                             f"(set {CASES_VARIABLE} to allow more)")
         return self
 
 
@@ -178,7 +204,25 @@ class StudySpec(Spec):
                     raise ValueError(f"parameters[{k}]: a normal distribution (mean/std) needs a sampled design, not a grid")
                 if p.range is not None and p.num is None:
                     raise ValueError(f"parameters[{k}]: a range on a grid needs num (number of points)")
+            # the grid's size before anything is built: 1e6 cases would be minutes of validation
+            # and gigabytes of case records before the first one runs
+            n = math.prod(len(p.values) if p.values is not None else p.num for p in self.parameters)
+            if n > max_cases():
+                raise ValueError(f"parameters: the grid has {n:.4g} cases, more than the {max_cases()} a study may have "
+                                 f"(fewer points, a sampled design, or set {CASES_VARIABLE} to allow more)")
         return self
+
+    @field_validator("out")
+    @classmethod
+    def _out(cls, v):
+        # a study file names a folder under the working folder; anywhere else takes the command
+        # line's -o (a study file from someone else must not choose where files are written)
+        if v is not None:
+            p = Path(v)
+            if not v.strip() or p.is_absolute() or ".." in p.parts or v.startswith("~"):
+                raise ValueError(f"must be a folder under the working folder, got {v!r} (an absolute path or '..' "
+                                 "is given on the command line: drivedyn study FILE -o FOLDER)")
+        return v
 
 
 class Study:
@@ -208,10 +252,13 @@ class Study:
         return self.spec.name or (self.path.stem if self.path else "study")
 
     def default_out(self) -> Path:
-        """Output folder: ``out`` of the study file, else the study file's stem (both relative to cwd)."""
+        """Output folder: ``out`` of the study file, else the study file's stem (both relative to
+        cwd; ``out`` is validated to stay under it)."""
+        from ..outputs import file_stem
+
         if self.spec.out:
             return Path(self.spec.out)
-        return Path(self.path.stem if self.path else "study")
+        return Path(file_stem(self.path.stem) if self.path else "study")
 
 
 def load_study(path) -> Study:

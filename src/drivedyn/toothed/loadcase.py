@@ -54,6 +54,12 @@ def check_load(model, pair) -> None:
     """Checks that need the pair; ValueError with one line naming the field."""
     ld = model.load
     ch = chain_of(model, pair)
+    if pair.teeth * ld.wrap / (2 * np.pi) + 1e-9 < 1:
+        raise ValueError(f"load.wrap: {np.degrees(ld.wrap):.4g} deg holds no whole tooth of the {pair.teeth}-tooth "
+                         f"pulley (one tooth spans {360 / pair.teeth:.4g} deg): no tooth would carry the load")
+    if ld.clearance is not None and ld.clearance >= ch.pitch / 2:
+        raise ValueError(f"load.clearance: {ld.clearance * 1e3:.4g} mm of sideways play is at least half the groove "
+                         f"spacing {ch.pitch * 1e3:.4g} mm: the tooth would sit in the next groove")
     nodes = ch.teeth + (ch.teeth - 1) * (ch.land_nodes if ch.friction > 0 else 0)
     if nodes > MAX_NODES:
         raise ValueError(f"load: {ch.teeth} teeth in mesh x {ch.land_nodes} land_nodes make {nodes} nodes, "
@@ -74,7 +80,20 @@ def check_load(model, pair) -> None:
 
 
 def run_load(model, pair, progress=None):
-    """(data variables, coordinates, summary, diagnostics as (code, text, quantity, value, limit, unit))."""
+    """(data variables, coordinates, summary, diagnostics as (code, text, quantity, value, limit, unit)).
+    A load sharing that does not converge (extreme stiffness ratios) is a failed solve, one line."""
+    try:
+        return _run_load(model, pair, progress)
+    except RuntimeError as exc:
+        from ..errors import SolverError
+
+        ch = chain_of(model, pair)
+        raise SolverError(f"{exc}: tooth stiffness {ch.tooth_stiffness:.3g} N/m against cord stiffness "
+                          f"{ch.cord_stiffness:.3g} N (check load.tooth_stiffness or tooth_modulus and "
+                          "cord_stiffness)") from None
+
+
+def _run_load(model, pair, progress=None):
     from ..results import variable
 
     ld = model.load

@@ -112,7 +112,7 @@ def plot_interference(ds):
     axes = fig.subplots(3, 1, sharex=True)
     deg = np.degrees(ds["angle"].values)
     axes[0].plot(deg, ds["overlap_area"] * 1e6, color="k")
-    axes[0].set_ylabel("overlap area (mm$^2$)")
+    axes[0].set_ylabel("overlap area (mm²)")
     for key, c in (("leading", "C0"), ("trailing", "C3")):
         axes[1].plot(deg, ds[f"penetration_{key}"] * MM, color=c, label=f"{key} flank")
         axes[2].plot(deg, ds[f"clearance_{key}"] * MM, color=c, label=f"{key} flank")
@@ -175,7 +175,7 @@ def plot_maps(ds):
     axes = fig.subplots(1, 2)
     z = ds["map_teeth"].values
     e = ds["map_pitch_error"].values * MM
-    for ax, var, scale, label in ((axes[0], "map_overlap_area", 1e6, "max overlap area (mm$^2$)"),
+    for ax, var, scale, label in ((axes[0], "map_overlap_area", 1e6, "max overlap area (mm²)"),
                                   (axes[1], "map_penetration", MM, "max penetration (mm)")):
         val = ds[var].values * scale
         # overlap cannot be negative: the scale starts at 0 with 0 the palest colour (autoscaled,
@@ -204,7 +204,7 @@ def plot_comparison(ds):
     axes = fig.subplots(1, 2, sharey=True)
     labels = [str(x) for x in ds["pair"].values]
     y = np.arange(len(labels))
-    for ax, var, scale, colour, unit in ((axes[0], "compare_max_overlap_area", 1e6, "C3", "mm$^2$"),
+    for ax, var, scale, colour, unit in ((axes[0], "compare_max_overlap_area", 1e6, "C3", "mm²"),
                                          (axes[1], "compare_max_penetration", MM, "C0", "mm")):
         val = ds[var].values * scale
         ax.barh(y, val, color=colour)
@@ -214,7 +214,7 @@ def plot_comparison(ds):
         ax.set_xlim(0, 1.3 * top)
     axes[0].set_yticks(y, labels)
     axes[0].invert_yaxis()
-    axes[0].set_xlabel("max overlap area (mm$^2$)")
+    axes[0].set_xlabel("max overlap area (mm²)")
     axes[1].set_xlabel("max penetration (mm)")
     axes[0].set_title("largest overlap area")
     axes[1].set_title("largest penetration")
@@ -292,7 +292,9 @@ def animate(ds, path, frames=48, fps=12):
         ax.set_xlabel("x (mm)")
         return []
 
-    FuncAnimation(fig, frame, frames=frames, blit=False).save(path, writer=PillowWriter(fps=fps))
+    from .. import plotting
+
+    plotting.save_animation(FuncAnimation(fig, frame, frames=frames, blit=False), path, writer=PillowWriter(fps=fps))
     return path
 
 

@@ -1,0 +1,59 @@
+"""What a run may cost, known before it starts: integration steps and result bytes.
+
+A model that asks for more than these limits is refused when it is read (or, for the belt's step,
+when the drive is assembled, before the solve), with one line giving the estimate, the limit and
+how to change it. The limits are set for a workstation; a batch machine raises them through the
+environment (``DRIVEDYN_MAX_STEPS``, ``DRIVEDYN_MAX_BYTES``; studies: ``DRIVEDYN_MAX_CASES``).
+docs/limits.md lists them.
+"""
+from __future__ import annotations
+
+import os
+
+#: most integration steps of one run: 1e9 steps of the belt's semi-implicit scheme (3-10 us each
+#: on the examples) are one to three hours; 1e-12 s steps for a second would be days
+MAX_STEPS = 1e9
+#: most bytes of arrays a run may hold (its samples and frames, as estimated from the model):
+#: 2 GB, or half of the machine's memory if that is less
+MAX_BYTES = 2e9
+
+
+def _env(name: str, default: float) -> float:
+    try:
+        v = float(os.environ.get(name, default))
+    except ValueError:
+        return default
+    return v if v > 0 else default
+
+
+def max_steps() -> float:
+    return _env("DRIVEDYN_MAX_STEPS", MAX_STEPS)
+
+
+def max_bytes() -> float:
+    limit = _env("DRIVEDYN_MAX_BYTES", MAX_BYTES)
+    try:
+        memory = os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+        if "DRIVEDYN_MAX_BYTES" not in os.environ and memory > 0:
+            limit = min(limit, 0.5 * memory)
+    except (ValueError, OSError, AttributeError):
+        pass
+    return limit
+
+
+def steps_problem(steps: float, what: str, fix: str) -> str | None:
+    """None if ``steps`` fits the limit, else the one-line refusal."""
+    limit = max_steps()
+    if steps <= limit:
+        return None
+    return (f"{what}: {steps:.3g} integration steps, more than the {limit:.3g} a run may take ({fix}, "
+            "or set DRIVEDYN_MAX_STEPS)")
+
+
+def bytes_problem(nbytes: float, what: str, fix: str) -> str | None:
+    """None if ``nbytes`` fits the limit, else the one-line refusal."""
+    limit = max_bytes()
+    if nbytes <= limit:
+        return None
+    return (f"{what}: the results would take about {nbytes / 1e9:.3g} GB, more than the {limit / 1e9:.3g} GB "
+            f"allowed ({fix}, or set DRIVEDYN_MAX_BYTES)")
