@@ -17,6 +17,7 @@ from typing import Literal, Optional
 from pydantic import field_validator, model_validator
 
 from ..model import Spec, check_name, quantity, table_rows
+from .criteria import Criteria
 
 Length = quantity("m")
 Time = quantity("s")
@@ -342,6 +343,7 @@ class Model(Spec):
     gravity: quantity("m/s^2") = 9.81
     simulation: Simulation = Simulation()
     output: Output = Output()
+    criteria: Criteria = Criteria()               # design limits of the verdict (criteria.py, docs/criteria.md)
 
     @model_validator(mode="after")
     def _pulleys(self):
