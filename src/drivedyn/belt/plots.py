@@ -318,32 +318,59 @@ def draw_drive(ds, frame, ax, vmax=None):
     return sc
 
 
-def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), rpm_max=None):
-    """Campbell diagram: the drive's rotational modes (horizontal) against the orders of the
-    driver's rotation (k x driver speed); crossings are resonances a run-up passes through."""
+def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), rpm_max=None, flap=None,
+                  speed_range=None, own_orders=None):
+    """Campbell diagram: the drive's rotational modes (horizontal) and the spans' first flap
+    frequencies (``flap``: {span: (rpm, Hz)}, belt/flap.py) against the orders of the driver's
+    rotation (k x driver speed); crossings inside ``speed_range`` (rpm, shaded) are resonances
+    the run passes through. ``own_orders``: {label: order in driver orders} of accessories'
+    own excitations (an A/C compressor's pistons)."""
     ax = plotting.ax_or_new(ax)
     w = np.abs(ds["speed"].sel(pulley=driver).values)
     rpm_run = float(w.max()) * 30 / np.pi if len(w) else 0.0
     top_rpm = rpm_max or max(1.25 * rpm_run, 1.0)
-    f_top = max([1.1 * f for f in frequencies_hz] + [orders[-1] * top_rpm / 60])
+    orders = sorted(set(orders))
+    flap = flap or {}
+    f_flap = [float(np.max(f)) for _, f in flap.values() if len(f)]
+    f_top = max([1.1 * f for f in list(frequencies_hz) + f_flap] + [max(orders or [1]) * top_rpm / 60 * 0.6])
+    if speed_range is not None:
+        ax.axvspan(*speed_range, color="0.9", zorder=0, label=f"run: {speed_range[0]:.0f}-{speed_range[1]:.0f} rpm")
     for f in frequencies_hz:
+        if f > f_top:
+            continue
         ax.axhline(f, color="C0", lw=1.2)
         ax.text(top_rpm * 0.99, f, f" {f:.1f} Hz", va="bottom", ha="right", fontsize=8, color="C0")
     n = np.array([0.0, top_rpm])
-    for k in orders:
-        ax.plot(n, k * n / 60, color="0.5", lw=0.8, ls="--")
-        ax.text(top_rpm, k * top_rpm / 60, f" {k}", fontsize=8, color="0.4", va="center")
+    lines = [(k, f"{k:g}", "0.4") for k in orders] + [(k, lab, "C4") for lab, k in (own_orders or {}).items()]
+    for k, lab, col in lines:
+        ax.plot(n, k * n / 60, color=col, lw=0.8, ls="--")
+        y = k * top_rpm / 60
+        if y <= f_top:
+            ax.text(top_rpm, y, f" {lab}", fontsize=8, color=col, va="center")
+        else:
+            ax.text(60 * f_top / k, f_top, f"{lab} ", fontsize=8, color=col, va="top", ha="right")
         for f in frequencies_hz:   # resonance: order k at the speed where k n / 60 = f
             if 60 * f / k <= top_rpm:
                 ax.plot(60 * f / k, f, "o", color="C3", ms=5)
-    if rpm_run > 0:
-        ax.axvline(rpm_run, color="k", lw=0.8, ls=":", label=f"{driver}: {rpm_run:.0f} rpm (run's largest)")
-        ax.legend(loc="upper left", fontsize=8)
+    from .flap import crossings
+
+    for i, (span, (rpm, f)) in enumerate(flap.items()):
+        rpm, f = np.asarray(rpm), np.asarray(f)
+        style = dict(color=f"C{(i + 1) % 10}", lw=1.6)
+        if len(rpm) > 1:
+            ax.plot(rpm, f, label=f"flap {span}", **style)
+        else:
+            ax.axhline(f[0], ls="-.", label=f"flap {span}", **style)
+        fl = {"speed_rpm": rpm.tolist(), "spans": {span: {"f1": f.tolist()}}}
+        for x in crossings(fl, orders, speed_range or (0, top_rpm)):
+            ax.plot(x["rpm"], x["frequency_hz"], "s", mfc="none", mec="C3", ms=7)
     ax.set_xlim(0, top_rpm * 1.08)
     ax.set_ylim(0, f_top)
     ax.set_xlabel(f"{driver} speed (rpm)")
     ax.set_ylabel("frequency (Hz)")
-    ax.set_title("Campbell diagram: rotational modes (spans EA/L) and orders of the driver (dashed)")
+    ax.set_title("Campbell diagram: rotational modes (blue, spans EA/L), span flap f1 (coloured) and the driver's "
+                 "orders (dashed)", fontsize=9)
+    ax.legend(loc="upper left", fontsize=7, ncol=2)
     ax.grid(alpha=0.3)
     return ax
 
@@ -390,11 +417,27 @@ def _figures(ds, driver):
         from ..model import loads
         from .modes import modes
 
-        freqs = modes(loads(ds.attrs["model_toml"])).frequencies_hz
-        if not freqs:
+        from .criteria import speed_range
+        from .flap import excited_orders
+
+        model = loads(ds.attrs["model_toml"])
+        freqs = modes(model).frequencies_hz
+        flap = {}
+        if "flap_frequency" in ds:
+            for sp in ds["flap_span"].values.tolist():
+                flap[sp] = (ds["flap_rpm"].values, ds["flap_frequency"].sel(flap_span=sp, flap_mode=1).values)
+        if not freqs and not flap:
             return None
-        fig, ax = _fig(1, 4)
-        plot_campbell(ds, freqs, driver, ax=ax[0])
+        orders = excited_orders(model, driver, extra=model.criteria.flap_orders) or [1, 2, 3, 4]
+        # an accessory's own orders (on its own angle) in orders of the driver: k r_driver / r_accessory
+        names = ds["pulley"].values.tolist()
+        r = ds["pulley_radius"].values
+        jd = names.index(driver) if driver in names else 0
+        own = {f"{p.name} {h.order:g}": h.order * r[jd] / r[names.index(p.name)]
+               for p in model.pulleys for h in (getattr(p, "harmonics", None) or []) if p.name in names}
+        fig, ax = _fig(1, 5)
+        plot_campbell(ds, freqs, driver, ax=ax[0], orders=orders, flap=flap, own_orders=own,
+                      speed_range=speed_range(ds, {}, driver))
         return fig
 
     def runup():
