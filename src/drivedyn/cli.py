@@ -241,6 +241,25 @@ def check(model: Path = typer.Argument(..., help="Model file (TOML)."),
 
 
 @app.command()
+def schema(kind: str = typer.Argument(..., help="Model kind: belt-drive, gear-train, span-stability, toothed-mesh."),
+           out: Optional[Path] = typer.Option(None, "-o", "--out", help="Write to this file instead of printing.")):
+    """Print the JSON Schema of a model kind (for TOML editors: Taplo / Even Better TOML)."""
+    import json
+
+    from .schema import json_schema
+
+    try:
+        text = json.dumps(json_schema(kind), indent=2)
+    except ModelError as exc:
+        _fail(str(exc))
+    if out is None:
+        typer.echo(text)
+    else:
+        out.write_text(text + "\n", encoding="utf-8")
+        typer.echo(str(out))
+
+
+@app.command()
 def plot(outdir: Path = typer.Argument(..., help="Folder written by 'drivedyn run'.")):
     """(Re)draw the standard plots of a finished run."""
     from . import api
