@@ -45,3 +45,105 @@ def json_schema(kind: str) -> dict:
     s["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     s["title"] = f"drivedyn model file, kind = \"{kind}\""
     return s
+
+
+def _type_text(ann) -> str:
+    import typing
+
+    from pydantic import BaseModel
+
+    from .model import unwrap
+
+    core, _ = unwrap(ann)
+    origin = typing.get_origin(core)
+    if isinstance(core, type) and issubclass(core, BaseModel):
+        return f"table [{core.__name__}](#{core.__name__.lower()})"
+    if origin in (list, tuple):
+        args = [a for a in typing.get_args(core) if a is not Ellipsis]
+        inner = ", ".join(dict.fromkeys(_type_text(a) for a in args)) or "any"
+        return f"list of {inner}" if origin is list else f"[{inner}]"
+    if origin is typing.Literal:
+        return " / ".join(f'`"{a}"`' if isinstance(a, str) else f"`{a}`" for a in typing.get_args(core))
+    if origin in (typing.Union,) or str(origin) == "<class 'types.UnionType'>":
+        return " or ".join(_type_text(a) for a in typing.get_args(core) if a is not type(None))
+    if core is list:
+        return "row [x, y] (numbers or strings with units)"
+    return {float: "number", int: "integer", str: "string", bool: "true / false"}.get(core, str(core).replace("typing.", ""))
+
+
+def reference_markdown(kind: str) -> str:
+    """The model-file reference of ``kind`` as Markdown tables, one per table of the file, from
+    the pydantic models (field, type, SI unit, default, bounds) and their docstrings."""
+    import inspect
+    import typing
+
+    from pydantic import BaseModel
+    from pydantic_core import PydanticUndefined
+
+    from .model import unwrap
+
+    root = analysis(kind).Model
+    seen, order = set(), []
+
+    def collect(cls):
+        if cls in seen:
+            return
+        seen.add(cls)
+        order.append(cls)
+        for f in cls.model_fields.values():
+            stack = [f.annotation]
+            while stack:
+                a = stack.pop()
+                core, _ = unwrap(a)
+                if isinstance(core, type) and issubclass(core, BaseModel):
+                    collect(core)
+                else:
+                    stack += [x for x in typing.get_args(core) if x is not Ellipsis and x is not type(None)]
+
+    collect(root)
+    out = []
+    for cls in order:
+        name = "top level" if cls is root else cls.__name__
+        out.append(f"## {name}" if cls is root else f"## {cls.__name__}")
+        doc = inspect.getdoc(cls) or ""
+        if doc and not doc.startswith(("Base", "A base")):
+            out += ["", doc.split("\n\n")[0].replace("\n", " ")]
+        out += ["", "| field | type | unit (SI) | default | bounds |", "|---|---|---|---|---|"]
+        for fname, f in cls.model_fields.items():
+            unit = ""
+            for m in f.metadata:
+                e = getattr(m, "json_schema_extra", None)
+                if isinstance(e, dict) and e.get("unit"):
+                    unit = e["unit"]
+            if not unit and isinstance(f.json_schema_extra, dict):
+                unit = f.json_schema_extra.get("unit", "")
+            unit = unit or (unwrap(f.annotation)[1] or "")
+            if not unit:        # a tuple whose items carry one unit (a centre: (m, m)), a table's columns
+                items = {unwrap(a)[1] for a in typing.get_args(unwrap(f.annotation)[0]) if a is not Ellipsis}
+                unit = items.pop() or "" if len(items) == 1 else ""
+            if not unit:
+                from .report import TABLE_UNITS
+
+                unit = TABLE_UNITS.get(fname, "")
+            if f.is_required():
+                default = "**required**"
+            elif f.default is None:
+                default = "none"
+            elif f.default is PydanticUndefined:
+                default = ""
+            elif isinstance(f.default, BaseModel):
+                default = "(the table's defaults)"
+            else:
+                default = f"`{f.default!r}`".replace("|", "\\|")
+            bounds = []
+            for m in f.metadata:
+                for attr, sym in (("gt", ">"), ("ge", ">="), ("lt", "<"), ("le", "<=")):
+                    v = getattr(m, attr, None)
+                    if v is not None:
+                        bounds.append(f"{sym} {v:g}")
+            t = _type_text(f.annotation)
+            if unit and t.startswith("number"):
+                t = "number or string with unit"
+            out.append(f"| `{fname}` | {t} | {unit} | {default} | {', '.join(bounds)} |")
+        out.append("")
+    return "\n".join(out)
