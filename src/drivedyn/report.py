@@ -107,7 +107,7 @@ def _model_rows(model) -> list[dict]:
     return rows
 
 
-#: columns of the table fields (README, model-file fields), whose schema carries no unit
+#: columns of the table fields (the model-file reference), whose schema carries no unit
 TABLE_UNITS = {"torque_time": "rows [s, N*m]", "torque_speed": "rows [rad/s, N*m]", "speed_time": "rows [s, rad/s]"}
 
 

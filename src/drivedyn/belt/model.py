@@ -98,7 +98,7 @@ class _Tensioner(Spec):
 
 class Arm(_Tensioner):
     """Automatic tensioner: the pulley on an arm that swings about a fixed pivot (seed 000's
-    tensioner idler, made dynamic; design note fead.md). Travel and stops in rad."""
+    tensioner idler, made dynamic). Travel and stops in rad."""
 
     pivot: tuple[Length, Length]
     inertia: quantity("kg*m^2", gt=0)            # arm about the pivot, the pulley's mass included
