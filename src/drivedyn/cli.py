@@ -194,11 +194,12 @@ def _print_summary(console, result):
         if k.startswith(("runup.", "flap.")) and isinstance(v, list):
             continue              # per crank-speed bin: the run-up table, summary.json
         unit = result.units.get(k, "")
+        numeric = isinstance(v, (int, float, list, tuple)) and not isinstance(v, bool)
         if isinstance(v, float):
-            v = number_text(v, unit)
+            v = number_text(v, unit if "speed" in k else "")      # rpm beside speeds, not beside frequencies
         elif isinstance(v, (list, tuple)):
             v = compact(v)
-        table.add_row(k, str(v), "" if unit == "1" else unit)
+        table.add_row(k, str(v), "" if unit == "1" or not numeric else unit)
     _print_table(console, table)
 
 

@@ -144,9 +144,34 @@ def _belt(result) -> list[dict]:
             rows.append([str(i + 1), f"{f:.1f}", "; ".join(cross) or "-"])
         out.append({"title": "rotational modes (linearised, spans EA/L)", "head": ["mode", "frequency (Hz)",
                     f"crossed by the crank's orders in {lo:.0f}-{hi:.0f} rpm"], "rows": rows, "note": ""})
+    inst = _installation(s, ds)
+    if inst:
+        out.append(inst)
     if ru:
         out.append(runup_table(s))
     return out
+
+
+def _installation(s, ds) -> dict | None:
+    """check's installation table: what a tension meter should read on each span at rest."""
+    if "model_toml" not in ds.attrs:
+        return None
+    from .belt.installation import installation_table
+    from .belt.layout import compute_layout
+    from .model import loads
+
+    model = loads(ds.attrs["model_toml"])
+    rest = [t.get("rest_tension") for t in s.get("tensioners", {}).values() if t.get("rest_tension")]
+    T0 = rest[0] if rest else model.belt.pretension
+    if not T0:
+        return None
+    tb = installation_table(model, T0, compute_layout(model))
+    rows = [[n + ("  <- measure here" if n == tb["measure_on"] else ""), f"{e['length'] * 1e3:.1f}",
+             f"{e['tension']:.0f}", f"{e['frequency']:.1f}", f"{e['band'][0]:.1f} .. {e['band'][1]:.1f}"]
+            for n, e in tb["spans"].items()]
+    return {"title": "installation (belt at rest, as drivedyn check gives it)",
+            "head": ["span", "length (mm)", "tension (N)", "f1 (Hz)", f"band for +-{100 * tb['tolerance']:g} % (Hz)"],
+            "rows": rows, "note": "the frequency a tension meter reads on each span at the installation tension"}
 
 
 def runup_table(s) -> dict:

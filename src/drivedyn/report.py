@@ -76,7 +76,8 @@ def _rows(flat: dict, units: dict) -> list[dict]:
     for k, v in flat.items():
         unit = units.get(k, "")
         numeric = isinstance(v, (int, float, list, tuple)) and not isinstance(v, bool)
-        out.append({"key": k, "value": _value(v, unit), "unit": "" if unit == "1" or not numeric else unit})
+        out.append({"key": k, "value": _value(v, unit if "speed" in k else ""),
+                    "unit": "" if unit == "1" or not numeric else unit})
     return out
 
 
