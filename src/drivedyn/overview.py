@@ -38,7 +38,8 @@ def tables(result) -> list[dict]:
 def _f(v, fmt="{:.4g}"):
     if v is None or (isinstance(v, float) and not math.isfinite(v)):
         return "-"
-    return fmt.format(v + 0.0)
+    text = fmt.format(v + 0.0)
+    return text[1:] if text.startswith("-") and not any(c in "123456789" for c in text) else text   # no "-0"
 
 
 def _range(a, b, fmt="{:.0f}"):

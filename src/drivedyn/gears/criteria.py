@@ -9,8 +9,13 @@ speed sweep, if one was run. K_v itself is judged only against a limit the user 
 """
 from __future__ import annotations
 
+import math
+
 from ..criteria import Criterion
 from ..model import Spec
+
+
+RPM = 30 / math.pi
 
 
 class Criteria(Spec):
@@ -44,5 +49,6 @@ def evaluate(model, result):
         ranges = [(n, r) for n, e in sweep.items() for r in (e.get("unstable_speeds", []) + e.get("separation_speeds", []))]
         out.append(Criterion("sweep_unstable_ranges", len(ranges), c.sweep_unstable_ranges_max, "", "max",
                              "unstable or separating speed ranges in the sweep",
-                             "; ".join(f"{n} {a:.4g}-{b:.4g} rad/s" for n, (a, b) in ranges[:4])))
+                             "; ".join(f"{n} {a * RPM:.0f}-{b * RPM:.0f} rpm" for n, (a, b) in ranges[:4])
+                             + (f"; {len(ranges) - 4} more" if len(ranges) > 4 else "")))
     return out, skipped
