@@ -3,6 +3,7 @@ against closed forms, conservation and the dynamic model's measured numbers."""
 import json
 import math
 
+import numpy as np
 import pytest
 from scipy.integrate import quad
 from scipy.optimize import brentq
@@ -220,18 +221,31 @@ def test_gross_slip_named_at_low_pretension():
 
 
 def test_two_pulley_mode_closed_form():
-    m = make(**{"pulleys.0.inertia": 0.01, "pulleys.1.inertia": 0.03})
+    # massless belt: w^2 = 2 (EA / L) r^2 (1 / J1 + 1 / J2)
+    m = make(**{"pulleys.0.inertia": 0.01, "pulleys.1.inertia": 0.03, "belt.mass_per_length": 1e-12})
     md = modes(m)
     EA, L, r = 1.52e5, 0.515, 0.027
     w2 = 2 * (EA / L) * r * r * (1 / 0.01 + 1 / 0.03)
     assert md.rigid_modes == 1 and len(md.frequencies_hz) == 1
-    assert md.frequencies_hz[0] == pytest.approx(math.sqrt(w2) / (2 * math.pi), rel=1e-10)
+    assert md.frequencies_hz[0] == pytest.approx(math.sqrt(w2) / (2 * math.pi), rel=1e-8)
     # kinetic-energy shares: J phi^2 with phi1 / phi2 = -J2 / J1 (momentum of the rigid mode zero)
     part = md.participation[0]
-    assert part["driver"] == pytest.approx(0.75, rel=1e-9) and part["driven"] == pytest.approx(0.25, rel=1e-9)
+    assert part["driver"] == pytest.approx(0.75, rel=1e-6) and part["driven"] == pytest.approx(0.25, rel=1e-6)
     # a prescribed-speed driver is held: one pulley on two springs, w^2 = 2 (EA/L) r^2 / J2
-    held = make(**{"pulleys.0.speed_time": [[0.0, -10.0]], "pulleys.1.inertia": 0.03})
-    assert modes(held).frequencies_hz[0] == pytest.approx(math.sqrt(2 * EA / L * r * r / 0.03) / (2 * math.pi), rel=1e-10)
+    held = make(**{"pulleys.0.speed_time": [[0.0, -10.0]], "pulleys.1.inertia": 0.03, "belt.mass_per_length": 1e-12})
+    assert modes(held).frequencies_hz[0] == pytest.approx(math.sqrt(2 * EA / L * r * r / 0.03) / (2 * math.pi), rel=1e-8)
+    # with the belt's mass: each span a bar whose ends move with the pulley surfaces (kinetic energy
+    # m_s / 6 (v1^2 + v1 v2 + v2^2)), half the belt's wraps on each pulley: a 2 x 2 eigenproblem
+    heavy = make(**{"pulleys.0.inertia": 0.01, "pulleys.1.inertia": 0.03})
+    rho = heavy.belt.mass_per_length
+    lay = compute_layout(heavy)
+    ms = sum(rho * sp.length for sp in lay.spans)
+    mw = [rho * r * w for w in lay.wrap]
+    Mb = ms / 6 * r * r * np.array([[2.0, 1.0], [1.0, 2.0]]) + np.diag([0.01 + mw[0] * r * r, 0.03 + mw[1] * r * r])
+    Kb = 2 * EA / L * r * r * np.array([[1.0, -1.0], [-1.0, 1.0]])
+    w2b = max(np.linalg.eigvals(np.linalg.solve(Mb, Kb)).real)
+    assert modes(heavy).frequencies_hz[0] == pytest.approx(math.sqrt(w2b) / (2 * math.pi), rel=1e-6)
+    assert modes(heavy).frequencies_hz[0] < 0.9995 * math.sqrt(w2) / (2 * math.pi)
 
 
 def test_check_json_keys():

@@ -64,9 +64,9 @@ def speed_range(ds, summary, driver) -> tuple[float, float]:
 def add_flap_and_modes(model, result) -> None:
     """summary["flap"] (span flap frequencies, belt/flap.py), summary["modes"] (the rotational
     modes, belt/modes.py) and ds["flap_frequency"] for the Campbell diagram."""
-    from . import flap as flapmod
-    from .modes import modes
     from ..results import variable
+    from . import flap as flapmod
+    from .modes import drive_modes
 
     s, ds = result.summary, result.ds
     if "flap" not in s:
@@ -86,8 +86,14 @@ def add_flap_and_modes(model, result) -> None:
             ds.coords["flap_mode"] = list(range(1, flapmod.MODES + 1))
     if "modes" not in s:
         try:
-            md = modes(model)
+            ten = None
+            if "span_tension" in ds and ds.sizes.get("time", 0):
+                ten = ds["span_tension"].values[_window(ds)].mean(axis=0)
+                ten = ten if ten.size and np.all(np.isfinite(ten)) else None
+            md = drive_modes(model, tensions=ten)     # at the run's mean span tensions
             s["modes"] = {"frequencies_hz": list(md.frequencies_hz)}
+            if getattr(md, "free_rotor_hz", None):
+                s["modes"]["free_rotor_hz"] = list(md.free_rotor_hz)
         except Exception:
             pass
 

@@ -6,7 +6,8 @@ summary and, past its limit, a diagnostic (codes of :data:`drivedyn.diagnostics.
 - gross-slip: creep theory (Euler-Eytelwein / Grashof) puts the pulley surface speed between the
   speeds of the belt arriving and leaving (adhesion arc at the entry, sliding arc at the exit); in
   gross slip it leaves that band. Measured: sliding = 1 - |v_arrive| / |omega r_eff|, against the
-  elastic-creep bound (T_hi - T_lo) / (EA + T_hi) plus the chain's chordal speed error.
+  elastic-creep bound (T_hi - T_lo) / (EA + T_hi) plus the chain's chordal speed error
+  (r_eff: the chain's rolling radius, system.BeltSystem.rolling_radius).
 - contact-chatter, contact-damping-depth: share of the wrapped segments in contact and peak
   normal force against the capstan value T l / r, from the frames inside the window.
 - window-not-steady: drift of pulley speeds and span tensions inside the window (window.drift).
@@ -49,13 +50,6 @@ CHORDAL_LIMIT = 0.02
 def chordal_error(l: float, r) -> np.ndarray:
     """Relative speed error l^2 / (12 r^2) of the segment chain on a pulley of radius r."""
     return l * l / (12.0 * np.asarray(r, dtype=float) ** 2)
-
-
-def effective_radius(l: float, g: float, radii_chords) -> np.ndarray:
-    """Belt length carried per radian of pulley turn: segment + gap over the angle one segment
-    subtends with its ends on the chord-end circle R_e (initial.py)."""
-    Re = np.asarray(radii_chords, dtype=float)
-    return (l + g) / (2.0 * np.arcsin(np.minimum(l / (2.0 * Re), 1.0)))
 
 
 def run_checks(result, model, sysm, sel) -> None:
@@ -126,7 +120,7 @@ def _gross_slip(result, model, sysm, sel):
     init = sysm.init
     EA = model.belt.axial_stiffness
     l = init.seg_length
-    r_eff = effective_radius(l, init.gap, init.layout.radii)
+    r_eff = sysm.rolling_radius
     speed = ds["speed"].values[sel].mean(axis=0)
     vsp = ds["span_speed"].values[sel].mean(axis=0)
     ten = ds["span_tension"].values[sel].mean(axis=0)
@@ -171,10 +165,30 @@ def _frames_in_window(result):
     return idx
 
 
-def _on_pulley(ds, frames, p):
-    """Mask (frames, segments) of segment centres inside pulley p's contact radius."""
-    d = np.hypot(ds["belt_x"].values[frames] - p.center[0], ds["belt_y"].values[frames] - p.center[1])
-    return d < p.radius
+def _centre_at(ds, sysm, frames, j):
+    """Centre of pulley j at the frames (nf, 2): where its tensioner has moved it, else where drawn."""
+    A, c = sysm.arms, np.array([sysm.pulleys.cx[j], sysm.pulleys.cy[j]])
+    nf = len(frames)
+    for a in range(A.na):
+        if A.pulley[a] != j:
+            continue
+        name = sysm.model.pulleys[j].name
+        t, tf = ds["time"].values, ds["frame_time"].values[frames]
+        if A.kind[a] == 0:
+            q = np.interp(tf, t, ds["arm_travel"].sel(arm=name).values)
+            psi = A.psi0[a] + A.sgn[a] * q
+            return np.column_stack([A.px[a] + A.length[a] * np.cos(psi), A.py[a] + A.length[a] * np.sin(psi)])
+        q = np.interp(tf, t, ds["slider_travel"].sel(slider=name).values)
+        return np.column_stack([A.px[a] + q * A.dx[a], A.py[a] + q * A.dy[a]])
+    return np.repeat(c[None, :], nf, axis=0)
+
+
+def _on_pulley(ds, sysm, frames, j):
+    """Mask (frames, segments) of segment centres inside pulley j's contact radius, the pulley
+    where its tensioner holds it at each frame."""
+    c = _centre_at(ds, sysm, frames, j)
+    d = np.hypot(ds["belt_x"].values[frames] - c[:, :1], ds["belt_y"].values[frames] - c[:, 1:])
+    return d < sysm.model.pulleys[j].radius
 
 
 def _sliding_share(result, model, sysm) -> dict:
@@ -187,8 +201,8 @@ def _sliding_share(result, model, sysm) -> dict:
     fn, ft = ds["belt_normal_force"].values[fr], ds["belt_friction_force"].values[fr]
     mu = sysm.contact.mu[None, :]
     out = {}
-    for p in model.pulleys:
-        inc = _on_pulley(ds, fr, p) & (fn > 0)
+    for j, p in enumerate(model.pulleys):
+        inc = _on_pulley(ds, sysm, fr, j) & (fn > 0)
         n = inc.sum()
         out[p.name] = float((inc & (np.abs(ft) >= 0.99 * mu * fn)).sum() / n) if n else float("nan")
     return out
@@ -210,7 +224,7 @@ def _contact(result, model, sysm):
     worst = None
     for j, p in enumerate(model.pulleys):
         expected = sysm.layout.wrap[j] * p.radius / lg          # segments the wrap holds
-        inc = _on_pulley(ds, fr, p) & (fn > 0)
+        inc = _on_pulley(ds, sysm, fr, j) & (fn > 0)
         share = float(np.mean(inc.sum(axis=1)) / expected) if expected >= 1 else float("nan")
         n_static = t_max * lg / p.radius                       # capstan pressure T / r on one segment
         peak = float(np.max(np.where(inc, fn, 0.0)) / n_static)

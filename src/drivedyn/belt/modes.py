@@ -1,38 +1,56 @@
 """Rotational natural frequencies and mode shapes of a belt drive, linearised about its steady state.
 
-Discrete rotational model (Hwang, Mote & Lee, J. Mech. Des. 116 (1994); Beikmann, Perkins & Ulsoy,
-J. Vib. Acoust. 118 (1996)): the DOFs are the rotations of the pulleys that are free to turn (a
-pulley with a prescribed speed is held); span k from pulley a to pulley b in belt order is a
-spring EA / L_k on its stretch rho_b theta_b - rho_a theta_a (signed radii: a pulley turning with
-the belt feeds belt into the span it leaves and draws it from the span it enters). The springs are
-the spans' only (wraps held by adhesion); tension enters through the span lengths only.
-A tensioner (arm or slider) adds its travel q as a DOF (inertia about the pivot, or mass): the
-spans next to its pulley stretch by g_k q (g_k = d L_k / d q from the layout), its spring adds
-its rate and the belt tension T the path's curvature T d^2 L / dq^2 (Beikmann et al.).
-Eigenproblem K phi = omega^2 J phi.
+Discrete model in the spirit of Hwang, Mote & Lee (J. Mech. Des. 116, 1994) and Beikmann, Perkins
+& Ulsoy (J. Vib. Acoust. 118, 1996): the DOFs are the rotations of the pulleys that are free to turn
+(a pulley with a prescribed speed is held), the travel q of each tensioner (arm angle about its
+pivot, or slide) and, with a decoupler, its rotor's rotation.
+
+The belt sticks to the wraps and rolls on the pulleys without slip. A pulley turning by theta feeds
+its signed radius times theta into the span it leaves; a tensioner moving by q changes a span's
+straight length and turns its tangent points round the pulleys, and the belt that rolls on or off
+there (rho times the turn) is taken from or given to the span. The stretch is then, to first order,
+the projection of the tensioner centre's motion on the span direction (not the change of the
+straight length: with adhesion the belt does not slide round the neighbouring pulleys). Span k is a
+spring EA / L_k at tension T_k on its stretch e_k; its energy's Hessian is
+
+    K_k = (EA / L_k) grad(e_k) grad(e_k)^T + T_k Hess(e_k),
+
+where e_k is linear in the rotations and Hess(e_k), the geometric stiffness of the prestressed span
+in the tensioners' travel, comes from exact layouts (for a uniform tension T it sums to
+T d^2 L_path / dq^2). The tensioner adds its spring rate, a decoupler its torsion spring.
+
+The belt's mass is included: each span as a bar whose velocity varies linearly between its two
+points (consistent mass m L / 6 [[2, 1], [1, 2]] on the points' velocities), each wrap as mass
+carried rigidly by its pulley. A one-way clutch's rotor is in the modes twice: locked (rotor
+inertia added to its pulley: the clutch transmits) and free (overrunning: the pulley alone).
+Eigenproblem K phi = omega^2 M phi.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.linalg import eigh
 
 from .layout import Layout, compute_layout
 
+#: points per wrap for its mass (the wrap is an arc carried rigidly by its pulley)
+WRAP_POINTS = 24
+
 
 @dataclass
 class Modes:
-    dofs: tuple               # names of the free pulleys
-    frequencies_hz: list      # elastic modes, ascending (rigid-body modes left out)
-    shapes: list              # per mode: {pulley: rotation, largest |value| = 1}
-    participation: list       # per mode: {pulley: share of the modal kinetic energy}
+    dofs: tuple               # names of the DOFs (free pulleys, "<tensioner>.arm" / ".slider", "<pulley>.rotor")
+    frequencies_hz: list      # elastic modes, ascending (rigid-body modes left out); clutches locked
+    shapes: list              # per mode: {dof: value, largest |value| = 1}
+    participation: list       # per mode: {dof: share of the modal kinetic energy}
     rigid_modes: int          # zero-frequency modes (the drive turning as one body)
+    free_rotor_hz: list = field(default_factory=list)   # with one-way clutches overrunning (rotors free); [] without
 
 
 def stiffness(layout: Layout, EA: float) -> np.ndarray:
-    """Rotational stiffness matrix (N m/rad) of all pulleys."""
+    """Rotational stiffness matrix (N m/rad) of all pulleys held by their spans alone (no tensioner)."""
     nk = len(layout.names)
     K = np.zeros((nk, nk))
     for sp in layout.spans:
@@ -43,63 +61,175 @@ def stiffness(layout: Layout, EA: float) -> np.ndarray:
     return K
 
 
-def _moved(model, j, q):
-    """The layout with tensioner pulley j moved by travel q (rad about the pivot, or m along the
-    slide) from where the model has it."""
-    from .tensioner import centre, with_centres
+def _tensioner_kinematics(model, j, q0):
+    """Centre velocity dc/dq and acceleration d^2c/dq^2 of tensioner pulley j (exact: a circle
+    about the pivot, or a straight slide), and the spring's rate -d(load)/dq at travel q0 from
+    the drawn position."""
+    from .tensioner import _spring
 
-    return compute_layout(with_centres(model, {j: centre(model, j, q, 1.0)}))
+    p = model.pulleys[j]
+    t = p.tensioner
+    c = np.asarray(p.center, float)
+    h = 1e-5 if p.arm is not None else 1e-6
+    rate = -(_spring(t, q0 + h) - _spring(t, q0 - h)) / (2 * h)
+    if p.arm is not None:
+        r = c - np.asarray(p.arm.pivot, float)
+        return np.array([-r[1], r[0]]), -r, rate, t.inertia          # d/dq of pivot + R(q) r
+    d = np.asarray(p.slider.direction, float)
+    return d / np.linalg.norm(d), np.zeros(2), rate, t.mass
 
 
-def _tensioner_rows(model, lay, tension):
-    """Per tensioner: name, inertia, span-stretch gradient g (per span) and stiffness rate + T L''."""
-    out = []
-    for j, p in enumerate(model.pulleys):
-        t = p.tensioner
-        if t is None:
-            continue
-        h = 1e-5 if p.arm is not None else 1e-6
-        lp, lm = _moved(model, j, h), _moved(model, j, -h)
-        g = np.array([(a.length - b.length) / (2 * h) for a, b in zip(lp.spans, lm.spans)])
-        curv = (lp.length - 2 * lay.length + lm.length) / h ** 2
-        inertia = t.inertia if p.arm is not None else t.mass
-        out.append((f"{p.name}.{'arm' if p.arm is not None else 'slider'}", inertia, g, t.rate + tension * curv))
+def stretch_of(lay0: Layout, lay: Layout) -> np.ndarray:
+    """Stretch of each span from layout lay0 to lay (pulleys not turning): the change of its straight
+    length, less the belt that rolls onto its two pulleys as its tangent points move round them
+    (rolling without slip: rho times the tangent point's turn)."""
+    out = np.empty(len(lay.spans))
+    for k, (s0, s1) in enumerate(zip(lay0.spans, lay.spans)):
+        turn = 0.0
+        for j, p0, p1, sgn in ((s1.start, s0.p0, s1.p0, 1.0), (s1.end, s0.p1, s1.p1, -1.0)):
+            a0 = math.atan2(p0[1] - lay0.centers[j][1], p0[0] - lay0.centers[j][0])
+            a1 = math.atan2(p1[1] - lay.centers[j][1], p1[0] - lay.centers[j][0])
+            turn += sgn * lay.rho[j] * math.remainder(a1 - a0, 2 * math.pi)
+        out[k] = s1.length - s0.length + turn
     return out
 
 
-def modes(model, layout: Layout | None = None) -> Modes:
+def _stretch_derivatives(model, lay, tens, h=None):
+    """Gradient g (spans, tensioners) and Hessians H (spans, tensioners, tensioners) of the span
+    stretches in the tensioners' travel, by central differences of exact layouts."""
+    from .tensioner import centre, with_centres
+
+    na = len(tens)
+    steps = np.array([1e-4 if model.pulleys[j].arm is not None else 5e-6 for j in tens]) if h is None else h
+
+    def e(dq):
+        moved = {j: centre(model, j, float(q), 1.0) for j, q in zip(tens, dq)}
+        return stretch_of(lay, compute_layout(with_centres(model, moved)))
+
+    g = np.zeros((len(lay.spans), na))
+    H = np.zeros((len(lay.spans), na, na))
+    for a in range(na):
+        da = np.zeros(na)
+        da[a] = steps[a]
+        ep, em = e(da), e(-da)
+        g[:, a] = (ep - em) / (2 * steps[a])
+        H[:, a, a] = (ep + em) / steps[a] ** 2          # e(0) = 0
+        for b in range(a):
+            db = np.zeros(na)
+            db[b] = steps[b]
+            H[:, a, b] = H[:, b, a] = (e(da + db) - e(da - db) - e(db - da) + e(-da - db)) / (4 * steps[a] * steps[b])
+    return g, H
+
+
+def modes(model, layout: Layout | None = None, tensions=None, travel=None) -> Modes:
+    """Modes of ``model`` about the layout it draws (give a tensioned drive at its equilibrium:
+    tensioner.equilibrium(model).model). ``tensions``: per span (N), default the pretension;
+    ``travel``: per tensioner, its travel from the drawn position (for a spring table's slope)."""
     lay = layout or compute_layout(model)
-    free = [j for j, p in enumerate(model.pulleys) if not p.speed_time]
-    K = stiffness(lay, model.belt.axial_stiffness)[np.ix_(free, free)]
-    J = np.diag([model.pulleys[j].inertia for j in free])
-    names = tuple(lay.names[j] for j in free)
-    rows = _tensioner_rows(model, lay, model.belt.pretension or 0.0)
-    if rows and free:
-        # tensioner DOFs: span stretches rho_b theta_b - rho_a theta_a + g_k q
-        nf, na = len(free), len(rows)
-        G = np.zeros((len(lay.spans), nf + na))
-        for k, sp in enumerate(lay.spans):
-            for jj, sgn in ((sp.end, 1.0), (sp.start, -1.0)):
-                if jj in free:
-                    G[k, free.index(jj)] += sgn * lay.rho[jj]
-            for a, (_, _, g, _) in enumerate(rows):
-                G[k, nf + a] = g[k]
-        EA = model.belt.axial_stiffness
-        K = sum((EA / sp.length) * np.outer(G[k], G[k]) for k, sp in enumerate(lay.spans))
-        for a, (_, _, _, kq) in enumerate(rows):
-            K[nf + a, nf + a] += kq
-        J = np.diag([model.pulleys[j].inertia for j in free] + [r[1] for r in rows])
-        names = names + tuple(r[0] for r in rows)
-    if not free:
+    pulleys = model.pulleys
+    nk = len(pulleys)
+    belt = model.belt
+    EA, mass = belt.axial_stiffness, belt.mass_per_length
+    T = np.full(len(lay.spans), float(belt.pretension or 0.0)) if tensions is None else np.asarray(tensions, float)
+    # --- the DOFs and each pulley's point kinematics: dP/dx (2 x ndof) and d2P (ndof x ndof x 2) ---
+    free = [j for j, p in enumerate(pulleys) if not p.speed_time]
+    names = [lay.names[j] for j in free]
+    col = {("rot", j): a for a, j in enumerate(free)}
+    tens = [j for j, p in enumerate(pulleys) if p.tensioner is not None]
+    kin = {}
+    for a, j in enumerate(tens):
+        p = pulleys[j]
+        col[("ten", j)] = len(names)
+        names.append(f"{p.name}.{'arm' if p.arm is not None else 'slider'}")
+        kin[j] = _tensioner_kinematics(model, j, 0.0 if travel is None else float(travel[a]))
+    rotors = [j for j in free if pulleys[j].clutch is not None and pulleys[j].clutch.type == "decoupler"]
+    for j in rotors:
+        col[("rotor", j)] = len(names)
+        names.append(f"{pulleys[j].name}.rotor")
+    n = len(names)
+    if not free and not tens:
         return Modes((), [], [], [], 0)
-    w2, vec = eigh(K, J)
+
+    def point(j, pt):
+        """Velocity Jacobian (2, n) of the belt's material point pt on pulley j."""
+        r = np.asarray(pt, float) - lay.centers[j]
+        Jp = np.zeros((2, n))
+        if ("rot", j) in col:
+            Jp[:, col[("rot", j)]] = (-r[1], r[0])
+        if ("ten", j) in col:
+            Jp[:, col[("ten", j)]] += kin[j][0]
+        return Jp
+
+    # stretch of each span: linear in the rotations (rho_b theta_b - rho_a theta_a), and in the
+    # tensioners' travel a function the layout gives exactly (stretch_of)
+    G = np.zeros((len(lay.spans), n))
+    for k, sp in enumerate(lay.spans):
+        for jj, sgn in ((sp.end, 1.0), (sp.start, -1.0)):
+            if ("rot", jj) in col:
+                G[k, col[("rot", jj)]] += sgn * lay.rho[jj]
+    K, M = np.zeros((n, n)), np.zeros((n, n))
+    if tens:
+        cols = [col[("ten", j)] for j in tens]
+        g, H = _stretch_derivatives(model, lay, tens)
+        G[:, cols] = g
+        K[np.ix_(cols, cols)] += np.einsum("k,kab->ab", T, H)
+    for k, sp in enumerate(lay.spans):
+        K += (EA / sp.length) * np.outer(G[k], G[k])
+        Ja, Jb = point(sp.start, sp.p0), point(sp.end, sp.p1)
+        M += mass * sp.length / 6 * (2 * Ja.T @ Ja + Ja.T @ Jb + Jb.T @ Ja + 2 * Jb.T @ Jb)
+    for j in range(nk):
+        # the wrap's belt, carried by pulley j
+        a0, sweep = lay.arc_start[j], lay.wrap[j] * math.copysign(1.0, lay.rho[j])
+        dm = mass * lay.radii[j] * lay.wrap[j] / WRAP_POINTS
+        for s in (np.arange(WRAP_POINTS) + 0.5) / WRAP_POINTS:
+            ang = a0 + sweep * s
+            Jp = point(j, lay.centers[j] + lay.radii[j] * np.array([math.cos(ang), math.sin(ang)]))
+            M += dm * Jp.T @ Jp
+    for j in free:
+        a = col[("rot", j)]
+        M[a, a] += pulleys[j].inertia
+    for j in tens:
+        b = col[("ten", j)]
+        K[b, b] += kin[j][2]
+        M[b, b] += kin[j][3]
+    for j in rotors:
+        a, r = col[("rot", j)], col[("rotor", j)]
+        k_c = pulleys[j].clutch.rate
+        K[np.ix_([a, r], [a, r])] += k_c * np.array([[1.0, -1.0], [-1.0, 1.0]])
+        M[r, r] += pulleys[j].clutch.inertia
+    K = 0.5 * (K + K.T)
+    one_way = [j for j in free if pulleys[j].clutch is not None and pulleys[j].clutch.type == "one-way"]
+    locked = M.copy()
+    for j in one_way:
+        a = col[("rot", j)]
+        locked[a, a] += pulleys[j].clutch.inertia
+    out = _eigen(K, locked, tuple(names))
+    if one_way:
+        out.free_rotor_hz = _eigen(K, M, tuple(names)).frequencies_hz
+    return out
+
+
+def _eigen(K, M, names) -> Modes:
+    w2, vec = eigh(K, M)
     scale = float(np.max(np.abs(w2))) or 1.0
     rigid = int(np.sum(w2 < 1e-9 * scale))
     freqs, shapes, parts = [], [], []
     for k in range(rigid, len(w2)):
         phi = vec[:, k] / vec[np.argmax(np.abs(vec[:, k])), k]
-        e = np.diag(J) * phi ** 2
+        e = phi * (M @ phi)
         freqs.append(math.sqrt(max(w2[k], 0.0)) / (2 * math.pi))
         shapes.append({n: float(x) for n, x in zip(names, phi)})
         parts.append({n: float(x) for n, x in zip(names, e / e.sum())})
     return Modes(names, freqs, shapes, parts, rigid)
+
+
+def drive_modes(model, tensions=None) -> Modes:
+    """Modes of a drive as built: a tensioned drive about its static equilibrium (tensioner.py),
+    at its rest tension unless span ``tensions`` are given."""
+    from .tensioner import equilibrium, indices
+
+    if not indices(model):
+        return modes(model, tensions=tensions)
+    rest = equilibrium(model)
+    belt = rest.model.belt.model_copy(update={"pretension": float(rest.tension), "length": None})
+    return modes(rest.model.model_copy(update={"belt": belt}), tensions=tensions, travel=rest.travel)

@@ -352,21 +352,37 @@ def _draw_arms(ds, frame, ax):
         ax.annotate("pivot", (px, py), xytext=(3, -9), textcoords="offset points", fontsize=6, color="0.3")
 
 
+def _mean_tensions(ds):
+    """Span tensions over the steady window (the modes' geometric stiffness), None without spans."""
+    if "span_tension" not in ds or ds.sizes.get("time", 0) == 0:
+        return None
+    w = ds.attrs.get("steady_window")
+    t = ds["time"].values
+    sel = (t >= w[0]) & (t <= w[1]) if w is not None else np.ones(len(t), bool)
+    ten = ds["span_tension"].values[sel if np.any(sel) else slice(None)].mean(axis=0)
+    return ten if np.all(np.isfinite(ten)) else None
+
+
 def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), rpm_max=None, flap=None,
-                  speed_range=None, own_orders=None):
-    """Campbell diagram: the drive's rotational modes (horizontal) and the spans' first flap
-    frequencies (``flap``: {span: (rpm, Hz)}, belt/flap.py) against the orders of the driver's
-    rotation (k x driver speed); crossings inside ``speed_range`` (rpm, shaded) are resonances
-    the run passes through. ``own_orders``: {label: order in driver orders} of accessories'
-    own excitations (an A/C compressor's pistons)."""
+                  speed_range=None, own_orders=None, free_rotor_hz=()):
+    """Campbell diagram: the drive's rotational modes (horizontal; one-way clutches locked, and
+    dotted with their rotors free) and the spans' first flap frequencies (``flap``: {span: (rpm,
+    Hz)}, belt/flap.py) against the orders of the driver's rotation (k x driver speed); crossings
+    inside ``speed_range`` (rpm, shaded) are resonances the run passes through. ``own_orders``:
+    {label: order in driver orders} of accessories' own excitations (an A/C compressor's pistons)."""
     ax = plotting.ax_or_new(ax)
+    for f in free_rotor_hz:
+        ax.axhline(f, color="C0", lw=0.9, ls=":", alpha=0.8)
+        ax.text(0.01, f, f"{f:.1f} Hz (clutch overrunning)", va="bottom", ha="left",
+                fontsize=7, color="C0", alpha=0.8, transform=ax.get_yaxis_transform())
     w = np.abs(ds["speed"].sel(pulley=driver).values)
     rpm_run = float(w.max()) * 30 / np.pi if len(w) else 0.0
     top_rpm = rpm_max or max(1.25 * rpm_run, 1.0)
     orders = sorted(set(orders))
     flap = flap or {}
     f_flap = [float(np.max(f)) for _, f in flap.values() if len(f)]
-    f_top = max([1.1 * f for f in list(frequencies_hz) + f_flap] + [max(orders or [1]) * top_rpm / 60 * 0.6])
+    f_top = max([1.1 * f for f in list(frequencies_hz) + list(free_rotor_hz) + f_flap]
+                + [max(orders or [1]) * top_rpm / 60 * 0.6])
     if speed_range is not None:
         ax.axvspan(*speed_range, color="0.9", zorder=0, label=f"run: {speed_range[0]:.0f}-{speed_range[1]:.0f} rpm")
     for f in frequencies_hz:
@@ -402,8 +418,8 @@ def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), r
     ax.set_ylim(0, f_top)
     ax.set_xlabel(f"{driver} speed (rpm)")
     ax.set_ylabel("frequency (Hz)")
-    ax.set_title("Campbell diagram: rotational modes (blue, spans EA/L), span flap f1 (coloured) and the driver's "
-                 "orders (dashed)", fontsize=9)
+    ax.set_title("Campbell diagram: rotational modes (blue; dotted: clutch overrunning),\n"
+                 "span flap f1 (coloured; squares: crossings in the run), orders of the driver (dashed)", fontsize=9)
     ax.legend(loc="upper left", fontsize=7, ncol=2)
     ax.grid(alpha=0.3)
     return ax
@@ -449,18 +465,18 @@ def _figures(ds, driver):
 
     def campbell():   # the drive's rotational modes (modes.py) against the driver's orders
         from ..model import loads
-        from .modes import modes
+        from .modes import drive_modes
 
         from .criteria import speed_range
         from .flap import excited_orders
 
         model = loads(ds.attrs["model_toml"])
-        freqs = modes(model).frequencies_hz
+        md = drive_modes(model, tensions=_mean_tensions(ds))
         flap = {}
         if "flap_frequency" in ds:
             for sp in ds["flap_span"].values.tolist():
                 flap[sp] = (ds["flap_rpm"].values, ds["flap_frequency"].sel(flap_span=sp, flap_mode=1).values)
-        if not freqs and not flap:
+        if not md.frequencies_hz and not flap:
             return None
         orders = excited_orders(model, driver, extra=model.criteria.flap_orders) or [1, 2, 3, 4]
         # an accessory's own orders (on its own angle) in orders of the driver: k r_driver / r_accessory
@@ -470,8 +486,8 @@ def _figures(ds, driver):
         own = {f"{p.name} {h.order:g}": h.order * r[jd] / r[names.index(p.name)]
                for p in model.pulleys for h in (getattr(p, "harmonics", None) or []) if p.name in names}
         fig, ax = _fig(1, 5)
-        plot_campbell(ds, freqs, driver, ax=ax[0], orders=orders, flap=flap, own_orders=own,
-                      speed_range=speed_range(ds, {}, driver))
+        plot_campbell(ds, md.frequencies_hz, driver, ax=ax[0], orders=orders, flap=flap, own_orders=own,
+                      speed_range=speed_range(ds, {}, driver), free_rotor_hz=md.free_rotor_hz)
         return fig
 
     def runup():
@@ -489,9 +505,9 @@ def _figures(ds, driver):
         tight = str(ds["span"].values[int(np.argmax(ds["runup_tension_mean"].values.mean(axis=0)))])
         try:
             from ..model import loads
-            from .modes import modes as rot_modes
+            from .modes import drive_modes
 
-            fm = rot_modes(loads(ds.attrs["model_toml"])).frequencies_hz
+            fm = drive_modes(loads(ds.attrs["model_toml"]), tensions=_mean_tensions(ds)).frequencies_hz
         except Exception:
             fm = []
         plot_waterfall(ds, tight, fig.add_subplot(), modes=fm)

@@ -82,7 +82,8 @@ def add_runup(ds, model, bin_width=None) -> dict:
     orders = orders_of(p)
     spans, pulleys = ds["span"].values.tolist(), ds["pulley"].values.tolist()
     ten, hub = ds["span_tension"].values, ds["hub_load"].values
-    r = ds["pulley_radius"].values
+    # the chain's rolling radius (older results: the contact radius): the polygon effect is no slip
+    r = ds["pulley_rolling_radius" if "pulley_rolling_radius" in ds else "pulley_radius"].values
     speed = ds["speed"].values
     vd = np.abs(speed[:, j] * r[j])
     v = np.abs(speed * r)
@@ -119,7 +120,7 @@ def add_runup(ds, model, bin_width=None) -> dict:
     vd_bin = per_bin(vd, np.mean)
     slip = 1 - per_bin(v, np.mean) / np.where(vd_bin > 0, vd_bin, np.nan)[:, None]
     ds["runup_slip"] = variable(slip, dims + ("pulley",), "1",
-                                "slip against the crank over the bin, 1 - mean |w r| / mean |w_c r_c|")
+                                "slip against the crank over the bin, 1 - mean |w r| / mean |w_c r_c| (r: the chain's rolling radius)")
     ds["runup_tension_order"] = variable(order_amp(ten), dims + ("order", "span"), "N", "span tension, amplitude of engine order")
     ds["runup_hub_load_order"] = variable(order_amp(hub), dims + ("order", "pulley"), "N", "hub load, amplitude of engine order")
     out = {"crank": p.name, "speed_rpm": centre.tolist(), "orders": orders,

@@ -309,6 +309,8 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
             "pulley_x": variable(sysm.pulleys.cx.copy(), ("pulley",), "m", "pulley centre x (a tensioner's: at rest)"),
             "pulley_y": variable(sysm.pulleys.cy.copy(), ("pulley",), "m", "pulley centre y (a tensioner's: at rest)"),
             "pulley_radius": variable([p.radius for p in model.pulleys], ("pulley",), "m", "contact radius"),
+            "pulley_rolling_radius": variable(sysm.rolling_radius, ("pulley",), "m",
+                                              "belt length the segment chain carries per radian of pulley turn, no load"),
         },
         coords={"time": rec.t[:ns], "pulley": names, "span": spans, "tracked": tr, "frame_time": ("frame", rec.frame_t[:nf]),
                 "mechanism": ["axial_damping", "bending_damping", "contact_damping", "friction", "tensioner", "clutch"]},
@@ -432,7 +434,9 @@ def _summary(model, sysm, ds, solver, sel, window) -> dict:
     names = list(sysm.layout.names)
     speed, pin = mean("speed"), mean("power_in")
     hx, hy, tq = mean("hub_force_x"), mean("hub_force_y"), mean("torque_applied")
-    radius = np.array([p.radius for p in model.pulleys])
+    # slip against the chain's own rolling kinematics: the polygon effect of the segments, a speed
+    # ratio error of about l^2 / (12 r^2) between pulleys of different radii, is no slip
+    radius = sysm.rolling_radius
     d = int(np.nanargmax(pin)) if np.any(np.isfinite(pin)) else 0
     vd = abs(speed[d] * radius[d])
     pulleys = {}

@@ -51,7 +51,9 @@ def check_data(model, sysm=None) -> dict:
 
         t0 = float(np.mean(tensions(drive_of(model, lay), np.zeros(len(model.pulleys)), 0.0, True)))
     inst = installation_table(model, t0, lay)
-    md = modes(model, lay)
+    # about the drive as it runs: the tensioners where they hold it, the spans at their steady tensions
+    md = modes(model, lay, tensions=[st.spans[sp.name] for sp in lay.spans] if st.spans else None,
+               travel=rest.travel if rest is not None else None)
     fin = lambda x: float(x) if math.isfinite(x) else None     # JSON: no inf (an unloaded pulley never slips)
     return {
         "steady": {
@@ -75,6 +77,7 @@ def check_data(model, sysm=None) -> dict:
         "installation": inst,
         **({"tensioners": _tensioner_data(drawn, rest, run)} if rest is not None else {}),
         "modes": {"dofs": list(md.dofs), "rigid_modes": md.rigid_modes, "frequencies_hz": md.frequencies_hz,
+                  **({"free_rotor_hz": md.free_rotor_hz} if md.free_rotor_hz else {}),
                   "shapes": md.shapes, "participation": md.participation},
     }
 
@@ -198,7 +201,10 @@ def _steady_lines(data, model) -> list:
         out.append(f"  slip margin {st['slip_margin']:.3f}: the loads x {st['slip_margin']:.3f} make pulley "
                    f"{st['limiting_pulley']} slip grossly (its slip arc reaches its wrap)")
     fr = ", ".join(f"{f:.1f}" for f in md["frequencies_hz"]) or "none"
-    out.append(f"rotational modes (spans EA/L, free pulleys {', '.join(md['dofs'])}): {fr} Hz")
+    out.append(f"rotational modes (spans EA/L with the belt's mass, DOFs {', '.join(md['dofs'])}): {fr} Hz"
+               + (" (one-way clutches locked)" if md.get("free_rotor_hz") else ""))
+    if md.get("free_rotor_hz"):
+        out.append("  clutches overrunning (rotors free): " + ", ".join(f"{f:.1f}" for f in md["free_rotor_hz"]) + " Hz")
     for k, part in enumerate(md["participation"]):
         top = sorted(part.items(), key=lambda kv: -kv[1])
         out.append(f"  {md['frequencies_hz'][k]:8.1f} Hz: " + ", ".join(f"{n} {100 * e:.0f} %" for n, e in top if e >= 0.01))

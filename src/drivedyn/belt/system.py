@@ -38,16 +38,79 @@ class BeltSystem:
         return self.belt.n
 
     @property
+    def rolling_radius(self) -> np.ndarray:
+        """Per pulley: belt speed over pulley speed of the discrete chain rolling with no load (its
+        own kinematics), r (1 + l^2 / (12 r^2)) to first order. A stuck segment's centre moves at
+        the surface speed w r (friction acts at the contact radius) on the circle r - p0 it is
+        pressed to; one pitch l + g passes per angle 2 asin(l / 2 R_e) + 2 asin(g / 2 R_e), its
+        chord ends on R_e = sqrt((r - p0)^2 + l^2 / 4) (initial.py). Speed ratios against it are
+        free of the polygon effect, which is no slip."""
+        init = self.init
+        l, g = init.seg_length, init.gap
+        r = np.array([p.radius for p in self.model.pulleys])
+        rc = r - init.penetration
+        Re = np.sqrt(rc ** 2 + l * l / 4)
+        pitch_angle = 2 * np.arcsin(np.minimum(l / (2 * Re), 1.0)) + 2 * np.arcsin(np.minimum(g / (2 * Re), 1.0))
+        return (l + g) * r / (rc * pitch_angle)
+
+    @property
     def groups(self):
         """(Belt, Contact, Pulleys, Arms): the constant arguments of every kernel, in kernel order."""
         return self.belt, self.contact, self.pulleys, self.arms
 
 
+#: the settled belt's tension may differ from the one asked for by this share before the chain is
+#: placed again with a corrected tension
+SETTLE_TOL = 1e-3
+
+
 def build(model, settle: bool = True) -> BeltSystem:
     """The kernels' arrays for ``model``. ``settle``: start the belt from its static equilibrium
     (equilibrium.relax, 0.2-1.5 s); ``check`` needs only the placement's tension and penetration.
-    With tensioners, the belt is placed on the path of their static equilibrium (tensioner.py)."""
-    rest, drawn = None, model
+    With tensioners, the belt is placed on the path of their static equilibrium (tensioner.py).
+
+    Without tensioners, the belt's tension means the continuum's, at any segment count: a
+    ``belt.length`` gives the tension creep theory gives that installed length at rest (steady.py,
+    the belt's depth in the grooves included), and the chain is placed so that it settles to the
+    pretension (the settled chain carries up to a few percent less than its placement: chord sag
+    and the segments' seating; one corrected placement takes that out)."""
+    if tensioner.indices(model):
+        return _build(model, model, settle)
+    target = model.belt.pretension
+    placed = model
+    if target is None:
+        from .steady import drive_of, tensions
+
+        T = tensions(drive_of(model), np.zeros(len(model.pulleys)), 0.0, True)
+        if T is None:
+            raise ModelError(f"belt too long to be tensioned: unstretched length {model.belt.length:.4f} m",
+                             field="belt.length")
+        target = float(np.mean(T))
+        placed = _with_pretension(model, target)
+    sysm = _build(placed, model, settle)
+    if settle and abs(settled_tension(sysm) / target - 1) > SETTLE_TOL:
+        sysm = _build(_with_pretension(model, target * target / settled_tension(sysm)), model, settle)
+    if settle:
+        sysm.init = dataclasses.replace(sysm.init, tension=settled_tension(sysm))
+    return sysm
+
+
+def _with_pretension(model, tension):
+    return model.model_copy(update={"belt": model.belt.model_copy(update={"pretension": float(tension), "length": None})})
+
+
+def settled_tension(sysm) -> float:
+    """Mean element force of the belt as placed (N)."""
+    init = sysm.init
+    S, W = new_state(sysm, init.x, init.y, init.phi), new_work(sysm)
+    K.joint_forces(sysm.belt, S, W, 0.0)
+    return float(np.mean(W.jfk * np.hypot(W.jdx, W.jdy)))
+
+
+def _build(model, drawn, settle: bool) -> BeltSystem:
+    """The system of ``model`` (the belt placed by its pretension or length); ``drawn``, the user's
+    model, is what the system reports."""
+    rest = None
     if tensioner.indices(model):
         rest = tensioner.equilibrium(model)
         model = rest.model            # centres at the equilibrium, belt.length installed
@@ -133,9 +196,8 @@ def _settle_tensioners(sysm, x, y, phi):
     rest.hub = np.array([float(np.hypot(*hub[A.pulley[a]])) for a in range(A.na)])
     rest.spring = np.array([tensioner._spring(sysm.model.pulleys[A.pulley[a]].tensioner, rest.travel[a]) for a in range(A.na)])
     rest.angle = np.array([A.psi0[a] + A.sgn[a] * rest.travel[a] if A.kind[a] == 0 else np.nan for a in range(A.na)])
-    S, W = new_state(sysm, x, y, phi), new_work(sysm)
-    K.joint_forces(sysm.belt, S, W, 0.0)
-    rest.tension = float(np.mean(W.jfk * np.hypot(W.jdx, W.jdy)))
+    sysm.init = dataclasses.replace(sysm.init, x=x, y=y, phi=phi)
+    rest.tension = settled_tension(sysm)
     return x, y, phi
 
 
