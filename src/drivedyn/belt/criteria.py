@@ -17,6 +17,10 @@ import math
 
 import numpy as np
 
+from typing import Annotated
+
+from pydantic import Field
+
 from ..criteria import Criterion
 from ..model import Spec, quantity
 
@@ -26,16 +30,16 @@ RPM = 30 / math.pi
 class Criteria(Spec):
     """Limits the verdict judges a belt run against (every field optional)."""
 
-    slip_max: float = 0.02                          # largest slip of any pulley (fraction)
-    slip_margin_min: float = 1.3                    # smallest slip margin of a pulley that carries torque
+    slip_max: quantity("1", gt=0) = 0.02                          # largest slip of any pulley (fraction)
+    slip_margin_min: quantity("1", ge=0) = 1.3                    # smallest slip margin of a pulley that carries torque
     span_tension_min: quantity("N", ge=0) | None = None   # smallest T - m v^2; default 0.1 x belt.pretension
-    stop_clearance_min: float = 0.1                 # free travel kept at each stop, fraction of stop-to-stop
+    stop_clearance_min: quantity("1", ge=0, lt=0.5) = 0.1                 # free travel kept at each stop, fraction of stop-to-stop
     hub_load_max: quantity("N", gt=0) | None = None       # bearing limit on the peak hub load (not judged unless given)
-    flap_crossings_max: int = 0                     # crossings of a span's first flap mode by an excited order
-    flap_speed_margin: float = 0.1                  # the run's speed range widened by this fraction each way
+    flap_crossings_max: Annotated[int, Field(ge=0)] = 0                     # crossings of a span's first flap mode by an excited order
+    flap_speed_margin: quantity("1", ge=0, lt=1) = 0.1                  # the run's speed range widened by this fraction each way
     flap_orders: list[float] = []                   # orders of the crank to judge besides its declared speed orders
     flap_amplitude_min: quantity("rad/s", ge=0) = 0.0     # declared speed orders weaker than this are not judged
-    resonance_crossings_max: int | None = None      # crossings of rotational modes (listed; judged only if given)
+    resonance_crossings_max: Annotated[int, Field(ge=0)] | None = None      # crossings of rotational modes (listed; judged only if given)
 
 
 def _window(ds):

@@ -10,9 +10,12 @@ speed sweep, if one was run. K_v itself is judged only against a limit the user 
 from __future__ import annotations
 
 import math
+from typing import Annotated
+
+from pydantic import Field
 
 from ..criteria import Criterion
-from ..model import Spec
+from ..model import Spec, quantity
 
 
 RPM = 30 / math.pi
@@ -21,10 +24,10 @@ RPM = 30 / math.pi
 class Criteria(Spec):
     """Limits the verdict judges a gear-train run against (every field optional)."""
 
-    kv_max: float | None = None              # largest dynamic factor K_v of any mesh (not judged unless given)
+    kv_max: quantity("1", ge=1) | None = None              # largest dynamic factor K_v of any mesh (not judged unless given)
     separation: bool = False                 # allow loss of tooth contact at the operating speed
     stable: bool = True                      # require the linear model stable at the operating speed
-    sweep_unstable_ranges_max: int = 0       # unstable or separating speed ranges allowed in the sweep
+    sweep_unstable_ranges_max: Annotated[int, Field(ge=0)] = 0       # unstable or separating speed ranges allowed in the sweep
 
 
 def evaluate(model, result):

@@ -8,15 +8,19 @@ jumping and wear).
 """
 from __future__ import annotations
 
+from typing import Annotated
+
+from pydantic import Field
+
 from ..criteria import Criterion
-from ..model import Spec
+from ..model import Spec, quantity
 
 
 class Criteria(Spec):
     """Limits the verdict judges a mesh under load against (every field optional)."""
 
-    jump_margin_min: float = 1.5             # jump torque over the transmitted torque
-    teeth_in_mesh_min: int = 6               # teeth in mesh on the pulley
+    jump_margin_min: quantity("1", ge=0) = 1.5             # jump torque over the transmitted torque
+    teeth_in_mesh_min: Annotated[int, Field(ge=1)] = 6               # teeth in mesh on the pulley
 
 
 def evaluate(model, result):
