@@ -25,6 +25,7 @@ class Analysis:
     plot_at: str
     warmup_at: str = ""
     check_data_at: str = ""    # what check knows, as a dict (check --json, studies with mode = "check")
+    criteria_at: str = "criteria:evaluate"   # (model, result) -> ([Criterion], {name: why not judged})
 
     def _get(self, where: str):
         module, name = where.split(":")
@@ -68,6 +69,13 @@ class Analysis:
             raise ModelError(f"check data (check --json, a study's mode = \"check\") is for belt-drive models "
                              f"(this is {self.kind})")
         return self._get(self.check_data_at)(model)
+
+    def criteria_fn(self):
+        """The function that evaluates the model's [criteria] on a result, or None."""
+        try:
+            return self._get(self.criteria_at) if self.criteria_at else None
+        except ModuleNotFoundError:
+            return None
 
     def warmup(self) -> None:
         if self.warmup_at:

@@ -4,7 +4,7 @@ from __future__ import annotations
 from contextlib import contextmanager
 from pathlib import Path
 
-from .errors import ModelError
+from .errors import ModelError, SolverError
 from .model import analysis, load
 
 
@@ -30,12 +30,21 @@ def run(model, progress=None):
 
     ``progress``, if given, is called as ``progress(fraction_done, text)`` during long runs.
     ``result.status`` is "success", or "warning" when ``result.diagnostics`` say the result is
-    outside the model's valid regime. A solve that fails raises :class:`~drivedyn.SolverError`
+    outside the model's valid regime. ``result.summary["verdict"]`` ("pass", "fail", "not judged")
+    and ``result.summary["criteria"]`` judge it against the model's ``[criteria]``. A solve that fails raises :class:`~drivedyn.SolverError`
     whose ``partial`` holds the Result computed so far (status "failed").
     """
+    from .criteria import judge
+
     m = _as_model(model)
     with _naming(model):
-        return analysis(m.kind).run(m, progress=progress)
+        try:
+            result = analysis(m.kind).run(m, progress=progress)
+        except SolverError as exc:
+            if exc.partial is not None:
+                judge(m, exc.partial)          # verdict "not judged": the run did not finish
+            raise
+        return judge(m, result)
 
 
 def check(model) -> str:

@@ -21,6 +21,8 @@ app = typer.Typer(add_completion=False, no_args_is_help=True, pretty_exceptions_
 
 #: exit status of a run that ended with status "warning" under --strict
 EXIT_WARNING = 3
+#: exit status of a run whose verdict is "fail" (a design criterion failed) under --strict
+EXIT_CRITERIA = 4
 
 
 def _fail(message: str, code: int = 2):
@@ -77,7 +79,8 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         report: bool = typer.Option(True, help="Write report.html (one page: status, results, plots, model)."),
         quiet: bool = typer.Option(False, "-q", "--quiet", help="No progress bar."),
         strict: bool = typer.Option(False, "--strict", help=f"Exit with status {EXIT_WARNING} when the run ends "
-                                    "with diagnostics (status 'warning')."),
+                                    f"with diagnostics (status 'warning'), {EXIT_CRITERIA} when a design criterion fails."),
+        show_all: bool = typer.Option(False, "--all", help="Also print the full summary (every value of summary.json)."),
         ):
     """Run a model; write results.nc, summary.json, plots and report.html into OUT."""
     from rich.console import Console
@@ -143,17 +146,67 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
                 console.print(f"report: {write_report(result, out, written, model=m, source=model)}")
             except OSError as exc:
                 _write_failed(out, exc, started)
-        _print_summary(console, result)
+        _print_overview(console, result)
+        if show_all:
+            _print_summary(console, result)
         _print_status(console, result)
     if failure is not None:
         _fail(f"solve failed: {failure}" + ("; partial results kept in " + str(out) if result is not None else ""), code=1)
     if strict and result is not None and result.status == "warning":
         raise typer.Exit(EXIT_WARNING)
+    if strict and result is not None and result.summary.get("verdict") == "fail":
+        raise typer.Exit(EXIT_CRITERIA)
+
+
+def _print_table(console, table):
+    """A table that fits the terminal (rich folds its cells), or, written to a file or a pipe,
+    keeps its columns whole at whatever width they need."""
+    if console.is_terminal:
+        console.print(table)
+    else:
+        console.print(table, width=max(console.width, console.measure(table).maximum), crop=False)
+
+
+def _print_overview(console, result):
+    """The verdict table, then the tables per object (overview.py); the full summary is --all."""
+    from rich.markup import escape
+    from rich.table import Table
+
+    from .overview import tables, verdict_table
+
+    v = verdict_table(result.summary)
+    style = {"pass": "green", "fail": "red"}.get(v["verdict"], "yellow")
+    if v["rows"]:
+        t = Table(title=f"verdict: [{style}]{v['verdict']}[/{style}]", title_justify="left")
+        for h in v["head"]:
+            t.add_column(h, justify="right" if h in ("value", "limit") else "left")
+        for r in v["rows"]:
+            cells = [escape(str(c)) for c in r]
+            cells[4] = f"[green]{cells[4]}[/green]" if r[4] == "pass" else f"[red]{cells[4]}[/red]"
+            t.add_row(*cells)
+        _print_table(console, t)
+    else:
+        console.print(f"verdict: [{style}]{v['verdict']}[/{style}]")
+    if v["note"]:
+        console.print(escape(f"not judged: {v['note']}"), soft_wrap=not console.is_terminal)
+    for tb in tables(result):
+        if not tb["rows"]:
+            continue
+        t = Table(title=escape(tb["title"]), title_justify="left")
+        for h in tb["head"]:
+            t.add_column(escape(h))
+        for r in tb["rows"]:
+            t.add_row(*[escape(str(c)) for c in r])
+        _print_table(console, t)
+        if tb.get("note"):
+            console.print(escape(tb["note"]), style="dim", soft_wrap=not console.is_terminal)
+    console.print("full summary: summary.json, or drivedyn run --all", style="dim")
 
 
 def _print_summary(console, result):
     from rich.table import Table
 
+    from .overview import compact
     from .results import flatten, number_text
 
     from rich.markup import escape
@@ -167,22 +220,17 @@ def _print_summary(console, result):
     for k, v in flatten(result.summary).items():
         # names are data: no rich markup read from them, and a very long one shortened (the terminal
         # wraps a cell in a time that grows with the square of its length); summary.json has them whole
-        k = escape(shorten(k, 120))
-        if k.startswith("runup.") and isinstance(v, list):
-            continue              # per crank-speed bin: the table below
+        if k.startswith(("runup.", "flap.")) and isinstance(v, list):
+            continue              # per crank-speed bin: the run-up table, summary.json
         unit = result.units.get(k, "")
+        k = escape(shorten(k, 120))
+        numeric = isinstance(v, (int, float, list, tuple)) and not isinstance(v, bool)
         if isinstance(v, float):
-            v = number_text(v, unit)
-        elif isinstance(v, list) and len(v) > 6:
-            v = f"[{len(v)} values]"
-        table.add_row(k, escape(shorten(str(v), 200)), "" if unit == "1" else unit)
-    console.print(table)
-    if "runup" in result.summary:
-        from rich.markup import escape
-
-        from .belt.runup import table_lines
-
-        console.print(escape("\n".join(table_lines(result.summary))))
+            v = number_text(v, unit if "speed" in k else "")      # rpm beside speeds, not beside frequencies
+        elif isinstance(v, (list, tuple)):
+            v = compact(v)
+        table.add_row(k, escape(shorten(str(v), 200)), "" if unit == "1" or not numeric else unit)
+    _print_table(console, table)
 
 
 def _print_status(console, result):
@@ -221,6 +269,25 @@ def check(model: Path = typer.Argument(..., help="Model file (TOML)."),
         typer.echo(api.check(m))
     except ModelError as exc:
         _fail(_named(model, exc))
+
+
+@app.command()
+def schema(kind: str = typer.Argument(..., help="Model kind: belt-drive, gear-train, span-stability, toothed-mesh."),
+           out: Optional[Path] = typer.Option(None, "-o", "--out", help="Write to this file instead of printing.")):
+    """Print the JSON Schema of a model kind (for TOML editors: Taplo / Even Better TOML)."""
+    import json
+
+    from .schema import json_schema
+
+    try:
+        text = json.dumps(json_schema(kind), indent=2)
+    except ModelError as exc:
+        _fail(str(exc))
+    if out is None:
+        typer.echo(text)
+    else:
+        out.write_text(text + "\n", encoding="utf-8")
+        typer.echo(str(out))
 
 
 @app.command()

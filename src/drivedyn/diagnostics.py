@@ -5,7 +5,7 @@ the end but at least one diagnostic says the result lies outside the model's val
 not converged, ``success`` otherwise. Each diagnostic names the quantity that was measured, its
 value and the limit it crossed, so that a person (and a study) can judge how far off it is.
 
-The codes are fixed and documented (README, "Diagnostics"); an analysis adds one with
+The codes are fixed and documented (docs/diagnostics.md); an analysis adds one with
 ``result.diagnose(code, text, quantity, value, limit, unit)``.
 """
 from __future__ import annotations
@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-#: every diagnostic code, with what it means (README "Diagnostics" lists the same)
+#: every diagnostic code, with what it means (docs/diagnostics.md lists the same)
 CODES = {
     "gross-slip": "a pulley slips grossly: the belt slides over the whole wrap instead of creeping",
     "contact-chatter": "belt segments bounce on a pulley: few wrapped segments in contact, peak normal forces far "

@@ -57,28 +57,16 @@ CAPTIONS = {
                      "would climb out, the cord tension along the wrap, and the jump torque against the installation tension.",
 }
 
-#: the summary keys shown first, per kind (the whole summary follows, folded)
-HEADLINE = {
-    "belt-drive": ["driver", "pulleys.*.speed_mean", "pulleys.*.slip", "pulleys.*.slip_margin", "pulleys.*.hub_load",
-                   "spans.*.tension_mean", "spans.*.tension_min", "spans.*.tension_max", "power.input",
-                   "power.efficiency", "tensioners.*.arm_angle_mean", "tensioners.*.travel_min",
-                   "tensioners.*.travel_max", "tensioners.*.hub_load", "clutches.*.torque_mean",
-                   "clutches.*.overrun_share", "belt.pretension", "solver.wall_time", "solver.real_time_factor"],
-    "gear-train": ["planetary.load_sharing_factor", "planetary.phase_*", "planetary.natural_frequencies_hz",
-                   "rating.*.verdict", "rating.*.*_rating.S_H", "rating.*.*_rating.S_F", "kv*", "*.kv", "meshes.*",
-                   "*dynamic_factor*", "solver.wall_time"],
-    "span-stability": ["critical_speed*", "*frequency*", "*stable*", "*speed*"],
-    "toothed-mesh": ["*overlap*", "*clearance*", "*depth*", "load.jump_torque_N_m", "load.max_tooth_load_N",
-                     "load.first_tooth_share", "load.slack_tension_N"],
-}
-
-
 def _value(v, unit):
     if isinstance(v, bool) or v is None:
         return str(v)
     if isinstance(v, (int, float)):
         return number_text(float(v), unit)
     if isinstance(v, (list, tuple)):
+        from .overview import compact
+
+        if any(isinstance(x, (list, tuple, dict)) for x in v):
+            return compact(v)
         if len(v) > 8:
             return f"[{len(v)} values: {_value(v[0], '')} ... {_value(v[-1], '')}]"
         return "[" + ", ".join(_value(x, "") for x in v) + "]"
@@ -90,7 +78,8 @@ def _rows(flat: dict, units: dict) -> list[dict]:
     for k, v in flat.items():
         unit = units.get(k, "")
         numeric = isinstance(v, (int, float, list, tuple)) and not isinstance(v, bool)
-        out.append({"key": k, "value": _value(v, unit), "unit": "" if unit == "1" or not numeric else unit})
+        out.append({"key": k, "value": _value(v, unit if "speed" in k else ""),
+                    "unit": "" if unit == "1" or not numeric else unit})
     return out
 
 
@@ -121,7 +110,7 @@ def _model_rows(model) -> list[dict]:
     return rows
 
 
-#: columns of the table fields (README, model-file fields), whose schema carries no unit
+#: columns of the table fields (the model-file reference), whose schema carries no unit
 TABLE_UNITS = {"torque_time": "rows [s, N*m]", "torque_speed": "rows [rad/s, N*m]", "speed_time": "rows [s, rad/s]"}
 
 
@@ -139,22 +128,6 @@ def _items_unit(model_cls, path) -> str:
     return units.pop() or "" if len(units) == 1 else ""
 
 
-def _runup_table(summary):
-    """The run-up per bin as table rows (the CLI prints the same as text): rpm, each span's
-    tension min-max, the largest slip and its pulley."""
-    ru = summary.get("runup")
-    if not ru:
-        return None
-    spans = list(ru["span_tension_max"])
-    rows = []
-    for b, rpm in enumerate(ru["speed_rpm"]):
-        cells = [f"{ru['span_tension_min'][s][b]:.0f}-{ru['span_tension_max'][s][b]:.0f}" for s in spans]
-        worst = max(ru["slip"], key=lambda n: abs(ru["slip"][n][b])) if ru["slip"] else ""
-        rows.append([f"{rpm:.0f}"] + cells + ([f"{100 * ru['slip'][worst][b]:.2f}", worst] if worst else []))
-    head = ["crank rpm"] + [s.replace("-", "-\u200b") for s in spans] + (["largest slip (%)", "on"] if ru["slip"] else [])
-    return {"title": f"Run-up of {ru['crank']}: span tension min-max (N) per crank-speed bin", "head": head, "rows": rows}
-
-
 def _figures(files, captions=None) -> list[dict]:
     out = []
     for f in files:
@@ -168,14 +141,14 @@ def _figures(files, captions=None) -> list[dict]:
 
 
 def render(title, kind, status, message, diagnostics, headline, results, figures, model_rows, model_toml, source="",
-           extra="", table=None, model_heading="Model") -> str:
+           extra="", table=None, model_heading="Model", verdict=None, tables=()) -> str:
     from jinja2 import Environment, PackageLoader, select_autoescape
 
     env = Environment(loader=PackageLoader("drivedyn", "templates"), autoescape=select_autoescape(["html", "j2"]))
     return env.get_template("report.html.j2").render(
         title=title, kind=kind, status=status, message=message, diagnostics=diagnostics, headline=headline, results=results,
         figures=figures, model_rows=model_rows, model_toml=model_toml, source=source, extra=extra, table=table,
-        model_heading=model_heading,
+        model_heading=model_heading, verdict=verdict, tables=list(tables),
         version=__version__, written=_dt.datetime.now().isoformat(timespec="seconds"))
 
 
@@ -186,19 +159,18 @@ def write_report(result, outdir, files, model=None, source="") -> Path:
     outdir = Path(outdir)
     if model is None and "model_toml" in result.ds.attrs:
         model = loads(result.ds.attrs["model_toml"])
-    flat = {k: v for k, v in result.flat_summary().items() if not (k.startswith("runup.") and isinstance(v, list))}
-    import fnmatch
+    from .overview import tables, verdict_table
 
-    pats = HEADLINE.get(result.kind, [])
-    head = {k: v for k, v in flat.items() if any(fnmatch.fnmatch(k, p) for p in pats)} or dict(list(flat.items())[:25])
+    flat = {k: v for k, v in result.flat_summary().items()
+            if not (k.startswith(("runup.", "flap.")) and isinstance(v, list))}
     html = render(
         title=(getattr(model, "name", "") or result.kind) if model is not None else result.kind, kind=result.kind,
         status=result.status, message=result.message,
-        diagnostics=[_diag(d) for d in result.diagnostics], headline=_rows(head, result.units),
+        diagnostics=[_diag(d) for d in result.diagnostics], headline=[],
         results=_rows(flat, result.units), figures=_figures(files),
         model_rows=_model_rows(model) if model is not None else [],
         model_toml=dumps(model) if model is not None else "", source=str(source),
-        table=_runup_table(result.summary))
+        verdict=verdict_table(result.summary), tables=tables(result))
     from .outputs import write_text
 
     return write_text(outdir / "report.html", html)

@@ -44,6 +44,10 @@ def test_report_renders_in_a_browser(kind, tmp_path):
     n = int(re.search(r'data-images="(\d+)"', html).group(1))
     assert n >= 1 and html.count("data:image/") == n
     assert "http://" not in html.replace("http://www.w3.org", "") and "https://" not in html   # self-contained
+    # the answer first: the verdict heading and table come before any other table and before the plots
+    first = re.search(r"<table[^>]*>", html).group(0)
+    assert "verdict-table" in first, first
+    assert html.index('id="verdict"') < html.index("<h2>Plots</h2>")
     if BROWSER is None:
         pytest.skip("no Chromium on this machine (.ci/run installs it)")
     proc = subprocess.run([BROWSER, "--headless", "--no-sandbox", "--disable-gpu", "--enable-logging=stderr", "--v=0",
@@ -52,6 +56,8 @@ def test_report_renders_in_a_browser(kind, tmp_path):
     body = re.search(r"<body[^>]*>", proc.stdout)
     assert body, proc.stderr[-2000:]
     attrs = dict(re.findall(r'data-([a-z]+)="(\d+)"', body.group(0)))
+    tables = re.findall(r"<table[^>]*>", proc.stdout)
+    assert tables and "verdict-table" in tables[0]          # as the browser built the page
     assert attrs.get("loaded") == str(n) and "broken" not in attrs, body.group(0)
     console = [ln for ln in proc.stderr.splitlines() if "CONSOLE" in ln]
     assert not console, console

@@ -17,6 +17,7 @@ from typing import Literal, Optional, Union
 from pydantic import field_validator, model_validator
 
 from ..model import Spec, check_name, quantity, table_rows
+from .criteria import Criteria
 
 Length = quantity("m")
 Time = quantity("s")
@@ -109,7 +110,7 @@ class _Tensioner(Spec):
 
 class Arm(_Tensioner):
     """Automatic tensioner: the pulley on an arm that swings about a fixed pivot (seed 000's
-    tensioner idler, made dynamic; design note fead.md). Travel and stops in rad."""
+    tensioner idler, made dynamic). Travel and stops in rad."""
 
     pivot: tuple[Length, Length]
     inertia: quantity("kg*m^2", gt=0)            # arm about the pivot, the pulley's mass included
@@ -361,6 +362,7 @@ class Model(Spec):
     gravity: quantity("m/s^2") = 9.81
     simulation: Simulation = Simulation()
     output: Output = Output()
+    criteria: Criteria = Criteria()               # design limits of the verdict (criteria.py, docs/criteria.md)
 
     @model_validator(mode="after")
     def _pulleys(self):

@@ -5,6 +5,7 @@ the backend; ``plot_all`` marks every figure of a warned or failed run (drivedyn
 """
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -98,6 +99,10 @@ def plot_speeds(ds, ax=None):
     for nm in names:
         style, tail = _twin_style(twin, nm)
         ax.plot(t, ds["speed"].sel(pulley=nm), label=nm + tail, color=colour(ds, nm), **style)
+    if "rotor_speed" in ds:       # an overrunning clutch's rotor behind its pulley
+        for nm in ds["clutch"].values.tolist():
+            ax.plot(t, ds["rotor_speed"].sel(clutch=nm), label=f"{nm} rotor (clutch)", color=colour(ds, nm),
+                    ls=":", lw=1.4)
     ax.set_ylabel("speed (rad/s)")
     sec = ax.secondary_yaxis("right", functions=(lambda w: w * RPM, lambda n: n / RPM))
     sec.set_ylabel("rpm")
@@ -305,6 +310,7 @@ def draw_drive(ds, frame, ax, vmax=None):
                                      fill=False, lw=1.4, color=colour(ds, nm)))
         ax.annotate(str(nm), (float(ds["pulley_x"][j]), float(ds["pulley_y"][j])), ha="center", va="center",
                     fontsize=7, color=colour(ds, nm))
+    _draw_arms(ds, frame, ax)
     x = np.append(ds["belt_x"][frame].values, ds["belt_x"][frame].values[0])
     y = np.append(ds["belt_y"][frame].values, ds["belt_y"][frame].values[0])
     ten = ds["belt_tension"][frame].values
@@ -318,6 +324,34 @@ def draw_drive(ds, frame, ax, vmax=None):
     return sc
 
 
+def _draw_arms(ds, frame, ax):
+    """Each tensioner arm at the frame: pivot, arm, and its stops (thin lines at the stop angles)."""
+    if "arm_angle" not in ds or "model_toml" not in ds.attrs:
+        return
+    from ..model import loads
+
+    model = loads(ds.attrs["model_toml"])
+    t = float(ds["frame_time"][frame])
+    for p in model.pulleys:
+        if getattr(p, "arm", None) is None or p.name not in ds["arm"].values.tolist():
+            continue
+        px, py = p.arm.pivot
+        cx, cy = p.center
+        L = math.hypot(cx - px, cy - py)
+        psi0 = math.atan2(cy - py, cx - px)
+        psi_t = ds["arm_angle"].sel(arm=p.name).values
+        q_t = ds["arm_travel"].sel(arm=p.name).values
+        psi = float(np.interp(t, ds["time"].values, psi_t))
+        k = int(np.argmax(np.abs(q_t)))
+        sense = 1.0 if abs(q_t[k]) < 1e-12 else float(np.sign(np.angle(np.exp(1j * (psi_t[k] - psi0))) / q_t[k]))
+        for q in p.arm.stops:
+            a = psi0 + sense * q
+            ax.plot([px, px + 1.15 * L * math.cos(a)], [py, py + 1.15 * L * math.sin(a)], color="0.55", lw=0.8, ls=":")
+        ax.plot([px, px + L * math.cos(psi)], [py, py + L * math.sin(psi)], color="0.2", lw=2.2, solid_capstyle="round")
+        ax.plot([px], [py], "o", color="0.2", ms=5)
+        ax.annotate("pivot", (px, py), xytext=(3, -9), textcoords="offset points", fontsize=6, color="0.3")
+
+
 def _mean_tensions(ds):
     """Span tensions over the steady window (the modes' geometric stiffness), None without spans."""
     if "span_tension" not in ds or ds.sizes.get("time", 0) == 0:
@@ -329,10 +363,13 @@ def _mean_tensions(ds):
     return ten if np.all(np.isfinite(ten)) else None
 
 
-def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), rpm_max=None, free_rotor_hz=()):
+def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), rpm_max=None, flap=None,
+                  speed_range=None, own_orders=None, free_rotor_hz=()):
     """Campbell diagram: the drive's rotational modes (horizontal; one-way clutches locked, and
-    dotted with their rotors free) against the orders of the driver's rotation (k x driver
-    speed); crossings are resonances a run-up passes through."""
+    dotted with their rotors free) and the spans' first flap frequencies (``flap``: {span: (rpm,
+    Hz)}, belt/flap.py) against the orders of the driver's rotation (k x driver speed); crossings
+    inside ``speed_range`` (rpm, shaded) are resonances the run passes through. ``own_orders``:
+    {label: order in driver orders} of accessories' own excitations (an A/C compressor's pistons)."""
     ax = plotting.ax_or_new(ax)
     for f in free_rotor_hz:
         ax.axhline(f, color="C0", lw=0.9, ls=":", alpha=0.8)
@@ -341,25 +378,49 @@ def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), r
     w = np.abs(ds["speed"].sel(pulley=driver).values)
     rpm_run = float(w.max()) * 30 / np.pi if len(w) else 0.0
     top_rpm = rpm_max or max(1.25 * rpm_run, 1.0)
-    f_top = max([1.1 * f for f in list(frequencies_hz) + list(free_rotor_hz)] + [orders[-1] * top_rpm / 60])
+    orders = sorted(set(orders))
+    flap = flap or {}
+    f_flap = [float(np.max(f)) for _, f in flap.values() if len(f)]
+    f_top = max([1.1 * f for f in list(frequencies_hz) + list(free_rotor_hz) + f_flap]
+                + [max(orders or [1]) * top_rpm / 60 * 0.6])
+    if speed_range is not None:
+        ax.axvspan(*speed_range, color="0.9", zorder=0, label=f"run: {speed_range[0]:.0f}-{speed_range[1]:.0f} rpm")
     for f in frequencies_hz:
+        if f > f_top:
+            continue
         ax.axhline(f, color="C0", lw=1.2)
         ax.text(top_rpm * 0.99, f, f" {f:.1f} Hz", va="bottom", ha="right", fontsize=8, color="C0")
     n = np.array([0.0, top_rpm])
-    for k in orders:
-        ax.plot(n, k * n / 60, color="0.5", lw=0.8, ls="--")
-        ax.text(top_rpm, k * top_rpm / 60, f" {k}", fontsize=8, color="0.4", va="center")
+    lines = [(k, f"{k:g}", "0.4") for k in orders] + [(k, lab, "C4") for lab, k in (own_orders or {}).items()]
+    for k, lab, col in lines:
+        ax.plot(n, k * n / 60, color=col, lw=0.8, ls="--")
+        y = k * top_rpm / 60
+        if y <= f_top:
+            ax.text(top_rpm, y, f" {lab}", fontsize=8, color=col, va="center")
+        else:
+            ax.text(60 * f_top / k, f_top, f"{lab} ", fontsize=8, color=col, va="top", ha="right")
         for f in frequencies_hz:   # resonance: order k at the speed where k n / 60 = f
             if 60 * f / k <= top_rpm:
                 ax.plot(60 * f / k, f, "o", color="C3", ms=5)
-    if rpm_run > 0:
-        ax.axvline(rpm_run, color="k", lw=0.8, ls=":", label=f"{driver}: {rpm_run:.0f} rpm (run's largest)")
-        ax.legend(loc="upper left", fontsize=8)
+    from .flap import crossings
+
+    for i, (span, (rpm, f)) in enumerate(flap.items()):
+        rpm, f = np.asarray(rpm), np.asarray(f)
+        style = dict(color=f"C{(i + 1) % 10}", lw=1.6)
+        if len(rpm) > 1:
+            ax.plot(rpm, f, label=f"flap {span}", **style)
+        else:
+            ax.axhline(f[0], ls="-.", label=f"flap {span}", **style)
+        fl = {"speed_rpm": rpm.tolist(), "spans": {span: {"f1": f.tolist()}}}
+        for x in crossings(fl, orders, speed_range or (0, top_rpm)):
+            ax.plot(x["rpm"], x["frequency_hz"], "s", mfc="none", mec="C3", ms=7)
     ax.set_xlim(0, top_rpm * 1.08)
     ax.set_ylim(0, f_top)
     ax.set_xlabel(f"{driver} speed (rpm)")
     ax.set_ylabel("frequency (Hz)")
-    ax.set_title("Campbell diagram: rotational modes and orders of the driver (dashed)")
+    ax.set_title("Campbell diagram: rotational modes (blue; dotted: clutch overrunning),\n"
+                 "span flap f1 (coloured; squares: crossings in the run), orders of the driver (dashed)", fontsize=9)
+    ax.legend(loc="upper left", fontsize=7, ncol=2)
     ax.grid(alpha=0.3)
     return ax
 
@@ -406,11 +467,27 @@ def _figures(ds, driver):
         from ..model import loads
         from .modes import drive_modes
 
-        md = drive_modes(loads(ds.attrs["model_toml"]), tensions=_mean_tensions(ds))
-        if not md.frequencies_hz:
+        from .criteria import speed_range
+        from .flap import excited_orders
+
+        model = loads(ds.attrs["model_toml"])
+        md = drive_modes(model, tensions=_mean_tensions(ds))
+        flap = {}
+        if "flap_frequency" in ds:
+            for sp in ds["flap_span"].values.tolist():
+                flap[sp] = (ds["flap_rpm"].values, ds["flap_frequency"].sel(flap_span=sp, flap_mode=1).values)
+        if not md.frequencies_hz and not flap:
             return None
-        fig, ax = _fig(1, 4)
-        plot_campbell(ds, md.frequencies_hz, driver, ax=ax[0], free_rotor_hz=md.free_rotor_hz)
+        orders = excited_orders(model, driver, extra=model.criteria.flap_orders) or [1, 2, 3, 4]
+        # an accessory's own orders (on its own angle) in orders of the driver: k r_driver / r_accessory
+        names = ds["pulley"].values.tolist()
+        r = ds["pulley_radius"].values
+        jd = names.index(driver) if driver in names else 0
+        own = {f"{p.name} {h.order:g}": h.order * r[jd] / r[names.index(p.name)]
+               for p in model.pulleys for h in (getattr(p, "harmonics", None) or []) if p.name in names}
+        fig, ax = _fig(1, 5)
+        plot_campbell(ds, md.frequencies_hz, driver, ax=ax[0], orders=orders, flap=flap, own_orders=own,
+                      speed_range=speed_range(ds, {}, driver), free_rotor_hz=md.free_rotor_hz)
         return fig
 
     def runup():
@@ -426,7 +503,14 @@ def _figures(ds, driver):
 
         fig = Figure(figsize=(8, 5), layout="constrained")
         tight = str(ds["span"].values[int(np.argmax(ds["runup_tension_mean"].values.mean(axis=0)))])
-        plot_waterfall(ds, tight, fig.add_subplot())
+        try:
+            from ..model import loads
+            from .modes import drive_modes
+
+            fm = drive_modes(loads(ds.attrs["model_toml"]), tensions=_mean_tensions(ds)).frequencies_hz
+        except Exception:
+            fm = []
+        plot_waterfall(ds, tight, fig.add_subplot(), modes=fm)
         return fig
 
     def belt():
@@ -534,12 +618,14 @@ def plot_all(result, outdir, workers=None, meanwhile=None, painters=None) -> lis
 def plot_runup(ds, ax):
     """Run-up per crank-speed bin: span tension bands, largest slip, arm travel, order cuts."""
     rpm = ds["speed_bin"].values
+    # one colour per span, its bin minimum solid and maximum dashed (six overlapping bands could
+    # not be read); the smallest minimum is what the slack-span criterion judges
     for q, sp in enumerate(ds["span"].values):
         lo, hi = ds["runup_tension_min"].values[:, q], ds["runup_tension_max"].values[:, q]
-        line, = ax[0].plot(rpm, ds["runup_tension_mean"].values[:, q], label=str(sp))
-        ax[0].fill_between(rpm, lo, hi, color=line.get_color(), alpha=0.15)
+        line, = ax[0].plot(rpm, lo, label=str(sp), lw=1.4)
+        ax[0].plot(rpm, hi, color=line.get_color(), ls="--", lw=0.9)
     ax[0].set_ylabel("span tension (N)")
-    ax[0].set_title("span tension per crank-speed bin: mean, band min-max")
+    ax[0].set_title("span tension per crank-speed bin: minimum (solid) and maximum (dashed)")
     _legend(ax[0])
     crank = ds.attrs.get("runup_crank")
     for nm in ds["pulley"].values:
@@ -567,7 +653,7 @@ def plot_runup(ds, ax):
         a.grid(alpha=0.3)
 
 
-def plot_waterfall(ds, span, ax):
+def plot_waterfall(ds, span, ax, modes=None):
     """Spectrum of a span tension against crank speed (short windows along the run-up), with the
     engine-order lines f = k n / 60."""
     t = ds["time"].values
@@ -587,15 +673,33 @@ def plot_waterfall(ds, span, ax):
     S = np.array(S)
     fmax = min(f[-1], 8 * max(R) / 60)
     keep = f <= fmax
-    mesh = ax.pcolormesh(f[keep], R, S[:, keep], shading="nearest", cmap="viridis")
-    ax.figure.colorbar(mesh, ax=ax, label="amplitude (N)")
+    from matplotlib.colors import LogNorm
+
+    A = S[:, keep]
+    top = float(A.max()) if A.size and A.max() > 0 else 1.0
+    # logarithmic amplitude: the orders and resonances span three decades
+    mesh = ax.pcolormesh(f[keep], R, np.maximum(A, top * 1e-3), shading="nearest", cmap="viridis",
+                         norm=LogNorm(vmin=top * 1e-3, vmax=top))
+    ax.figure.colorbar(mesh, ax=ax, label="amplitude (N, log scale)")
     for k in ds["order"].values:
         ax.plot(np.array(R) * k / 60, R, "w--", lw=0.7)
-        ax.text(min(max(R) * k / 60, fmax), max(R), f"{k:g}", color="w", fontsize=7, ha="right", va="top")
+        x = max(R) * k / 60
+        if x < fmax * 0.97:
+            ax.text(x, max(R), f" {k:g}", color="w", fontsize=8, ha="left", va="top")
+        else:     # the order leaves through the right edge: label it there
+            ax.text(fmax * 0.99, 60 * fmax / k, f"{k:g} ", color="w", fontsize=8, ha="right", va="center")
+    for fm in (modes or []):
+        if fm < fmax:
+            ax.axvline(fm, color="C1", lw=0.8, ls=":")
+            ax.text(fm, min(R), f" {fm:.0f} Hz", color="C1", fontsize=7, rotation=90, va="bottom", ha="right")
+    if "flap_frequency" in ds and span in ds["flap_span"].values.tolist():
+        ff = ds["flap_frequency"].sel(flap_span=span, flap_mode=1).values
+        ax.plot(ff, ds["flap_rpm"].values, color="C3", lw=1.2, label=f"flap f1 of {span}")
+        ax.legend(loc="lower right", fontsize=7)
     ax.set_xlim(0, fmax)
     ax.set_xlabel("frequency (Hz)")
     ax.set_ylabel("crank speed (rpm)")
-    ax.set_title(f"waterfall: tension of span {span} (dashed: engine orders)")
+    ax.set_title(f"waterfall: tension of span {span}\n(dashed: engine orders; dotted: rotational modes; red: flap f1)", fontsize=9)
 
 
 def _crank_rpm(ds):

@@ -177,6 +177,13 @@ def _steady_lines(data, model) -> list:
             "at rest": "at rest (no load)"}[st["state"]]
     out = [f"steady state (creep theory, belt length kept; driver {st['driver']}): {what}"]
     out += ["  " + n for n in st["notes"]]
+    for p in model.pulleys:     # a swept prescribed speed: say which speed check evaluates
+        speeds = sorted({abs(r[1]) for r in (p.speed_time or [])} - {0.0})
+        if len(speeds) > 1:
+            rpm = 30 / math.pi
+            out.append(f"  evaluated at the last row of {p.name}.speed_time, {abs(p.speed_time[-1][1]) * rpm:.0f} rpm; "
+                       f"the table runs {speeds[0] * rpm:.0f}-{speeds[-1] * rpm:.0f} rpm, and the lowest running speed "
+                       "(idle) is often the critical one for slip: the run judges every speed bin")
     out.append(f"{'pulley':14s} {'load N m':>9s} {'T in N':>8s} {'T out N':>8s} {'slip arc':>9s} {'of wrap':>8s} "
                f"{'creep %':>8s} {'margin':>7s} {'slips at N m':>12s}")
     for name, p in st["pulleys"].items():

@@ -13,6 +13,7 @@ from typing import Literal, Optional
 from pydantic import field_validator, model_validator
 
 from ..model import Spec, check_name, quantity, table_rows
+from .criteria import Criteria
 
 #: highest pitch-line speed accepted (m/s): turbo gears, the fastest in service, stay below 200 m/s
 V_MAX = 300.0
@@ -436,6 +437,7 @@ class Model(Spec):
     sweep: Sweep = Sweep()
     iso: Iso = Iso()
     planetary: Optional[Planetary] = None
+    criteria: Criteria = Criteria()               # design limits of the verdict (criteria.py, docs/criteria.md)
 
     @model_validator(mode="after")
     def _topology(self):

@@ -21,6 +21,7 @@ from typing import Literal, Optional
 from pydantic import ValidationInfo, field_validator, model_validator
 
 from ..model import Spec, quantity
+from .criteria import Criteria
 
 Force = quantity("N")
 Speed = quantity("m/s")
@@ -261,6 +262,7 @@ class Model(Spec):
     chart: Chart = Chart()
     measurement: Optional[Measurement] = None
     response: Optional[Response] = None
+    criteria: Criteria = Criteria()               # design limits of the verdict (criteria.py, docs/criteria.md)
 
     @model_validator(mode="after")
     def _pretension(self):

@@ -14,6 +14,7 @@ import numpy as np
 from pydantic import Field, field_validator, model_validator
 
 from ..model import Spec, quantity
+from .criteria import Criteria
 
 Length = quantity("m")
 Positive = quantity("m", gt=0)
@@ -268,6 +269,7 @@ class Model(Spec):
     maps: Optional[Maps] = None
     compare: list[Pair] = []
     load: Optional[Load] = None
+    criteria: Criteria = Criteria()               # design limits of the verdict (criteria.py, docs/criteria.md)
 
     @model_validator(mode="after")
     def _pair(self):

@@ -1,0 +1,235 @@
+"""Design criteria of a belt drive (``[criteria]`` of a belt-drive model) and their evaluation.
+
+The defaults and where they come from are in docs/criteria.md; in short: slip 2 % (beyond the
+creep of an elastic belt, 1 % or less at rated load, a V-ribbed belt slides over its whole arc),
+slip margin 1.3 (the friction coefficient of rubber on steel scatters by about 25 % with humidity,
+temperature and wear), smallest span tension less the centrifugal part 10 % of the installation
+tension (no slack span), 10 % of the tensioner's stop-to-stop travel kept free at either end
+(belt stretch and wear over the belt's life), no crossing of a span's first flap mode by an
+excited crank order within 10 % of the run's speed range. Hub loads are judged only against a
+bearing limit the user gives; crossings of the rotational modes are listed, judged only when a
+number is given (the run computes the response through them; the slip, tension and hub-load
+criteria judge its consequences).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from typing import Annotated
+
+from pydantic import Field
+
+from ..criteria import Criterion
+from ..model import Spec, quantity
+
+RPM = 30 / math.pi
+
+
+class Criteria(Spec):
+    """Limits the verdict judges a belt run against (every field optional)."""
+
+    slip_max: quantity("1", gt=0) = 0.02                          # largest slip of any pulley (fraction)
+    slip_margin_min: quantity("1", ge=0) = 1.3                    # smallest slip margin of a pulley that carries torque
+    span_tension_min: quantity("N", ge=0) | None = None   # smallest T - m v^2; default 0.1 x belt.pretension
+    stop_clearance_min: quantity("1", ge=0, lt=0.5) = 0.1                 # free travel kept at each stop, fraction of stop-to-stop
+    hub_load_max: quantity("N", gt=0) | None = None       # bearing limit on the peak hub load (not judged unless given)
+    flap_crossings_max: Annotated[int, Field(ge=0)] = 0                     # crossings of a span's first flap mode by an excited order
+    flap_speed_margin: quantity("1", ge=0, lt=1) = 0.1                  # the run's speed range widened by this fraction each way
+    flap_orders: list[float] = []                   # orders of the crank to judge besides its declared speed orders
+    flap_amplitude_min: quantity("rad/s", ge=0) = 0.0     # declared speed orders weaker than this are not judged
+    resonance_crossings_max: Annotated[int, Field(ge=0)] | None = None      # crossings of rotational modes (listed; judged only if given)
+
+
+def _window(ds):
+    """Samples judged: the steady window, or for a run-up every sample in its bins."""
+    t = ds["time"].values
+    if "speed_bin" in ds.coords and "crank_rpm" in ds:
+        c = ds["speed_bin"].values
+        half = 0.5 * (c[1] - c[0]) if len(c) > 1 else 0.0
+        return ds["crank_rpm"].values >= c.min() - half
+    w = ds.attrs.get("steady_window")
+    if w is None or len(np.atleast_1d(w)) != 2:
+        return t >= t[0] + 0.75 * (t[-1] - t[0])
+    return (t >= w[0]) & (t <= w[1])
+
+
+def speed_range(ds, summary, driver) -> tuple[float, float]:
+    """The crank's speed range over the judged samples (rpm)."""
+    sel = _window(ds)
+    if "crank_rpm" in ds:
+        n = ds["crank_rpm"].values[sel]
+    else:
+        n = np.abs(ds["speed"].sel(pulley=driver).values[sel]) * RPM
+    return (float(n.min()), float(n.max())) if n.size else (0.0, 0.0)
+
+
+def add_flap_and_modes(model, result) -> None:
+    """summary["flap"] (span flap frequencies, belt/flap.py), summary["modes"] (the rotational
+    modes, belt/modes.py) and ds["flap_frequency"] for the Campbell diagram."""
+    from ..results import variable
+    from . import flap as flapmod
+    from .modes import drive_modes
+
+    s, ds = result.summary, result.ds
+    if "flap" not in s:
+        try:
+            fl = flapmod.flap(model, ds, s)
+        except Exception as exc:          # a layout that cannot be drawn: no flap, said so
+            fl, s["flap_skipped"] = {}, str(exc)
+        if fl:
+            s["flap"] = fl
+            spans = list(fl["spans"])
+            f = np.array([[[fl["spans"][n][f"f{k + 1}"][b] for k in range(flapmod.MODES)] for n in spans]
+                          for b in range(len(fl["speed_rpm"]))])
+            ds.coords["flap_rpm"] = variable(fl["speed_rpm"], ("flap_rpm",), "rpm", "crank speed of the flap point")
+            ds["flap_frequency"] = variable(f, ("flap_rpm", "flap_span", "flap_mode"), "Hz",
+                                            "transverse (flap) natural frequency of the moving span")
+            ds.coords["flap_span"] = spans
+            ds.coords["flap_mode"] = list(range(1, flapmod.MODES + 1))
+    if "modes" not in s:
+        try:
+            ten = None
+            if "span_tension" in ds and ds.sizes.get("time", 0):
+                ten = ds["span_tension"].values[_window(ds)].mean(axis=0)
+                ten = ten if ten.size and np.all(np.isfinite(ten)) else None
+            md = drive_modes(model, tensions=ten)     # at the run's mean span tensions
+            s["modes"] = {"frequencies_hz": list(md.frequencies_hz)}
+            if getattr(md, "free_rotor_hz", None):
+                s["modes"]["free_rotor_hz"] = list(md.free_rotor_hz)
+        except Exception:
+            pass
+
+
+def evaluate(model, result):
+    """([Criterion], {name: why not judged}) for a belt run."""
+    from . import flap as flapmod
+
+    c = model.criteria
+    add_flap_and_modes(model, result)
+    s, ds = result.summary, result.ds
+    out, skipped = [], {}
+    ru = s.get("runup")
+    driver = (ru or {}).get("crank") or s.get("driver")
+    pulleys = s.get("pulleys", {})
+
+    # slip: per bin for a run-up (never a mean over the swept window), else the steady window's
+    if ru and ru.get("slip"):
+        worst = max(((abs(v), n, b) for n, vs in ru["slip"].items() for b, v in enumerate(vs) if v is not None),
+                    default=None)
+        if worst:
+            out.append(Criterion("slip_runup", worst[0], c.slip_max, "1", "max",
+                                 "largest slip of any pulley against the crank in any run-up bin",
+                                 f"{worst[1]} at {ru['speed_rpm'][worst[2]]:.0f} rpm"))
+    else:
+        sl = [(abs(p["slip"]), n) for n, p in pulleys.items() if n != driver and p.get("slip") is not None
+              and math.isfinite(p["slip"])]
+        if sl:
+            v, n = max(sl)
+            out.append(Criterion("slip_mean", v, c.slip_max, "1", "max",
+                                 "largest mean slip of any pulley over the steady window", n))
+
+    # slip margin: the pulleys that carry torque (an idler's margin says nothing)
+    if ru:
+        skipped["slip_margin"] = "run-up: the slip per bin is judged instead (slip_runup)"
+    else:
+        torques = {n: abs(p.get("torque_mean") or 0.0) for n, p in pulleys.items()}
+        big = max(torques.values(), default=0.0)
+        loaded = [(p["slip_margin"], n) for n, p in pulleys.items() if p.get("slip_margin") is not None
+                  and math.isfinite(p["slip_margin"]) and (n == driver or torques[n] > 0.05 * big)]
+        if loaded:
+            v, n = min(loaded)
+            out.append(Criterion("slip_margin", v, c.slip_margin_min, "1", "min",
+                                 "smallest slip margin (friction capacity over transmitted torque) of a pulley "
+                                 "that carries torque", n))
+
+    # span tension less its centrifugal part
+    m = model.belt.mass_per_length
+    limit = c.span_tension_min if c.span_tension_min is not None else 0.1 * (model.belt.pretension or 0.0)
+    names = ds["pulley"].values.tolist()
+    r = float(ds["pulley_radius"].values[names.index(driver)]) if driver in names else float("nan")
+    cands = []
+    if ru:
+        for sp, vs in ru["span_tension_min"].items():
+            for b, v in enumerate(vs):
+                vb = ru["speed_rpm"][b] / RPM * r
+                cands.append((v - m * vb ** 2, sp, f" at {ru['speed_rpm'][b]:.0f} rpm"))
+    else:
+        w = abs(pulleys.get(driver, {}).get("speed_mean") or 0.0)
+        for sp, e in s.get("spans", {}).items():
+            if e.get("tension_min") is not None:
+                cands.append((e["tension_min"] - m * (w * r) ** 2, sp, ""))
+    if cands:
+        v, sp, at = min(cands)
+        out.append(Criterion("span_tension", v, limit, "N", "min",
+                             "smallest span tension less the centrifugal tension m v^2 (no slack span)", sp + at))
+
+    # tensioner travel against its stops
+    for p in model.pulleys:
+        t = getattr(p, "arm", None) or getattr(p, "slider", None)
+        if t is None or not hasattr(t, "stops"):
+            continue
+        var, dim = ("arm_travel", "arm") if p.arm is not None else ("slider_travel", "slider")
+        if var not in ds or p.name not in ds[dim].values.tolist():
+            continue
+        q = ds[var].sel({dim: p.name}).values[_window(ds)]
+        if not q.size:
+            continue
+        lo, hi = t.stops
+        free = min(float(q.min()) - lo, hi - float(q.max())) / (hi - lo)
+        out.append(Criterion("stop_clearance", free, c.stop_clearance_min, "1", "min",
+                             "free travel of the tensioner to its nearer stop, as a share of the stop-to-stop "
+                             "travel", p.name))
+
+    # hub loads against a bearing limit
+    if c.hub_load_max is not None:
+        h = ds["hub_load"].values[_window(ds)]
+        if h.size:
+            k = int(np.argmax(h.max(axis=0)))
+            out.append(Criterion("hub_load", float(h[:, k].max()), c.hub_load_max, "N", "max",
+                                 "peak hub load of any pulley", names[k]))
+    else:
+        skipped["hub_load"] = "no bearing limit given (criteria.hub_load_max)"
+
+    # span flap
+    fl = s.get("flap")
+    if fl and fl.get("spans"):
+        orders = flapmod.excited_orders(model, driver, c.flap_amplitude_min, c.flap_orders)
+        lo, hi = speed_range(ds, s, driver)
+        rng = (lo * (1 - c.flap_speed_margin), hi * (1 + c.flap_speed_margin))
+        if orders:
+            xs = flapmod.crossings(fl, orders, rng)
+            out.append(Criterion("flap_crossings", len(xs), c.flap_crossings_max, "", "max",
+                                 f"crossings of a span's first flap mode by crank orders {_orders(orders)} within "
+                                 f"{rng[0]:.0f}-{rng[1]:.0f} rpm",
+                                 "; ".join(f"{x['span']} order {_o(x['order'])} at {x['rpm']:.0f} rpm "
+                                           f"({x['frequency_hz']:.0f} Hz)" for x in xs[:4])
+                                 + (f"; {len(xs) - 4} more" if len(xs) > 4 else ""), xs))
+        else:
+            skipped["flap_crossings"] = "the crank declares no speed orders (criteria.flap_orders names more)"
+
+    # rotational resonances inside the speed range
+    modes = s.get("modes", {}).get("frequencies_hz")
+    if modes:
+        orders = flapmod.excited_orders(model, driver, c.flap_amplitude_min, c.flap_orders)
+        lo, hi = speed_range(ds, s, driver)
+        xs = [{"mode": i + 1, "order": k, "rpm": 60 * f / k, "frequency_hz": f}
+              for i, f in enumerate(modes) for k in orders if lo <= 60 * f / k <= hi]
+        if c.resonance_crossings_max is not None:
+            out.append(Criterion("resonance_crossings", len(xs), c.resonance_crossings_max, "", "max",
+                                 "crossings of the drive's rotational modes by the crank orders inside the run's "
+                                 "speed range", "; ".join(f"mode {x['mode']} ({x['frequency_hz']:.0f} Hz) order "
+                                                          f"{_o(x['order'])} at {x['rpm']:.0f} rpm" for x in xs[:4]), xs))
+        else:
+            skipped["resonance_crossings"] = (f"listed, not judged ({len(xs)} inside the speed range; "
+                                              "criteria.resonance_crossings_max judges them)")
+    return out, skipped
+
+
+def _o(k):
+    return f"{k:g}"
+
+
+def _orders(orders):
+    return ", ".join(_o(k) for k in orders)

@@ -1,0 +1,57 @@
+"""Design criteria of a gear train (``[criteria]`` of a gear-train model) and their evaluation.
+
+Defaults (docs/criteria.md): no loss of tooth contact at the operating speed (the smallest mesh
+force stays above 0: a mesh that separates hammers, and the linear K_v no longer describes it);
+the linear model parametrically stable at the operating speed (Floquet growth rate <= 0: an
+unstable K_v is whatever the window end reached); no unstable or separating speed range in the
+speed sweep, if one was run. K_v itself is judged only against a limit the user gives
+(``kv_max``): it enters the rating (ISO 6336-1), whose limits are the rating's.
+"""
+from __future__ import annotations
+
+import math
+from typing import Annotated
+
+from pydantic import Field
+
+from ..criteria import Criterion
+from ..model import Spec, quantity
+
+
+RPM = 30 / math.pi
+
+
+class Criteria(Spec):
+    """Limits the verdict judges a gear-train run against (every field optional)."""
+
+    kv_max: quantity("1", ge=1) | None = None              # largest dynamic factor K_v of any mesh (not judged unless given)
+    separation: bool = False                 # allow loss of tooth contact at the operating speed
+    stable: bool = True                      # require the linear model stable at the operating speed
+    sweep_unstable_ranges_max: Annotated[int, Field(ge=0)] = 0       # unstable or separating speed ranges allowed in the sweep
+
+
+def evaluate(model, result):
+    c = model.criteria
+    s = result.summary
+    out, skipped = [], {}
+    meshes = s.get("meshes", {})
+    if c.kv_max is not None and meshes:
+        v, n = max((e.get("kv") or 0.0, n) for n, e in meshes.items())
+        out.append(Criterion("kv", v, c.kv_max, "1", "max", "largest dynamic factor K_v of any mesh", n))
+    elif meshes:
+        skipped["kv"] = "no limit given (criteria.kv_max)"
+    if not c.separation and meshes:
+        v, n = min((e.get("force_min", 0.0), n) for n, e in meshes.items())
+        out.append(Criterion("mesh_force_min", v, 0.0, "N", "min",
+                             "smallest mesh force at the operating speed (below 0: the teeth separate)", n))
+    if c.stable and s.get("floquet_growth_rate") is not None:
+        out.append(Criterion("floquet_growth_rate", s["floquet_growth_rate"], 0.0, "1/s", "max",
+                             "largest Floquet growth rate of the linear model at the operating speed (> 0: unstable)"))
+    sweep = (s.get("sweep") or {}).get("meshes") or {}
+    if sweep:
+        ranges = [(n, r) for n, e in sweep.items() for r in (e.get("unstable_speeds", []) + e.get("separation_speeds", []))]
+        out.append(Criterion("sweep_unstable_ranges", len(ranges), c.sweep_unstable_ranges_max, "", "max",
+                             "unstable or separating speed ranges in the sweep",
+                             "; ".join(f"{n} {a * RPM:.0f}-{b * RPM:.0f} rpm" for n, (a, b) in ranges[:4])
+                             + (f"; {len(ranges) - 4} more" if len(ranges) > 4 else "")))
+    return out, skipped

@@ -1,0 +1,271 @@
+"""What a person reads first, for the terminal and report.html alike: the verdict table, then a
+few tables per object (pulleys, spans, tensioners, modes; meshes; the span; the tooth mesh), in
+the units engineers use (rpm, %, degrees). The full summary stays in summary.json, behind
+``drivedyn run --all`` and the report's folded table.
+
+A table is ``{"title", "head": [...], "rows": [[...], ...], "note": ""}`` of strings.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .criteria import rows as criteria_rows
+
+DEG = 180 / math.pi
+RPM = 30 / math.pi
+
+
+def verdict_table(summary: dict) -> dict:
+    verdict = summary.get("verdict", "not judged")
+    rows = [[r["name"], r["value"], r["limit"], r["unit"], r["pass"], r["where"]] for r in criteria_rows(summary)]
+    skipped = summary.get("criteria_skipped") or {}
+    note = "; ".join(f"{k}: {v}" for k, v in skipped.items())
+    return {"title": f"verdict: {verdict}", "head": ["criterion", "value", "limit", "unit", "", "where"],
+            "rows": rows, "note": note, "verdict": verdict}
+
+
+def tables(result) -> list[dict]:
+    """The per-object tables of a result (after the verdict)."""
+    fn = {"belt-drive": _belt, "gear-train": _gears, "span-stability": _span, "toothed-mesh": _toothed}.get(result.kind)
+    try:
+        return fn(result) if fn else []
+    except Exception as exc:      # a partial result may lack what a table needs: say so, never fail the output
+        return [{"title": "results", "head": [], "rows": [], "note": f"no overview ({exc})"}]
+
+
+def _f(v, fmt="{:.4g}"):
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return "-"
+    text = fmt.format(v + 0.0)
+    return text[1:] if text.startswith("-") and not any(c in "123456789" for c in text) else text   # no "-0"
+
+
+def _range(a, b, fmt="{:.0f}"):
+    return f"{_f(a, fmt)} .. {_f(b, fmt)}"
+
+
+def _belt(result) -> list[dict]:
+    from .belt.criteria import _window
+
+    s, ds = result.summary, result.ds
+    ru = s.get("runup") or {}
+    driver = ru.get("crank") or s.get("driver")
+    sel = _window(ds) if "time" in ds.dims else None
+    out = []
+    pulleys = s.get("pulleys", {})
+    torques = {n: abs(p.get("torque_mean") or 0.0) for n, p in pulleys.items()}
+    big = max(torques.values(), default=0.0)
+    rows = []
+    for k, name in enumerate(ds["pulley"].values.tolist() if "pulley" in ds.coords else []):
+        p = pulleys.get(name, {})
+        w = np.abs(ds["speed"].values[sel, k]) * RPM if sel is not None and sel.any() else np.array([np.nan])
+        if ru:
+            slips = [v for v in ru.get("slip", {}).get(name, []) if v is not None]
+            slip = max(slips, key=abs) if slips else (0.0 if name == driver else None)
+            margin = None
+            peak = max(ru.get("hub_load_max", {}).get(name, [np.nan]))
+        else:
+            slip = p.get("slip")
+            carries = name == driver or torques.get(name, 0.0) > 0.05 * big
+            margin = p.get("slip_margin") if carries else None
+            peak = float(np.max(ds["hub_load"].values[sel, k])) if sel is not None and sel.any() else None
+        hub = ds["hub_load"].values[sel, k] if sel is not None and sel.any() else np.array([np.nan])
+        fx = ds["hub_force_x"].values[sel, k].mean() if sel is not None and sel.any() else np.nan
+        fy = ds["hub_force_y"].values[sel, k].mean() if sel is not None and sel.any() else np.nan
+        rows.append([name, _range(w.min(), w.max()), _f(None if slip is None else 100 * slip, "{:.2f}"),
+                     _f(margin, "{:.2f}"), _f(float(np.mean(hub)), "{:.0f}"), _f(peak, "{:.0f}"),
+                     _f(math.degrees(math.atan2(fy, fx)) if np.isfinite(fx) else None, "{:.0f}")])
+    where = "over the run-up" if ru else "over the steady window"
+    out.append({"title": f"pulleys ({where})",
+                "head": ["pulley", "speed (rpm)", "slip (%)" + (" largest bin" if ru else ""), "slip margin",
+                         "hub load mean (N)", "peak (N)", "direction (deg)"],
+                "rows": rows,
+                "note": "slip margin: friction capacity over transmitted torque, for the pulleys that carry torque"
+                        + ("; judged per bin in a run-up" if ru else "")
+                        + "; direction: of the mean hub force on the pulley, counter-clockwise from +x"})
+    fl = s.get("flap", {}).get("spans", {})
+    rows = []
+    for name, e in s.get("spans", {}).items():
+        if ru:
+            lo = min(ru["span_tension_min"].get(name, [np.nan]))
+            hi = max(ru["span_tension_max"].get(name, [np.nan]))
+            mean = e.get("tension_mean")
+        else:
+            lo, hi, mean = e.get("tension_min"), e.get("tension_max"), e.get("tension_mean")
+        f1 = fl.get(name, {}).get("f1", [])
+        rows.append([name, _f(lo, "{:.0f}"), _f(mean, "{:.0f}") if not ru else "-", _f(hi, "{:.0f}"),
+                     _range(min(f1), max(f1)) if len(f1) > 1 else (_f(f1[0], "{:.1f}") if f1 else "-")])
+    out.append({"title": f"spans ({where})",
+                "head": ["span", "tension min (N)", "mean (N)", "max (N)", "flap f1 (Hz)"], "rows": rows,
+                "note": "flap f1: first transverse frequency of the moving span at its running tension and belt speed"
+                        + (" (range over the run-up bins)" if ru else "")})
+    tens = s.get("tensioners", {})
+    if tens:
+        from .model import loads
+
+        model = loads(ds.attrs["model_toml"]) if "model_toml" in ds.attrs else None
+        rows = []
+        for name, e in tens.items():
+            p = next((p for p in model.pulleys if p.name == name), None) if model is not None else None
+            t = (getattr(p, "arm", None) or getattr(p, "slider", None)) if p is not None else None
+            arm = "arm_travel" in ds and name in ds["arm"].values.tolist() if "arm" in ds.coords else False
+            if arm:
+                q = ds["arm_travel"].sel(arm=name).values[sel]
+                psi = ds["arm_angle"].sel(arm=name).values[sel]
+                rows.append([name, _range(psi.min() * DEG, psi.max() * DEG, "{:.1f}"),
+                             _range(q.min() * DEG, q.max() * DEG, "{:.2f}"),
+                             _range(t.stops[0] * DEG, t.stops[1] * DEG, "{:.0f}") if t is not None else "-",
+                             _f(e.get("hub_load"), "{:.0f}"), _f(e.get("hub_load_max"), "{:.0f}")])
+            else:
+                q = ds["slider_travel"].sel(slider=name).values[sel] if "slider_travel" in ds else np.array([np.nan])
+                rows.append([name, "-", _range(q.min() * 1e3, q.max() * 1e3, "{:.2f}") + " mm",
+                             _range(t.stops[0] * 1e3, t.stops[1] * 1e3, "{:.1f}") + " mm" if t is not None else "-",
+                             _f(e.get("hub_load"), "{:.0f}"), _f(e.get("hub_load_max"), "{:.0f}")])
+        out.append({"title": f"tensioners ({where})",
+                    "head": ["tensioner", "arm angle (deg)", "travel (deg)", "stops (deg)", "hub load mean (N)",
+                             "peak (N)"], "rows": rows,
+                    "note": "arm angle: of the arm about its pivot, counter-clockwise from +x, as drawn in belt.png; "
+                            "travel: from the drawn position, into the belt positive"})
+    modes = s.get("modes", {}).get("frequencies_hz") or []
+    if modes:
+        from .belt.criteria import speed_range
+        from .belt.flap import excited_orders
+
+        orders = []
+        if "model_toml" in ds.attrs:
+            from .model import loads
+
+            orders = excited_orders(loads(ds.attrs["model_toml"]), driver)
+        lo, hi = speed_range(ds, s, driver) if sel is not None else (0, 0)
+        rows = []
+        for i, f in enumerate(modes):
+            cross = [f"order {k:g} at {60 * f / k:.0f} rpm" for k in orders if lo <= 60 * f / k <= hi]
+            rows.append([str(i + 1), f"{f:.1f}", "; ".join(cross) or "-"])
+        out.append({"title": "rotational modes (linearised, spans EA/L)", "head": ["mode", "frequency (Hz)",
+                    f"crossed by the crank's orders in {lo:.0f}-{hi:.0f} rpm"], "rows": rows, "note": ""})
+    inst = _installation(s, ds)
+    if inst:
+        out.append(inst)
+    if ru:
+        out.append(runup_table(s))
+    return out
+
+
+def _installation(s, ds) -> dict | None:
+    """check's installation table: what a tension meter should read on each span at rest."""
+    if "model_toml" not in ds.attrs:
+        return None
+    from .belt.installation import installation_table
+    from .belt.layout import compute_layout
+    from .model import loads
+
+    model = loads(ds.attrs["model_toml"])
+    rest = [t.get("rest_tension") for t in s.get("tensioners", {}).values() if t.get("rest_tension")]
+    T0 = rest[0] if rest else model.belt.pretension
+    if not T0:
+        return None
+    tb = installation_table(model, T0, compute_layout(model))
+    rows = [[n + ("  <- measure here" if n == tb["measure_on"] else ""), f"{e['length'] * 1e3:.1f}",
+             f"{e['tension']:.0f}", f"{e['frequency']:.1f}", f"{e['band'][0]:.1f} .. {e['band'][1]:.1f}"]
+            for n, e in tb["spans"].items()]
+    return {"title": "installation (belt at rest, as drivedyn check gives it)",
+            "head": ["span", "length (mm)", "tension (N)", "f1 (Hz)", f"band for +-{100 * tb['tolerance']:g} % (Hz)"],
+            "rows": rows, "note": "the frequency a tension meter reads on each span at the installation tension"}
+
+
+def runup_table(s) -> dict:
+    """Per crank-speed bin: the extremes (never a mean over the swept window)."""
+    ru = s["runup"]
+    spans = list(ru["span_tension_max"])
+    arms = ru.get("arm_travel_range", {})
+    rows = []
+    for b, rpm in enumerate(ru["speed_rpm"]):
+        worst = max(ru["slip"], key=lambda n: abs(ru["slip"][n][b] or 0)) if ru.get("slip") else ""
+        hub = max(ru.get("hub_load_max", {}).items(), key=lambda kv: kv[1][b], default=None)
+        row = [f"{rpm:.0f}", f"{min(ru['span_tension_min'][sp][b] for sp in spans):.0f}",
+               min(spans, key=lambda sp: ru['span_tension_min'][sp][b]),
+               f"{max(ru['span_tension_max'][sp][b] for sp in spans):.0f}",
+               f"{100 * ru['slip'][worst][b]:.2f}" if worst else "-", worst,
+               f"{hub[1][b]:.0f} ({hub[0]})" if hub else "-"]
+        row += [f"{arms[a][b] * DEG:.2f}" for a in arms]
+        rows.append(row)
+    head = ["crank rpm", "tension min (N)", "on span", "max (N)", "largest slip (%)", "on", "largest hub load (N)"]
+    head += [f"{a} travel range (deg)" for a in arms]
+    return {"title": f"run-up of {ru['crank']}: extremes per crank-speed bin", "head": head, "rows": rows,
+            "note": "every span's tension per bin: runup.span_tension_min / max in summary.json, runup.png"}
+
+
+def _kv_rows(items, units, prefix=""):
+    from .results import number_text
+
+    rows = []
+    for k, v in items:
+        unit = units.get(prefix + k, "")
+        if isinstance(v, bool) or v is None or isinstance(v, str):
+            text = str(v)
+        elif isinstance(v, (int, float)):
+            text = number_text(float(v), "" if unit == "rad/s" else unit)
+        else:
+            text = compact(v)
+        rows.append([k, text, "" if unit == "1" else unit])
+    return rows
+
+
+def compact(v) -> str:
+    """A list as one short cell: short flat lists whole, anything longer or nested by its shape."""
+    if isinstance(v, (list, tuple)):
+        arr = np.asarray(v, dtype=object)
+        flat = all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)
+        if flat and len(v) <= 4:
+            return "[" + ", ".join(f"{x + 0.0:.4g}" for x in v) + "]"
+        shape = "x".join(str(n) for n in arr.shape) if arr.dtype != object or flat else str(len(v))
+        return f"[{shape} values: summary.json]"
+    return str(v)
+
+
+def _gears(result) -> list[dict]:
+    s = result.summary
+    rows = []
+    for n, e in s.get("meshes", {}).items():
+        rows.append([n, _f(e.get("kv"), "{:.3f}"), _f(e.get("kv_iso_method_b"), "{:.3f}"),
+                     _f(e.get("force_nominal"), "{:.0f}"), _range(e.get("force_min"), e.get("force_max")),
+                     _f(e.get("mesh_frequency"), "{:.1f}"), _f(e.get("contact_ratio"), "{:.3f}")])
+    out = [{"title": "meshes (steady window)", "head": ["mesh", "K_v", "K_v ISO 6336-1 B", "force nominal (N)",
+            "force min .. max (N)", "mesh frequency (Hz)", "contact ratio"], "rows": rows, "note": ""}]
+    fr = s.get("natural_frequencies_hz") or []
+    if fr:
+        out.append({"title": "natural frequencies (linear, mean mesh stiffness)", "head": ["mode", "frequency (Hz)"],
+                    "rows": [[str(i + 1), f"{f:.1f}"] for i, f in enumerate(fr)], "note": ""})
+    return out
+
+
+def _span(result) -> list[dict]:
+    s = result.summary
+    keys = ["pretension", "speed", "v_critical", "natural_frequency_hz", "excitation_frequency", "frequency_ratio",
+            "floquet_multiplier", "stability"]
+    out = [{"title": "span at the operating point", "head": ["quantity", "value", "unit"],
+            "rows": _kv_rows([(k, s[k]) for k in keys if k in s], result.units), "note": ""}]
+    fr = s.get("frequencies", {})
+    if fr:
+        n = max(len(v) for v in fr.values())
+        out.append({"title": "natural frequencies of the span (Hz)", "head": ["model"] + [f"mode {i + 1}" for i in range(n)],
+                    "rows": [[m] + [f"{x:.2f}" for x in v] for m, v in fr.items()], "note": ""})
+    return out
+
+
+def _toothed(result) -> list[dict]:
+    s = result.summary
+    items = [(k, s[k]) for k in ("max_overlap_area_mm2", "max_penetration_mm", "groove_depth_used") if k in s]
+    items += [(f"seated.{k}", v) for k, v in (s.get("seated") or {}).items()]
+    items += [(f"engagement.{k}", v) for k, v in (s.get("engagement") or {}).items()]
+    out = [{"title": "mesh geometry", "head": ["quantity", "value", "unit"], "rows": _kv_rows(items, result.units),
+            "note": ""}]
+    ld = s.get("load")
+    if ld:
+        keys = ["torque_N_m", "jump_torque_N_m", "teeth_in_mesh", "max_tooth_load_N", "most_loaded_tooth",
+                "first_tooth_share", "tight_tension_N", "slack_tension_N"]
+        out.append({"title": "under load", "head": ["quantity", "value", "unit"],
+                    "rows": _kv_rows([(k, ld[k]) for k in keys if k in ld], result.units, "load."), "note": ""})
+    return out

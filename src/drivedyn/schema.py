@@ -1,0 +1,149 @@
+"""JSON Schema of each model kind (``drivedyn schema KIND``), from the pydantic models themselves,
+so that editors (Taplo / Even Better TOML) complete and check model files, and the model-file
+reference of the documentation (docs/hooks.py) is generated from the same source.
+
+A physical field (``drivedyn.model.quantity``) accepts a number in SI units or a string with a
+unit ("27 mm"): its schema says so (``anyOf`` number / string) and carries its SI ``unit``; the
+numeric bounds apply to numbers (a string is converted and checked at load time).
+"""
+from __future__ import annotations
+
+import copy
+
+from .analyses import analysis
+
+#: a number followed by a unit, as drivedyn.units reads it ("27 mm", "1450 rpm", "-15 N*m", "2e5 N")
+UNIT_STRING = r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*\S.*$"
+
+
+def _with_units(node):
+    if isinstance(node, dict):
+        node = {k: _with_units(v) for k, v in node.items()}
+        if "unit" in node and node.get("type") in ("number", "integer"):
+            num = {k: v for k, v in node.items() if k not in ("unit", "title", "description", "default")}
+            rest = {k: v for k, v in node.items() if k in ("unit", "title", "description", "default")}
+            node = {**rest, "anyOf": [num, {"type": "string", "pattern": UNIT_STRING}]}
+        elif "unit" in node and "anyOf" in node:
+            alts = []
+            for a in node["anyOf"]:
+                if isinstance(a, dict) and a.get("type") in ("number", "integer"):
+                    alts += [a, {"type": "string", "pattern": UNIT_STRING}]
+                else:
+                    alts.append(a)
+            node["anyOf"] = alts
+        return node
+    if isinstance(node, list):
+        return [_with_units(v) for v in node]
+    return node
+
+
+def json_schema(kind: str) -> dict:
+    """The JSON Schema (draft 2020-12) of a model file of ``kind``."""
+    model = analysis(kind).Model
+    s = copy.deepcopy(model.model_json_schema(mode="validation"))
+    s = _with_units(s)
+    s["$schema"] = "https://json-schema.org/draft/2020-12/schema"
+    s["title"] = f"drivedyn model file, kind = \"{kind}\""
+    return s
+
+
+def _type_text(ann) -> str:
+    import typing
+
+    from pydantic import BaseModel
+
+    from .model import unwrap
+
+    core, _ = unwrap(ann)
+    origin = typing.get_origin(core)
+    if isinstance(core, type) and issubclass(core, BaseModel):
+        return f"table [{core.__name__}](#{core.__name__.lower()})"
+    if origin in (list, tuple):
+        args = [a for a in typing.get_args(core) if a is not Ellipsis]
+        inner = ", ".join(dict.fromkeys(_type_text(a) for a in args)) or "any"
+        return f"list of {inner}" if origin is list else f"[{inner}]"
+    if origin is typing.Literal:
+        return " / ".join(f'`"{a}"`' if isinstance(a, str) else f"`{a}`" for a in typing.get_args(core))
+    if origin in (typing.Union,) or str(origin) == "<class 'types.UnionType'>":
+        return " or ".join(_type_text(a) for a in typing.get_args(core) if a is not type(None))
+    if core is list:
+        return "row [x, y] (numbers or strings with units)"
+    return {float: "number", int: "integer", str: "string", bool: "true / false"}.get(core, str(core).replace("typing.", ""))
+
+
+def reference_markdown(kind: str) -> str:
+    """The model-file reference of ``kind`` as Markdown tables, one per table of the file, from
+    the pydantic models (field, type, SI unit, default, bounds) and their docstrings."""
+    import inspect
+    import typing
+
+    from pydantic import BaseModel
+    from pydantic_core import PydanticUndefined
+
+    from .model import unwrap
+
+    root = analysis(kind).Model
+    seen, order = set(), []
+
+    def collect(cls):
+        if cls in seen:
+            return
+        seen.add(cls)
+        order.append(cls)
+        for f in cls.model_fields.values():
+            stack = [f.annotation]
+            while stack:
+                a = stack.pop()
+                core, _ = unwrap(a)
+                if isinstance(core, type) and issubclass(core, BaseModel):
+                    collect(core)
+                else:
+                    stack += [x for x in typing.get_args(core) if x is not Ellipsis and x is not type(None)]
+
+    collect(root)
+    out = []
+    for cls in order:
+        name = "top level" if cls is root else cls.__name__
+        out.append(f"## {name}" if cls is root else f"## {cls.__name__}")
+        doc = inspect.getdoc(cls) or ""
+        if doc and not doc.startswith(("Base", "A base")):
+            out += ["", doc.split("\n\n")[0].replace("\n", " ")]
+        out += ["", "| field | type | unit (SI) | default | bounds |", "|---|---|---|---|---|"]
+        for fname, f in cls.model_fields.items():
+            unit = ""
+            for m in f.metadata:
+                e = getattr(m, "json_schema_extra", None)
+                if isinstance(e, dict) and e.get("unit"):
+                    unit = e["unit"]
+            if not unit and isinstance(f.json_schema_extra, dict):
+                unit = f.json_schema_extra.get("unit", "")
+            unit = unit or (unwrap(f.annotation)[1] or "")
+            if not unit:        # a tuple whose items carry one unit (a centre: (m, m)), a table's columns
+                items = {unwrap(a)[1] for a in typing.get_args(unwrap(f.annotation)[0]) if a is not Ellipsis}
+                unit = items.pop() or "" if len(items) == 1 else ""
+            if not unit:
+                from .report import TABLE_UNITS
+
+                unit = TABLE_UNITS.get(fname, "")
+            if f.is_required():
+                default = "**required**"
+            elif f.default is None:
+                default = "none"
+            elif f.default is PydanticUndefined:
+                default = ""
+            elif isinstance(f.default, BaseModel):
+                default = "(the table's defaults)"
+            else:
+                default = f"`{f.default!r}`".replace("|", "\\|")
+            bounds = []
+            for m in f.metadata:
+                for attr, sym in (("gt", ">"), ("ge", ">="), ("lt", "<"), ("le", "<=")):
+                    v = getattr(m, attr, None)
+                    if v is not None:
+                        bounds.append(f"{sym} {v:g}")
+            t = _type_text(f.annotation)
+            if unit and t.startswith("number"):
+                t = "number or string with unit"
+            out.append(f"| `{fname}` | {t} | {unit} | {default} | {', '.join(bounds)} |")
+        out.append("")
+    return "\n".join(out)

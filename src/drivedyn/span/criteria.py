@@ -1,0 +1,36 @@
+"""Design criteria of a span (``[criteria]`` of a span-stability model) and their evaluation.
+
+Defaults (docs/criteria.md): belt speed at most half the span's critical speed (there the first
+natural frequency of the moving span has fallen by a quarter, (1 - V^2/c^2) = 0.75, and the
+span's transverse stiffness with it); the operating speed at least 5 % away from the nearest
+parametric-resonance region (tongue) of the span, and not in one.
+"""
+from __future__ import annotations
+
+from ..criteria import Criterion
+from ..model import Spec, quantity
+
+
+class Criteria(Spec):
+    """Limits the verdict judges a span against (every field optional)."""
+
+    critical_speed_ratio_max: quantity("1", gt=0, le=1) = 0.5    # belt speed over the span's critical speed
+    tongue_distance_min: quantity("1", ge=0) = 0.05        # distance of the speed to the nearest tongue, fraction of the speed
+
+
+def evaluate(model, result):
+    c = model.criteria
+    s = result.summary
+    out = []
+    V, vcr = s.get("speed"), s.get("v_critical")
+    if V is not None and vcr:
+        out.append(Criterion("critical_speed_ratio", abs(V) / vcr, c.critical_speed_ratio_max, "1", "max",
+                             "belt speed over the span's critical speed"))
+    bands = s.get("tongue_bands") or s.get("resonance_bands") or []
+    if V is not None and bands:
+        d, where = min(((0.0 if a <= V <= b else min(abs(V - a), abs(V - b)) / abs(V), f"{a:.4g}-{b:.4g} m/s")
+                        for a, b in bands), key=lambda x: x[0])
+        out.append(Criterion("tongue_distance", d, c.tongue_distance_min, "1", "min",
+                             "distance of the belt speed to the nearest parametric-resonance region, share of the "
+                             "speed (0: inside)", where))
+    return out, {}

@@ -1,0 +1,62 @@
+"""JSON Schemas of the model kinds (drivedyn schema KIND): every shipped example validates, a
+misspelt key is rejected, a unit string is accepted where a number is, and the schema's units are
+those the loader converts to."""
+from __future__ import annotations
+
+import json
+import tomllib
+
+import jsonschema
+import pytest
+from typer.testing import CliRunner
+
+import drivedyn
+from drivedyn.analyses import KINDS
+from drivedyn.cli import app
+from drivedyn.schema import json_schema
+
+EXAMPLES = {n: p for n, p in drivedyn.examples().items() if tomllib.loads(p.read_text()).get("kind") in KINDS}
+
+
+@pytest.mark.parametrize("name", sorted(EXAMPLES))
+def test_every_example_validates(name):
+    data = tomllib.loads(EXAMPLES[name].read_text())
+    errors = list(jsonschema.Draft202012Validator(json_schema(data["kind"])).iter_errors(data))
+    assert not errors, [(list(e.absolute_path), e.message) for e in errors]
+
+
+@pytest.mark.parametrize("name, path, bad", [
+    ("belt-5pk", ("belt",), "pretenshion"),
+    ("belt-5pk", (), "simulaton"),
+    ("gears-split-path", ("drive",), "sped"),
+    ("span-t10", ("span",), "lenght"),
+    ("mesh-load-l", ("load",), "torqe"),
+])
+def test_misspelt_key_is_rejected(name, path, bad):
+    data = tomllib.loads(EXAMPLES[name].read_text())
+    node = data
+    for p in path:
+        node = node[p]
+    node[bad] = 1.0
+    errors = list(jsonschema.Draft202012Validator(json_schema(data["kind"])).iter_errors(data))
+    assert errors and any(bad in e.message for e in errors), [e.message for e in errors]
+    with pytest.raises(drivedyn.ModelError):           # and the loader agrees
+        drivedyn.loads(__import__("tomli_w").dumps(data))
+
+
+def test_units_and_strings():
+    s = json_schema("belt-drive")
+    v = jsonschema.Draft202012Validator(s)
+    data = tomllib.loads(EXAMPLES["belt-5pk"].read_text())
+    data["belt"]["pretension"] = "0.55 kN"
+    assert not list(v.iter_errors(data))
+    data["belt"]["pretension"] = "lots"
+    assert list(v.iter_errors(data))
+    assert "unit" in json.dumps(s) and '"N/m^2"' in json.dumps(s)
+
+
+def test_schema_command(tmp_path):
+    res = CliRunner().invoke(app, ["schema", "toothed-mesh"])
+    assert res.exit_code == 0 and json.loads(res.output)["properties"]["kind"]
+    res = CliRunner().invoke(app, ["schema", "belt"])
+    assert res.exit_code == 2 and "unknown kind" in res.output
