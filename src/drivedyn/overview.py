@@ -234,6 +234,28 @@ def _gears(result) -> list[dict]:
                      _f(e.get("mesh_frequency"), "{:.1f}"), _f(e.get("contact_ratio"), "{:.3f}")])
     out = [{"title": "meshes (steady window)", "head": ["mesh", "K_v", "K_v ISO 6336-1 B", "force nominal (N)",
             "force min .. max (N)", "mesh frequency (Hz)", "contact ratio"], "rows": rows, "note": ""}]
+    rows = []
+    for n, r in (s.get("rating") or {}).items():
+        for w in ("pinion", "wheel"):
+            g = r[w + "_rating"]
+            rows.append([n, r[w] if r[w] == w else f"{r[w]} ({w})", _f(g["sigma_H"] / 1e6, "{:.0f}"), _f(g["sigma_HP"] / 1e6, "{:.0f}"),
+                         _f(g["S_H"], "{:.3f}"), _f(g["sigma_F"] / 1e6, "{:.0f}"), _f(g["sigma_FP"] / 1e6, "{:.0f}"),
+                         _f(g["S_F"], "{:.3f}")])
+    if rows:
+        out.append({"title": "ISO 6336 rating, method B (K_v from the dynamic run)",
+                    "head": ["mesh", "gear", "sigma_H (MPa)", "sigma_HP (MPa)", "S_H", "sigma_F (MPa)",
+                             "sigma_FP (MPa)", "S_F"], "rows": rows,
+                    "note": "S_H and S_F with ISO's K_v, and every factor: rating.* in summary.json"})
+    pl = s.get("planetary")
+    if pl:
+        out.append({"title": "planetary stage", "head": ["quantity", "value", "unit"],
+                    "rows": _kv_rows([(k, v) for k, v in pl.items() if not isinstance(v, dict)], result.units,
+                                     "planetary."), "note": ""})
+        if pl.get("natural_frequencies_hz"):
+            types = pl.get("mode_types") or [""] * len(pl["natural_frequencies_hz"])
+            out.append({"title": "planetary stage: modes (lumped torsional model)", "head": ["mode", "frequency (Hz)", "type"],
+                        "rows": [[str(i + 1), f"{f:.1f}", str(t)] for i, (f, t) in
+                                 enumerate(zip(pl["natural_frequencies_hz"], types))], "note": ""})
     fr = s.get("natural_frequencies_hz") or []
     if fr:
         out.append({"title": "natural frequencies (linear, mean mesh stiffness)", "head": ["mode", "frequency (Hz)"],

@@ -47,6 +47,13 @@ def evaluate(model, result):
     if c.stable and s.get("floquet_growth_rate") is not None:
         out.append(Criterion("floquet_growth_rate", s["floquet_growth_rate"], 0.0, "1/s", "max",
                              "largest Floquet growth rate of the linear model at the operating speed (> 0: unstable)"))
+    # ISO 6336-2/-3 safety factors (K_v from the dynamic run) against the minimums of [iso]
+    for n, r in (s.get("rating") or {}).items():
+        for kind, key, what in (("pitting", "S_H", "contact (pitting) safety factor S_H, ISO 6336-2"),
+                                ("bending", "S_F", "tooth-root safety factor S_F, ISO 6336-3")):
+            v, who = min((r[w + "_rating"][key], r[w]) for w in ("pinion", "wheel"))
+            out.append(Criterion(f"{key}_{n}", v, r[f"{key}_min_required"], "1", "min", f"smallest {what}",
+                                 f"{n}: {who}"))
     sweep = (s.get("sweep") or {}).get("meshes") or {}
     if sweep:
         ranges = [(n, r) for n, e in sweep.items() for r in (e.get("unstable_speeds", []) + e.get("separation_speeds", []))]
