@@ -105,7 +105,9 @@ def test_runup_stops_and_span_tension(tmp_path):
 
 def test_gears_pass_and_fail(tmp_path):
     res, doc, out, model = _run(tmp_path, "gears-split-path", {"sweep.enabled": False}, strict=False)
-    assert {"mesh_force_min", "floquet_growth_rate"} <= set(doc["criteria"]), doc["criteria"]
+    # the example's meshes allow tooth separation: no Floquet criterion (linear meshes only); the
+    # ISO 6336 safety factors of both meshes are judged
+    assert {"mesh_force_min", "S_H_m12", "S_F_m12", "S_H_m13", "S_F_m13"} <= set(doc["criteria"]), doc["criteria"]
     assert doc["criteria"]["mesh_force_min"]["pass"]
     kv = max(e["kv"] for e in doc["meshes"].values())
     r = judge(drivedyn.replace(model, {"criteria.kv_max": 1.01 * kv}), open_result(out))

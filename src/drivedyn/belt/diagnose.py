@@ -350,7 +350,7 @@ def _coarse(result, model, sysm):
     for j, p in enumerate(model.pulleys):
         result.summary["pulleys"][p.name]["chordal_error"] = float(err[j])
     disc = result.summary.get("discretisation", {})
-    if disc.get("segments_on_shortest_wrap", math.inf) < WRAP_LIMIT:
+    if (disc.get("segments_on_shortest_wrap") or math.inf) < WRAP_LIMIT:
         from .resolution import auto_segments
 
         name, k = disc["shortest_wrap"], disc["segments_on_shortest_wrap"]

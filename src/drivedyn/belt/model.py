@@ -375,7 +375,9 @@ class Model(Spec):
         if not any(p.side == "inside" for p in self.pulleys):
             raise ValueError("pulleys: at least one pulley must be inside the belt loop")
         for q in self.output.segments:
-            if not 0 <= q < (self.belt.segments if self.belt.segments != "auto" else 5000):
+            if q < 0:
+                raise ValueError(f"output.segments: index {q} is negative (segments count from 0)")
+            if self.belt.segments != "auto" and q >= self.belt.segments:     # "auto": checked once resolved
                 raise ValueError(f"output.segments: index {q} outside 0..{self.belt.segments - 1}")
         if self.simulation.method in ("rkf45", "implicit") and _semi_implicit_only(self.pulleys):
             raise ValueError(f"simulation.method: {self.simulation.method} does not integrate tensioners, clutches or "
@@ -411,7 +413,10 @@ class Model(Spec):
         # Dataset, its derived variables and the netCDF writer hold copies
         per_sample = 8 * (8 * nk + 2 * na + 2 * nk + 3 * len(out.segments) + 9)
         frames = min(out.frames, samples)
-        nbytes = 3 * (samples * per_sample + frames * 5 * 8 * self.belt.segments)
+        from .resolution import MAX_AUTO
+
+        segments = MAX_AUTO if self.belt.segments == "auto" else self.belt.segments    # "auto": its upper bound
+        nbytes = 3 * (samples * per_sample + frames * 5 * 8 * segments)
         problem = bytes_problem(nbytes, "output.interval", f"{samples:.3g} samples of {out.interval:.3g} s over "
                                 f"{sim.duration:.3g} s: a longer output.interval or a shorter simulation.duration")
         if problem:

@@ -30,6 +30,9 @@ WRAP_SEGMENTS = 6
 #: the rolling-radius correction, impacts of entering segments small)
 CHORD_RATIO = 0.3
 MIN_SEGMENTS = 60
+#: wraps shorter than this (deg) are left out of the wrap rule: a 7-degree idler wrap would ask for
+#: 3000 segments and carries almost no torque; discretisation.unresolved_wraps names them
+WRAP_MIN_DEG = 20.0
 #: "auto" never picks more (the semi-implicit scheme's cost grows as n^2)
 MAX_AUTO = 2000
 
@@ -38,7 +41,7 @@ def auto_segments(model, layout=None) -> tuple[int, str]:
     """The number of segments "auto" picks for ``model``, and the rule that set it."""
     lay = layout or compute_layout(model)
     radii = [p.radius for p in model.pulleys]
-    arcs = [w * r for w, r in zip(lay.wrap, radii)]
+    arcs = [w * r if math.degrees(w) >= WRAP_MIN_DEG else math.inf for w, r in zip(lay.wrap, radii)]
     j = min(range(len(arcs)), key=arcs.__getitem__)
     k = min(range(len(radii)), key=radii.__getitem__)
     by_wrap, by_chord = arcs[j] / WRAP_SEGMENTS, CHORD_RATIO * radii[k]
@@ -69,11 +72,14 @@ def discretisation(model, sysm) -> dict:
     """What the summary reports of the resolution: segments, their length, the rule, the
     segments on each wrap's shortest and the polygon's speed error (taken out of slip)."""
     lay, l = sysm.layout, sysm.init.seg_length
-    per_wrap = {p.name: float(lay.wrap[j] * p.radius / l) for j, p in enumerate(model.pulleys)}
-    short = min(per_wrap, key=per_wrap.get)
+    resolved_ = [j for j in range(len(model.pulleys)) if math.degrees(lay.wrap[j]) >= WRAP_MIN_DEG]
+    per_wrap = {model.pulleys[j].name: float(lay.wrap[j] * model.pulleys[j].radius / l) for j in resolved_}
+    short = min(per_wrap, key=per_wrap.get) if per_wrap else None
     r_min = min(p.radius for p in model.pulleys)
     rule = auto_segments(model, lay)[1] if model.belt.segments == "auto" else "given (belt.segments)"
     return {"segments": int(sysm.n), "segment_length": float(l), "rule": rule,
-            "shortest_wrap": short, "segments_on_shortest_wrap": per_wrap[short],
+            "shortest_wrap": short, "segments_on_shortest_wrap": per_wrap[short] if short else None,
+            "unresolved_wraps": {p.name: float(math.degrees(lay.wrap[j])) for j, p in enumerate(model.pulleys)
+                                 if j not in resolved_},
             "chordal_speed_error": float(l * l / (12 * r_min * r_min)),
             "slip_measured_against": "the chain's rolling radius (polygon effect removed)"}

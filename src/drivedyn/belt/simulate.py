@@ -403,7 +403,7 @@ UNITS = {
     "power.efficiency": "1", "power.energy_residual_*": "1", "power.*": "W",
     "belt.pretension": "N", "belt.segment_length": "m", "belt.path_length": "m",
     "discretisation.segment_length": "m", "discretisation.chordal_speed_error": "1",
-    "discretisation.segments*": "", "discretisation.*": "",
+    "discretisation.segments*": "", "discretisation.unresolved_wraps.*": "deg", "discretisation.*": "",
     "steady.*": "1", "at_rest.speed_max.*": "rad/s", "at_rest.residual_force": "1",
     "solver.last_step": "s", "solver.step": "s", "solver.stability_limit": "s", "solver.wall_time": "s",
     "solver.simulated_time": "s", "solver.real_time_factor": "1",

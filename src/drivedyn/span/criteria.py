@@ -21,16 +21,18 @@ class Criteria(Spec):
 def evaluate(model, result):
     c = model.criteria
     s = result.summary
-    out = []
+    out, skipped = [], {}
     V, vcr = s.get("speed"), s.get("v_critical")
     if V is not None and vcr:
         out.append(Criterion("critical_speed_ratio", abs(V) / vcr, c.critical_speed_ratio_max, "1", "max",
                              "belt speed over the span's critical speed"))
     bands = s.get("tongue_bands") or s.get("resonance_bands") or []
-    if V is not None and bands:
+    if V is not None and bands and V == 0:
+        skipped["tongue_distance"] = "the belt stands still: no parametric excitation"
+    elif V is not None and bands:
         d, where = min(((0.0 if a <= V <= b else min(abs(V - a), abs(V - b)) / abs(V), f"{a:.4g}-{b:.4g} m/s")
                         for a, b in bands), key=lambda x: x[0])
         out.append(Criterion("tongue_distance", d, c.tongue_distance_min, "1", "min",
                              "distance of the belt speed to the nearest parametric-resonance region, share of the "
                              "speed (0: inside)", where))
-    return out, {}
+    return out, skipped
