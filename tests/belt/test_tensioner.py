@@ -23,6 +23,8 @@ def accessory(arm=None, slider=None, **sim):
     tensioner, no crank torque (at rest) unless sim says otherwise."""
     d = to_dict(drivedyn.load(drivedyn.example_path("belt-accessory")))
     d["pulleys"][0].pop("torque_time", None)
+    # the count these tests were written and measured at (the example's "auto" takes 337)
+    d["belt"]["segments"] = 110
     if arm is not None:
         spring = {} if "spring_table" in arm else {"preload": "24 N*m", "rate": "20 N*m/rad"}   # the table is the spring
         d["pulleys"][3]["arm"] = {"pivot": [f"{PIVOT[0]} m", f"{PIVOT[1]} m"], "inertia": "1.5e-3 kg*m^2",
@@ -59,7 +61,7 @@ def _moment_of_spans(model, r, name="idler"):
 def test_arm_static_equilibrium_against_span_moments():
     m = accessory(arm={})
     r = drivedyn.run(m)
-    assert r.status == "success", r.message
+    assert {d.code for d in r.diagnostics} <= {"coarse-discretisation"}, r.message     # 2 segments on the idler, on purpose
     t = r.summary["tensioners"]["idler"]
     # at rest nothing moves: the equilibrium is exact for the discrete model
     assert t["travel_max"] - t["travel_min"] < 1e-8
@@ -166,7 +168,7 @@ def test_slider_equilibrium_and_fixed_force():
     # a fixed-force slider (rate 0) along x: the spans' hub force along x equals the force
     m = accessory(slider={"preload": "340 N"})
     r = drivedyn.run(m)
-    assert r.status == "success", r.message
+    assert {d.code for d in r.diagnostics} <= {"coarse-discretisation"}, r.message
     t = r.summary["tensioners"]["idler"]
     assert t["slide_max"] - t["slide_min"] < 1e-9
     j = 3

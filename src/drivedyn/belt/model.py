@@ -379,9 +379,9 @@ class Model(Spec):
                 raise ValueError(f"output.segments: index {q} is negative (segments count from 0)")
             if self.belt.segments != "auto" and q >= self.belt.segments:     # "auto": checked once resolved
                 raise ValueError(f"output.segments: index {q} outside 0..{self.belt.segments - 1}")
-        if self.simulation.method in ("rkf45", "implicit") and _semi_implicit_only(self.pulleys):
-            raise ValueError(f"simulation.method: {self.simulation.method} does not integrate tensioners, clutches or "
-                             "speed orders yet; use semi-implicit")
+        if self.simulation.method == "rkf45" and _semi_implicit_only(self.pulleys):
+            raise ValueError("simulation.method: rkf45 does not integrate tensioners, clutches or speed orders; "
+                             "use semi-implicit or implicit")
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
             raise ValueError("output.steady_window ends after simulation.duration")
         self._clutch_on_driver()
@@ -442,10 +442,14 @@ class Model(Spec):
 
 def integrator(model) -> str:
     """The belt integration scheme a run uses: ``simulation.method``, where "auto" (the default)
-    is the implicit scheme (issue 14: the step set by the dynamics, agreeing with the semi-implicit
-    reference on the seed drives) unless the drive has what it does not integrate yet (tensioners,
-    clutches, speed orders, the elastic-plastic friction law) or asks for rotation scaling, a
-    semi-implicit option; then the semi-implicit scheme."""
+    is the implicit scheme (the step set by the dynamics, agreeing with the semi-implicit
+    reference on the seed drives) unless the drive has tensioners, clutches or speed orders, the
+    elastic-plastic friction law or asks for rotation scaling; then the semi-implicit scheme.
+    The implicit scheme integrates tensioners, clutches and speed orders (tests/belt/test_implicit.py
+    against the semi-implicit reference), but on accessory drives at their "auto" resolution its step
+    falls to 5-10 us (segments of the free spans start to spin at larger steps, and the turn-per-step
+    rule), where it costs more than the semi-implicit scheme: measured on examples/fead-runup.toml's
+    drive held at 5000 rpm, 14.0 s against 5.1 s (docs/belt-drive.md)."""
     method = model.simulation.method
     if method != "auto":
         return method
@@ -456,5 +460,5 @@ def integrator(model) -> str:
 
 
 def _semi_implicit_only(pulleys) -> bool:
-    """Pulleys only the semi-implicit scheme integrates: tensioners, clutches, speed orders."""
+    """Pulleys that rkf45 does not integrate and "auto" integrates semi-implicitly: tensioners, clutches, speed orders."""
     return any(p.tensioner is not None or p.clutch is not None or p.speed_orders for p in pulleys)
