@@ -24,6 +24,8 @@ CODES = {
                          "the window means are not steady-state values",
     "energy-residual": "the energy balance (work in - dissipated - energy change) misses a large share of the work",
     "coarse-discretisation": "the belt segments are long against a pulley radius or a wrap: chordal error in speeds, a wrap too few segments hold",
+    "unconverged-resolution": "the resolution check (simulation.resolution_check) estimates a discretisation error "
+                              "in slip or span tension above its target: more segments",
     "kv-unstable": "the dynamic factor grows without bound (parametric instability of the linear mesh model) or "
                    "is not converged",
     "step-too-large": "the time step is too large for the integration method",

@@ -64,3 +64,32 @@ def test_a_wrap_with_too_few_segments_is_reported():
     assert "coarse-discretisation" in codes
     assert "tensioner" in codes["coarse-discretisation"].text
     assert r.summary["discretisation"]["segments_on_shortest_wrap"] < 3
+
+
+def test_resolution_check_reports_the_change_against_a_coarser_run():
+    """simulation.resolution_check runs the drive again at 0.7 x its segments: its estimate is that
+    change times 1 / (1 / 0.7 - 1), checked here against a second run made by hand; an estimate over
+    its target is a warning naming the quantity (the 5PK drive at 80 segments of 15 mm)."""
+    from drivedyn.belt.resolution import CHECK_RATIO, TENSION_TARGET
+
+    base = drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")),
+                            {"simulation.duration": 0.3, "output.steady_window": [0.2, 0.3], "belt.segments": 80,
+                             "output.segments": [0]})
+    r = drivedyn.run(drivedyn.replace(base, {"simulation.resolution_check": True}))
+    e = r.summary["discretisation"]["estimate"]
+    n2 = round(CHECK_RATIO * 80)
+    assert e["coarse_segments"] == n2
+    other = drivedyn.run(drivedyn.replace(base, {"belt.segments": n2})).summary
+    factor = 1 / (80 / n2 - 1)
+    for p in r.summary["pulleys"]:
+        d = abs(r.summary["pulleys"][p]["slip"] - other["pulleys"][p]["slip"])
+        assert e["slip"][p] == pytest.approx(d * factor, rel=1e-9, abs=1e-12)
+    worst = 0.0
+    for sp in r.summary["spans"]:
+        for k in ("tension_min", "tension_mean", "tension_max"):
+            a, b = r.summary["spans"][sp][k], other["spans"][sp][k]
+            assert e["span_tension_relative"][sp][k] == pytest.approx(abs(a - b) * factor / abs(a), rel=1e-9)
+            worst = max(worst, abs(a - b) * factor / abs(a))
+    flagged = [d for d in r.diagnostics if d.code == "unconverged-resolution"]
+    assert bool(flagged) == (worst > TENSION_TARGET or max(e["slip"].values()) > 3e-4)
+    assert r.units["discretisation.estimate.slip_largest"] == "1"

@@ -111,10 +111,12 @@ def _bracketed_root(f, guess):
     raise ModelError("cannot close the belt on the path with these segments", field="belt.segments")
 
 
-def check_length(model, layout: Layout) -> None:
-    """A belt given by its length must be shorter than the path and stretch less than 5 % on it."""
+def check_length(model, layout: Layout, too_long: bool = True) -> None:
+    """A belt given by its length must be shorter than the path and stretch less than 5 % on it.
+    ``too_long=False``: the second only (a segment chain, which rides at a rolling radius above the
+    pulleys' and may be a little longer than the drawn path, is checked by its placement)."""
     belt = model.belt
-    if belt.length >= layout.length:
+    if too_long and belt.length >= layout.length:
         raise ModelError(f"belt too long to be tensioned: unstretched length {belt.length:.4f} m >= path length "
                          f"{layout.length:.4f} m", field="belt.length")
     strain = layout.length / belt.length - 1
@@ -155,13 +157,15 @@ def initial_state(model, layout: Layout) -> InitialState:
         l = _bracketed_root(resid, guess)
     else:
         l = belt.length / n
-        check_length(model, layout)
+        check_length(model, layout, too_long=False)
 
         def resid_T(T):
             lay, (_, _, s_end), _ = place(l, T)
             return s_end - _Path(lay).length
 
-        strain = layout.length / belt.length - 1
+        # a coarse chain rides at a rolling radius above the pulleys' and may be longer than the
+        # drawn path: start the bracket from a small strain then
+        strain = max(layout.length / belt.length - 1, 1e-3)
         T_guess = EA * strain ** e
         # the chords run inside the arcs, so the closing tension can lie well off the continuum
         # guess at low strain: widen the bracket until the residual changes sign

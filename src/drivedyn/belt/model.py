@@ -328,6 +328,9 @@ class Simulation(Spec):
     method: Literal["auto", "implicit", "semi-implicit", "rkf45"] = "auto"
     step: Optional[quantity("s", gt=0)] = None
     rotation_scaling: bool = False
+    # run the drive a second time at 0.7 x the segments and report the change as an estimate of
+    # the discretisation error (resolution.py; about 1.5 x the cost)
+    resolution_check: bool = False
     rtol: float = 1e-6
     atol: float = 1e-9
 

@@ -271,6 +271,12 @@ def run(model, progress=None) -> Result:
             nsteps, h = rec.steps, rec.step or h
     wall = _time.perf_counter() - wall0
     result = _assemble(model, sysm, rec, wall, nsteps, h, failure)
+    if not failure and sim.resolution_check:
+        from .resolution import check
+
+        if progress is not None:
+            progress(1.0, "resolution check: a second run at 0.7 x the segments")
+        check(model, result, run)
     if failure:
         raise SolverError(failure + f" (results kept up to t = {rec.t[rec.ns - 1] if rec.ns else 0.0:.6g} s)", partial=result)
     return result
@@ -403,7 +409,8 @@ UNITS = {
     "power.efficiency": "1", "power.energy_residual_*": "1", "power.*": "W",
     "belt.pretension": "N", "belt.segment_length": "m", "belt.path_length": "m",
     "discretisation.segment_length": "m", "discretisation.chordal_speed_error": "1",
-    "discretisation.segments*": "", "discretisation.unresolved_wraps.*": "deg", "discretisation.*": "",
+    "discretisation.segments*": "", "discretisation.unresolved_wraps.*": "deg",
+    "discretisation.estimate.coarse_segments": "", "discretisation.estimate.*": "1", "discretisation.*": "",
     "steady.*": "1", "at_rest.speed_max.*": "rad/s", "at_rest.residual_force": "1",
     "solver.last_step": "s", "solver.step": "s", "solver.stability_limit": "s", "solver.wall_time": "s",
     "solver.simulated_time": "s", "solver.real_time_factor": "1",
