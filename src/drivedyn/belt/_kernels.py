@@ -666,6 +666,18 @@ ZMAX = 8
 # the anchor slope, x mu N / Delta_v: the secant of the Threlfall law to its saturation, so an
 # anchor lets go where the law saturates (its tangent at zero, 1.5, flickered and drifted at 20 us)
 ANCHOR = 1.0
+# the implicit scheme's limiter of the segments' alternating rotation in free spans. Under tension
+# T a segment of a free span rotating against its neighbours is held by T l alone (the joints do
+# not stretch): omega^2 = 12 T / (m l), 6 kHz for 4.5 mm segments at 300 N, undamped (no bending
+# damping by default) and resolved only marginally at the implicit scheme's 20-40 us, where segment
+# transport can pump it: segments of the free spans spinning within milliseconds (the accessory
+# drive at 337 segments halved its step four times, to 2.2 us). Where a free segment's rotation rate
+# departs from its neighbours' mean by more than SPIN_LIMIT x the fastest pulley's speed (which
+# ordinary running stays well below), a damper on the second difference of the rates (zero for a
+# rigid turn and a uniformly changing one) gives that mode the damping ratio SPIN_ZETA; explicit,
+# stable while zeta h omega < 1. Below the limit the model runs undamped, as the reference does.
+SPIN_ZETA = 0.2
+SPIN_LIMIT = 3.0
 # passes of the stick-slip active set per step (each a small dense solve): anchors let go in any
 # of them, sliding segments are anchored in all but the last; one more pass takes the last changes in
 PASSES = 6
@@ -816,6 +828,14 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
     ieff = inertia * iscale
     hj = 0.0 if implicit else h       # the implicit scheme's dampers are in the chain matrix
     ni = n if implicit else 0          # the implicit scheme's scratch, sized 0 for the other
+    # SPIN_ZETA's damper: per free segment its coefficient cs and second difference spd, active
+    # above spin_lim (the alternating pattern of amplitude W has a second difference of 4 W)
+    spd = np.zeros(ni)
+    cs = np.zeros(ni)
+    spin_lim = 0.0
+    for j in range(nk):
+        spin_lim = max(spin_lim, abs(om[j]))
+    spin_lim = 4.0 * SPIN_LIMIT * max(spin_lim, 10.0)
     # per segment: the pulley it touches (-1: none), normal, penetration, normal force, matrix
     # coefficient; f*: those the chain matrix was factored with
     cj = np.full(ni, -1, dtype=np.int64)
@@ -926,6 +946,32 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
             # whose force would exceed mu N lets go and the step is solved again (active set).
             nc = 0
             cchg = False
+            # the spin damper, on segments whose neighbours two either side were free at the last step
+            for i in range(n):
+                free = True
+                for dk in range(-2, 3):
+                    kk = i + dk
+                    if kk < 0:
+                        kk += n
+                    elif kk >= n:
+                        kk -= n
+                    free = free and seg_n[kk] == 0.0
+                im = i - 1 if i > 0 else n - 1
+                ip = i + 1 if i < n - 1 else 0
+                spd[i] = w[im] - 2.0 * w[i] + w[ip] if free else 0.0
+                # the mode's stiffness T l (T the mean force of the segment's two joints) and its
+                # modified inertia I + h^2/2 T l; the alternating pattern sees 16 x the coefficient
+                ka = 0.5 * (jfk[i] * math.sqrt(jdx[i] * jdx[i] + jdy[i] * jdy[i])
+                            + jfk[ip] * math.sqrt(jdx[ip] * jdx[ip] + jdy[ip] * jdy[ip])) * 2.0 * hl
+                ka = max(ka, 0.0)
+                on = free and abs(spd[i]) > spin_lim
+                cs[i] = 2.0 * SPIN_ZETA * math.sqrt(ka * (ieff[i] + 0.5 * h * h * ka)) / 16.0 if on else 0.0
+            for i in range(n):
+                im = i - 1 if i > 0 else n - 1
+                ip = i + 1 if i < n - 1 else 0
+                ms = -(cs[im] * spd[im] - 2.0 * cs[i] * spd[i] + cs[ip] * spd[ip])
+                mz[i] += ms
+                pb -= ms * w[i]
             for i in range(n):
                 fy[i] -= m_[i] * g
                 cj[i] = -1
@@ -946,7 +992,12 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                     db = smoothstep(p / pmax) * bc[i]
                     rvx = vx[i] - pvx[j]
                     rvy = vy[i] - pvy[j]
-                    vn = rvx * nx + rvy * ny
+                    # the normal velocity at the middle of the last step's chord: a segment rolling
+                    # round the pulley arrives along a chord that leaves the circle's normal by half
+                    # its turn, which read at the end point is a separating v_t^2 h / 2 r (at 0.03 rad
+                    # per step it took nearly all the damping's share of the normal force)
+                    vt_ = -rvx * ny + rvy * nx
+                    vn = rvx * nx + rvy * ny - 0.5 * h * vt_ * vt_ / dist
                     N = c1[i] * p * p + c2[i] * p - db * vn
                     cj[i] = j
                     cnx[i] = nx

@@ -449,10 +449,9 @@ def integrator(model) -> str:
     reference on the seed drives) unless the drive has tensioners, clutches or speed orders, the
     elastic-plastic friction law or asks for rotation scaling; then the semi-implicit scheme.
     The implicit scheme integrates tensioners, clutches and speed orders (tests/belt/test_implicit.py
-    against the semi-implicit reference), but on accessory drives at their "auto" resolution its step
-    falls to 5-10 us (segments of the free spans start to spin at larger steps, and the turn-per-step
-    rule), where it costs more than the semi-implicit scheme: measured on examples/fead-runup.toml's
-    drive held at 5000 rpm, 14.0 s against 5.1 s (docs/belt-drive.md)."""
+    against the semi-implicit reference), but on accessory drives at their "auto" resolution its
+    accuracy rule (simulate.TURN_PER_STEP) and the refactorisations at every segment landing make it
+    cost as much as the semi-implicit scheme or more (docs/belt-drive.md)."""
     method = model.simulation.method
     if method != "auto":
         return method
