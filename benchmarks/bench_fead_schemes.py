@@ -1,0 +1,34 @@
+"""The two belt schemes on an accessory drive: the six-pulley drive of examples/fead-runup.toml
+(tensioner arm, one-way clutch, crank orders 2 and 4) held at 1000, 3000 and 5000 rpm, 0.6 s with
+the window 0.4-0.6 s, at the default resolution ("auto"), under the semi-implicit scheme (what
+"auto" takes for such drives) and the implicit one (simulation.method = "implicit"): step, wall
+time, and every pulley's slip and the crank span's tension band, measured in one run.
+
+Run: python benchmarks/bench_fead_schemes.py [--rpm 1000 3000 5000]
+(not a timed test; numbers depend on the machine)
+"""
+import argparse
+
+import drivedyn
+from bench_fead_convergence import held, row
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--rpm", type=float, nargs="+", default=[1000.0, 3000.0, 5000.0])
+    a = ap.parse_args()
+    for method in ("semi-implicit", "implicit"):      # compile both first
+        drivedyn.run(drivedyn.replace(held(1000, 150, duration=0.35),
+                                      {"simulation.method": method, "simulation.duration": 0.02, "output.steady_window": None}))
+    for rpm in a.rpm:
+        print(f"held at {rpm:.0f} rpm, orders 2 and 4")
+        for method in ("semi-implicit", "implicit"):
+            m = drivedyn.replace(held(rpm, "auto", duration=0.6),
+                                 {"simulation.method": method, "output.steady_window": [0.4, 0.6]})
+            r = drivedyn.run(m)
+            sv = r.summary["solver"]
+            print(f"  {method:13s} step {sv['step'] * 1e6:6.2f} us  {row(r)}", flush=True)
+
+
+if __name__ == "__main__":
+    main()
