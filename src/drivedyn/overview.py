@@ -184,7 +184,9 @@ def runup_table(s) -> dict:
     for b, rpm in enumerate(ru["speed_rpm"]):
         worst = max(ru["slip"], key=lambda n: abs(ru["slip"][n][b] or 0)) if ru.get("slip") else ""
         hub = max(ru.get("hub_load_max", {}).items(), key=lambda kv: kv[1][b], default=None)
-        row = [f"{rpm:.0f}", f"{min(ru['span_tension_min'][sp][b] for sp in spans):.0f}",
+        sweep = ru.get("sweep", [])
+        down = b < len(sweep) and sweep[b] == "down"
+        row = [f"{rpm:.0f}" + (" down" if down else ""), f"{min(ru['span_tension_min'][sp][b] for sp in spans):.0f}",
                min(spans, key=lambda sp: ru['span_tension_min'][sp][b]),
                f"{max(ru['span_tension_max'][sp][b] for sp in spans):.0f}",
                f"{100 * ru['slip'][worst][b]:.2f}" if worst else "-", worst,
@@ -194,7 +196,8 @@ def runup_table(s) -> dict:
     head = ["crank rpm", "tension min (N)", "on span", "max (N)", "largest slip (%)", "on", "largest hub load (N)"]
     head += [f"{a} travel range (deg)" for a in arms]
     return {"title": f"run-up of {ru['crank']}: extremes per crank-speed bin", "head": head, "rows": rows,
-            "note": "every span's tension per bin: runup.span_tension_min / max in summary.json, runup.png"}
+            "note": "every span's tension per bin: runup.span_tension_min / max in summary.json, runup.png"
+                    + ("; a run-down's bins (down) after the run-up's" if "down" in ru.get("sweep", []) else "")}
 
 
 def _kv_rows(items, units, prefix=""):

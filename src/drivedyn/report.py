@@ -243,7 +243,7 @@ def write_study_report(res, study_file, outdir) -> Path:
         captions[Path(p).name] = (f"{key}{f' ({unit})' if unit not in ('', '1') else ''} of every case against the "
                                   "study's parameters; cases that warned or failed are marked and left blank (see "
                                   "Diagnostics for why).")
-    html = render(title=f"study {Path(study_file).stem}", kind="parameter study", status=status,
+    html = render(title=f"study: {ds.attrs.get('title') or Path(study_file).stem}", kind="parameter study", status=status,
                   message=f"{c.get('total', 0)} cases", diagnostics=diags, headline=results, results=[],
                   figures=_figures(res.plots, captions), model_rows=params, model_toml=text, source=str(study_file),
                   model_heading="Parameters")

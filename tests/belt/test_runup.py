@@ -62,3 +62,37 @@ def test_fead_runup_from_the_cli(tmp_path):
     # creep stays creep at idle and above (no gross slip in the run-up)
     assert all(abs(v) < 0.03 for vals in ru["slip"].values() for v in vals), ru["slip"]
     assert s["tensioners"]["tensioner"]["rest_tension"] == pytest.approx(350, rel=0.05)
+
+
+def test_a_run_down_is_read_apart_from_the_run_up():
+    """Up to 1500 rpm and back to 800: the bins of the run-down follow the run-up's, in falling
+    speed, each bin's tension extremes those of its own samples (recomputed here from the time
+    series and the crank's prescribed mean speed); the run-down's window stores negative power
+    (the drive gives back kinetic energy) and the efficiency leaves it out (output over output
+    plus losses, below 1); the crank, held at its prescribed speed, reports the torque that holds
+    it (torque x speed = its power within 3 %, the window means of a product and of its factors)."""
+    d = to_dict(drivedyn.load(drivedyn.example_path("fead-runup")))
+    w = lambda rpm: -rpm * math.pi / 30
+    d["pulleys"][0]["speed_time"] = [[0, 0], [0.3, w(800)], [0.4, w(800)], [0.8, w(1500)], [1.2, w(800)]]
+    d["simulation"]["duration"] = 1.2
+    d["belt"]["segments"] = 150
+    d["output"].update(runup_bin="250 rpm", steady_window=[0.9, 1.2])
+    r = drivedyn.run(from_dict(d))
+    ru, ds = r.summary["runup"], r.ds
+    sweep, rpm = ru["sweep"], ru["speed_rpm"]
+    k = sweep.index("down")
+    assert set(sweep[:k]) == {"up"} and set(sweep[k:]) == {"down"}
+    assert rpm[:k] == sorted(rpm[:k]) and rpm[k:] == sorted(rpm[k:], reverse=True)
+    t = ds["time"].values
+    crank = np.abs(np.interp(t, [0, 0.3, 0.4, 0.8, 1.2], [0, 800, 800, 1500, 800]))
+    falling = t > 0.8
+    span = ds["span"].values[0]
+    ten = ds["span_tension"].sel(span=span).values
+    for b in (k - 1, k):                      # the top bin of each sweep
+        sel = (np.abs(crank - rpm[b]) <= 125) & (t >= 0.3) & (falling if sweep[b] == "down" else ~falling)
+        assert ru["span_tension_min"][span][b] == pytest.approx(ten[sel].min(), rel=1e-9)
+        assert ru["span_tension_max"][span][b] == pytest.approx(ten[sel].max(), rel=1e-9)
+    p = r.summary["power"]
+    assert p["stored"] < 0 and 0 < p["efficiency"] < 1
+    c = r.summary["pulleys"]["crankshaft"]
+    assert c["torque_mean"] * c["speed_mean"] == pytest.approx(c["power_mean"], rel=0.03)

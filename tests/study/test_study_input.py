@@ -115,6 +115,8 @@ def test_cli_runs_a_small_study_end_to_end(write_study, tmp_path, capsys):
     counts = re.search(r"2 cases: (\d) succeeded, (\d) warned, 0 did not", " ".join(err.split()))
     assert counts and int(counts[1]) + int(counts[2]) == 2 and "no.such.key" in err
     assert err.count("warning: ") >= int(counts[2])   # each warned case listed with its diagnostics
+    if int(counts[2]):
+        assert "warning: belt.pretension = " in " ".join(err.split())     # named by its parameters
     assert (out / "study.nc").exists() and len(list((out / "plots").glob("*.png"))) == 1
     assert cli_main(["study", str(path), "-o", str(out), "-q"]) == 0
     assert "0 run now, 2 from the cache" in capsys.readouterr().err

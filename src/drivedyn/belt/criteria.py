@@ -47,7 +47,8 @@ def _window(ds):
     t = ds["time"].values
     if "speed_bin" in ds.coords and "crank_rpm" in ds:
         c = ds["speed_bin"].values
-        half = 0.5 * (c[1] - c[0]) if len(c) > 1 else 0.0
+        steps = np.diff(np.unique(c))            # a run-down's bins repeat the run-up's centres
+        half = 0.5 * float(steps.min()) if len(steps) else 0.0
         return ds["crank_rpm"].values >= c.min() - half
     w = ds.attrs.get("steady_window")
     if w is None or len(np.atleast_1d(w)) != 2:

@@ -1,7 +1,8 @@
 """Run-up results: a belt-drive run whose crank (the prescribed-speed pulley) sweeps a speed range,
 read per engine-speed bin as a drive engineer reads a run-up on the test bench.
 
-Per bin of crank mean speed (``output.runup_bin`` wide, rpm; default a twentieth of the range):
+Per bin of crank mean speed (``output.runup_bin`` wide, rpm; default a twentieth of the range), a
+run-down's bins apart from the run-up's (``sweep``: "up" or "down" per bin):
 min / max / mean of every span tension, the tensioner arms' travel range, the slip of every
 pulley against the crank (from the bin's mean speeds), the peak hub loads; and order tracking: the amplitude of
 engine orders of the span tensions and hub loads, from the Fourier coefficient over the crank's
@@ -73,11 +74,18 @@ def add_runup(ds, model, bin_width=None) -> dict:
     if not width > 0:
         return {}
     edges = np.arange(math.floor(lo / width) * width, hi + width, width)
-    which = np.where(live, np.clip(np.digitize(rpm, edges) - 1, 0, len(edges) - 2), -1)
-    used = [b for b in range(len(edges) - 1) if np.sum(which == b) >= 4]
+    nb = len(edges) - 1
+    # a run-down is read apart from the run-up (the drive's response differs with the sweep's
+    # direction: the clutch overruns, the tensioner's friction turns): its bins follow the up
+    # sweep's, numbered nb + b, in falling speed
+    down = np.gradient(np.abs(mean_speed(p, t)), t) < 0 if len(t) > 1 else np.zeros(len(t), bool)
+    which = np.where(live, np.clip(np.digitize(rpm, edges) - 1, 0, nb - 1) + np.where(down, nb, 0), -1)
+    used = [b for b in range(nb) if np.sum(which == b) >= 4]
+    used += [b for b in range(2 * nb - 1, nb - 1, -1) if np.sum(which == b) >= 4]
     if not used:
         return {}
-    centre = np.array([0.5 * (edges[b] + edges[b + 1]) for b in used])
+    centre = np.array([0.5 * (edges[b % nb] + edges[b % nb + 1]) for b in used])
+    sweep = ["down" if b >= nb else "up" for b in used]
     phi = mean_angle(p, t)
     orders = orders_of(p)
     spans, pulleys = ds["span"].values.tolist(), ds["pulley"].values.tolist()
@@ -110,6 +118,7 @@ def add_runup(ds, model, bin_width=None) -> dict:
     ds["crank_rpm"] = variable(rpm, ("time",), "rpm", "crank mean speed (prescribed, without the orders)")
     ds.attrs["runup_crank"] = p.name
     ds.coords["speed_bin"] = variable(centre, dims, "rpm", "crank mean speed, bin centre")
+    ds.coords["sweep"] = ("speed_bin", sweep)
     ds.coords["order"] = orders
     ds["runup_tension_min"] = variable(per_bin(ten, np.min), dims + ("span",), "N", "span tension, bin minimum")
     ds["runup_tension_max"] = variable(per_bin(ten, np.max), dims + ("span",), "N", "span tension, bin maximum")
@@ -123,7 +132,7 @@ def add_runup(ds, model, bin_width=None) -> dict:
                                 "slip against the crank over the bin, 1 - mean |w r| / mean |w_c r_c| (r: the chain's rolling radius)")
     ds["runup_tension_order"] = variable(order_amp(ten), dims + ("order", "span"), "N", "span tension, amplitude of engine order")
     ds["runup_hub_load_order"] = variable(order_amp(hub), dims + ("order", "pulley"), "N", "hub load, amplitude of engine order")
-    out = {"crank": p.name, "speed_rpm": centre.tolist(), "orders": orders,
+    out = {"crank": p.name, "speed_rpm": centre.tolist(), "sweep": sweep, "orders": orders,
            "span_tension_min": {s: ds["runup_tension_min"].values[:, q].tolist() for q, s in enumerate(spans)},
            "span_tension_max": {s: ds["runup_tension_max"].values[:, q].tolist() for q, s in enumerate(spans)},
            "slip": {n: ds["runup_slip"].values[:, q].tolist() for q, n in enumerate(pulleys) if q != j},
@@ -134,6 +143,20 @@ def add_runup(ds, model, bin_width=None) -> dict:
         ds["runup_arm_travel_max"] = variable(per_bin(q, np.max), dims + ("arm",), "rad", "arm travel, bin maximum")
         out["arm_travel_range"] = {a: (ds["runup_arm_travel_max"].values[:, k] - ds["runup_arm_travel_min"].values[:, k]).tolist()
                                    for k, a in enumerate(ds["arm"].values.tolist())}
+        ds["runup_arm_travel_order"] = variable(order_amp(q), dims + ("order", "arm"), "rad", "arm travel, amplitude of engine order")
+    # order cuts of every span, hub load and arm: each order's largest amplitude over the run and
+    # the crank speed where it peaks (the whole cuts: runup_*_order in results.nc, runup.png)
+    peaks = {}
+    for key, var, dim in (("span_tension", "runup_tension_order", "span"), ("hub_load", "runup_hub_load_order", "pulley"),
+                          ("arm_travel", "runup_arm_travel_order", "arm")):
+        if var not in ds:
+            continue
+        a = ds[var].values
+        peaks[key] = {str(nm): {f"{k:g}": {"amplitude": float(a[:, o, q].max()),
+                                           "rpm": float(centre[int(np.argmax(a[:, o, q]))])}
+                                for o, k in enumerate(orders)}
+                      for q, nm in enumerate(ds[dim].values.tolist())}
+    out["order_peaks"] = peaks
     return {"runup": out}
 
 

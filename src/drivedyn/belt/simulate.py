@@ -419,7 +419,8 @@ UNITS = {
     "tensioners.*.rest_arm_angle": "rad", "tensioners.*.rest_travel": "rad", "tensioners.*.rest_slide": "m",
     "tensioners.*.rest_tension": "N",
     "clutches.*.torque_mean": "N*m", "clutches.*.rotor_speed_mean": "rad/s", "clutches.*.overrun_share": "1",
-    "runup.speed_rpm": "rpm", "runup.span_tension_*": "N", "runup.hub_load_max.*": "N", "runup.slip.*": "1",
+    "runup.order_peaks.arm_travel.*.amplitude": "rad", "runup.order_peaks.*.amplitude": "N",
+    "runup.order_peaks.*.rpm": "rpm", "runup.speed_rpm": "rpm", "runup.sweep": "", "runup.span_tension_*": "N", "runup.hub_load_max.*": "N", "runup.slip.*": "1",
     "runup.arm_travel_range.*": "rad", "runup.orders": "1", "runup.crank": "",
 }
 
@@ -444,6 +445,10 @@ def _summary(model, sysm, ds, solver, sel, window) -> dict:
     names = list(sysm.layout.names)
     speed, pin = mean("speed"), mean("power_in")
     hx, hy, tq = mean("hub_force_x"), mean("hub_force_y"), mean("torque_applied")
+    # a pulley held at a prescribed speed: the torque that holds it there against the belt (the
+    # drive's reaction torque, minus the belt's torque on it), so that torque x speed is its power
+    tqb = mean("torque_belt")
+    tq = np.where(sysm.pulleys.mode == 1, -tqb, tq)
     # slip against the chain's own rolling kinematics: the polygon effect of the segments, a speed
     # ratio error of about l^2 / (12 r^2) between pulleys of different radii, is no slip
     radius = sysm.rolling_radius
@@ -484,6 +489,11 @@ def _summary(model, sysm, ds, solver, sel, window) -> dict:
     else:
         rates, resid_rate = np.full(D.shape[1], np.nan), float("nan")
     mech = ds["mechanism"].values.tolist()
+    # the energy stored per second over the window (kinetic and elastic): a run-up stores, a
+    # run-down gives back; the transmission efficiency leaves it out, output over output + losses
+    E = ds["energy_change"].values
+    stored = float((E[idx[-1]] - E[idx[0]]) / (tw[-1] - tw[0])) if len(tw) >= 2 else float("nan")
+    lost = float(np.sum(rates))
     return {
         "driver": names[d],
         "steady_window": [float(w0), float(w1)],
@@ -491,7 +501,8 @@ def _summary(model, sysm, ds, solver, sel, window) -> dict:
         "spans": spans,
         "power": {
             "input": p_in, "output": p_out,
-            "efficiency": p_out / p_in if p_in > 0 else float("nan"),
+            "efficiency": p_out / (p_out + lost) if p_out + lost > 0 else float("nan"),
+            "stored": stored,
             "losses": {m: float(r) for m, r in zip(mech, rates)},
             "unaccounted": float(resid_rate),
             "energy_residual_relative": float("nan"),     # diagnose._energy: against the work in

@@ -72,9 +72,12 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
     sts = res.ds["status"].values.ravel()
     msgs = res.ds["message"].values.ravel()
     bad = ~np.isin(sts, COMPLETED)
+    from ..report import _case_names
+
+    names = np.array(_case_names(res.ds), dtype=object)
     for label, mask, colour in (("warned", sts == "warning", "yellow"), ("did not finish", bad, "red")):
-        for s, m in list(zip(sts[mask], msgs[mask]))[:5]:
-            console.print(f"  [{colour}]{s}[/]: {escape(str(m))}")
+        for s, m, nm in list(zip(sts[mask], msgs[mask], names[mask]))[:5]:
+            console.print(f"  [{colour}]{s}[/]: {escape(str(nm))}: {escape(str(m))}")
         if mask.sum() > 5:
             console.print(f"  ... {mask.sum() - 5} more {label} (see the status, diagnostics and message variables)")
     if prune:
