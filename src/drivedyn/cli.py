@@ -112,13 +112,16 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
             def progress(frac, info=""):
                 bar.update(task, completed=min(max(frac, 0.0), 1.0), info=info)
 
+            refused = None
             try:
                 result = api.run(m, progress=None if quiet else progress)
             except SolverError as exc:
                 failure = exc
                 result = exc.partial
             except ModelError as exc:
-                _fail(_named(model, exc))
+                refused = exc           # said once the bar is gone, so that the error is the last line
+        if refused is not None:
+            _fail(_named(model, refused))
         if result is not None:
             if not quiet:
                 console.print(f"writing results.nc and summary.json{', plots' if plots else ''}"

@@ -402,3 +402,22 @@ def test_nothing_is_left_when_no_steady_state_is_nan_in_the_json_of_a_run(tmp_pa
     doc = _strict((tmp_path / "out" / "summary.json").read_text())
     assert doc["status"] in ("success", "warning")
     assert not math.isnan(doc["belt"]["pretension"])
+
+
+def test_the_long_fuzz_runs_findings_end_in_one_line(tmp_path):
+    """Three cases the long fuzz run found: a belt whose stable step is a nanosecond (contact
+    stiffness 2^62: 6e8 steps, hours, within the step limit) is refused before the solve; a
+    tensioner pulley with a drag of 1e29 N m (no steady state) is checked without a traceback, its
+    modes at rest; a zero flank roughness (ISO 6336-2's Z_R divides by it) is refused."""
+    d = example("belt-verification")
+    d["contact"]["stiffness_linear"] = 2.0 ** 62
+    code, err, out, _ = cli("run", str(write(tmp_path, d)), "-o", str(tmp_path / "o"), "--no-plots")
+    assert code == 2 and "stable step" in one_line(err)
+    d = example("fead-runup")
+    d["pulleys"][5]["drag"] = 1e29
+    code, err, out, _ = cli("check", str(write(tmp_path, d, "t.toml")))
+    assert code == 0 and "Traceback" not in err
+    d = example("gears-helical-tr6336")
+    d["iso"]["flank_roughness"] = 0.0
+    code, err, out, _ = cli("check", str(write(tmp_path, d, "g.toml")))
+    assert code == 2 and "flank_roughness" in one_line(err)

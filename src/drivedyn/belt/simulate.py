@@ -8,7 +8,7 @@ import time as _time
 import numpy as np
 import xarray as xr
 
-from ..errors import SolverError, Stopped, stop_reason
+from ..errors import ModelError, SolverError, Stopped, stop_reason
 from ..model import dumps
 from ..results import Result, unit_map, variable
 from ..window import in_window, steady_window
@@ -27,6 +27,8 @@ TURN_PER_STEP = 0.003
 # a run has blown up once a segment or pulley surface moves faster than this (m/s) or a segment
 # sinks deeper than this share of the smallest pulley radius (_blow_up, _healthy)
 SPEED_MAX = 1e3
+#: a stable step below this (s) means a stiffness or mass far outside any belt (1-40 us): refused
+MIN_STEP = 1e-8
 PEN_MAX = 0.5
 
 
@@ -241,6 +243,20 @@ def _blow_up(x, y, vx, vy, om, pen, sysm):
 
 def run(model, progress=None) -> Result:
     sysm = build(model)
+    sim = model.simulation
+    if sim.step is None:     # the step the model sets (a given one was checked with the model)
+        from ..limits import steps_problem
+
+        if sysm.step < MIN_STEP:
+            raise ModelError(f"the stable step of this belt is {sysm.step:.3g} s, below {MIN_STEP:g} s (belts run at "
+                             "1-40 us): contact.stiffness_*, belt.axial_stiffness or the segment mass is not "
+                             "physical", field="contact")
+        problem = steps_problem(sim.duration / sysm.step, "simulation.duration",
+                                f"the stable step of this belt is {sysm.step:.3g} s (set by its contact and "
+                                "element stiffness and segment mass): a shorter duration, softer contact.stiffness_*, "
+                                "or fewer belt.segments")
+        if problem:
+            raise ModelError(problem, field="simulation.duration")
     sim, out = model.simulation, model.output
     # whole samples that end exactly at the duration (the interval is adjusted by < half a sample)
     nsamples = max(1, int(round(sim.duration / out.interval)))

@@ -52,8 +52,10 @@ def check_data(model, sysm=None) -> dict:
         t0 = float(np.mean(tensions(drive_of(model, lay), np.zeros(len(model.pulleys)), 0.0, True)))
     inst = installation_table(model, t0, lay)
     # about the drive as it runs: the tensioners where they hold it, the spans at their steady tensions
-    md = modes(model, lay, tensions=[st.spans[sp.name] for sp in lay.spans] if st.spans else None,
-               travel=rest.travel if rest is not None else None)
+    running = [st.spans[sp.name] for sp in lay.spans] if st.spans else None
+    if running is not None and not all(math.isfinite(x) for x in running):
+        running = None          # no steady state (a drive that cannot turn): the modes at rest
+    md = modes(model, lay, tensions=running, travel=rest.travel if rest is not None else None)
     fin = lambda x: float(x) if math.isfinite(x) else None     # JSON: no inf (an unloaded pulley never slips)
     return {
         "steady": {

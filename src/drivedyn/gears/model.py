@@ -305,8 +305,8 @@ class Iso(Spec):
     yield_strength: Optional[quantity("Pa", gt=0)] = None
     life: quantity("s", gt=0) = 20000 * 3600.0
     lubricant_viscosity: quantity("m^2/s", gt=0) = 220e-6
-    flank_roughness: quantity("m", ge=0) = 6e-6
-    root_roughness: quantity("m", ge=0) = 10e-6
+    flank_roughness: quantity("m", gt=0) = 6e-6          # R_z (ISO 6336-2 Z_R divides by it)
+    root_roughness: quantity("m", gt=0) = 10e-6
     mesh_misalignment: quantity("m", ge=0) = 10e-6
     face_load_factor: Optional[float] = None
     transverse_load_factor: Optional[float] = None
