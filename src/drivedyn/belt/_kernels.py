@@ -793,6 +793,125 @@ def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jd
 
 
 
+@njit(cache=True, inline="always")
+def _step_pulleys(t, h, tq_belt, hubx, huby, P, S, W):
+    """Stage: every pulley over the step, explicit in the belt torque tq_belt (which the friction
+    solve bounded) and hub force of this step: prescribed speeds with their engine orders, dynamic
+    pulleys under their loads, clutch and decoupler rotors. Adds to W's accumulators; returns the
+    energy the clutches dissipated."""
+    nk, pmode, pinv_i = P.nk, P.mode, P.inv_i
+    th, om, thm, thr, omr, dcp = S.th, S.om, S.thm, S.thr, S.omr, S.dcp
+    acc_pin, acc_tq_ext, acc_tq_belt, acc_hubx, acc_huby = W.acc_pin, W.acc_tq_ext, W.acc_tq_belt, W.acc_hubx, W.acc_huby
+    tq_const, tq_visc, hm_off, hm_order, hm_amp, hm_phase = P.tq_const, P.tq_visc, P.hm_off, P.hm_order, P.hm_amp, P.hm_phase
+    tt_off, tt_x, tt_y, ts_off, ts_x, ts_y = P.tt_off, P.tt_x, P.tt_y, P.ts_off, P.ts_x, P.ts_y
+    sp_off, sp_x, sp_y = P.sp_off, P.sp_x, P.sp_y
+    tq_drag, w_drag, tq_quad, tq_pow, w_cut = P.tq_drag, P.w_drag, P.tq_quad, P.tq_pow, P.w_cut
+    so_off, so_order, so_amp, so_ang, so_phase = P.so_off, P.so_order, P.so_amp, P.so_ang, P.so_phase
+    cl_kind, cl_ir, cl_k, cl_c, cl_s = P.cl_kind, P.cl_ir, P.cl_k, P.cl_c, P.cl_s
+    diss_cl = 0.0
+    for j in range(nk):
+        Mb = tq_belt[j]
+        if pmode[j] == 1:
+            # prescribed: mean speed (table) plus engine orders on the mean angle, whose
+            # integral is exact for the piecewise-linear mean speed (trapezoid)
+            wm1 = table(sp_x, sp_y, sp_off[j], sp_off[j + 1], t + h, False)
+            thm[j] += 0.5 * h * (table(sp_x, sp_y, sp_off[j], sp_off[j + 1], t, False) + wm1)
+            om_new = wm1 + _orders(j, thm[j], wm1, so_off, so_order, so_amp, so_ang, so_phase)
+            Mext = 0.0
+            acc_pin[j] += h * (-Mb) * om[j]
+        elif cl_kind[j] == 0:
+            Mext = _torque(j, t, th[j], om[j], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
+                           tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
+            acc_pin[j] += h * Mext * om[j]
+            om_new = om[j] + h * (Mext + Mb) * pinv_i[j]
+        else:
+            # an accessory rotor behind a clutch: the loads act on it, at its angle and speed
+            Mext = _torque(j, t, thr[j], omr[j], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
+                           tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
+            acc_pin[j] += h * Mext * omr[j]
+            sj = cl_s[j]
+            ir = cl_ir[j]
+            if cl_kind[j] == 1:
+                # one-way clutch: locked exactly when, free, the pulley would pass the rotor in
+                # the drive sense (then the clutch torque drives the rotor: it is >= 0)
+                wp = om[j] + h * Mb * pinv_i[j]
+                wr = omr[j] + h * Mext / ir
+                if sj * (wp - wr) > 0.0:
+                    ip_ = 1.0 / pinv_i[j]
+                    dw = om[j] - omr[j]
+                    diss_cl += 0.5 * ip_ * ir / (ip_ + ir) * dw * dw     # engagement: the relative kinetic energy
+                    wr = (ip_ * om[j] + ir * omr[j] + h * (Mb + Mext)) / (ip_ + ir)
+                    wp = wr
+            else:
+                # decoupler: the spring's wind-up dcp >= 0 carries k dcp + c (rate) to the rotor;
+                # the clutch in series lets the rotor overrun (wind-up held at 0)
+                rel = sj * (om[j] - omr[j])
+                Ts = cl_k[j] * dcp[j] + cl_c[j] * rel if (dcp[j] > 0.0 or rel > 0.0) else 0.0
+                if Ts < 0.0:
+                    Ts = 0.0
+                if Ts > 0.0:
+                    diss_cl += h * cl_c[j] * rel * rel
+                wp = om[j] + h * (Mb - sj * Ts) * pinv_i[j]
+                wr = omr[j] + h * (Mext + sj * Ts) / ir
+                d_new = dcp[j] + h * sj * (wp - wr)
+                if d_new < 0.0:
+                    diss_cl += 0.5 * cl_k[j] * dcp[j] * dcp[j]     # unwound through the clutch
+                    d_new = 0.0
+                dcp[j] = d_new
+            om_new = wp
+            omr[j] = wr
+            thr[j] += h * wr
+        acc_tq_ext[j] += h * Mext
+        acc_tq_belt[j] += h * Mb
+        acc_hubx[j] += h * hubx[j]
+        acc_huby[j] += h * huby[j]
+        om[j] = om_new
+        th[j] += h * om_new
+    return diss_cl
+
+@njit(cache=True, inline="always")
+def _accumulate(h, hl, x, y, c, s, vx, vy, jfk, jdx, jdy, seg_n, seg_t, W, pax, pb, pcd, pfr, diss_cl):
+    """Stage: the step's share of the accumulators: mid-span tension and belt speed (following the
+    joint nearest each span's midpoint as the belt moves), tracked segments, dissipation."""
+    n = x.shape[0]
+    span_geo, span_joint, track_seg = W.span_geo, W.span_joint, W.track
+    acc_span, acc_track, acc_diss = W.acc_span, W.acc_track, W.acc_diss
+    nspan = span_geo.shape[0]
+    ntrack = track_seg.shape[0]
+    # mid-span tension: follow the joint nearest each span's midpoint as the belt moves
+    for q in range(nspan):
+        best = span_joint[q]
+        bestd = 1e300
+        for dk in range(-2, 3):
+            jj = span_joint[q] + dk
+            if jj < 0:
+                jj += n
+            elif jj >= n:
+                jj -= n
+            kk = jj - 1 if jj > 0 else n - 1
+            px = 0.5 * (x[jj] - hl * c[jj] + x[kk] + hl * c[kk]) - span_geo[q, 0]
+            py = 0.5 * (y[jj] - hl * s[jj] + y[kk] + hl * s[kk]) - span_geo[q, 1]
+            dd = px * px + py * py
+            if dd < bestd:
+                bestd = dd
+                best = jj
+        span_joint[q] = best
+        acc_span[q, 0] += h * jfk[best] * math.sqrt(jdx[best] * jdx[best] + jdy[best] * jdy[best])
+        kb_ = best - 1 if best > 0 else n - 1
+        acc_span[q, 1] += h * 0.5 * ((vx[best] + vx[kb_]) * span_geo[q, 2] + (vy[best] + vy[kb_]) * span_geo[q, 3])
+    for q in range(ntrack):
+        i = track_seg[q]
+        jn = i + 1 if i < n - 1 else 0       # the joint after segment i
+        acc_track[q, 0] += h * jfk[jn] * math.sqrt(jdx[jn] * jdx[jn] + jdy[jn] * jdy[jn])
+        acc_track[q, 1] += h * seg_n[i]
+        acc_track[q, 2] += h * seg_t[i]
+    acc_diss[0] += h * pax
+    acc_diss[1] += h * pb
+    acc_diss[2] += h * pcd
+    acc_diss[3] += h * pfr
+    acc_diss[5] += diss_cl
+
+
 @njit(cache=True)
 def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
     """Advance ``nsteps`` semi-implicit Euler steps from time t; returns the new time.
@@ -1468,100 +1587,12 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
             seg_p[i] = pen
             w[i] += hi_[i] * mz[i]
             _move(i, h, vxs, vys, x, y, vx, vy, w, phi, c, s)
-        # pulleys (explicit in the belt torque, which the implicit friction solve bounded)
-        for j in range(nk):
-            Mb = tq_belt[j]
-            if pmode[j] == 1:
-                # prescribed: mean speed (table) plus engine orders on the mean angle, whose
-                # integral is exact for the piecewise-linear mean speed (trapezoid)
-                wm1 = table(sp_x, sp_y, sp_off[j], sp_off[j + 1], t + h, False)
-                thm[j] += 0.5 * h * (table(sp_x, sp_y, sp_off[j], sp_off[j + 1], t, False) + wm1)
-                om_new = wm1 + _orders(j, thm[j], wm1, so_off, so_order, so_amp, so_ang, so_phase)
-                Mext = 0.0
-                acc_pin[j] += h * (-Mb) * om[j]
-            elif cl_kind[j] == 0:
-                Mext = _torque(j, t, th[j], om[j], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
-                               tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
-                acc_pin[j] += h * Mext * om[j]
-                om_new = om[j] + h * (Mext + Mb) * pinv_i[j]
-            else:
-                # an accessory rotor behind a clutch: the loads act on it, at its angle and speed
-                Mext = _torque(j, t, thr[j], omr[j], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
-                               tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
-                acc_pin[j] += h * Mext * omr[j]
-                sj = cl_s[j]
-                ir = cl_ir[j]
-                if cl_kind[j] == 1:
-                    # one-way clutch: locked exactly when, free, the pulley would pass the rotor in
-                    # the drive sense (then the clutch torque drives the rotor: it is >= 0)
-                    wp = om[j] + h * Mb * pinv_i[j]
-                    wr = omr[j] + h * Mext / ir
-                    if sj * (wp - wr) > 0.0:
-                        ip_ = 1.0 / pinv_i[j]
-                        dw = om[j] - omr[j]
-                        diss_cl += 0.5 * ip_ * ir / (ip_ + ir) * dw * dw     # engagement: the relative kinetic energy
-                        wr = (ip_ * om[j] + ir * omr[j] + h * (Mb + Mext)) / (ip_ + ir)
-                        wp = wr
-                else:
-                    # decoupler: the spring's wind-up dcp >= 0 carries k dcp + c (rate) to the rotor;
-                    # the clutch in series lets the rotor overrun (wind-up held at 0)
-                    rel = sj * (om[j] - omr[j])
-                    Ts = cl_k[j] * dcp[j] + cl_c[j] * rel if (dcp[j] > 0.0 or rel > 0.0) else 0.0
-                    if Ts < 0.0:
-                        Ts = 0.0
-                    if Ts > 0.0:
-                        diss_cl += h * cl_c[j] * rel * rel
-                    wp = om[j] + h * (Mb - sj * Ts) * pinv_i[j]
-                    wr = omr[j] + h * (Mext + sj * Ts) / ir
-                    d_new = dcp[j] + h * sj * (wp - wr)
-                    if d_new < 0.0:
-                        diss_cl += 0.5 * cl_k[j] * dcp[j] * dcp[j]     # unwound through the clutch
-                        d_new = 0.0
-                    dcp[j] = d_new
-                om_new = wp
-                omr[j] = wr
-                thr[j] += h * wr
-            acc_tq_ext[j] += h * Mext
-            acc_tq_belt[j] += h * Mb
-            acc_hubx[j] += h * hubx[j]
-            acc_huby[j] += h * huby[j]
-            om[j] = om_new
-            th[j] += h * om_new
+        # pulleys, then tensioners, under this step's belt torques and hub forces
+        diss_cl = _step_pulleys(t, h, tq_belt, hubx, huby, P, S, W)
         if na > 0:     # tensioners, under this step's hub forces; they move the centres
             acc_diss[4] += h * _step_arms(na, a_pulley, a_kind, a_par, a_toff, a_tx, a_ty, S_q, S_qd, pcx, pcy, pvx,
                                           pvy, hubx, huby, h)
-        # mid-span tension: follow the joint nearest each span's midpoint as the belt moves
-        for q in range(nspan):
-            best = span_joint[q]
-            bestd = 1e300
-            for dk in range(-2, 3):
-                jj = span_joint[q] + dk
-                if jj < 0:
-                    jj += n
-                elif jj >= n:
-                    jj -= n
-                kk = jj - 1 if jj > 0 else n - 1
-                px = 0.5 * (x[jj] - hl * c[jj] + x[kk] + hl * c[kk]) - span_geo[q, 0]
-                py = 0.5 * (y[jj] - hl * s[jj] + y[kk] + hl * s[kk]) - span_geo[q, 1]
-                dd = px * px + py * py
-                if dd < bestd:
-                    bestd = dd
-                    best = jj
-            span_joint[q] = best
-            acc_span[q, 0] += h * jfk[best] * math.sqrt(jdx[best] * jdx[best] + jdy[best] * jdy[best])
-            kb_ = best - 1 if best > 0 else n - 1
-            acc_span[q, 1] += h * 0.5 * ((vx[best] + vx[kb_]) * span_geo[q, 2] + (vy[best] + vy[kb_]) * span_geo[q, 3])
-        for q in range(ntrack):
-            i = track_seg[q]
-            jn = i + 1 if i < n - 1 else 0       # the joint after segment i
-            acc_track[q, 0] += h * jfk[jn] * math.sqrt(jdx[jn] * jdx[jn] + jdy[jn] * jdy[jn])
-            acc_track[q, 1] += h * seg_n[i]
-            acc_track[q, 2] += h * seg_t[i]
-        acc_diss[0] += h * pax
-        acc_diss[1] += h * pb
-        acc_diss[2] += h * pcd
-        acc_diss[3] += h * pfr
-        acc_diss[5] += diss_cl
+        _accumulate(h, hl, x, y, c, s, vx, vy, jfk, jdx, jdy, seg_n, seg_t, W, pax, pb, pcd, pfr, diss_cl)
         t += h
     W.tq_belt[:] = tq_belt
     W.hubx[:] = hubx
