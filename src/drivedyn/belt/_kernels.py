@@ -45,13 +45,18 @@ segment's new velocity (a scalar monotone equation per contact, pulley speeds fr
 step), which makes the stiff friction law (slope mu N / dv) unconditionally stable; the step is
 limited only by the elastic chain, h < 2 / sqrt(12 k / m) (``system.stability_limit``).
 
-Scheme ``implicit`` (same function, ``Belt.implicit``; issue 14, the default wherever it integrates
+Scheme ``implicit`` (same function, ``Belt.implicit``; the default wherever it integrates
 the drive, ``model.integrator``): the joints (stiffness, dampers, tension stiffness), the contact
 normal stiffness and damping and the stuck segments' friction through one cyclic block-tridiagonal
 matrix (``_chain.py``: symplectic Euler with a modified mass, no stability limit from the chain);
 stick and slip by an active set solved in a small space over the factored matrix; pulleys implicit
 with the segments they anchor. Agrees with the semi-implicit scheme at about ten times its step
-(README, tests/belt/test_implicit.py).
+(docs/belt-drive.md, tests/belt/test_implicit.py).
+
+A step of ``step_chunk`` in stages: the joint forces (``_joint_forces``, both schemes); the segments:
+contact and friction with each segment's update (semi-implicit) or the contacts, the chain solve
+with its stick-slip active set and the update (implicit, inline); the pulleys (``_step_pulleys``) and
+tensioners (``_step_arms``), both schemes; the accumulators (``_accumulate``).
 """
 import math
 from typing import NamedTuple
@@ -792,7 +797,6 @@ def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jd
     return max(1, min(1000, int(REFACTOR_ANGLE / (h * wmax + 1e-300))))
 
 
-
 @njit(cache=True, inline="always")
 def _step_pulleys(t, h, tq_belt, hubx, huby, P, S, W):
     """Stage: every pulley over the step, explicit in the belt torque tq_belt (which the friction
@@ -868,6 +872,7 @@ def _step_pulleys(t, h, tq_belt, hubx, huby, P, S, W):
         om[j] = om_new
         th[j] += h * om_new
     return diss_cl
+
 
 @njit(cache=True, inline="always")
 def _accumulate(h, hl, x, y, c, s, vx, vy, jfk, jdx, jdy, seg_n, seg_t, W, pax, pb, pcd, pfr, diss_cl):

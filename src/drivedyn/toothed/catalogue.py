@@ -124,7 +124,7 @@ _ENTRIES = [
          note="; 14M arc radius and fillet scaled from 8M by 14/8 (not published); depth NS 6.20 "
               "(CS 6.00 is below the tooth height)"),
     # Not a standard: the HTD 8M tooth and groove scaled by 9.525/8 to the L pitch, for the seed's
-    # mixed pair at equal pitch (an L belt on an HTD-form pulley of the same pitch, issue 15).
+    # mixed pair at equal pitch (an L belt on an HTD-form pulley of the same pitch).
     # Every length of the 8M entry (TB/FCG tooth, CS groove, PLD) times 9.525/8; angles unchanged.
     _htd("HTD9.525", 9.525, *(x * 9.525 / 8 for x in (3.38, 6.0, 0.686, 2.46, 0.70)),
          tuple(x * 9.525 / 8 for x in (5.35, 3.451, 2.57, 0.80)),

@@ -1,4 +1,4 @@
-"""Tooth load sharing on one pulley and the torque at which a tooth climbs out (issue 15).
+"""Tooth load sharing on one pulley and the torque at which a tooth climbs out.
 
 Quasi-static shear-lag chain, the model behind the load-distribution studies seed 001 cites
 (Koyama et al. 1979, Naji & Marshek 1983, Kagotani et al. 1983): the belt's tension member is an
