@@ -241,3 +241,16 @@ def test_running_equilibrium_of_a_fixed_force_slider():
     data = check_data(m)
     assert data["tensioners"]["idler"]["running_travel"] == pytest.approx(q[0])
     assert "running equilibrium" in " ".join(data["steady"]["notes"])
+
+
+def test_at_rest_at_the_default_resolution():
+    """At "auto" (337 segments) the belt and arm start at their static equilibrium: nothing moves
+    (the relaxation needed 120 Newton steps there; with 60 it stopped short and the idler drifted
+    at 0.1 rad/s)."""
+    d = to_dict(accessory(arm={}))
+    d["belt"]["segments"] = "auto"
+    r = drivedyn.run(from_dict(d))
+    assert r.status == "success", [x.text for x in r.diagnostics]
+    t = r.summary["tensioners"]["idler"]
+    assert t["travel_max"] - t["travel_min"] < 1e-8
+    assert np.abs(r.ds["speed"].values).max() < 1e-5
