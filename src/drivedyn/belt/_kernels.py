@@ -55,7 +55,8 @@ with the segments they anchor. Agrees with the semi-implicit scheme at about ten
 
 A step of ``step_chunk`` in stages: the joint forces (``_joint_forces``, both schemes); the segments:
 contact and friction with each segment's update (semi-implicit) or the contacts, the chain solve
-with its stick-slip active set and the update (implicit, inline); the pulleys (``_step_pulleys``) and
+with its stick-slip active set (inline) and its velocity change (``_velocity_change``) and the
+update (implicit); the pulleys (``_step_pulleys``) and
 tensioners (``_step_arms``), both schemes; the accumulators (``_accumulate``).
 """
 import math
@@ -798,6 +799,32 @@ def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jd
 
 
 @njit(cache=True, inline="always")
+def _velocity_change(n, nk, nC, ipl, dom, qv, cseg, zslot, lin_u, zc, yx, yy, yz, fx, fy, mz):
+    """Stage (implicit scheme, chain solve): the step's acceleration (fx, fy, mz) = A_f^-1 F from the
+    base solve y, the implicit pulleys' speed changes dom over their columns U_k (lin_u) and the
+    active set's force corrections qv over their cached columns Z_c (zc)."""
+    for i in range(n):
+        fx[i] = yx[i]
+        fy[i] = yy[i]
+        mz[i] = yz[i]
+    for kk in range(nk):
+        if ipl[kk]:
+            dk = dom[kk]
+            for i in range(n):
+                fx[i] += dk * lin_u[kk, i, 0]
+                fy[i] += dk * lin_u[kk, i, 1]
+                mz[i] += dk * lin_u[kk, i, 2]
+    for d in range(nC):
+        sd = 2 * zslot[cseg[d]]
+        p0 = qv[2 * d]
+        p1 = qv[2 * d + 1]
+        for i in range(n):
+            fx[i] += p0 * zc[sd, i, 0] + p1 * zc[sd + 1, i, 0]
+            fy[i] += p0 * zc[sd, i, 1] + p1 * zc[sd + 1, i, 1]
+            mz[i] += p0 * zc[sd, i, 2] + p1 * zc[sd + 1, i, 2]
+
+
+@njit(cache=True, inline="always")
 def _step_pulleys(t, h, tq_belt, hubx, huby, P, S, W):
     """Stage: every pulley over the step, explicit in the belt torque tq_belt (which the friction
     solve bounded) and hub force of this step: prescribed speeds with their engine orders, dynamic
@@ -1482,26 +1509,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                 npass += 1
                 if not changed:
                     break
-            # the velocity change over A^-1 F
-            for i in range(n):
-                fx[i] = yx[i]
-                fy[i] = yy[i]
-                mz[i] = yz[i]
-            for kk in range(nk):
-                if ipl[kk]:
-                    dk = dom[kk]
-                    for i in range(n):
-                        fx[i] += dk * lin_u[kk, i, 0]
-                        fy[i] += dk * lin_u[kk, i, 1]
-                        mz[i] += dk * lin_u[kk, i, 2]
-            for d in range(nC):
-                sd = 2 * zslot[cseg[d]]
-                p0 = qv[2 * d]
-                p1 = qv[2 * d + 1]
-                for i in range(n):
-                    fx[i] += p0 * zc[sd, i, 0] + p1 * zc[sd + 1, i, 0]
-                    fy[i] += p0 * zc[sd, i, 1] + p1 * zc[sd + 1, i, 1]
-                    mz[i] += p0 * zc[sd, i, 2] + p1 * zc[sd + 1, i, 2]
+            # the velocity change over A^-1 F (stage)
+            _velocity_change(n, nk, nC, ipl, dom, qv, cseg, zslot, lin_u, zc, yx, yy, yz, fx, fy, mz)
             lin_cnt[0] -= 1
             for i in range(n):
                 vxs = vx[i] + h * fx[i]
