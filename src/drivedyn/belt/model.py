@@ -325,6 +325,10 @@ class Friction(Spec):
 
 class Simulation(Spec):
     duration: quantity("s", gt=0) = 1.0
+    # "segments": the belt as a chain of rigid segments (seed 000); "rotational": pulleys, arms and
+    # rotors with the spans as axial springs and creep on the wraps (rotational.py), milliseconds
+    # per simulated second
+    model: Literal["segments", "rotational"] = "segments"
     method: Literal["auto", "implicit", "semi-implicit", "rkf45"] = "auto"
     step: Optional[quantity("s", gt=0)] = None
     rotation_scaling: bool = False

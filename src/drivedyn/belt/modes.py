@@ -224,12 +224,17 @@ def _eigen(K, M, names) -> Modes:
 
 
 def drive_modes(model, tensions=None) -> Modes:
-    """Modes of a drive as built: a tensioned drive about its static equilibrium (tensioner.py),
-    at its rest tension unless span ``tensions`` are given."""
-    from .tensioner import equilibrium, indices
+    """Modes of a drive as built: a tensioned drive about the static equilibrium of the continuous
+    belt and its tensioners (rotational.rest_state, the rotational model's rest state), at that rest
+    tension unless span ``tensions`` are given."""
+    from . import tensioner
+    from .rotational import installed_length, rest_state
 
-    if not indices(model):
+    idx = tensioner.indices(model)
+    if not idx:
         return modes(model, tensions=tensions)
-    rest = equilibrium(model)
-    belt = rest.model.belt.model_copy(update={"pretension": float(rest.tension), "length": None})
-    return modes(rest.model.model_copy(update={"belt": belt}), tensions=tensions, travel=rest.travel)
+    travel, T, _ = rest_state(model, installed_length(model, compute_layout(model)))
+    sense = tensioner.senses(model)
+    moved = tensioner.with_centres(model, {j: tensioner.centre(model, j, q, s) for j, q, s in zip(idx, travel, sense)})
+    belt = moved.belt.model_copy(update={"pretension": float(T), "length": None})
+    return modes(moved.model_copy(update={"belt": belt}), tensions=tensions, travel=travel)

@@ -242,6 +242,10 @@ def _blow_up(x, y, vx, vy, om, pen, sysm):
 
 
 def run(model, progress=None) -> Result:
+    if model.simulation.model == "rotational":
+        from .rotational import run as run_rotational
+
+        return run_rotational(model, progress)
     sysm = build(model)
     sim = model.simulation
     if sim.step is None:     # the step the model sets (a given one was checked with the model)
@@ -454,7 +458,7 @@ def warm():
     run(m)
 
 
-def _summary(model, sysm, ds, solver, sel, window) -> dict:
+def _summary(model, sysm, ds, solver, sel, window, disc=None) -> dict:
     t = ds["time"].values
     w0, w1 = window
     mean = lambda v: ds[v].values[sel].mean(axis=0) if np.any(sel) else np.full(ds[v].shape[1:], np.nan)
@@ -525,7 +529,7 @@ def _summary(model, sysm, ds, solver, sel, window) -> dict:
         },
         "belt": {"pretension": sysm.init.tension, "segment_length": sysm.init.seg_length,
                  "segments": sysm.n, "path_length": sysm.layout.length},
-        "discretisation": discretisation(model, sysm),
+        "discretisation": discretisation(model, sysm) if disc is None else disc,
         **_tensioner_summary(ds, sysm, sel),
         **_clutch_summary(ds, sel),
         "solver": solver,

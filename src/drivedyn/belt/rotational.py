@@ -1,0 +1,489 @@
+"""The rotational model of a belt drive (``simulation.model = "rotational"``): one unknown per
+pulley, clutch rotor and tensioner, the spans as axial springs, the wraps with creep and a
+friction limit. It reads the same model file and gives the same summary, time series, run-up
+tables and plots as the segment model, in milliseconds per simulated second.
+
+Formulation (after Hwang, Perkins & Ulsoy, J. Vib. Acoust. 116 (1994) 8-15, rotational response
+and slip prediction of serpentine belt drives; creep as Kong & Parker, J. Appl. Mech. 72 (2005)
+25-34; stated in full in docs/belt-drive.md, "The rotational model"):
+
+- Span k (from pulley k to k+1 in belt order) holds an unstretched belt length u_k on its straight
+  length L_k(q) (q: the tensioners' travel, exact layouts): strain e_k = L_k / u_k - 1, tension
+  T_k = EA e_k + b de_k/dt (b = belt.axial_damping), zero when slack.
+- Wrap j holds W_j. The belt arrives in adhesion: it moves with the pulley surface (rho_j omega_j)
+  at the strain of the span it comes from, so the flux into the wrap is rho_j omega_j / (1 + e_in);
+  the wrap's content relaxes to its steady value (creep theory: adhesion arc, then a slip arc with
+  T - m v^2 ~ exp(mu phi), the belt sunk into the groove by its contact pressure; steady.py) over
+  one passage time r theta / |v|, and the flux out is the flux in less the content's change.
+  Belt is conserved: sum u + sum W = L0 at every step.
+- A tensioner moving the tangent points rolls belt from a span onto its pulleys (adhesion): the
+  stretch of a span per unit travel is then the projection of the pulley centre's motion on the
+  span (modes.py), the same gradient as ``check``'s modes.
+- Gross slip: where a wrap's tension ratio (T_tight - m v^2) / (T_slack - m v^2) would exceed
+  e^(mu theta), belt slides through the whole wrap from the slack to the tight span until the ratio
+  is at the limit (Coulomb's law on the wrap, a return map each step): the pulley's torque is capped
+  by the friction limit and its speed decouples from the belt's.
+- Pulley j: J_j omega_j' = rho_j (T_out - T_in) + its loads; the hub carries the spans' pull less
+  the belt's centrifugal force on the wrap; the tensioner arm the hub force on its pulley. Pulleys,
+  clutches, speed orders and tensioners advance in the segment model's own stages (_kernels.py).
+- The belt's mass: its centrifugal tension in the wraps (above) and, lumped, its inertia: each
+  wrap's belt on its pulley and a third of each adjoining span's (the diagonal of a span's
+  consistent mass), on the pulley's rotation and on a tensioner's travel.
+
+Not in it: the spans' transverse motion (flap: belt/flap.py), the belt's own axial waves (the
+spans are massless springs), polygon effects (none: it is the continuum) and a slip arc's history
+beyond one passage.
+"""
+from __future__ import annotations
+
+import math
+import time as _time
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq, root
+
+from ..errors import ModelError, SolverError, Stopped, stop_reason
+from . import _kernels as K
+from . import _rotkernels as RK
+from . import tensioner as TN
+from .layout import Layout, compute_layout
+from .modes import stretch_of
+from .steady import penetration
+
+#: grid of a tensioner's geometry table (travel steps over its stop-to-stop range, plus margins)
+TABLE_POINTS = 600
+#: the step resolves the fastest mode: h omega_max at most this (symplectic Euler: frequency error
+#: (h omega)^2 / 24, 0.4 % at 0.3)
+STEP_OMEGA = 0.3
+#: Gauss-Seidel passes of the gross-slip return map over the wraps
+SLIP_PASSES = 4
+
+
+@dataclass
+class RotSystem:
+    model: object          # the drawn model
+    layout: Layout         # at the tensioners' rest travel
+    R: RK.Rot
+    P: K.Pulleys           # belt mass lumped on the inertias
+    A: K.Arms
+    rest_travel: np.ndarray
+    rest_tension: float
+    L0: float              # unstretched belt length (m)
+    step: float
+    omega_max: float       # bound on the fastest mode (rad/s)
+
+
+def installed_length(model, lay: Layout) -> float:
+    """Unstretched belt length: ``belt.length``, or the drawn path at the pretension with the belt
+    sunk into each wrap by its static depth (as steady.drive_of)."""
+    b = model.belt
+    if b.length is not None:
+        return float(b.length)
+    radii = np.abs(lay.rho)
+    sunk = float(np.sum(lay.wrap * penetration(b.pretension / radii, model.contact.stiffness_quadratic,
+                                                model.contact.stiffness_linear)))
+    return (lay.length - sunk) / (1 + b.pretension / b.axial_stiffness)
+
+
+def _content(model, lay: Layout, T: float) -> float:
+    """Unstretched belt the path of ``lay`` holds at a uniform tension T at rest."""
+    EA = model.belt.axial_stiffness
+    sunk = float(np.sum(lay.wrap * penetration(T / np.abs(lay.rho), model.contact.stiffness_quadratic,
+                                                model.contact.stiffness_linear)))
+    return (lay.length - sunk) / (1 + T / EA)
+
+
+def _tension_at(model, lay: Layout, L0: float) -> float:
+    """Uniform tension at rest at which the path of ``lay`` holds L0 (0 when it is slack)."""
+    f = lambda T: _content(model, lay, T) - L0
+    if f(0.0) <= 0:
+        return 0.0
+    hi = 1.0
+    while f(hi) > 0:
+        hi *= 2
+        if hi > 1e3 * model.belt.axial_stiffness:
+            raise ModelError("no belt tension holds this installation (belt length?)", field="belt")
+    return brentq(f, 0.0, hi, xtol=1e-10, rtol=1e-13)
+
+
+def rest_state(model, L0: float):
+    """Tensioners' travel and the belt's uniform tension at rest (virtual work: spring load plus
+    the hub force's component along the pulley's travel vanish), and the layout there."""
+    idx = TN.indices(model)
+    if not idx:
+        lay = compute_layout(model)
+        return np.zeros(0), _tension_at(model, lay, L0), lay
+    sense = TN.senses(model)
+
+    def at(qv):
+        m = TN.with_centres(model, {j: TN.centre(model, j, q, s) for j, q, s in zip(idx, qv, sense)})
+        return compute_layout(m)
+
+    def loads(qv):
+        lay = at(qv)
+        T = _tension_at(model, lay, L0)
+        hub = lay.hub_load_static(T)
+        out = []
+        for j, q, s in zip(idx, qv, sense):
+            h = 1e-6 if model.pulleys[j].arm is not None else 1e-7
+            c1, c0 = np.array(TN.centre(model, j, q + h, s)), np.array(TN.centre(model, j, q - h, s))
+            out.append(TN._spring(model.pulleys[j].tensioner, q) + float(hub[j] @ ((c1 - c0) / (2 * h))))
+        return np.array(out)
+
+    ts = [model.pulleys[j].tensioner for j in idx]
+    if len(idx) == 1:
+        lo, hi = ts[0].stops
+        f = lambda q: float(loads([q])[0])
+        if f(lo) < 0 or f(hi) > 0:
+            raise ModelError(f"pulley {model.pulleys[idx[0]].name!r}: no static equilibrium of the tensioner between "
+                             "its stops (spring against belt tension)", field=f"pulleys.{idx[0]}.tensioner")
+        qv = np.array([brentq(f, lo, hi, xtol=1e-13)])
+    else:
+        sol = root(loads, np.zeros(len(idx)), method="hybr")
+        if not sol.success:
+            raise ModelError(f"no static equilibrium of the tensioners found ({sol.message})", field="pulleys")
+        qv = sol.x
+    lay = at(qv)
+    return qv, _tension_at(model, lay, L0), lay
+
+
+def _turns(lay0: Layout, lay: Layout):
+    """Per span: belt rolled onto its start and end pulley as their tangent points moved from lay0
+    to lay (rho times the turn, signed as in modes.stretch_of: their sum plus the length change is
+    the span's stretch with adhesion)."""
+    t0, t1 = np.empty(len(lay.spans)), np.empty(len(lay.spans))
+    for k, (s0, s1) in enumerate(zip(lay0.spans, lay.spans)):
+        for out, j, p0, p1, sgn in ((t0, s1.start, s0.p0, s1.p0, 1.0), (t1, s1.end, s0.p1, s1.p1, -1.0)):
+            a0 = math.atan2(p0[1] - lay0.centers[j][1], p0[0] - lay0.centers[j][0])
+            a1 = math.atan2(p1[1] - lay.centers[j][1], p1[0] - lay.centers[j][0])
+            out[k] = sgn * lay.rho[j] * math.remainder(a1 - a0, 2 * math.pi)
+    return t0, t1
+
+
+def _tables(model, rest_lay: Layout, idx, sense, rest_q):
+    """Geometry tables per tensioner over its travel (the others at rest): changes from rest of
+    span lengths, rolled-on belt, span directions and wraps."""
+    ns, nk = len(rest_lay.spans), len(rest_lay.names)
+    na = len(idx)
+    L_r = np.array([sp.length for sp in rest_lay.spans])
+    d_r = np.array([[math.cos(sp.angle), math.sin(sp.angle)] for sp in rest_lay.spans])
+    shape = (na, TABLE_POINTS, ns)
+    tL, t0, t1, tdx, tdy = (np.zeros(shape) for _ in range(5))
+    tw = np.zeros((na, TABLE_POINTS, nk))
+    q0, dq = np.zeros(na), np.zeros(na)
+    centres_rest = {j: TN.centre(model, j, q, s) for j, q, s in zip(idx, rest_q, sense)}
+    for a, (j, s) in enumerate(zip(idx, sense)):
+        lo, hi = model.pulleys[j].tensioner.stops
+        margin = 0.15 * (hi - lo)
+        dq[a] = (hi - lo + 2 * margin) / (TABLE_POINTS - 1)
+        i0 = int(round((rest_q[a] - (lo - margin)) / dq[a]))       # rest travel on a grid point
+        q0[a] = rest_q[a] - i0 * dq[a]
+        last = None
+        for i in range(TABLE_POINTS):
+            q = q0[a] + i * dq[a]
+            c = dict(centres_rest)
+            c[j] = TN.centre(model, j, q, s)
+            try:
+                lay = compute_layout(TN.with_centres(model, c))
+            except ModelError:
+                lay = None
+            if lay is None:       # beyond where the layout exists: held at the last valid one
+                if last is None:
+                    continue
+                tL[a, i], t0[a, i], t1[a, i], tdx[a, i], tdy[a, i], tw[a, i] = last
+                continue
+            a0, a1 = _turns(rest_lay, lay)
+            d = np.array([[math.cos(sp.angle), math.sin(sp.angle)] for sp in lay.spans])
+            row = (np.array([sp.length for sp in lay.spans]) - L_r, a0, a1, d[:, 0] - d_r[:, 0], d[:, 1] - d_r[:, 1],
+                   lay.wrap - rest_lay.wrap)
+            tL[a, i], t0[a, i], t1[a, i], tdx[a, i], tdy[a, i], tw[a, i] = row
+            if last is None and i > 0:      # fill the invalid start
+                for i2 in range(i):
+                    tL[a, i2], t0[a, i2], t1[a, i2], tdx[a, i2], tdy[a, i2], tw[a, i2] = row
+            last = row
+    return q0, dq, tL, t0, t1, tdx, tdy, tw
+
+
+def build(model) -> RotSystem:
+    from .system import _pulleys, running_senses
+
+    belt = model.belt
+    drawn = compute_layout(model)
+    L0 = installed_length(model, drawn)
+    idx = TN.indices(model)
+    sense = TN.senses(model) if idx else []
+    rest_q, T_rest, lay = rest_state(model, L0)
+    if not T_rest > 0:
+        raise ModelError("the belt is slack at rest: belt.length too long or no pretension", field="belt")
+    q0, dq, tL, t0, t1, tdx, tdy, tw = _tables(model, lay, idx, sense, rest_q) if idx else (
+        np.zeros(0), np.ones(0), *(np.zeros((0, 2, len(lay.spans))) for _ in range(5)), np.zeros((0, 2, len(lay.names))))
+    R = RK.Rot(nk=len(lay.names), rho=lay.rho.astype(float), EA=float(belt.axial_stiffness),
+               bax=float(belt.axial_damping), m=float(belt.mass_per_length),
+               mu=np.full(len(lay.names), float(model.friction.coefficient)),
+               c1=float(model.contact.stiffness_quadratic), c2=float(model.contact.stiffness_linear),
+               L=np.array([sp.length for sp in lay.spans]),
+               dx=np.array([math.cos(sp.angle) for sp in lay.spans]), dy=np.array([math.sin(sp.angle) for sp in lay.spans]),
+               wrap=lay.wrap.astype(float), q0=q0, dq=dq, tL=tL, t0=t0, t1=t1, tdx=tdx, tdy=tdy, tw=tw)
+    P = _pulleys(model.pulleys, running_senses(model, drawn))
+    A = TN.arms_record(model)
+    # the belt's mass, lumped: each wrap's belt and a third of each adjoining span's
+    nk = R.nk
+    m = belt.mass_per_length
+    carried = np.array([abs(R.rho[j]) * R.wrap[j] + (R.L[j] + R.L[(j - 1) % nk]) / 3 for j in range(nk)]) * m
+    inertia = P.inertia + carried * R.rho ** 2
+    P = P._replace(cx=lay.centers[:, 0].copy(), cy=lay.centers[:, 1].copy(), inertia=inertia, inv_i=1.0 / inertia)
+    if A.na:
+        par = A.par.copy()
+        add = np.zeros(A.na)
+        for a in range(A.na):
+            _, _, jx, jy = K.arm_centre(A, a, float(rest_q[a]))
+            add[a] = carried[A.pulley[a]] * (jx * jx + jy * jy)
+        par[:, K.ARM_IN] += add
+        A = A._replace(par=par, inertia=A.inertia + add)
+    w_max = _omega_bound(R, P, A, rest_q, T_rest)
+    h = STEP_OMEGA / w_max
+    return RotSystem(model, lay, R, P, A, rest_q, T_rest, L0, h, w_max)
+
+
+def _omega_bound(R, P, A, rest_q, T) -> float:
+    """An upper bound of the fastest mode (rad/s): for each DOF, twice its diagonal stiffness over
+    its inertia (Gershgorin: the span springs couple neighbours with off-diagonal terms no larger
+    than the diagonal ones)."""
+    nk = R.nk
+    kspan = R.EA / R.L
+    w2 = 0.0
+    for j in range(nk):
+        kr = (kspan[j] + kspan[(j - 1) % nk]) * R.rho[j] ** 2
+        if P.mode[j] == 0:
+            w2 = max(w2, 2 * kr / P.inertia[j])
+        if P.cl_kind[j] == 2:     # the decoupler's spring between pulley and rotor
+            ired = P.inertia[j] * P.cl_ir[j] / (P.inertia[j] + P.cl_ir[j])
+            w2 = max(w2, P.cl_k[j] / ired)
+    for a in range(A.na):
+        j = A.pulley[a]
+        _, _, jx, jy = K.arm_centre(A, a, float(rest_q[a]))
+        g2 = jx * jx + jy * jy
+        ka = (kspan[j] + kspan[(j - 1) % nk]) * g2 * 2 + A.par[a, K.ARM_RATE] + A.par[a, K.ARM_KSTOP]
+        w2 = max(w2, 2 * ka / A.par[a, K.ARM_IN])
+    return math.sqrt(w2)
+
+
+# --- the run -----------------------------------------------------------------------------------
+
+class _Rest:
+    """The tensioners at rest, as the summary reports them (tensioner.Equilibrium's fields)."""
+
+    def __init__(self, sysm: RotSystem):
+        A, q = sysm.A, sysm.rest_travel
+        self.travel = q
+        self.tension = sysm.rest_tension
+        self.angle = np.array([A.psi0[a] + A.sgn[a] * q[a] if A.kind[a] == 0 else np.nan for a in range(A.na)])
+        self.spring = np.array([TN._spring(sysm.model.pulleys[A.pulley[a]].tensioner, q[a]) for a in range(A.na)])
+
+
+class _Init:
+    """What the shared summary and diagnostics read of an initial state: the rest tension and, for
+    the steadiness test's speed floor, a length the belt must pass in a window (1 mm)."""
+
+    def __init__(self, tension):
+        self.tension = tension
+        self.seg_length = 1e-3
+        self.residual = 0.0
+
+
+class _View:
+    """The rotational system seen through the segment model's system interface (simulate._summary,
+    diagnose): layout, pulleys, arms, rest state; the continuum rolls at the contact radius."""
+
+    def __init__(self, sysm: RotSystem):
+        self.model, self.layout, self.pulleys, self.arms = sysm.model, sysm.layout, sysm.P, sysm.A
+        self.rest = _Rest(sysm) if sysm.A.na else None
+        self.init = _Init(sysm.rest_tension)
+        self.rolling_radius = np.abs(sysm.layout.rho)
+        self.n = 0
+
+
+def new_states(sysm: RotSystem):
+    """Kernel states at rest: pulleys still (a prescribed one at its t = 0 speed), tensioners at
+    their rest travel, every span and wrap holding the belt of the rest tension."""
+    P, R, A = sysm.P, sysm.R, sysm.A
+    nk, z = R.nk, np.zeros
+    om = np.array([K.prescribed_speed(P, j, 0.0) if P.mode[j] == 1 else 0.0 for j in range(nk)])
+    e = z(0)
+    S = K.State(x=e, y=e, phi=e, c=e, s=e, vx=e, vy=e, w=e, th=z(nk), om=om, z=e, cx=P.cx.copy(), cy=P.cy.copy(),
+                cvx=z(nk), cvy=z(nk), q=sysm.rest_travel.astype(float).copy(), qd=z(A.na), thm=z(nk), thr=z(nk),
+                omr=z(nk), dcp=z(nk))
+    W = K.Work(fx=e, fy=e, mz=e, jfk=e, jdx=e, jdy=e, jmk=e, jmi=e, seg_n=e, seg_t=e, seg_p=e,
+               tq_ext=z(nk), tq_belt=z(nk), hubx=z(nk), huby=z(nk), pin=z(nk), diss=z(4),
+               acc_tq_ext=z(nk), acc_tq_belt=z(nk), acc_hubx=z(nk), acc_huby=z(nk), acc_pin=z(nk),
+               acc_span=z((0, 2)), acc_track=z((0, 3)), acc_diss=z(6), energy=z(1), probe=z(6),
+               span_geo=z((0, 4)), span_joint=np.zeros(0, np.int64), track=np.zeros(0, np.int64),
+               lin_d=z((0, 9)), lin_o=z((0, 9)), lin_e=z((0, 9)), lin_dinv=z((0, 9)), lin_y=z((0, 9)),
+               lin_x=z((0, 9)), lin_r=z((0, 3)), lin_sig=e, lin_gam=e, lin_fk=e, lin_fa=e, lin_fnx=e, lin_fny=e,
+               lin_geo=e, lin_u=z((0, 0, 3)), lin_zslot=np.zeros(0, np.int64), lin_zc=z((0, 0, 3)), lin_g=z((nk, nk + 1)),
+               lin_stat=z(4), cand_j=np.zeros(0, np.int64), cand_skip=np.zeros(0, np.int64), lin_st=e,
+               lin_cnt=np.zeros(4, np.int64))
+    T = sysm.rest_tension
+    EA = R.EA
+    c1, c2 = R.c1, R.c2
+    Wc = np.array([RK.wrap_content(abs(R.rho[j]), R.wrap[j], T, T, 0.0, R.mu[j], EA, c1, c2) for j in range(nk)])
+    RS = RK.RotState(u=R.L / (1 + T / EA), W=Wc, ud=z(nk), vs=z(nk), t0=z(nk), t1=z(nk))
+    RW = RK.RotWork(L=z(nk), Ld=z(nk), t0=z(nk), t1=z(nk), dx=z(nk), dy=z(nk), wrap=z(nk), T=z(nk), a=z(nk), b=z(nk),
+                    tq=z(nk), hubx=z(nk), huby=z(nk), slip=z(nk), acc_T=z(nk), acc_v=z(nk), acc_slip=z(nk),
+                    acc_gross=z(nk), acc_diss=z(6))
+    return S, W, RS, RW
+
+
+def run(model, progress=None):
+    from ..limits import steps_problem
+    from ..results import Result
+
+    sysm = build(model)
+    sim, out = model.simulation, model.output
+    nsamples = max(1, int(round(sim.duration / out.interval)))
+    interval = sim.duration / nsamples
+    steps = max(1, int(math.ceil(interval / (sim.step or sysm.step))))
+    h = interval / steps
+    problem = steps_problem(steps * nsamples, "simulation.duration", "a shorter duration")
+    if problem:
+        raise ModelError(problem, field="simulation.duration")
+    S, W, RS, RW = new_states(sysm)
+    nk, na = sysm.R.nk, sysm.A.na
+    z = np.zeros
+    o = dict(t=z(nsamples), th=z((nsamples, nk)), om=z((nsamples, nk)), tq=z((nsamples, nk)), tb=z((nsamples, nk)),
+             hx=z((nsamples, nk)), hy=z((nsamples, nk)), pin=z((nsamples, nk)), T=z((nsamples, nk)), v=z((nsamples, nk)),
+             slip=z((nsamples, nk)), gross=z((nsamples, nk)), q=z((nsamples, na)), qd=z((nsamples, na)),
+             omr=z((nsamples, nk)), E=z(nsamples), work=z(nsamples), diss=z((nsamples, 6)))
+    E0 = RK.energy(sysm.R, sysm.P, sysm.A, S, RS, RW)
+    wall0 = _time.perf_counter()
+    t, k, failure = 0.0, 0, ""
+    chunk = max(1, nsamples // 50)
+    try:
+        while k < nsamples:
+            k1 = min(nsamples, k + chunk)
+            t = RK.run_samples(k, k1, steps, t, h, sysm.R, sysm.P, sysm.A, S, W, RS, RW, SLIP_PASSES, *o.values())
+            if not (np.all(np.isfinite(o["om"][k1 - 1])) and np.all(np.isfinite(o["T"][k1 - 1]))):
+                bad = int(np.argmax(~np.isfinite(o["om"][k:k1]).any(axis=1) | ~np.isfinite(o["T"][k:k1]).any(axis=1)))
+                k += bad
+                failure = f"diverged at t = {o['t'][k]:.6g} s (a state is not finite)"
+                break
+            k = k1
+            if progress is not None:
+                progress(k / nsamples, f"t = {t:.3f} s")
+    except (Stopped, KeyboardInterrupt) as exc:
+        failure = f"stopped: {stop_reason(exc)}"
+    wall = _time.perf_counter() - wall0
+    o["E"] -= E0
+    o["t"][:k] = (np.arange(k) + 1) * interval      # exact sample times
+    result = _assemble(model, sysm, o, k, steps * k, h, wall, failure)
+    if failure:
+        raise SolverError(failure + f" (results kept up to t = {o['t'][k - 1] if k else 0.0:.6g} s)", partial=result)
+    return result
+
+
+def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure):
+    import xarray as xr
+
+    from ..model import dumps
+    from ..results import Result, unit_map, variable
+    from ..window import in_window, steady_window
+    from .simulate import UNITS, _clutch_variables, _summary, _tensioner_variables
+
+    lay = sysm.layout
+    names, spans = list(lay.names), [sp.name for sp in lay.spans]
+    hub = np.hypot(o["hx"][:ns], o["hy"][:ns])
+    E, Wk, D = o["E"][:ns], o["work"][:ns], o["diss"][:ns]
+    ds = xr.Dataset(
+        {
+            "angle": variable(o["th"][:ns], ("time", "pulley"), "rad", "pulley angle (counter-clockwise positive)"),
+            "speed": variable(o["om"][:ns], ("time", "pulley"), "rad/s", "pulley angular speed (counter-clockwise positive)"),
+            "torque_applied": variable(o["tq"][:ns], ("time", "pulley"), "N m", "applied torque, interval mean"),
+            "torque_belt": variable(o["tb"][:ns], ("time", "pulley"), "N m", "torque of the belt on the pulley, interval mean"),
+            "hub_force_x": variable(o["hx"][:ns], ("time", "pulley"), "N", "belt force on the pulley, x, interval mean"),
+            "hub_force_y": variable(o["hy"][:ns], ("time", "pulley"), "N", "belt force on the pulley, y, interval mean"),
+            "hub_load": variable(hub, ("time", "pulley"), "N", "hub load magnitude"),
+            "power_in": variable(o["pin"][:ns], ("time", "pulley"), "W", "power into the belt system through the pulley"),
+            "span_tension": variable(o["T"][:ns], ("time", "span"), "N", "span tension, interval mean"),
+            "span_speed": variable(o["v"][:ns], ("time", "span"), "m/s", "belt speed along the span (belt order positive)"),
+            "wrap_sliding_speed": variable(o["slip"][:ns], ("time", "pulley"), "m/s",
+                                           "belt sliding through the whole wrap (gross slip), belt order positive"),
+            "gross_slip_share": variable(o["gross"][:ns], ("time", "pulley"), "1",
+                                         "share of the interval the wrap slid as a whole (tension ratio at e^(mu theta))"),
+            "energy_change": variable(E, ("time",), "J", "mechanical energy minus its initial value"),
+            "work_in": variable(Wk, ("time",), "J", "cumulative work done on the system by the pulleys"),
+            "dissipated": variable(D, ("time", "mechanism"), "J", "cumulative dissipated energy"),
+            "energy_residual": variable(Wk - D.sum(axis=1) - E, ("time",), "J", "work in - dissipated - energy change (integration error)"),
+            "pulley_x": variable(lay.centers[:, 0].copy(), ("pulley",), "m", "pulley centre x (a tensioner's: at rest)"),
+            "pulley_y": variable(lay.centers[:, 1].copy(), ("pulley",), "m", "pulley centre y (a tensioner's: at rest)"),
+            "pulley_radius": variable([p.radius for p in model.pulleys], ("pulley",), "m", "contact radius"),
+            "pulley_rolling_radius": variable(np.abs(lay.rho), ("pulley",), "m", "belt speed over pulley speed at no load (the contact radius)"),
+        },
+        coords={"time": o["t"][:ns], "pulley": names, "span": spans,
+                "mechanism": ["axial_damping", "bending_damping", "contact_damping", "friction", "tensioner", "clutch"]},
+        attrs={"model_toml": dumps(model), "title": model.name or "belt drive", "belt_model": "rotational"},
+    )
+    view = _View(sysm)
+    rec = type("Rec", (), {"q": o["q"], "qd": o["qd"], "omr": o["omr"], "tq_ext": o["tq"]})()
+    _tensioner_variables(ds, model, view, rec, ns)
+    _clutch_variables(ds, model, view, rec, ns, float(ds["time"].values[0]) if ns else 1.0)
+    ds["time"].attrs["units"] = "s"
+    t = ds["time"].values
+    t_end = float(t[-1]) if ns else 0.0
+    window = steady_window(model.output.steady_window, model.simulation.duration)
+    sel = in_window(t, window)
+    if not np.any(sel):
+        window = steady_window(None, t_end)
+        sel = in_window(t, window)
+    solver = {"method": "rotational", "steps": int(nsteps), "rejected_steps": 0, "rhs_evaluations": int(nsteps),
+              "last_step": float(h), "wall_time": float(wall), "simulated_time": t_end,
+              "status": "failed" if failure else "success", "step": float(h),
+              "stability_limit": float(2 / sysm.omega_max),
+              "real_time_factor": float(t_end / wall) if wall > 0 else float("nan")}
+    disc = {"model": "rotational", "step": float(h), "fastest_mode_bound_hz": sysm.omega_max / (2 * math.pi),
+            # symplectic Euler's frequency error (h omega)^2 / 24 at the bound of the fastest mode
+            "step_frequency_error": float((h * sysm.omega_max) ** 2 / 24)}
+    summary = _summary(model, view, ds, solver, sel, window, disc)
+    summary["belt"] = {"pretension": float(sysm.rest_tension), "path_length": float(lay.length),
+                       "unstretched_length": float(sysm.L0), "model": "rotational"}
+    gross = ds["gross_slip_share"].values[sel] if np.any(sel) else np.zeros((0, len(names)))
+    for j, nm in enumerate(names):
+        p = summary["pulleys"][nm]
+        p["sliding_share"] = float(gross[:, j].mean()) if len(gross) else float("nan")
+    ds.attrs["steady_window"] = [float(window[0]), float(window[1])]
+    ds.attrs["animation"] = 0
+    if ns:
+        from .runup import add_runup
+
+        summary.update(add_runup(ds, model, model.output.runup_bin))
+    result = Result("belt-drive", ds, summary, success=not failure, message=failure)
+    if ns:
+        _checks(result, model, view, sel)
+    result.units = unit_map(result.summary, {**UNITS, "belt.unstretched_length": "m", "discretisation.step": "s",
+                                             "discretisation.fastest_mode_bound_hz": "Hz"})
+    return result
+
+
+#: a wrap that slides as a whole for more than this share of the window is in gross slip
+GROSS_SHARE = 0.02
+
+
+def _checks(result, model, view, sel):
+    """The rotational model's diagnostics: gross slip from the wraps' return map, and the segment
+    model's window, energy, slip-margin, run-up-slip and load checks."""
+    from . import diagnose as D
+    from .loadcheck import check_loads
+
+    if not np.any(sel) or result.ds.sizes.get("time", 0) < 3:
+        return
+    for nm, p in result.summary["pulleys"].items():
+        share = p.get("sliding_share", 0.0)
+        if share > GROSS_SHARE and D._excited(model):
+            result.diagnose("gross-slip", f"pulley {nm}'s belt slides over its whole wrap {100 * share:.0f} % of the "
+                            "steady window (tension ratio at e^(mu theta)); more pretension or less load",
+                            f"pulleys.{nm}.sliding_share", share, GROSS_SHARE, "1")
+    D._steady(result, model, view, sel)
+    D._energy(result, model, sel)
+    D._slip_margin(result, model, view, sel)
+    D._runup_slip(result)
+    check_loads(result, model, sel)
