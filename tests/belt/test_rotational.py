@@ -1,0 +1,234 @@
+"""The rotational belt model (simulation.model = "rotational") against references written here:
+
+- a two-pulley drive: its torsional mode (two spans EA / L in parallel on the driven pulley) from a
+  free response, and the forced response to a crank speed order (base-excited oscillator, closed
+  form) below and above resonance;
+- creep: the driven pulley's speed ratio (EA + T_slack) / (EA + T_tight) (mass conservation with
+  adhesion at the entry), and gross-slip onset at the capstan limit T1 / T2 = e^(mu theta);
+- a tensioner arm's rest balance by virtual work on the continuum (path length written here);
+- the drive's modes (``check``) against a free response of the rotational model.
+"""
+import math
+
+import numpy as np
+import pytest
+
+import drivedyn
+from drivedyn.model import from_dict
+
+EA, MASS, R = 1.5e5, 0.1, 0.05
+
+
+def two_pulley(duration=0.5, rpm=0.0, orders=(), torque=None, torque_time=None, pretension=400.0, mass=MASS,
+               damping=0.0, mu=1.0, inertia=2e-3, interval=1e-4, window=None):
+    crank = {"name": "crank", "center": [0, 0], "radius": R,
+             "speed_time": [[0, 0], [0.05, rpm * math.pi / 30], [10, rpm * math.pi / 30]]}
+    if orders:
+        crank["speed_orders"] = [{"order": o, "amplitude": a} for o, a in orders]
+    driven = {"name": "driven", "center": [0.4, 0], "radius": R, "inertia": inertia}
+    if torque is not None:
+        # a load that passes through `torque` at the running speed: the drive settles
+        w = rpm * math.pi / 30
+        driven["torque_speed"] = [[0.0, 0.0], [w, torque], [2 * w, 2 * torque]]
+    if torque_time is not None:
+        driven["torque_time"] = torque_time
+    return from_dict({
+        "kind": "belt-drive",
+        "belt": {"mass_per_length": mass, "axial_stiffness": EA, "axial_damping": damping, "pretension": pretension},
+        "contact": {"stiffness_linear": 1e12, "stiffness_quadratic": 0.0},    # rigid grooves: no depth
+        "friction": {"coefficient": mu},
+        "gravity": 0.0,
+        "simulation": {"duration": duration, "model": "rotational"},
+        "output": {"interval": interval, **({"steady_window": window} if window else {})},
+        "pulleys": [crank, driven]})
+
+
+def _lumped_inertia(inertia, mass=MASS):
+    """The driven pulley with the belt it carries: its wrap (pi r) and a third of each span."""
+    return inertia + mass * (math.pi * R + 2 * 0.4 / 3) * R * R
+
+
+def test_two_pulley_mode_from_free_response():
+    # a 1 ms torque pulse on the driven pulley at rest; the crank held
+    m = two_pulley(duration=0.2, torque_time=[[0, 0], [1e-4, 2.0], [1e-3, 2.0], [1.1e-3, 0.0]], interval=2e-5)
+    r = drivedyn.run(m)
+    t = r.ds["time"].values
+    w = r.ds["speed"].sel(pulley="driven").values
+    sel = t > 0.002
+    # zero crossings of the speed (downward) give the period
+    z = np.nonzero((w[sel][:-1] > 0) & (w[sel][1:] <= 0))[0]
+    tz = t[sel][z] - w[sel][z] * (t[sel][z + 1] - t[sel][z]) / (w[sel][z + 1] - w[sel][z])
+    f_run = (len(tz) - 1) / (tz[-1] - tz[0])
+    k = 2 * EA / 0.4 * R * R                 # two spans in parallel, each EA / L at radius R
+    f_ref = math.sqrt(k / _lumped_inertia(2e-3)) / (2 * math.pi)
+    assert f_run == pytest.approx(f_ref, rel=5e-3)
+    # and check's modes agree (the same linearisation, the belt's mass consistent there)
+    from drivedyn.belt.modes import drive_modes
+
+    assert drive_modes(m).frequencies_hz[0] == pytest.approx(f_ref, rel=0.02)
+
+
+@pytest.mark.parametrize("ratio", [0.6, 1.6])
+def test_two_pulley_forced_response(ratio):
+    """Crank at 600 rpm with one speed order: the driven pulley is a base-excited oscillator of
+    stiffness k = 2 EA R^2 / L and damping c = 2 b R^2 / L (b = axial damping), so its speed
+    fluctuation is |k + i c W| / |k - J W^2 + i c W| times the crank's."""
+    b = 0.5
+    J = _lumped_inertia(2e-3)
+    k, c = 2 * EA / 0.4 * R * R, 2 * b / 0.4 * R * R
+    wn = math.sqrt(k / J)
+    w0 = 600 * math.pi / 30
+    order = ratio * wn / w0
+    amp = 0.5
+    m = two_pulley(duration=1.2, rpm=600, orders=[(order, amp)], damping=b, interval=5e-5, window=(0.9, 1.2))
+    r = drivedyn.run(m)
+    t = r.ds["time"].values
+    sel = t > 0.9
+    W = order * w0
+    X = np.column_stack([np.cos(W * t[sel]), np.sin(W * t[sel]), np.ones(sel.sum())])
+    fit = lambda y: float(np.hypot(*np.linalg.lstsq(X, y, rcond=None)[0][:2]))
+    a_crank = fit(r.ds["speed"].sel(pulley="crank").values[sel])
+    a_driven = fit(r.ds["speed"].sel(pulley="driven").values[sel])
+    H = abs(complex(k, c * W) / complex(k - J * W * W, c * W))
+    assert a_driven / a_crank == pytest.approx(H, rel=0.02)
+
+
+def _creep_tensions(M, T0, mu, c=0.0):
+    """Tight and slack span tensions of the two-pulley drive under torque M by creep theory, the
+    belt's unstretched length kept: spans at their strain, each wrap an adhesion arc at its entry
+    tension, then a slip arc where T - c ~ exp(mu phi) (integrated numerically here)."""
+    from scipy.integrate import quad
+    from scipy.optimize import brentq
+
+    L = 0.4
+
+    def wrap(t_in, t_out):
+        phi = abs(math.log((t_out - c) / (t_in - c))) / mu
+        k = math.copysign(mu, t_out - t_in)
+        slip = quad(lambda x: R / (1 + (c + (t_in - c) * math.exp(k * x)) / EA), 0, phi)[0]
+        return R * (math.pi - phi) / (1 + t_in / EA) + slip
+
+    L0 = (2 * L + 2 * math.pi * R) / (1 + T0 / EA)
+    # driver: the belt arrives from the tight span; driven: from the slack one
+    content = lambda T2: (L / (1 + (T2 + M / R) / EA) + L / (1 + T2 / EA) + wrap(T2 + M / R, T2)
+                          + wrap(T2, T2 + M / R) - L0)
+    T2 = brentq(content, c + 1e-6, 2 * T0)
+    return T2 + M / R, T2
+
+
+def test_creep_and_the_capstan_limit():
+    T0, mu = 400.0, 0.5
+    lim = math.exp(mu * math.pi)
+    v = 600 * math.pi / 30 * R
+    c = MASS * v * v
+    # capstan: the largest torque whose tension ratio (T1 - c) / (T2 - c) reaches e^(mu pi)
+    from scipy.optimize import brentq
+
+    M_max = brentq(lambda M: (_creep_tensions(M, T0, mu, c)[0] - c) / (_creep_tensions(M, T0, mu, c)[1] - c) - lim
+                   if M > 0 else 1 - lim, 1.0, 2 * R * T0 * 0.999)
+    below = drivedyn.run(two_pulley(duration=0.6, rpm=600, torque=-0.8 * M_max, mu=mu, damping=0.2))
+    s = below.summary
+    T1, T2 = max(v["tension_mean"] for v in s["spans"].values()), min(v["tension_mean"] for v in s["spans"].values())
+    # at the load the driven pulley settles to (its speed-dependent load, at its creep speed)
+    T1_ref, T2_ref = _creep_tensions(abs(s["pulleys"]["driven"]["torque_mean"]), T0, mu, c)
+    assert T1 == pytest.approx(T1_ref, rel=2e-3)
+    assert T2 == pytest.approx(T2_ref, rel=2e-3)
+    # creep: the driven pulley turns with the belt arriving at it, the slack span's strain
+    assert s["pulleys"]["driven"]["slip"] == pytest.approx(1 - (EA + T2_ref) / (EA + T1_ref), rel=0.02)
+    assert s["pulleys"]["driven"]["sliding_share"] == 0.0
+    assert below.status == "success"
+    above = drivedyn.run(two_pulley(duration=0.6, rpm=600, torque=-1.1 * M_max, mu=mu, damping=0.2))
+    assert "gross-slip" in [d.code for d in above.diagnostics]
+    assert above.summary["pulleys"]["driven"]["slip"] > 0.05
+    # while it slides, the tension ratio is held at the capstan limit
+    sp = above.summary["spans"]
+    T1, T2 = max(v["tension_mean"] for v in sp.values()), min(v["tension_mean"] for v in sp.values())
+    assert (T1 - c) / (T2 - c) == pytest.approx(lim, rel=0.02)
+
+
+def _hull_length(centres, radii):
+    """Length of a belt round circles all inside its loop, listed counter-clockwise: external
+    tangents sqrt(d^2 - (r_b - r_a)^2) plus the arcs between them."""
+    n = len(centres)
+    beta = []
+    total = 0.0
+    for i in range(n):
+        a, b = np.array(centres[i]), np.array(centres[(i + 1) % n])
+        d = np.linalg.norm(b - a)
+        g = math.atan2(*(b - a)[::-1])
+        beta.append(g - math.asin((radii[(i + 1) % n] - radii[i]) / d))
+        total += math.sqrt(d * d - (radii[(i + 1) % n] - radii[i]) ** 2)
+    for i in range(n):
+        wrap = (beta[i] - beta[i - 1]) % (2 * math.pi)
+        total += radii[i] * wrap
+    return total
+
+
+def tensioned(duration=0.1):
+    return from_dict({
+        "kind": "belt-drive",
+        "belt": {"mass_per_length": MASS, "axial_stiffness": EA, "pretension": 300.0},
+        "contact": {"stiffness_linear": 1e12, "stiffness_quadratic": 0.0},
+        "gravity": 0.0,
+        "simulation": {"duration": duration, "model": "rotational"},
+        "output": {"interval": 1e-4},
+        "pulleys": [
+            {"name": "crank", "center": [0, 0], "radius": 0.07, "speed_time": [[0, 0], [1, 0]]},
+            {"name": "alternator", "center": [0.3, 0.0], "radius": 0.03, "inertia": 2e-4},
+            {"name": "tensioner", "center": [0.15, 0.15], "radius": 0.035, "inertia": 1e-4,
+             "arm": {"pivot": [0.07, 0.15], "inertia": 2e-3, "preload": 25.0, "rate": 40.0}}]})
+
+
+def test_arm_rest_balance_by_virtual_work():
+    m = tensioned()
+    c = [np.array(p.center, float) for p in m.pulleys]
+    radii = [p.radius for p in m.pulleys]
+    piv = np.array(m.pulleys[2].arm.pivot)
+
+    def path(q):       # the arm turned by q counter-clockwise about its pivot
+        v = c[2] - piv
+        cq = piv + np.array([math.cos(q) * v[0] - math.sin(q) * v[1], math.sin(q) * v[0] + math.cos(q) * v[1]])
+        return _hull_length([c[0], c[1], cq], radii)
+
+    L0 = path(0.0) / (1 + 300.0 / EA)
+    s = 1.0 if path(1e-4) > path(-1e-4) else -1.0      # the sense that pushes into the belt
+    h = 1e-6
+    # virtual work: spring torque (preload - rate * travel) against T dL/dq
+    f = lambda q: (25.0 - 40.0 * q) - EA * (path(s * q) / L0 - 1) * s * (path(s * q + h) - path(s * q - h)) / (2 * h)
+    from scipy.optimize import brentq
+
+    q = brentq(f, -0.4, 0.4, xtol=1e-13)
+    T = EA * (path(s * q) / L0 - 1)
+    r = drivedyn.run(m)
+    ten = r.summary["tensioners"]["tensioner"]
+    assert ten["rest_travel"] == pytest.approx(q, abs=1e-5)
+    assert ten["rest_tension"] == pytest.approx(T, rel=1e-4)
+    # left alone, the drive stays at rest
+    assert np.max(np.abs(r.ds["arm_travel"].values - q)) < 1e-7
+    for v in r.summary["spans"].values():
+        assert v["tension_mean"] == pytest.approx(T, rel=1e-5)
+
+
+def test_modes_with_a_tensioner_from_a_free_response():
+    """check's modes of the tensioned drive against the rotational model's free response after a
+    torque pulse on the alternator (the spectrum's peaks)."""
+    m = tensioned(duration=0.5)
+    pulse = [[0, 0], [1e-4, 1.0], [5e-4, 1.0], [6e-4, 0.0]]
+    m = m.model_copy(update={"pulleys": [m.pulleys[0], m.pulleys[1].model_copy(update={"torque_time": pulse}),
+                                         m.pulleys[2]],
+                             "output": m.output.model_copy(update={"interval": 2e-5})})
+    r = drivedyn.run(m)
+    from drivedyn.belt.modes import drive_modes
+
+    f_check = drive_modes(m).frequencies_hz
+    t = r.ds["time"].values
+    y = np.column_stack([r.ds["speed"].sel(pulley="alternator").values, r.ds["speed"].sel(pulley="tensioner").values,
+                         r.ds["arm_speed"].values[:, 0]])
+    sel = t > 0.001
+    spec = np.abs(np.fft.rfft(y[sel] * np.hanning(sel.sum())[:, None], n=1 << 18, axis=0)).sum(axis=1)
+    f = np.fft.rfftfreq(1 << 18, t[1] - t[0])
+    for fc in f_check:
+        band = (f > 0.9 * fc) & (f < 1.1 * fc)
+        peak = f[band][np.argmax(spec[band])]
+        # the rotational model lumps the belt's mass on the pulleys, check keeps it consistent
+        assert peak == pytest.approx(fc, rel=0.03)
