@@ -42,8 +42,10 @@ class Rot(NamedTuple):
     tw: np.ndarray           # (na, ng, nk) wrap angle
 
 
-#: Gauss-Legendre nodes and weights on [0, 1] for the belt's depth along a slip arc (steady.py)
-_X, _WG = np.polynomial.legendre.leggauss(8)
+#: Gauss-Legendre nodes and weights on [0, 1] for the belt's depth along a slip arc (steady.py uses
+#: 8; the integrand is smooth and 4 leave the wrap's content within 1e-9 m on fead-runup's drive)
+GL_N = 4
+_X, _WG = np.polynomial.legendre.leggauss(GL_N)
 GL_X = 0.5 * (_X + 1.0)
 GL_W = 0.5 * _WG
 
@@ -56,7 +58,7 @@ def _depth(q, c1, c2):
     return 2.0 * q / (c2 + math.sqrt(c2 * c2 + 4.0 * c1 * q))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def wrap_content(r, theta, t_in, t_out, c, mu, EA, c1, c2):
     """Unstretched belt on a wrap in steady running (steady._wrap_length): an adhesion arc at the
     entry tension, then a slip arc where T - c ~ exp(+-mu phi), the belt at the depth of its
@@ -73,7 +75,7 @@ def wrap_content(r, theta, t_in, t_out, c, mu, EA, c1, c2):
     t_end = c + (t_in - c) * math.exp(k * phi)
     B = 1.0 + c / EA
     sink = 0.0
-    for g in range(8):
+    for g in range(GL_N):
         T = c + (t_in - c) * math.exp(k * phi * GL_X[g])
         sink += GL_W[g] * _depth((T - c) / r, c1, c2) / (1.0 + T / EA)
     return adh + r * (phi - math.log((1.0 + t_end / EA) / (1.0 + t_in / EA)) / k) / B - sink * phi
@@ -81,48 +83,69 @@ def wrap_content(r, theta, t_in, t_out, c, mu, EA, c1, c2):
 
 @njit(cache=True, inline="always")
 def _locate(q, q0, dq, ng):
+    """Grid interval i (nodes i-1 .. i+2 used) and the fraction in it."""
     x = (q - q0) / dq
     i = int(math.floor(x))
-    if i < 0:
-        i = 0
-    elif i > ng - 2:
-        i = ng - 2
+    if i < 1:
+        i = 1
+    elif i > ng - 3:
+        i = ng - 3
     return i, x - i
 
 
-@njit(cache=True)
-def geometry(R, q, qd, L, Ld, t0, t1, dx, dy, wrap):
+@njit(cache=True, inline="always")
+def _cubic(f):
+    """Weights of the 4-point Lagrange cubic through nodes -1, 0, 1, 2 at fraction f, and of its
+    derivative (per grid step)."""
+    wm = -f * (f - 1.0) * (f - 2.0) / 6.0
+    w0 = (f + 1.0) * (f - 1.0) * (f - 2.0) / 2.0
+    w1 = -(f + 1.0) * f * (f - 2.0) / 2.0
+    w2 = (f + 1.0) * f * (f - 1.0) / 6.0
+    dm = -(3.0 * f * f - 6.0 * f + 2.0) / 6.0
+    d0 = (3.0 * f * f - 4.0 * f - 1.0) / 2.0
+    d1 = -(3.0 * f * f - 2.0 * f - 2.0) / 2.0
+    d2 = (3.0 * f * f - 1.0) / 6.0
+    return wm, w0, w1, w2, dm, d0, d1, d2
+
+
+@njit(cache=True, inline="always")
+def _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap):
     """Span lengths L (and their rates Ld), the belt rolled onto each span's ends t0, t1 (from
     rest), span directions and wrap angles at tensioner travel q (rates qd): the rest geometry plus
-    each tensioner's change, read from its table (linear between grid points)."""
-    ns = R.L.shape[0]
+    each tensioner's change, read from its table (cubic between grid points). Plain arrays: in the
+    time loop a record's field read costs a reference-count pair."""
+    ns = Lr.shape[0]
     for j in range(ns):
-        L[j] = R.L[j]
+        L[j] = Lr[j]
         Ld[j] = 0.0
         t0[j] = 0.0
         t1[j] = 0.0
-        dx[j] = R.dx[j]
-        dy[j] = R.dy[j]
-    for k in range(R.nk):
-        wrap[k] = R.wrap[k]
-    na = q.shape[0]
-    for a in range(na):
-        ng = R.tL.shape[1]
-        i, f = _locate(q[a], R.q0[a], R.dq[a], ng)
-        g = 1.0 - f
+        dx[j] = dxr[j]
+        dy[j] = dyr[j]
+        wrap[j] = wr[j]
+    for a in range(q.shape[0]):
+        i, f = _locate(q[a], q0[a], dq[a], tL.shape[1])
+        wm, w0, w1, w2, dm, d0, d1, d2 = _cubic(f)
+        rate = qd[a] / dq[a]
         for j in range(ns):
-            L[j] += g * R.tL[a, i, j] + f * R.tL[a, i + 1, j]
-            Ld[j] += (R.tL[a, i + 1, j] - R.tL[a, i, j]) / R.dq[a] * qd[a]
-            t0[j] += g * R.t0[a, i, j] + f * R.t0[a, i + 1, j]
-            t1[j] += g * R.t1[a, i, j] + f * R.t1[a, i + 1, j]
-            dx[j] += g * R.tdx[a, i, j] + f * R.tdx[a, i + 1, j]
-            dy[j] += g * R.tdy[a, i, j] + f * R.tdy[a, i + 1, j]
-        for k in range(R.nk):
-            wrap[k] += g * R.tw[a, i, k] + f * R.tw[a, i + 1, k]
+            L[j] += wm * tL[a, i - 1, j] + w0 * tL[a, i, j] + w1 * tL[a, i + 1, j] + w2 * tL[a, i + 2, j]
+            Ld[j] += (dm * tL[a, i - 1, j] + d0 * tL[a, i, j] + d1 * tL[a, i + 1, j] + d2 * tL[a, i + 2, j]) * rate
+            t0[j] += wm * tt0[a, i - 1, j] + w0 * tt0[a, i, j] + w1 * tt0[a, i + 1, j] + w2 * tt0[a, i + 2, j]
+            t1[j] += wm * tt1[a, i - 1, j] + w0 * tt1[a, i, j] + w1 * tt1[a, i + 1, j] + w2 * tt1[a, i + 2, j]
+            dx[j] += wm * tdx[a, i - 1, j] + w0 * tdx[a, i, j] + w1 * tdx[a, i + 1, j] + w2 * tdx[a, i + 2, j]
+            dy[j] += wm * tdy[a, i - 1, j] + w0 * tdy[a, i, j] + w1 * tdy[a, i + 1, j] + w2 * tdy[a, i + 2, j]
+            wrap[j] += wm * tw[a, i - 1, j] + w0 * tw[a, i, j] + w1 * tw[a, i + 1, j] + w2 * tw[a, i + 2, j]
     for j in range(ns):
         n = math.sqrt(dx[j] * dx[j] + dy[j] * dy[j])
         dx[j] /= n
         dy[j] /= n
+
+
+@njit(cache=True)
+def geometry(R, q, qd, L, Ld, t0, t1, dx, dy, wrap):
+    """``_geometry`` on the Rot record."""
+    _geometry(R.L, R.dx, R.dy, R.wrap, R.q0, R.dq, R.tL, R.t0, R.t1, R.tdx, R.tdy, R.tw, q, qd, L, Ld, t0, t1,
+              dx, dy, wrap)
 
 
 class RotState(NamedTuple):
@@ -161,37 +184,32 @@ def _tension(EA, L, u):
     return EA * (L / u - 1.0)
 
 
-@njit(cache=True)
-def _return_map(R, S, Wk, h, lim_passes):
+@njit(cache=True, inline="always")
+def _return_map(nk, EA, m, mu, u, vs, L, wrap, slip, h, passes):
     """Gross slip: where a wrap's tension ratio (T_hi - c) / (T_lo - c) exceeds e^(mu theta), the
     belt slides over the whole wrap from the slack to the tight span until the ratio is at the
     limit (Coulomb's law on the wrap, as a return map; Gauss-Seidel over the wraps, which share
     spans). Returns the friction power of the sliding (W)."""
-    nk = R.nk
-    EA = R.EA
     P = 0.0
     for k in range(nk):
-        Wk.slip[k] = 0.0
-    for _ in range(lim_passes):
+        slip[k] = 0.0
+    for _ in range(passes):
         moved = False
         for k in range(nk):
             ji = (k - 1) % nk          # the span arriving at pulley k (belt order)
             jo = k
-            vs = 0.5 * (S.vs[ji] + S.vs[jo])
-            c = R.m * vs * vs
-            Ti = _tension(EA, Wk.L[ji], S.u[ji])
-            To = _tension(EA, Wk.L[jo], S.u[jo])
-            lim = math.exp(R.mu[k] * Wk.wrap[k])
-            if Ti >= To:
+            v = 0.5 * (vs[ji] + vs[jo])
+            c = m * v * v
+            if L[ji] / u[ji] >= L[jo] / u[jo]:
                 hi, lo, sgn = ji, jo, -1.0      # material slides back, from span jo into ji
             else:
                 hi, lo, sgn = jo, ji, 1.0
-            Lh, Ll = Wk.L[hi], Wk.L[lo]
-            uh, ul = S.u[hi], S.u[lo]
-            f = (_tension(EA, Lh, uh) - c) - lim * (_tension(EA, Ll, ul) - c)
+            Lh, Ll, uh, ul = L[hi], L[lo], u[hi], u[lo]
+            lim = math.exp(mu[k] * wrap[k])
+            f = (EA * (Lh / uh - 1.0) - c) - lim * (EA * (Ll / ul - 1.0) - c)
             if f <= 1e-9 * EA:
                 continue
-            # f(d) = EA Lh / (uh + d) - lim EA Ll / (ul - d) + const, decreasing: Newton from 0
+            # f(d) = EA Lh / (uh + d) - lim EA Ll / (ul - d) + const, decreasing and convex: Newton from 0
             d = 0.0
             for _it in range(30):
                 fd = EA * (Lh / (uh + d) - 1.0) - c - lim * (EA * (Ll / (ul - d) - 1.0) - c)
@@ -202,13 +220,11 @@ def _return_map(R, S, Wk, h, lim_passes):
                     break
             if d <= 0.0:
                 continue
-            Th0 = _tension(EA, Lh, uh)
-            Tl0 = _tension(EA, Ll, ul)
-            S.u[hi] = uh + d
-            S.u[lo] = ul - d
-            Wk.slip[k] += sgn * d
+            u[hi] = uh + d
+            u[lo] = ul - d
+            slip[k] += sgn * d
             # work of the tension difference on the sliding belt (mean of before and after)
-            dT = 0.5 * (Th0 - Tl0 + _tension(EA, Lh, uh + d) - _tension(EA, Ll, ul - d))
+            dT = 0.5 * (EA * (Lh / uh - Ll / ul) + EA * (Lh / (uh + d) - Ll / (ul - d)))
             P += dT * d / h
             moved = True
         if not moved:
@@ -221,97 +237,99 @@ def step_chunk(nsteps, t, h, R, P, A, S, W, RS, RW, gross_passes):
     """Advance the drive nsteps steps of h from time t; accumulates (h-weighted) into W's and RW's
     accumulators. Returns the time reached."""
     nk = R.nk
-    ns = nk
-    EA, bax, m = R.EA, R.bax, R.m
-    rho = R.rho
-    na = A.na
+    EA, bax, m, c1, c2 = R.EA, R.bax, R.m, R.c1, R.c2
+    rho, mu = R.rho, R.mu
+    Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw = R.L, R.dx, R.dy, R.wrap, R.q0, R.dq, R.tL, R.t0, R.t1, R.tdx, R.tdy, R.tw
+    L, Ld, t0, t1, dx, dy, wrap = RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap
+    T, fa, fb, tq, hubx, huby, slip = RW.T, RW.a, RW.b, RW.tq, RW.hubx, RW.huby, RW.slip
+    acc_T, acc_v, acc_slip, acc_gross, acc_diss = RW.acc_T, RW.acc_v, RW.acc_slip, RW.acc_gross, RW.acc_diss
+    u, Wc, ud, vs, rt0, rt1 = RS.u, RS.W, RS.ud, RS.vs, RS.t0, RS.t1
+    om, q, qd = S.om, S.q, S.qd
+    na, apul, akind, apar, atoff, atx, aty = A.na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y
+    scx, scy, scvx, scvy = S.cx, S.cy, S.cvx, S.cvy
     for _ in range(nsteps):
         # --- forces of this state: span tensions (elastic + damper), belt torques and hub forces
-        geometry(R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap)
+        _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap)
         P_ax = 0.0
-        for j in range(ns):
-            u = RS.u[j]
-            eps = RW.L[j] / u - 1.0
-            epsd = RW.Ld[j] / u - RW.L[j] * RS.ud[j] / (u * u)
-            T = EA * eps + bax * epsd
-            if T < 0.0:          # a slack span carries nothing (the belt buckles)
-                T = 0.0
+        for j in range(nk):
+            uj = u[j]
+            eps = L[j] / uj - 1.0
+            epsd = Ld[j] / uj - L[j] * ud[j] / (uj * uj)
+            Tj = EA * eps + bax * epsd
+            if Tj < 0.0:          # a slack span carries nothing (the belt buckles)
+                Tj = 0.0
             else:
-                P_ax += bax * epsd * epsd * RW.L[j]
-            RW.T[j] = T
+                P_ax += bax * epsd * epsd * L[j]
+            T[j] = Tj
         for k in range(nk):
             ji = (k - 1) % nk
-            vw = rho[k] * S.om[k]
+            vw = rho[k] * om[k]
             c = m * vw * vw
-            RW.tq[k] = rho[k] * (RW.T[k] - RW.T[ji])
+            tq[k] = rho[k] * (T[k] - T[ji])
             # the wrap's pressure (T - c) / r: the hub carries the spans' pull less the belt's
             # centrifugal force on the wrap
-            RW.hubx[k] = (RW.T[k] - c) * RW.dx[k] - (RW.T[ji] - c) * RW.dx[ji]
-            RW.huby[k] = (RW.T[k] - c) * RW.dy[k] - (RW.T[ji] - c) * RW.dy[ji]
+            hubx[k] = (T[k] - c) * dx[k] - (T[ji] - c) * dx[ji]
+            huby[k] = (T[k] - c) * dy[k] - (T[ji] - c) * dy[ji]
         # --- tensioners and pulleys: the segment model's stages
-        P_arm = K._step_arms(na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y, S.q, S.qd, S.cx, S.cy,
-                             S.cvx, S.cvy, RW.hubx, RW.huby, h)
-        diss_cl = K._step_pulleys(t, h, RW.tq, RW.hubx, RW.huby, P, S, W)
+        P_arm = K._step_arms(na, apul, akind, apar, atoff, atx, aty, q, qd, scx, scy, scvx, scvy, hubx, huby, h)
+        diss_cl = K._step_pulleys(t, h, tq, hubx, huby, P, S, W)
         # --- the belt: fluxes through the wraps at the new speeds, contents updated
-        geometry(R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap)
+        _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap)
         P_fr = 0.0
         for k in range(nk):
             ji = (k - 1) % nk
-            jo = k
-            vw = rho[k] * S.om[k]
+            vw = rho[k] * om[k]
             c = m * vw * vw
-            Ti, To = RW.T[ji], RW.T[jo]
+            Ti, To = T[ji], T[k]
             ei = Ti / EA
             eo = To / EA
             # the belt arrives in adhesion: it moves with the pulley surface at the strain of the
             # span it comes from; the wrap's content relaxes to its steady value over one passage
             r = abs(rho[k])
             if vw >= 0.0:
-                Weq = wrap_content(r, RW.wrap[k], Ti, To, c, R.mu[k], EA, R.c1, R.c2)
+                Weq = wrap_content(r, wrap[k], Ti, To, c, mu[k], EA, c1, c2)
             else:
-                Weq = wrap_content(r, RW.wrap[k], To, Ti, c, R.mu[k], EA, R.c1, R.c2)
-            if abs(vw) > 0.0:
-                tau = r * RW.wrap[k] / abs(vw)
-                dW = (Weq - RS.W[k]) * (1.0 - math.exp(-h / tau))
+                Weq = wrap_content(r, wrap[k], To, Ti, c, mu[k], EA, c1, c2)
+            if vw != 0.0:
+                dW = (Weq - Wc[k]) * (1.0 - math.exp(-h * abs(vw) / (r * wrap[k])))
             else:
                 dW = 0.0
             if vw >= 0.0:
-                RW.a[k] = vw / (1.0 + ei)
-                RW.b[k] = RW.a[k] - dW / h
+                fa[k] = vw / (1.0 + ei)
+                fb[k] = fa[k] - dW / h
             else:
-                RW.b[k] = vw / (1.0 + eo)
-                RW.a[k] = RW.b[k] + dW / h
-            RS.W[k] += dW
+                fb[k] = vw / (1.0 + eo)
+                fa[k] = fb[k] + dW / h
+            Wc[k] += dW
             # friction (creep) power on the wrap: the spans' power in less the pulley's
-            P_fr += To * RW.b[k] * (1.0 + eo) - Ti * RW.a[k] * (1.0 + ei) - RW.tq[k] * S.om[k]
-        for j in range(ns):
+            P_fr += To * fb[k] * (1.0 + eo) - Ti * fa[k] * (1.0 + ei) - tq[k] * om[k]
+        for j in range(nk):
             k1 = (j + 1) % nk
-            eps = RW.T[j] / EA
+            eps = T[j] / EA
             # the tangent points' travel: belt rolled from the span onto its pulleys (adhesion)
-            d0 = (RW.t0[j] - RS.t0[j]) / (1.0 + eps)
-            d1 = (RW.t1[j] - RS.t1[j]) / (1.0 + eps)
-            RS.t0[j] = RW.t0[j]
-            RS.t1[j] = RW.t1[j]
-            u_old = RS.u[j]
-            RS.u[j] = u_old + h * (RW.b[j] - RW.a[k1]) - d0 - d1
-            RS.W[j] += d0
-            RS.W[k1] += d1
-            RS.ud[j] = u_old      # (the rate once the return map has acted)
-            RS.vs[j] = 0.5 * (RW.b[j] + RW.a[k1]) * (1.0 + eps)
-        P_sl = _return_map(R, RS, RW, h, gross_passes) if gross_passes > 0 else 0.0
-        for j in range(ns):
-            RS.ud[j] = (RS.u[j] - RS.ud[j]) / h
+            d0 = (t0[j] - rt0[j]) / (1.0 + eps)
+            d1 = (t1[j] - rt1[j]) / (1.0 + eps)
+            rt0[j] = t0[j]
+            rt1[j] = t1[j]
+            u_old = u[j]
+            u[j] = u_old + h * (fb[j] - fa[k1]) - d0 - d1
+            Wc[j] += d0
+            Wc[k1] += d1
+            ud[j] = u_old      # (the rate once the return map has acted)
+            vs[j] = 0.5 * (fb[j] + fa[k1]) * (1.0 + eps)
+        P_sl = _return_map(nk, EA, m, mu, u, vs, L, wrap, slip, h, gross_passes) if gross_passes > 0 else 0.0
+        for j in range(nk):
+            ud[j] = (u[j] - ud[j]) / h
         for k in range(nk):
-            RW.acc_slip[k] += RW.slip[k] * (1.0 + RW.T[k] / EA)
-            if RW.slip[k] != 0.0:
-                RW.acc_gross[k] += h
-        for j in range(ns):
-            RW.acc_T[j] += h * RW.T[j]
-            RW.acc_v[j] += h * RS.vs[j]
-        RW.acc_diss[0] += h * P_ax
-        RW.acc_diss[3] += h * (P_fr + P_sl)
-        RW.acc_diss[4] += h * P_arm
-        RW.acc_diss[5] += diss_cl
+            acc_slip[k] += slip[k] * (1.0 + T[k] / EA)
+            if slip[k] != 0.0:
+                acc_gross[k] += h
+            acc_T[k] += h * T[k]
+            acc_v[k] += h * vs[k]
+        acc_diss[0] += h * P_ax
+        acc_diss[3] += h * (P_fr + P_sl)
+        acc_diss[4] += h * P_arm
+        acc_diss[5] += diss_cl
         t += h
     return t
 

@@ -52,7 +52,7 @@ from .modes import stretch_of
 from .steady import penetration
 
 #: grid of a tensioner's geometry table (travel steps over its stop-to-stop range, plus margins)
-TABLE_POINTS = 600
+TABLE_POINTS = 121
 #: the step resolves the fastest mode: h omega_max at most this (symplectic Euler: frequency error
 #: (h omega)^2 / 24, 0.4 % at 0.3)
 STEP_OMEGA = 0.3
@@ -217,7 +217,7 @@ def build(model) -> RotSystem:
     if not T_rest > 0:
         raise ModelError("the belt is slack at rest: belt.length too long or no pretension", field="belt")
     q0, dq, tL, t0, t1, tdx, tdy, tw = _tables(model, lay, idx, sense, rest_q) if idx else (
-        np.zeros(0), np.ones(0), *(np.zeros((0, 2, len(lay.spans))) for _ in range(5)), np.zeros((0, 2, len(lay.names))))
+        np.zeros(0), np.ones(0), *(np.zeros((0, 4, len(lay.spans))) for _ in range(5)), np.zeros((0, 4, len(lay.names))))
     R = RK.Rot(nk=len(lay.names), rho=lay.rho.astype(float), EA=float(belt.axial_stiffness),
                bax=float(belt.axial_damping), m=float(belt.mass_per_length),
                mu=np.full(len(lay.names), float(model.friction.coefficient)),
