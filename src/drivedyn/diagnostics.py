@@ -28,6 +28,8 @@ CODES = {
                               "in slip or span tension above its target: more segments",
     "kv-unstable": "the dynamic factor grows without bound (parametric instability of the linear mesh model) or "
                    "is not converged",
+    "unconverged-periodic": "a periodic run-up's solution did not settle to a periodic one at some crank speeds "
+                            "(the periodicity residual stayed above its tolerance)",
     "step-too-large": "the time step is too large for the integration method",
     "above-critical-speed": "the belt speed is at or above the span's critical speed: the span model does not apply",
     "parametric-resonance": "the span's operating point lies in a parametric-resonance region: its transverse "

@@ -329,6 +329,15 @@ class Simulation(Spec):
     # rotors with the spans as axial springs and creep on the wraps (rotational.py), milliseconds
     # per simulated second
     model: Literal["segments", "rotational"] = "segments"
+    # a run-up by time integration of the crank's speed table ("time"), or its steady response at
+    # each crank-speed bin as a periodic solution ("periodic", rotational model: periodic.py)
+    runup: Literal["time", "periodic"] = "time"
+
+    @model_validator(mode="after")
+    def _periodic(self):
+        if self.runup == "periodic" and self.model != "rotational":
+            raise ValueError("runup = \"periodic\" needs model = \"rotational\" (the segment model integrates in time)")
+        return self
     method: Literal["auto", "implicit", "semi-implicit", "rkf45"] = "auto"
     step: Optional[quantity("s", gt=0)] = None
     rotation_scaling: bool = False

@@ -382,7 +382,7 @@ def run(model, progress=None):
     return result
 
 
-def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure):
+def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_model=None, window=None):
     import xarray as xr
 
     from ..model import dumps
@@ -430,7 +430,7 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure):
     ds["time"].attrs["units"] = "s"
     t = ds["time"].values
     t_end = float(t[-1]) if ns else 0.0
-    window = steady_window(model.output.steady_window, model.simulation.duration)
+    window = window or steady_window(model.output.steady_window, model.simulation.duration)
     sel = in_window(t, window)
     if not np.any(sel):
         window = steady_window(None, t_end)
@@ -455,7 +455,7 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure):
     if ns:
         from .runup import add_runup
 
-        summary.update(add_runup(ds, model, model.output.runup_bin))
+        summary.update(add_runup(ds, runup_model or model, model.output.runup_bin, up_only=runup_model is not None))
     result = Result("belt-drive", ds, summary, success=not failure, message=failure)
     if ns:
         _checks(result, model, view, sel)

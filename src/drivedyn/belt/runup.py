@@ -54,9 +54,10 @@ def orders_of(p):
     return sorted({1.0, 2.0, 3.0, 4.0} | {float(o.order) for o in p.speed_orders})
 
 
-def add_runup(ds, model, bin_width=None) -> dict:
+def add_runup(ds, model, bin_width=None, up_only=False) -> dict:
     """Adds the per-bin variables to ``ds`` (dim ``speed_bin``, coordinate its centre in rpm) and
-    returns the summary entry ``runup`` (lists per bin), or {} when the run is no run-up."""
+    returns the summary entry ``runup`` (lists per bin), or {} when the run is no run-up.
+    ``up_only``: every sample belongs to the up sweep (a periodic run-up's held speeds)."""
     j = crank_index(model)
     if j is None or ds.sizes.get("time", 0) < 4:
         return {}
@@ -78,7 +79,7 @@ def add_runup(ds, model, bin_width=None) -> dict:
     # a run-down is read apart from the run-up (the drive's response differs with the sweep's
     # direction: the clutch overruns, the tensioner's friction turns): its bins follow the up
     # sweep's, numbered nb + b, in falling speed
-    down = np.gradient(np.abs(mean_speed(p, t)), t) < 0 if len(t) > 1 else np.zeros(len(t), bool)
+    down = np.gradient(np.abs(mean_speed(p, t)), t) < 0 if len(t) > 1 and not up_only else np.zeros(len(t), bool)
     which = np.where(live, np.clip(np.digitize(rpm, edges) - 1, 0, nb - 1) + np.where(down, nb, 0), -1)
     used = [b for b in range(nb) if np.sum(which == b) >= 4]
     used += [b for b in range(2 * nb - 1, nb - 1, -1) if np.sum(which == b) >= 4]

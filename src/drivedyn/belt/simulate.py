@@ -243,9 +243,10 @@ def _blow_up(x, y, vx, vy, om, pen, sysm):
 
 def run(model, progress=None) -> Result:
     if model.simulation.model == "rotational":
+        from .periodic import run as run_periodic
         from .rotational import run as run_rotational
 
-        return run_rotational(model, progress)
+        return (run_periodic if model.simulation.runup == "periodic" else run_rotational)(model, progress)
     sysm = build(model)
     sim = model.simulation
     if sim.step is None:     # the step the model sets (a given one was checked with the model)

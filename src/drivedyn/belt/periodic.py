@@ -1,0 +1,237 @@
+"""Periodic run-ups (``simulation.runup = "periodic"``, rotational model): the drive's steady
+response at each crank speed of a run-up, instead of a time integration of a slow ramp.
+
+At a constant mean crank speed with its engine orders, the steady response repeats every crank
+revolution (two when half orders are present). It is found by shooting on the period map
+Phi: the state (pulley and rotor speeds, decoupler wind-up, tensioner travel and rate, the belt in
+each span and wrap) at the start of a period -> the state one period later, integrated by the
+rotational model (rotational.py); the periodic solution is the fixed point x = Phi(x), solved by
+Anderson-accelerated fixed-point iteration (Walker & Ni, SIAM J. Numer. Anal. 49 (2011) 1715-1735;
+plain iteration is the transient itself, which the drive's light damping makes slow), with
+continuation in speed: each speed starts from the last one's solution. An accessory's own
+harmonics (a compressor's order on its own angle) are not periodic in the crank's period: the
+periodicity residual each speed reaches is reported (``runup.periodic_residual``) and a speed
+whose residual stays above the tolerance is said to be unconverged.
+"""
+from __future__ import annotations
+
+import math
+import time as _time
+
+import numpy as np
+
+from ..errors import ModelError, Stopped, stop_reason
+from . import _rotkernels as RK
+from . import rotational as RT
+from .runup import RPM, crank_index
+
+#: periodicity tolerance: the largest change over one period of a tension (share of the rest
+#: tension), a speed (share of the crank's) or the arm travel (share of 1 mrad)
+TOLERANCE = 1e-4
+#: period-map evaluations per speed at most
+MAX_ITER = 60
+#: Anderson memory (past residuals mixed)
+MEMORY = 6
+#: samples recorded per revolution of the periodic solution
+SAMPLES_PER_REV = 96
+
+
+def speeds_of(model, j):
+    """Crank speeds (rad/s, signed) of the sweep: the centres of output.runup_bin bins (20 bins
+    without one) over the range of the crank's speed table, its spin-up from rest left out."""
+    p = model.pulleys[j]
+    w = [r[1] for r in p.speed_time]
+    nonzero = [abs(x) for x in w if abs(x) > 0.05 * max(abs(x) for x in w)]
+    lo, hi = min(nonzero), max(nonzero)
+    width = model.output.runup_bin or (hi - lo) / 20
+    n = max(1, int(math.ceil((hi - lo) / width - 1e-9)))
+    sign = math.copysign(1.0, max(w, key=abs))
+    return sign * (lo + (np.arange(n) + 0.5) * (hi - lo) / n) if n > 1 else np.array([sign * lo])
+
+
+def _revs(model, j, rho) -> int:
+    """Crank revolutions in one period: the crank's orders (2 with half orders) and each
+    accessory's own harmonics at its nominal speed ratio (a 7th order on a pulley turning 1.25
+    times the crank: 4 revolutions); at most 8."""
+    orders = [o.order for o in model.pulleys[j].speed_orders]
+    for k, p in enumerate(model.pulleys):
+        orders += [hm.order * abs(rho[j] / rho[k]) for hm in p.harmonics]
+    for n in range(1, 9):
+        if all(abs(n * o - round(n * o)) < 0.02 for o in orders):
+            return n
+    return 8
+
+
+class _Drive:
+    """The rotational system with the crank held at one mean speed: its state as one vector."""
+
+    def __init__(self, sysm, j):
+        self.sysm, self.j = sysm, j
+        self.S, self.W, self.RS, self.RW = RT.new_states(sysm)
+        P = sysm.P
+        self.dyn = np.nonzero(P.mode == 0)[0]
+        self.cl = np.nonzero(P.cl_kind > 0)[0]
+
+    def held_at(self, w):
+        """The pulley record with the crank's speed table a constant w (rad/s)."""
+        P = self.sysm.P
+        sp_x, sp_y = P.sp_x.copy(), P.sp_y.copy()
+        o0, o1 = P.sp_off[self.j], P.sp_off[self.j + 1]
+        sp_y[o0:o1] = w
+        return P._replace(sp_x=sp_x, sp_y=sp_y)
+
+    def get(self):
+        S, RS = self.S, self.RS
+        return np.concatenate([S.om[self.dyn], S.omr[self.cl], S.dcp[self.cl], S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs])
+
+    def set(self, x):
+        S, RS = self.S, self.RS
+        parts = [(S.om, self.dyn), (S.omr, self.cl), (S.dcp, self.cl)]
+        k = 0
+        for arr, idx in parts:
+            arr[idx] = x[k:k + len(idx)]
+            k += len(idx)
+        for arr in (S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs):
+            arr[:] = x[k:k + len(arr)]
+            k += len(arr)
+
+    def scale(self, w):
+        """Per component: the size a change of which counts as one tolerance unit."""
+        sysm = self.sysm
+        R = sysm.R
+        vw = abs(w * R.rho[self.j])
+        sp = [vw / abs(R.rho[i]) for i in self.dyn] + [vw / abs(R.rho[i]) for i in self.cl]
+        na = sysm.A.na
+        # a span's content: the change that moves its tension by the rest tension
+        du = R.L * sysm.rest_tension / R.EA
+        return np.concatenate([sp, 1e-3 * np.ones(len(self.cl)), 1e-3 * np.ones(na), 1e-3 * (abs(w) + 1) * np.ones(na),
+                               du, du, 100 * du * abs(w), 100 * vw * np.ones(R.nk)])
+
+
+def _anderson(phi, x0, scale, tol, memory=MEMORY, max_iter=MAX_ITER, stop=None):
+    """Fixed point x = phi(x) by Anderson acceleration (type II, least squares on the last
+    residual differences). Returns (x, residual, evaluations)."""
+    X, G = [], []
+    x = x0
+    res = math.inf
+    for it in range(1, max_iter + 1):
+        gx = phi(x)
+        f = (gx - x) / scale
+        res = float(np.max(np.abs(f)))
+        if res < tol:
+            return gx, res, it
+        X.append(x)
+        G.append(gx)
+        X, G = X[-(memory + 1):], G[-(memory + 1):]
+        if len(X) > 1:
+            F = np.array([(g - xx) / scale for xx, g in zip(X, G)])
+            dF = np.diff(F, axis=0).T
+            gamma = np.linalg.lstsq(dF, f, rcond=None)[0]
+            dG = np.diff(np.array(G), axis=0).T
+            x = gx - dG @ gamma
+        else:
+            x = gx
+        if stop is not None:
+            stop()
+    return gx, res, max_iter
+
+
+def run(model, progress=None):
+    """The periodic run-up of ``model`` (rotational model): a Result with the run-up tables of a
+    time-integrated run-up, each speed's periodic solution as its samples."""
+    from ..errors import SolverError
+
+    j = crank_index(model)
+    if j is None:
+        raise ModelError("simulation.runup = \"periodic\" sweeps a run-up: one pulley's speed_time must change its "
+                         "speed by more than 10 % (the crank)", field="simulation.runup")
+    sysm = RT.build(model)
+    p = model.pulleys[j]
+    speeds = speeds_of(model, j)
+    revs = _revs(model, j, sysm.R.rho)
+    d = _Drive(sysm, j)
+    R = sysm.R
+    nk, na = R.nk, sysm.A.na
+    ns_per = SAMPLES_PER_REV * max(revs, 2)
+    N = ns_per * len(speeds)
+    z = np.zeros
+    o = dict(t=z(N), th=z((N, nk)), om=z((N, nk)), tq=z((N, nk)), tb=z((N, nk)), hx=z((N, nk)), hy=z((N, nk)),
+             pin=z((N, nk)), T=z((N, nk)), v=z((N, nk)), slip=z((N, nk)), gross=z((N, nk)), q=z((N, na)),
+             qd=z((N, na)), omr=z((N, nk)), E=z(N), work=z(N), diss=z((N, 6)))
+    residual, iters, table = [], [], []
+    wall0 = _time.perf_counter()
+    t_total, k, steps_total, failure = 0.0, 0, 0, ""
+    x = None
+    try:
+        for i, w in enumerate(speeds):
+            P = d.held_at(w)
+            period = revs * 2 * math.pi / abs(w)
+            steps = max(1, int(math.ceil(period / sysm.step)))
+            h = period / steps
+            S, W, RS, RW = d.S, d.W, d.RS, d.RW
+            if x is None:
+                # from rest at the rigid drive's speeds (no start-up transient to wait for)
+                S.om[:] = w * R.rho[j] / R.rho
+                S.omr[:] = S.om
+                x = d.get()
+            else:
+                x = x.copy()
+                ratio = w / speeds[i - 1]
+                nd, nc = len(d.dyn), len(d.cl)
+                x[:nd + nc] *= ratio
+                x[-nk:] *= ratio
+            S.om[j] = w
+
+            def phi(xv, P=P, steps=steps, h=h):
+                d.set(xv)
+                S.thm[j] = 0.0
+                S.th[:] = 0.0         # the accessories' harmonics in phase with the crank each period
+                RK.step_chunk(steps, 0.0, h, R, P, sysm.A, S, W, RS, RW, RT.SLIP_PASSES)
+                return d.get()
+
+            x, res, it = _anderson(phi, x, d.scale(w), TOLERANCE)
+            steps_total += steps * it
+            residual.append(res)
+            iters.append(it)
+            # record the periodic solution: max(revs, 2) revolutions (whole engine cycles)
+            d.set(x)
+            S.thm[j] = 0.0
+            S.th[:] = 0.0
+            n_rec = ns_per
+            per_sample = max(1, int(math.ceil(max(revs, 2) * 2 * math.pi / abs(w) / n_rec / sysm.step)))
+            h_rec = max(revs, 2) * 2 * math.pi / abs(w) / n_rec / per_sample
+            RK.run_samples(k, k + n_rec, per_sample, 0.0, h_rec, R, P, sysm.A, S, W, RS, RW, RT.SLIP_PASSES,
+                           *o.values())
+            o["t"][k:k + n_rec] = t_total + (np.arange(n_rec) + 1) * per_sample * h_rec
+            table += [[t_total, float(w)], [t_total + n_rec * per_sample * h_rec, float(w)]]
+            t_total += n_rec * per_sample * h_rec + 1e-9
+            k += n_rec
+            steps_total += n_rec * per_sample
+            if progress is not None:
+                progress((i + 1) / len(speeds), f"{abs(w) * RPM:.0f} rpm: {it} periods, residual {res:.2g}")
+    except (Stopped, KeyboardInterrupt) as exc:
+        failure = f"stopped: {stop_reason(exc)}"
+    wall = _time.perf_counter() - wall0
+    # the energy balance restarts at each speed: not one run
+    o["E"][:], o["work"][:], o["diss"][:] = np.nan, np.nan, np.nan
+    # the sweep as a staircase of held speeds, for the run-up tables (runup.add_runup)
+    stair = model.model_copy(update={"pulleys": [q.model_copy(update={"speed_time": table}) if n == j else q
+                                                 for n, q in enumerate(model.pulleys)]}) if table else model
+    result = RT._assemble(model, sysm, o, k, steps_total, sysm.step, wall, failure, runup_model=stair,
+                          window=(table[-2][0], table[-1][0]) if table else None)
+    done = len(residual)
+    ru = result.summary.get("runup")
+    if ru is not None:
+        ru["periodic_residual"] = [float(r) for r in residual]
+        ru["periodic_periods"] = [int(n) for n in iters]
+        ru["method"] = "periodic"
+        bad = [i for i, r in enumerate(residual) if r > TOLERANCE]
+        if bad:
+            rpm = np.abs(speeds[bad]) * RPM
+            result.diagnose("unconverged-periodic", f"the periodic solution did not settle within {MAX_ITER} periods at "
+                            f"{len(bad)} of {done} speeds ({rpm.min():.0f}-{rpm.max():.0f} rpm): largest change per "
+                            f"period {max(residual):.2g} tolerance units", "runup.periodic_residual",
+                            max(residual), TOLERANCE, "1")
+    if failure:
+        raise SolverError(failure, partial=result)
+    return result
