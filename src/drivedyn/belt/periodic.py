@@ -37,16 +37,21 @@ SAMPLES_PER_REV = 96
 
 
 def speeds_of(model, j):
-    """Crank speeds (rad/s, signed) of the sweep: the centres of output.runup_bin bins (20 bins
-    without one) over the range of the crank's speed table, its spin-up from rest left out."""
+    """Crank speeds (rad/s, signed) of the sweep: the centres of the run-up's bins (runup.add_runup:
+    output.runup_bin wide, 20 bins without one) over the range of the crank's speed table, its
+    spin-up from rest left out."""
     p = model.pulleys[j]
     w = [r[1] for r in p.speed_time]
     nonzero = [abs(x) for x in w if abs(x) > 0.05 * max(abs(x) for x in w)]
     lo, hi = min(nonzero), max(nonzero)
+    if not hi > lo * (1 + 1e-9):
+        raise ModelError(f"simulation.runup = \"periodic\" sweeps a run-up: pulley {p.name!r}'s speed_time holds one "
+                         "speed after its spin-up (no speed range to sweep)", field="simulation.runup")
     width = model.output.runup_bin or (hi - lo) / 20
-    n = max(1, int(math.ceil((hi - lo) / width - 1e-9)))
+    edges = np.arange(math.floor(lo / width) * width, hi + width, width)
+    centres = 0.5 * (edges[:-1] + edges[1:])
     sign = math.copysign(1.0, max(w, key=abs))
-    return sign * (lo + (np.arange(n) + 0.5) * (hi - lo) / n) if n > 1 else np.array([sign * lo])
+    return sign * centres[(edges[1:] > lo) & (edges[:-1] < hi)]
 
 
 def _revs(model, j, rho) -> int:
@@ -94,6 +99,11 @@ class _Drive:
         for arr in (S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs):
             arr[:] = x[k:k + len(arr)]
             k += len(arr)
+        # the belt rolled onto the span ends is a function of the travel: no spurious transfer at
+        # the next step when an iterate moves the tensioner
+        RW = self.RW
+        RK.geometry(self.sysm.R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap)
+        RS.t0[:], RS.t1[:] = RW.t0, RW.t1
 
     def scale(self, w):
         """Per component: the size a change of which counts as one tolerance unit."""
@@ -186,6 +196,7 @@ def run(model, progress=None):
                 d.set(xv)
                 S.thm[j] = 0.0
                 S.th[:] = 0.0         # the accessories' harmonics in phase with the crank each period
+                S.thr[:] = 0.0
                 RK.step_chunk(steps, 0.0, h, R, P, sysm.A, S, W, RS, RW, RT.SLIP_PASSES)
                 return d.get()
 
@@ -197,6 +208,7 @@ def run(model, progress=None):
             d.set(x)
             S.thm[j] = 0.0
             S.th[:] = 0.0
+            S.thr[:] = 0.0
             n_rec = ns_per
             per_sample = max(1, int(math.ceil(max(revs, 2) * 2 * math.pi / abs(w) / n_rec / sysm.step)))
             h_rec = max(revs, 2) * 2 * math.pi / abs(w) / n_rec / per_sample

@@ -529,8 +529,12 @@ def _figures(ds, driver):
                      shrink=0.5 if wide else 0.8, aspect=40 if wide else 30, pad=0.01)
         return fig
 
-    jobs += [("speeds.png", speeds), ("tensions.png", tensions), ("segment_forces.png", segment_forces),
-             ("energy.png", energy), ("spectrum.png", spectrum)]
+    jobs += [("speeds.png", speeds), ("tensions.png", tensions)]
+    if "tracked" in ds.coords:            # the segment model's tracked segments (not the rotational model)
+        jobs.append(("segment_forces.png", segment_forces))
+    if np.isfinite(ds["energy_residual"].values).any():     # a periodic run-up has no one energy balance
+        jobs.append(("energy.png", energy))
+    jobs.append(("spectrum.png", spectrum))
     if "model_toml" in ds.attrs:
         jobs.append(("campbell.png", campbell))
     if "speed_bin" in ds.coords:
