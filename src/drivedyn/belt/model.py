@@ -324,6 +324,12 @@ class Friction(Spec):
 
 
 class Simulation(Spec):
+    """How the drive is simulated: for how long, which belt model (``model``: "segments", the belt
+    as rigid segments, seed 000; "rotational", pulleys, rotors and tensioners with the spans as
+    axial springs and creep on the wraps, docs/belt-drive.md), which integration scheme for the
+    segments (``method``, ``step``), and a run-up by time integration or as periodic solutions per
+    crank-speed bin (``runup``, rotational model)."""
+
     duration: quantity("s", gt=0) = 1.0
     # "segments": the belt as a chain of rigid segments (seed 000); "rotational": pulleys, arms and
     # rotors with the spans as axial springs and creep on the wraps (rotational.py), milliseconds
