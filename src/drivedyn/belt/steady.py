@@ -233,7 +233,8 @@ def margins(d: Drive, M, c, forward, max_factor=1e3):
         if g(hi) < 0:
             continue
         lo = 0.0 if hi == 1.0 else hi / 2
-        out[j] = lo if g(lo) >= 0 else brentq(g, lo, hi, xtol=1e-9, rtol=1e-10)
+        # a load multiplier to 1e-6 (printed to four digits): a third of the tension solves of 1e-10
+        out[j] = lo if g(lo) >= 0 else brentq(g, lo, hi, xtol=1e-6, rtol=1e-6)
     return out
 
 
