@@ -94,7 +94,7 @@ def resolve(study, design, overrides_of) -> list[Case]:
             continue
         toml = dumps(model)
         # a check of a model is another result than its run: another cache key
-        mode = study.spec.mode
+        mode = study.spec.eval_mode
         out.append(Case(i, values, ov, toml, model_key(toml if mode == "run" else f"# mode {mode}\n{toml}")))
     return out
 

@@ -25,8 +25,13 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
     from rich.markup import escape
 
     console = Console(stderr=True)
+    from .spec import Study, load_study
+
+    study = study_file if isinstance(study_file, Study) else load_study(study_file)
+    if study.spec.mode in ("optimise", "optimize"):
+        return _optimise(study, study_file, out, scheduler, workers, plots, quiet, console)
     # a dry run resolves only the cases it lists (a large grid is listed in seconds)
-    study, design, cases, outdir = prepare(study_file, out, first=50 if dry_run and not prune else None)
+    study, design, cases, outdir = prepare(study, out, first=50 if dry_run and not prune else None)
     total = len(design.cases)
     distinct = (f"{len({c.key for c in cases if c.toml is not None})} distinct models" if len(cases) == total
                 else "distinct models counted when it runs")
@@ -89,6 +94,44 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
 
         console.print(f"report: {write_study_report(res, study_file, Path(res.path).parent)}")
     return 0 if not bad.any() else 1
+
+
+def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console) -> int:
+    """``drivedyn study`` of an optimisation: a progress bar over the budget, then the best design."""
+    from rich.markup import escape
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from .execute import run_optimisation
+
+    opt = study.spec.optimise
+    names = ", ".join(p.label for p in study.spec.parameters)
+    console.print(escape(f"study {study.name}: {opt.sense} {opt.objective} over {names} "
+                         f"({opt.evaluate} per design, at most {opt.budget} designs, differential evolution)"))
+    bar = Progress(TextColumn("[bold]designs"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                   console=console, disable=quiet)
+    task = bar.add_task("designs", total=opt.budget)
+    with bar:
+        res = run_optimisation(study, out, scheduler=scheduler, workers=workers, plots=plots,
+                               progress=lambda c: bar.update(task, completed=c["done"]))
+    o = res.optimum
+    n = len(o.evaluations)
+    feasible = sum(1 for e in o.evaluations if e[4])
+    console.print(f"{n} designs evaluated ({res.counts['ran']} run now, {res.counts['cached']} from the cache), {feasible} feasible")
+    if o.values is None:
+        console.print("[red]no feasible design[/]: widen the ranges, loosen the constraints or raise the budget")
+        console.print(escape(f"wrote {res.path}"))
+        return 1
+    units = study.units
+    console.print(escape(f"best: {opt.objective} = {o.objective:.6g}"))
+    for k, v in o.values.items():
+        console.print(escape(f"  {k} = {v:.6g} {units.get(k, '') or ''}".rstrip()) if isinstance(v, float) else escape(f"  {k} = {v}"))
+    for key, c in o.constraints.items():
+        bounds = " ".join(f"{side} {c[side]:.4g}" for side in ("min", "max") if side in c)
+        if "value" in c:
+            console.print(escape(f"  constraint {key}: {c['value']:.4g} ({bounds}, margin {c['margin']:.4g})"))
+    console.print(escape(f"wrote {res.path}, {Path(res.path).parent / 'best.toml'}"
+                         + (f" and {len(res.plots)} plot(s)" if res.plots else "")))
+    return 0
 
 
 def _has_dashboard(client) -> bool:

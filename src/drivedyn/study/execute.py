@@ -85,6 +85,13 @@ def prepare(study, out, first=None):
 
         cases = resolve(study, _replace(design, cases=design.cases[:first]), overrides_of)
         return study, design, cases, Path(out) if out is not None else study.default_out()
+    out = _out_folder(study, out)
+    cases = resolve(study, design, overrides_of)
+    return study, design, cases, out
+
+
+def _out_folder(study, out) -> Path:
+    """The study's output folder with its case cache, checked writable (one line if not)."""
     out = Path(out) if out is not None else study.default_out()
     cache = out / "cases"
     try:     # the up-front check of the output folder: one line before any case runs
@@ -97,8 +104,7 @@ def prepare(study, out, first=None):
             pass
     except OSError as exc:
         raise ModelError(f"{out}: cannot write the study's output folder ({exc.strerror or exc})") from None
-    cases = resolve(study, design, overrides_of)
-    return study, design, cases, out
+    return out
 
 
 def run_study(study, out=None, *, client=None, scheduler=None, workers=None, retry_failed=False,
@@ -176,6 +182,101 @@ def run_study(study, out=None, *, client=None, scheduler=None, workers=None, ret
     return StudyRun(ds, path, counts, files)
 
 
+def run_optimisation(study, out=None, *, client=None, scheduler=None, workers=None, plots=True, progress=None,
+                     on_client=None) -> StudyRun:
+    """Run a study with ``mode = "optimise"`` (optimise.py): every generation of designs one batch
+    of cases on one cluster; writes study.nc (every design evaluated, with its objective, feasibility
+    and generation), best.toml (the best feasible design as a model file) and plots/optimise.png.
+    The StudyRun carries ``optimum`` (optimise.Optimum)."""
+    from distributed import Client
+
+    from .collect import assemble, write_dataset
+    from .design import Design
+    from .optimise import plot_convergence, run_optimise
+
+    if not isinstance(study, Study):
+        study = load_study(study)
+    out = _out_folder(study, out)
+    cache = out / "cases"
+    series = list(study.spec.outputs.series)
+    records: dict[str, dict] = {}
+    counts = {"total": study.spec.optimise.budget, "cases_to_run": 0, "cached": 0, "done": 0, "not_success": 0,
+              "running": 0, "ran": 0}
+    own_cluster = own_client = None
+    if client is None:
+        if scheduler:
+            try:
+                client = own_client = Client(scheduler, timeout="20s")
+            except OSError as exc:
+                raise ModelError(f"--scheduler {scheduler}: cannot connect: {exc}") from None
+        else:
+            own_cluster = _local_cluster(workers)
+            client = own_client = Client(own_cluster)
+    if on_client:
+        on_client(client)
+
+    evaluated = [0]
+
+    def execute(cases):
+        todo = {}
+        for c in cases:
+            if c.toml is None or c.key in records or c.key in todo:
+                continue
+            rec = read_record(cache, c.key, series)
+            if rec is not None and rec["status"] in COMPLETED:
+                records[c.key] = rec
+                counts["cached"] += 1
+            else:
+                todo[c.key] = c
+        if todo:
+            _execute(study, todo, cases, cache, series, records, counts, client, None, None, None, None)
+        evaluated[0] += len(cases)
+        counts["done"] = evaluated[0]
+        if progress:
+            progress(dict(counts, running=0))
+        return records
+
+    try:
+        optimum = run_optimise(study, out, cache, execute)
+    finally:
+        if own_client is not None:
+            own_client.close()
+        if own_cluster is not None:
+            own_cluster.close()
+    cases = [e[1] for e in optimum.evaluations]
+    design = Design([p.label for p in study.spec.parameters], False, {}, [c.values for c in cases])
+    ds = assemble(study, design, cases, records, cache)
+    import numpy as np
+
+    sign = 1.0 if study.spec.optimise.sense.startswith("min") else -1.0
+    ds["objective"] = ("case", np.array([sign * e[3] if e[4] else np.nan for e in optimum.evaluations]),
+                       {"long_name": f"objective: {study.spec.optimise.objective} (nan: infeasible)"})
+    ds["feasible"] = ("case", np.array([bool(e[4]) for e in optimum.evaluations]),
+                      {"long_name": "the design met every constraint and ran to its end"})
+    ds["generation"] = ("case", np.array([e[0] for e in optimum.evaluations]),
+                        {"long_name": "generation of differential evolution"})
+    ds.attrs.update(optimise_objective=study.spec.optimise.objective, optimise_sense=study.spec.optimise.sense,
+                    optimise_best=float(optimum.objective) if optimum.values else float("nan"))
+    path = write_dataset(ds, out / "study.nc")
+    if optimum.toml is not None:
+        from ..outputs import write_text
+
+        write_text(out / "best.toml", f"# the best feasible design of {study.name or 'the study'}: objective "
+                   f"{study.spec.optimise.objective} = {optimum.objective:.6g}\n" + optimum.toml)
+    for s in STATUSES:
+        counts[s] = int((ds["status"].values == s).sum())
+    counts["total"] = len(cases)
+    files = []
+    if plots and study.spec.plots.enabled:
+        (out / "plots").mkdir(exist_ok=True)
+        unit = next((r.get("units", {}).get(study.spec.optimise.objective, "") for r in records.values()), "")
+        files.append(plot_convergence(optimum, out / "plots" / "optimise.png", study.spec.optimise.objective,
+                                      study.spec.optimise.sense, unit))
+    run = StudyRun(ds, path, counts, files)
+    run.optimum = optimum
+    return run
+
+
 def _pending(cases, todo):
     return [c for c in cases if c.key in todo]
 
@@ -208,7 +309,7 @@ def _execute(study, todo, cases, cache, series, records, counts, client, schedul
         client.run(warm_worker, study.base.kind)
         prefix = f"drivedyn-case-{uuid.uuid4().hex[:8]}-"
         cache_dir, token = str(cache.resolve()), (cache / TOKEN).read_text().strip()
-        futures = {client.submit(run_case, c.toml, k, cache_dir, token, series, study.spec.case_timeout, study.spec.mode,
+        futures = {client.submit(run_case, c.toml, k, cache_dir, token, series, study.spec.case_timeout, study.spec.eval_mode,
                                  key=prefix + k, pure=False): k
                    for k, c in todo.items()}
         weight = {k: sum(1 for c in cases if c.key == k) for k in todo}  # duplicated cases share a run

@@ -164,6 +164,46 @@ class Plots(Spec):
     enabled: bool = True
 
 
+class Constraint(Spec):
+    """A bound on a summary quantity of every design: ``key`` (a summary key; ``*`` matches any part,
+    every match must hold; a list such as a run-up's per-bin values counts by its extreme),
+    ``min`` and / or ``max`` (with units, like parameter values)."""
+
+    key: str
+    min: Optional[Any] = None
+    max: Optional[Any] = None
+
+    @model_validator(mode="after")
+    def _bound(self):
+        if self.min is None and self.max is None:
+            raise ValueError(f"constraint {self.key!r}: give min or max (or both)")
+        return self
+
+
+class Optimise(Spec):
+    """Design by optimisation (``mode = "optimise"``): the ranged parameters are the design
+    variables; ``objective`` a summary key (a list counts by its largest value when minimised, its
+    smallest when maximised) to minimise or maximise; ``constraints`` bounds on summary keys;
+    ``evaluate`` how a design is judged ("run" simulates it, "check" uses check's data); ``budget``
+    the designs evaluated at most; differential evolution (Storn & Price, J. Global Optim. 11
+    (1997) 341-359, scipy.optimize), each generation one batch of cases on the cluster."""
+
+    objective: str
+    sense: Literal["minimise", "maximise", "minimize", "maximize"] = "minimise"
+    constraints: list[Constraint] = []
+    evaluate: Literal["run", "check"] = "run"
+    budget: int = 200
+    population: int = 6            # designs per generation, per design variable (scipy's popsize)
+    seed: int = 0
+
+    @field_validator("budget", "population")
+    @classmethod
+    def _positive(cls, v):
+        if v < 1:
+            raise ValueError(f"must be >= 1, got {v}")
+        return v
+
+
 class StudySpec(Spec):
     """The validated content of a study file."""
 
@@ -184,7 +224,14 @@ class StudySpec(Spec):
     case_timeout: Optional[quantity("s", gt=0)] = None
     # "run" simulates each case; "check" evaluates what check knows (belt drives: the creep-theory
     # steady state, slip margins, modes) in milliseconds per case, for margin maps of many cases
-    mode: Literal["run", "check"] = "run"
+    # "optimise": design by optimisation over the ranged parameters ([optimise], optimise.py)
+    mode: Literal["run", "check", "optimise", "optimize"] = "run"
+    optimise: Optional[Optimise] = None
+
+    @property
+    def eval_mode(self) -> str:
+        """How one case is evaluated: "run" or "check" (an optimisation's ``evaluate``)."""
+        return self.optimise.evaluate if self.mode in ("optimise", "optimize") else self.mode
 
     @model_validator(mode="after")
     def _consistent(self):
@@ -192,13 +239,21 @@ class StudySpec(Spec):
             raise ValueError("give exactly one of base (a model file) or [model] (the base model inline)")
         if not self.parameters:
             raise ValueError("parameters: a study needs at least one parameter")
+        if self.mode in ("optimise", "optimize"):
+            if self.optimise is None:
+                raise ValueError("mode = \"optimise\" needs an [optimise] table (objective, constraints)")
+            fixed = [p.label for p in self.parameters if p.range is None]
+            if fixed:
+                raise ValueError(f"parameters {fixed}: an optimisation varies parameters over a range = [low, high]")
+        elif self.optimise is not None:
+            raise ValueError("[optimise] goes with mode = \"optimise\"")
         if self.mode == "check" and self.outputs.series:
             raise ValueError("outputs.series: a study with mode = \"check\" has no time series (summary keys only)")
         labels = [p.label for p in self.parameters]
         dup = sorted({x for x in labels if labels.count(x) > 1})
         if dup:
             raise ValueError(f"parameters: duplicate name(s) {dup}")
-        if self.sampler.method == "grid":
+        if self.sampler.method == "grid" and self.mode not in ("optimise", "optimize"):   # optimisations draw their designs
             for k, p in enumerate(self.parameters):
                 if p.mean is not None:
                     raise ValueError(f"parameters[{k}]: a normal distribution (mean/std) needs a sampled design, not a grid")
@@ -299,7 +354,7 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
         inline = dict(spec.model)
         _absolute_files(inline, Path(root))
         base = from_dict(inline, source=f"{source}: model")
-    if spec.mode == "check":
+    if spec.eval_mode == "check":
         from ..analyses import analysis
 
         if not analysis(base.kind).check_data_at:

@@ -1,0 +1,158 @@
+"""Design by optimisation: a study with ``mode = "optimise"`` (spec.Optimise).
+
+Differential evolution (Storn & Price, J. Global Optim. 11 (1997) 341-359; scipy.optimize's
+``differential_evolution``) over the ranged parameters, mapped to the unit cube (a log-scaled
+parameter on its logarithm, an integer one rounded). Each generation is one batch of cases through
+the study's own execution (the cache, the cluster, resume: a re-run evaluates nothing twice).
+A design is judged by its objective and constraints on summary keys (a list, such as a run-up's
+per-bin values, by its extreme). A design that did not run to its end (status failed, invalid,
+error, lost) or misses a key is infeasible; constraints enter as a penalty that ranks every
+infeasible design behind every feasible one (Deb, Comput. Methods Appl. Mech. Eng. 186 (2000)
+311-338): the objective of a feasible design, else 1e30 times (1 + the summed relative violation).
+A warning does not by itself make a design infeasible: the constraints say what must hold.
+"""
+from __future__ import annotations
+
+import fnmatch
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .cases import COMPLETED, resolve
+from .design import Design, column_values, overrides_of
+from .spec import to_number
+
+#: what an infeasible design scores (every feasible one scores less)
+INFEASIBLE = 1e30
+
+
+@dataclass
+class Optimum:
+    """What an optimisation found: the best feasible design (None when none was), its objective,
+    the evaluations in order, and the best feasible objective after each."""
+
+    values: dict | None
+    objective: float
+    toml: str | None
+    constraints: dict                  # key -> {"value", "min", "max", "margin"}
+    evaluations: list = field(default_factory=list)   # (generation, case, record, score, feasible)
+    history: list = field(default_factory=list)
+
+
+def _matches(summary: dict, pattern: str) -> list:
+    if pattern in summary:
+        return [summary[pattern]]
+    return [v for k, v in summary.items() if fnmatch.fnmatchcase(k, pattern)]
+
+
+def _extreme(values, largest: bool):
+    """One number from the matches of a key: each list by its extreme, then the extreme of all."""
+    flat = []
+    for v in values:
+        flat += [x for x in (v if isinstance(v, list) else [v]) if isinstance(x, (int, float)) and math.isfinite(x)]
+    if not flat:
+        return None
+    return max(flat) if largest else min(flat)
+
+
+def judge(opt, record, units) -> tuple[float, bool, dict]:
+    """(score, feasible, constraint values) of one evaluated design."""
+    summary = record.get("summary", {}) if record else {}
+    ok = bool(record) and record.get("status") in COMPLETED
+    largest = opt.sense.startswith("min")
+    obj = _extreme(_matches(summary, opt.objective), largest)
+    if obj is None:
+        ok = False
+    violation, cons = 0.0, {}
+    for c in opt.constraints:
+        unit = next((u for k, u in units.items() if fnmatch.fnmatchcase(k, c.key)), None)
+        vals = _matches(summary, c.key)
+        entry = {}
+        for side, bound in (("max", c.max), ("min", c.min)):
+            if bound is None:
+                continue
+            b = to_number(bound, unit or None)
+            v = _extreme(vals, side == "max")
+            if v is None:
+                ok = False
+                continue
+            excess = (v - b) if side == "max" else (b - v)
+            entry.update({"value": v, side: b, "margin": -excess if "margin" not in entry else min(entry["margin"], -excess)})
+            if excess > 0:
+                violation += excess / max(abs(b), 1e-12)
+        cons[c.key] = entry
+    if not ok or violation > 0:
+        return INFEASIBLE * (1 + violation + (0 if ok else 1)), False, cons
+    return (obj if largest else -obj), True, cons
+
+
+def run_optimise(study, out, cache, execute, progress=None) -> Optimum:
+    """Differential evolution over ``study``'s ranged parameters. ``execute(cases)`` runs the cases
+    of one generation that are not in ``cache`` (study.execute's batch runner) and returns key ->
+    record for all of them."""
+    from scipy.optimize import differential_evolution
+
+    spec = study.spec
+    opt = spec.optimise
+    params = spec.parameters
+    labels = [p.label for p in params]
+    d = len(params)
+    evaluations, history = [], []
+    best = {"score": math.inf, "case": None, "record": None, "cons": {}}
+    units_seen: dict = {}
+    generation = [0]
+
+    def batch(_func, population):
+        pop = np.atleast_2d(np.array(list(population), dtype=float))
+        cols = [column_values(p, study.units[p.label], pop[:, j]) for j, p in enumerate(params)]
+        design = Design(labels, False, {}, [dict(zip(labels, row)) for row in zip(*cols)])
+        cases = resolve(study, design, overrides_of)
+        for i, c in enumerate(cases):
+            c.index = len(evaluations) + i
+        records = execute(cases)
+        scores = []
+        for c in cases:
+            rec = records.get(c.key) or {"status": "invalid" if c.toml is None else "missing", "message": c.message, "summary": {}}
+            units_seen.update(rec.get("units") or {})
+            score, feasible, cons = judge(opt, rec, units_seen)
+            evaluations.append((generation[0], c, rec, score, feasible))
+            if feasible and score < best["score"]:
+                best.update(score=score, case=c, record=rec, cons=cons)
+            history.append(best["score"] if math.isfinite(best["score"]) else math.nan)
+            scores.append(score)
+        generation[0] += 1
+        if progress is not None:
+            progress(len(evaluations), opt.budget)
+        return scores
+
+    popsize = max(opt.population, 1)
+    per_gen = popsize * d
+    maxiter = max(0, opt.budget // per_gen - 1)
+    # integer parameters are rounded where the unit cube maps to values (design.column_values)
+    differential_evolution(lambda x: 0.0, [(0.0, 1.0)] * d, popsize=popsize, maxiter=maxiter, seed=opt.seed,
+                           workers=batch, updating="deferred", polish=False, init="latinhypercube", tol=1e-6)
+    if best["case"] is None:
+        return Optimum(None, math.nan, None, {}, evaluations, history)
+    sense = 1.0 if opt.sense.startswith("min") else -1.0
+    return Optimum(dict(best["case"].values), sense * best["score"], best["case"].toml, best["cons"], evaluations,
+                   [sense * h for h in history])
+
+
+def plot_convergence(opt: Optimum, path: Path, objective: str, sense: str, unit: str = "") -> Path:
+    """The best feasible objective against the designs evaluated, each feasible design's dotted."""
+    from ..plotting import figure, savefig
+
+    fig, axes = figure()
+    ax = axes[0, 0]
+    sign = 1.0 if sense.startswith("min") else -1.0
+    n = np.arange(1, len(opt.evaluations) + 1)
+    own = [sign * e[3] if e[4] else np.nan for e in opt.evaluations]
+    ax.plot(n, own, ".", ms=3, color="0.6", label="feasible designs")
+    ax.plot(n, opt.history, lw=1.6, label="best feasible so far")
+    ax.set_xlabel("designs evaluated")
+    ax.set_ylabel(objective + (f" ({unit})" if unit else ""))
+    ax.set_title(f"optimisation ({'minimise' if sign > 0 else 'maximise'}): objective of the best feasible design")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, frameon=False)
+    return savefig(fig, path)

@@ -1,0 +1,77 @@
+"""Studies with mode = "optimise": differential evolution over the ranged parameters, against a
+reference found here by bisection on check's data (the 5PK drive's least pretension with a slip
+margin of 1.5), the cache on a re-run, and the input errors."""
+import pytest
+from scipy.optimize import brentq
+
+import drivedyn
+from drivedyn.analyses import analysis
+from drivedyn.errors import ModelError
+from drivedyn.study.execute import run_optimisation
+from drivedyn.study.spec import load_study
+
+STUDY = """
+kind = "study"
+name = "least pretension, slip margin 1.5"
+base = "{belt}"
+mode = "optimize"
+
+[[parameters]]
+path = "belt.pretension"
+range = ["200 N", "800 N"]
+
+[optimise]
+objective = "installation.spans.driver-driven.tension"
+constraints = [{ key = "steady.slip_margin", min = 1.5 }, { key = "steady.pulleys.*.slip_arc", max = "3 rad" }]
+evaluate = "check"
+budget = 60
+population = 10
+"""
+
+
+def _margin(T):
+    m = drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")), {"belt.pretension": T})
+    return analysis("belt-drive").check_data(m)["steady"]["slip_margin"]
+
+
+def test_optimum_against_bisection_and_the_cache(client, write_study, tmp_path):
+    T_ref = brentq(lambda T: _margin(T) - 1.5, 200.0, 800.0, xtol=1e-3)
+    path = write_study(STUDY)
+    run = run_optimisation(load_study(path), tmp_path / "out", client=client, plots=True)
+    o = run.optimum
+    assert o.values is not None
+    # the least tension that keeps the margin: within 1 % of bisection, never below it
+    assert o.values["belt.pretension"] == pytest.approx(T_ref, rel=0.01)
+    assert o.constraints["steady.slip_margin"]["value"] >= 1.5
+    assert len(o.evaluations) == 60
+    ds = run.ds
+    assert ds.sizes["case"] == 60 and int(ds["feasible"].sum()) >= 1
+    assert float(ds["objective"].min()) == pytest.approx(o.objective)
+    best = drivedyn.load(tmp_path / "out" / "best.toml")
+    assert best.belt.pretension == pytest.approx(o.values["belt.pretension"])
+    assert (tmp_path / "out" / "plots" / "optimise.png").exists()
+    # the same study again: every design from the cache, the same optimum
+    again = run_optimisation(load_study(path), tmp_path / "out", client=client, plots=False)
+    assert again.counts["ran"] == 0
+    assert again.optimum.values == o.values
+
+
+@pytest.mark.parametrize("change, message", [
+    ('mode = "optimize"', ""),
+    ("[optimise]", "goes with mode"),
+    ('range = ["200 N", "800 N"]', "range"),
+    ('constraints = [{ key = "steady.slip_margin", min = 1.5 }', "give min or max"),
+])
+def test_input_errors(write_study, change, message):
+    text = STUDY
+    if change == 'mode = "optimize"':
+        text = text.replace('mode = "optimize"\n', "")           # [optimise] without the mode
+        message = "goes with mode"
+    elif change == "[optimise]":
+        text = text.replace('mode = "optimize"\n', 'mode = "run"\n')
+    elif change.startswith("range"):
+        text = text.replace(change, "values = [300, 400]")
+    else:
+        text = text.replace('{ key = "steady.slip_margin", min = 1.5 }', '{ key = "steady.slip_margin" }')
+    with pytest.raises(ModelError, match=message):
+        load_study(write_study(text))
