@@ -79,7 +79,11 @@ def add_runup(ds, model, bin_width=None, up_only=False) -> dict:
     # a run-down is read apart from the run-up (the drive's response differs with the sweep's
     # direction: the clutch overruns, the tensioner's friction turns): its bins follow the up
     # sweep's, numbered nb + b, in falling speed
-    down = np.gradient(np.abs(mean_speed(p, t)), t) < 0 if len(t) > 1 and not up_only else np.zeros(len(t), bool)
+    # (against a floor: on a held speed np.gradient's weights leave round-off of either sign, which
+    # read as a run-down made a spurious bin of a few idle samples)
+    w_abs = np.abs(mean_speed(p, t))
+    floor = 1e-9 * float(w_abs.max()) / max(float(t[-1] - t[0]), 1e-12) if len(t) > 1 else 0.0
+    down = np.gradient(w_abs, t) < -floor if len(t) > 1 and not up_only else np.zeros(len(t), bool)
     which = np.where(live, np.clip(np.digitize(rpm, edges) - 1, 0, nb - 1) + np.where(down, nb, 0), -1)
     used = [b for b in range(nb) if np.sum(which == b) >= 4]
     used += [b for b in range(2 * nb - 1, nb - 1, -1) if np.sum(which == b) >= 4]
