@@ -52,7 +52,7 @@ from .modes import stretch_of
 from .steady import penetration
 
 #: grid of a tensioner's geometry table (travel steps over its stop-to-stop range, plus margins)
-TABLE_POINTS = 121
+TABLE_POINTS = 61
 #: the step resolves the fastest mode: h omega_max at most this (symplectic Euler: frequency error
 #: (h omega)^2 / 24, 0.4 % at 0.3)
 STEP_OMEGA = 0.3
