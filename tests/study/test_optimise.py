@@ -75,3 +75,16 @@ def test_input_errors(write_study, change, message):
         text = text.replace('{ key = "steady.slip_margin", min = 1.5 }', '{ key = "steady.slip_margin" }')
     with pytest.raises(ModelError, match=message):
         load_study(write_study(text))
+
+
+def test_a_misspelt_objective_stops_after_the_first_generation(client, write_study, tmp_path):
+    path = write_study(STUDY.replace("driver-driven.tension", "driver-driven.tensoin"))
+    with pytest.raises(ModelError, match="did you mean 'installation.spans.driver-driven.tension'"):
+        run_optimisation(load_study(path), tmp_path / "out", client=client, plots=False)
+
+
+def test_dry_run_lists_the_design_variables(write_study, tmp_path, capsys):
+    from drivedyn.study.command import main
+
+    assert main(write_study(STUDY), out=tmp_path / "out", dry_run=True) == 0
+    assert not (tmp_path / "out" / "study.nc").exists()

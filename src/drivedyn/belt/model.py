@@ -343,6 +343,8 @@ class Simulation(Spec):
     def _periodic(self):
         if self.runup == "periodic" and self.model != "rotational":
             raise ValueError("runup = \"periodic\" needs model = \"rotational\" (the segment model integrates in time)")
+        if self.resolution_check and self.model == "rotational":
+            raise ValueError("resolution_check reruns the segment model at fewer segments: the rotational model has none")
         return self
     method: Literal["auto", "implicit", "semi-implicit", "rkf45"] = "auto"
     step: Optional[quantity("s", gt=0)] = None

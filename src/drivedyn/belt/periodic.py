@@ -1,17 +1,18 @@
 """Periodic run-ups (``simulation.runup = "periodic"``, rotational model): the drive's steady
 response at each crank speed of a run-up, instead of a time integration of a slow ramp.
 
-At a constant mean crank speed with its engine orders, the steady response repeats every crank
-revolution (two when half orders are present). It is found by shooting on the period map
-Phi: the state (pulley and rotor speeds, decoupler wind-up, tensioner travel and rate, the belt in
-each span and wrap) at the start of a period -> the state one period later, integrated by the
-rotational model (rotational.py); the periodic solution is the fixed point x = Phi(x), solved by
-Anderson-accelerated fixed-point iteration (Walker & Ni, SIAM J. Numer. Anal. 49 (2011) 1715-1735;
-plain iteration is the transient itself, which the drive's light damping makes slow), with
-continuation in speed: each speed starts from the last one's solution. An accessory's own
-harmonics (a compressor's order on its own angle) are not periodic in the crank's period: the
-periodicity residual each speed reaches is reported (``runup.periodic_residual``) and a speed
-whose residual stays above the tolerance is said to be unconverged.
+At a constant mean crank speed the steady response repeats after a period of whole crank
+revolutions: one for integer engine orders, two with half orders, and as many as the accessories'
+own harmonics need at their nominal speed ratios (a 7th order on a pulley turning 1.25 times the
+crank: four; their phase is set back in step with the crank at each period, so creep does not let
+them drift). The periodic solution is found by shooting on the period map Phi: the state (pulley
+and rotor speeds, decoupler wind-up, tensioner travel and rate, the belt in each span and wrap, the
+span dampers' rates) at the start of a period -> the state one period later, integrated by the
+rotational model (rotational.py); x = Phi(x) is solved by Anderson-accelerated fixed-point
+iteration (Walker & Ni, SIAM J. Numer. Anal. 49 (2011) 1715-1735), with continuation in speed:
+each speed starts from the last one's solution. Creep damps the drive's transients within a few
+periods; the acceleration guards against lightly damped ones. A speed whose change per period
+stays above the tolerance is reported (``unconverged-periodic``, ``runup.periodic_residual``).
 """
 from __future__ import annotations
 
@@ -118,7 +119,7 @@ class _Drive:
                                du, du, 100 * du * abs(w), 100 * vw * np.ones(R.nk)])
 
 
-def _anderson(phi, x0, scale, tol, memory=MEMORY, max_iter=MAX_ITER, stop=None):
+def _anderson(phi, x0, scale, tol, memory=MEMORY, max_iter=MAX_ITER):
     """Fixed point x = phi(x) by Anderson acceleration (type II, least squares on the last
     residual differences). Returns (x, residual, evaluations)."""
     X, G = [], []
@@ -141,8 +142,6 @@ def _anderson(phi, x0, scale, tol, memory=MEMORY, max_iter=MAX_ITER, stop=None):
             x = gx - dG @ gamma
         else:
             x = gx
-        if stop is not None:
-            stop()
     return gx, res, max_iter
 
 
@@ -156,7 +155,6 @@ def run(model, progress=None):
         raise ModelError("simulation.runup = \"periodic\" sweeps a run-up: one pulley's speed_time must change its "
                          "speed by more than 10 % (the crank)", field="simulation.runup")
     sysm = RT.build(model)
-    p = model.pulleys[j]
     speeds = speeds_of(model, j)
     revs = _revs(model, j, sysm.R.rho)
     d = _Drive(sysm, j)
@@ -202,6 +200,9 @@ def run(model, progress=None):
 
             x, res, it = _anderson(phi, x, d.scale(w), TOLERANCE)
             steps_total += steps * it
+            if not np.all(np.isfinite(x)):
+                failure = f"diverged at {abs(w) * RPM:.0f} rpm (a state is not finite)"
+                break
             residual.append(res)
             iters.append(it)
             # record the periodic solution: max(revs, 2) revolutions (whole engine cycles)
@@ -237,7 +238,7 @@ def run(model, progress=None):
         ru["periodic_residual"] = [float(r) for r in residual]
         ru["periodic_periods"] = [int(n) for n in iters]
         ru["method"] = "periodic"
-        bad = [i for i, r in enumerate(residual) if r > TOLERANCE]
+        bad = [i for i, r in enumerate(residual) if not r <= TOLERANCE]
         if bad:
             rpm = np.abs(speeds[bad]) * RPM
             result.diagnose("unconverged-periodic", f"the periodic solution did not settle within {MAX_ITER} periods at "
@@ -245,5 +246,5 @@ def run(model, progress=None):
                             f"period {max(residual):.2g} tolerance units", "runup.periodic_residual",
                             max(residual), TOLERANCE, "1")
     if failure:
-        raise SolverError(failure, partial=result)
+        raise SolverError(failure + f" (periodic solutions kept for {done} of {len(speeds)} speeds)", partial=result)
     return result

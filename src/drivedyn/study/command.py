@@ -29,7 +29,7 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
 
     study = study_file if isinstance(study_file, Study) else load_study(study_file)
     if study.spec.mode in ("optimise", "optimize"):
-        return _optimise(study, study_file, out, scheduler, workers, plots, quiet, console)
+        return _optimise(study, study_file, out, scheduler, workers, plots, quiet, console, dry_run)
     # a dry run resolves only the cases it lists (a large grid is listed in seconds)
     study, design, cases, outdir = prepare(study, out, first=50 if dry_run and not prune else None)
     total = len(design.cases)
@@ -96,8 +96,9 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
     return 0 if not bad.any() else 1
 
 
-def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console) -> int:
-    """``drivedyn study`` of an optimisation: a progress bar over the budget, then the best design."""
+def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console, dry_run=False) -> int:
+    """``drivedyn study`` of an optimisation: a progress bar over the budget, then the best design
+    (``dry_run``: the design variables, objective and constraints, nothing run)."""
     from rich.markup import escape
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
@@ -107,6 +108,13 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console)
     names = ", ".join(p.label for p in study.spec.parameters)
     console.print(escape(f"study {study.name}: {opt.sense} {opt.objective} over {names} "
                          f"({opt.evaluate} per design, at most {opt.budget} designs, differential evolution)"))
+    if dry_run:
+        for p in study.spec.parameters:
+            console.print(escape(f"  {p.label}: {p.range[0]} .. {p.range[1]} ({p.scale}{', integer' if p.integer else ''})"))
+        for c in opt.constraints:
+            console.print(escape(f"  constraint {c.key}: " + " ".join(f"{k} {v}" for k, v in (("min", c.min), ("max", c.max))
+                                                                      if v is not None)))
+        return 0
     bar = Progress(TextColumn("[bold]designs"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
                    console=console, disable=quiet)
     task = bar.add_task("designs", total=opt.budget)

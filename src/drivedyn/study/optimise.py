@@ -87,6 +87,25 @@ def judge(opt, record, units) -> tuple[float, bool, dict]:
     return (obj if largest else -obj), True, cons
 
 
+def _check_keys(opt, records):
+    """After the first generation: the objective and every constraint name summary keys that the
+    designs' results have (a typo would otherwise spend the whole budget on infeasible designs)."""
+    import difflib
+
+    from ..errors import ModelError
+
+    done = [r for r in records if r.get("status") in COMPLETED]
+    if not done:
+        return
+    keys = set().union(*(r.get("summary", {}).keys() for r in done))
+    for field, pattern in [("optimise.objective", opt.objective)] + [(f"optimise.constraints[{i}].key", c.key)
+                                                                     for i, c in enumerate(opt.constraints)]:
+        if pattern not in keys and not any(fnmatch.fnmatchcase(k, pattern) for k in keys):
+            close = difflib.get_close_matches(pattern, sorted(keys), n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            raise ModelError(f"no summary key {pattern!r} in the designs' results{hint}", field=field)
+
+
 def run_optimise(study, out, cache, execute, progress=None) -> Optimum:
     """Differential evolution over ``study``'s ranged parameters. ``execute(cases)`` runs the cases
     of one generation that are not in ``cache`` (study.execute's batch runner) and returns key ->
@@ -102,6 +121,7 @@ def run_optimise(study, out, cache, execute, progress=None) -> Optimum:
     best = {"score": math.inf, "case": None, "record": None, "cons": {}}
     units_seen: dict = {}
     generation = [0]
+    stop = [None]
 
     def batch(_func, population):
         pop = np.atleast_2d(np.array(list(population), dtype=float))
@@ -121,6 +141,11 @@ def run_optimise(study, out, cache, execute, progress=None) -> Optimum:
                 best.update(score=score, case=c, record=rec, cons=cons)
             history.append(best["score"] if math.isfinite(best["score"]) else math.nan)
             scores.append(score)
+        if generation[0] == 0:
+            try:
+                _check_keys(opt, [evaluations[-1 - i][2] for i in range(len(cases))])
+            except Exception as exc:       # scipy would wrap it: stop at the generation's end, raise it then
+                stop[0] = exc
         generation[0] += 1
         if progress is not None:
             progress(len(evaluations), opt.budget)
@@ -131,7 +156,10 @@ def run_optimise(study, out, cache, execute, progress=None) -> Optimum:
     maxiter = max(0, opt.budget // per_gen - 1)
     # integer parameters are rounded where the unit cube maps to values (design.column_values)
     differential_evolution(lambda x: 0.0, [(0.0, 1.0)] * d, popsize=popsize, maxiter=maxiter, seed=opt.seed,
-                           workers=batch, updating="deferred", polish=False, init="latinhypercube", tol=1e-6)
+                           workers=batch, updating="deferred", polish=False, init="latinhypercube", tol=1e-6,
+                           callback=lambda *a, **k: stop[0] is not None)
+    if stop[0] is not None:
+        raise stop[0]
     if best["case"] is None:
         return Optimum(None, math.nan, None, {}, evaluations, history)
     sense = 1.0 if opt.sense.startswith("min") else -1.0
