@@ -48,7 +48,6 @@ from . import _kernels as K
 from . import _rotkernels as RK
 from . import tensioner as TN
 from .layout import Layout, compute_layout
-from .modes import stretch_of
 from .steady import penetration
 
 #: grid of a tensioner's geometry table (travel steps over its stop-to-stop range, plus margins)

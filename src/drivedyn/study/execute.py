@@ -188,8 +188,6 @@ def run_optimisation(study, out=None, *, client=None, scheduler=None, workers=No
     of cases on one cluster; writes study.nc (every design evaluated, with its objective, feasibility
     and generation), best.toml (the best feasible design as a model file) and plots/optimise.png.
     The StudyRun carries ``optimum`` (optimise.Optimum)."""
-    from distributed import Client
-
     from .collect import assemble, write_dataset
     from .design import Design
     from .optimise import plot_convergence, run_optimise
@@ -202,16 +200,7 @@ def run_optimisation(study, out=None, *, client=None, scheduler=None, workers=No
     records: dict[str, dict] = {}
     counts = {"total": study.spec.optimise.budget, "cases_to_run": 0, "cached": 0, "done": 0, "not_success": 0,
               "running": 0, "ran": 0}
-    own_cluster = own_client = None
-    if client is None:
-        if scheduler:
-            try:
-                client = own_client = Client(scheduler, timeout="20s")
-            except OSError as exc:
-                raise ModelError(f"--scheduler {scheduler}: cannot connect: {exc}") from None
-        else:
-            own_cluster = _local_cluster(workers)
-            client = own_client = Client(own_cluster)
+    client, own_client, own_cluster = _client(client, scheduler, workers)
     if on_client:
         on_client(client)
 
@@ -290,19 +279,26 @@ def _plot_keys(study, ds):
     return [v for v in ds.attrs.get("summary_keys", "").split("\n") if v]
 
 
-def _execute(study, todo, cases, cache, series, records, counts, client, scheduler, workers, progress, on_client):
+def _client(client, scheduler, workers):
+    """(client, the client if made here, the local cluster if made here): the given client, one
+    connected to ``scheduler``, or a local cluster of ``workers`` processes."""
     from distributed import Client
 
-    own_cluster = own_client = None
-    if client is None:
-        if scheduler:
-            try:
-                client = own_client = Client(scheduler, timeout="20s")
-            except OSError as exc:
-                raise ModelError(f"--scheduler {scheduler}: cannot connect: {exc}") from None
-        else:
-            own_cluster = _local_cluster(workers)
-            client = own_client = Client(own_cluster)
+    if client is not None:
+        return client, None, None
+    if scheduler:
+        try:
+            c = Client(scheduler, timeout="20s")
+        except OSError as exc:
+            raise ModelError(f"--scheduler {scheduler}: cannot connect: {exc}") from None
+        return c, c, None
+    cluster = _local_cluster(workers)
+    c = Client(cluster)
+    return c, c, cluster
+
+
+def _execute(study, todo, cases, cache, series, records, counts, client, scheduler, workers, progress, on_client):
+    client, own_client, own_cluster = _client(client, scheduler, workers)
     try:
         if on_client:
             on_client(client)
