@@ -487,6 +487,7 @@ def _figures(ds, driver):
         own = {f"{p.name} {h.order:g}": h.order * r[jd] / r[names.index(p.name)]
                for p in model.pulleys for h in (getattr(p, "harmonics", None) or []) if p.name in names}
         fig, ax = _fig(1, 5)
+        fig.subplots_adjust(top=1 - 0.85 / fig.get_figheight())     # a two-line title and the status line above it
         plot_campbell(ds, md.frequencies_hz, driver, ax=ax[0], orders=orders, flap=flap, own_orders=own,
                       speed_range=speed_range(ds, {}, driver), free_rotor_hz=md.free_rotor_hz)
         return fig
@@ -685,7 +686,12 @@ def plot_waterfall(ds, span, ax, modes=None):
     # logarithmic amplitude: the orders and resonances span three decades
     mesh = ax.pcolormesh(f[keep], R, np.maximum(A, top * 1e-3), shading="nearest", cmap="viridis",
                          norm=LogNorm(vmin=top * 1e-3, vmax=top))
-    ax.figure.colorbar(mesh, ax=ax, label="amplitude (N, log scale)")
+    cb = ax.figure.colorbar(mesh, ax=ax, label="amplitude (N, log scale)")
+    # plain numbers: figures are written with math text off (every label literal), which would
+    # print a log axis's default labels as "$\mathdefault{10^{2}}$"
+    from matplotlib.ticker import FuncFormatter
+
+    cb.ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     for k in ds["order"].values:
         ax.plot(np.array(R) * k / 60, R, "w--", lw=0.7)
         x = max(R) * k / 60
