@@ -338,14 +338,6 @@ class Simulation(Spec):
     # a run-up by time integration of the crank's speed table ("time"), or its steady response at
     # each crank-speed bin as a periodic solution ("periodic", rotational model: periodic.py)
     runup: Literal["time", "periodic"] = "time"
-
-    @model_validator(mode="after")
-    def _periodic(self):
-        if self.runup == "periodic" and self.model != "rotational":
-            raise ValueError("runup = \"periodic\" needs model = \"rotational\" (the segment model integrates in time)")
-        if self.resolution_check and self.model == "rotational":
-            raise ValueError("resolution_check reruns the segment model at fewer segments: the rotational model has none")
-        return self
     method: Literal["auto", "implicit", "semi-implicit", "rkf45"] = "auto"
     step: Optional[quantity("s", gt=0)] = None
     rotation_scaling: bool = False
@@ -354,6 +346,14 @@ class Simulation(Spec):
     resolution_check: bool = False
     rtol: float = 1e-6
     atol: float = 1e-9
+
+    @model_validator(mode="after")
+    def _periodic(self):
+        if self.runup == "periodic" and self.model != "rotational":
+            raise ValueError("runup = \"periodic\" needs model = \"rotational\" (the segment model integrates in time)")
+        if self.resolution_check and self.model == "rotational":
+            raise ValueError("resolution_check reruns the segment model at fewer segments: the rotational model has none")
+        return self
 
 
 class Output(Spec):

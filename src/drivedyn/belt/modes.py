@@ -79,19 +79,25 @@ def _tensioner_kinematics(model, j, q0):
     return d / np.linalg.norm(d), np.zeros(2), rate, t.mass
 
 
+def rolled_on(lay0: Layout, lay: Layout):
+    """Per span: the belt rolled onto its start and its end pulley as their tangent points moved
+    round them from lay0 to lay (rolling without slip: rho times the tangent point's turn, signed
+    so that the two plus the change of the straight length are the span's stretch)."""
+    t0, t1 = np.empty(len(lay.spans)), np.empty(len(lay.spans))
+    for k, (s0, s1) in enumerate(zip(lay0.spans, lay.spans)):
+        for out, j, p0, p1, sgn in ((t0, s1.start, s0.p0, s1.p0, 1.0), (t1, s1.end, s0.p1, s1.p1, -1.0)):
+            a0 = math.atan2(p0[1] - lay0.centers[j][1], p0[0] - lay0.centers[j][0])
+            a1 = math.atan2(p1[1] - lay.centers[j][1], p1[0] - lay.centers[j][0])
+            out[k] = sgn * lay.rho[j] * math.remainder(a1 - a0, 2 * math.pi)
+    return t0, t1
+
+
 def stretch_of(lay0: Layout, lay: Layout) -> np.ndarray:
     """Stretch of each span from layout lay0 to lay (pulleys not turning): the change of its straight
     length, less the belt that rolls onto its two pulleys as its tangent points move round them
-    (rolling without slip: rho times the tangent point's turn)."""
-    out = np.empty(len(lay.spans))
-    for k, (s0, s1) in enumerate(zip(lay0.spans, lay.spans)):
-        turn = 0.0
-        for j, p0, p1, sgn in ((s1.start, s0.p0, s1.p0, 1.0), (s1.end, s0.p1, s1.p1, -1.0)):
-            a0 = math.atan2(p0[1] - lay0.centers[j][1], p0[0] - lay0.centers[j][0])
-            a1 = math.atan2(p1[1] - lay.centers[j][1], p1[0] - lay.centers[j][0])
-            turn += sgn * lay.rho[j] * math.remainder(a1 - a0, 2 * math.pi)
-        out[k] = s1.length - s0.length + turn
-    return out
+    (``rolled_on``)."""
+    t0, t1 = rolled_on(lay0, lay)
+    return np.array([s1.length - s0.length for s0, s1 in zip(lay0.spans, lay.spans)]) + t0 + t1
 
 
 def _stretch_derivatives(model, lay, tens, h=None):

@@ -39,6 +39,7 @@ from __future__ import annotations
 import math
 import time as _time
 from dataclasses import dataclass
+from types import SimpleNamespace
 
 import numpy as np
 from scipy.optimize import brentq, root
@@ -48,6 +49,7 @@ from . import _kernels as K
 from . import _rotkernels as RK
 from . import tensioner as TN
 from .layout import Layout, compute_layout
+from .modes import rolled_on
 from .steady import penetration
 
 #: grid of a tensioner's geometry table (travel steps over its stop-to-stop range, plus margins)
@@ -74,15 +76,10 @@ class RotSystem:
 
 
 def installed_length(model, lay: Layout) -> float:
-    """Unstretched belt length: ``belt.length``, or the drawn path at the pretension with the belt
-    sunk into each wrap by its static depth (as steady.drive_of)."""
+    """Unstretched belt length: ``belt.length``, or what the drawn path holds at the pretension with
+    the belt sunk into each wrap by its static depth (as steady.drive_of)."""
     b = model.belt
-    if b.length is not None:
-        return float(b.length)
-    radii = np.abs(lay.rho)
-    sunk = float(np.sum(lay.wrap * penetration(b.pretension / radii, model.contact.stiffness_quadratic,
-                                                model.contact.stiffness_linear)))
-    return (lay.length - sunk) / (1 + b.pretension / b.axial_stiffness)
+    return float(b.length) if b.length is not None else _content(model, lay, b.pretension)
 
 
 def _content(model, lay: Layout, T: float) -> float:
@@ -121,14 +118,7 @@ def rest_state(model, L0: float):
 
     def loads(qv):
         lay = at(qv)
-        T = _tension_at(model, lay, L0)
-        hub = lay.hub_load_static(T)
-        out = []
-        for j, q, s in zip(idx, qv, sense):
-            h = 1e-6 if model.pulleys[j].arm is not None else 1e-7
-            c1, c0 = np.array(TN.centre(model, j, q + h, s)), np.array(TN.centre(model, j, q - h, s))
-            out.append(TN._spring(model.pulleys[j].tensioner, q) + float(hub[j] @ ((c1 - c0) / (2 * h))))
-        return np.array(out)
+        return TN.generalised_loads(model, idx, sense, qv, lay.hub_load_static(_tension_at(model, lay, L0)))
 
     ts = [model.pulleys[j].tensioner for j in idx]
     if len(idx) == 1:
@@ -145,19 +135,6 @@ def rest_state(model, L0: float):
         qv = sol.x
     lay = at(qv)
     return qv, _tension_at(model, lay, L0), lay
-
-
-def _turns(lay0: Layout, lay: Layout):
-    """Per span: belt rolled onto its start and end pulley as their tangent points moved from lay0
-    to lay (rho times the turn, signed as in modes.stretch_of: their sum plus the length change is
-    the span's stretch with adhesion)."""
-    t0, t1 = np.empty(len(lay.spans)), np.empty(len(lay.spans))
-    for k, (s0, s1) in enumerate(zip(lay0.spans, lay.spans)):
-        for out, j, p0, p1, sgn in ((t0, s1.start, s0.p0, s1.p0, 1.0), (t1, s1.end, s0.p1, s1.p1, -1.0)):
-            a0 = math.atan2(p0[1] - lay0.centers[j][1], p0[0] - lay0.centers[j][0])
-            a1 = math.atan2(p1[1] - lay.centers[j][1], p1[0] - lay.centers[j][0])
-            out[k] = sgn * lay.rho[j] * math.remainder(a1 - a0, 2 * math.pi)
-    return t0, t1
 
 
 def _tables(model, rest_lay: Layout, idx, sense, rest_q):
@@ -192,7 +169,7 @@ def _tables(model, rest_lay: Layout, idx, sense, rest_q):
                     continue
                 tL[a, i], t0[a, i], t1[a, i], tdx[a, i], tdy[a, i], tw[a, i] = last
                 continue
-            a0, a1 = _turns(rest_lay, lay)
+            a0, a1 = rolled_on(rest_lay, lay)
             d = np.array([[math.cos(sp.angle), math.sin(sp.angle)] for sp in lay.spans])
             row = (np.array([sp.length for sp in lay.spans]) - L_r, a0, a1, d[:, 0] - d_r[:, 0], d[:, 1] - d_r[:, 1],
                    lay.wrap - rest_lay.wrap)
@@ -423,7 +400,7 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_mod
         attrs={"model_toml": dumps(model), "title": model.name or "belt drive", "belt_model": "rotational"},
     )
     view = _View(sysm)
-    rec = type("Rec", (), {"q": o["q"], "qd": o["qd"], "omr": o["omr"], "tq_ext": o["tq"]})()
+    rec = SimpleNamespace(q=o["q"], qd=o["qd"], omr=o["omr"], tq_ext=o["tq"])     # the recorder fields they read
     _tensioner_variables(ds, model, view, rec, ns)
     _clutch_variables(ds, model, view, rec, ns, float(ds["time"].values[0]) if ns else 1.0)
     ds["time"].attrs["units"] = "s"

@@ -151,6 +151,17 @@ def _spring(t, q: float) -> float:
     return t.preload - t.rate * q
 
 
+def generalised_loads(model, idx, sense, qv, hub) -> np.ndarray:
+    """Load on each tensioner's travel at travel qv (virtual work): its spring plus the belt's hub
+    force ``hub`` (per pulley) projected on the pulley centre's motion per unit travel."""
+    out = []
+    for j, q, s in zip(idx, qv, sense):
+        h = 1e-6 if model.pulleys[j].arm is not None else 1e-7
+        c1, c0 = np.array(centre(model, j, q + h, s)), np.array(centre(model, j, q - h, s))
+        out.append(_spring(model.pulleys[j].tensioner, q) + float(hub[j] @ ((c1 - c0) / (2 * h))))
+    return np.array(out)
+
+
 def equilibrium(model) -> Equilibrium:
     """Static equilibrium of the belt and the model's tensioners (ModelError when none exists
     within the stops, naming the tensioner and why)."""
@@ -178,13 +189,7 @@ def equilibrium(model) -> Equilibrium:
         """Generalised load on each tensioner (spring + belt) at travel qv under a uniform tension."""
         m = _moved(model, centres(qv), L0_chain)
         lay = compute_layout(m)
-        hub = lay.hub_load_static(tension(m, lay))
-        out = []
-        for a, (j, q, s) in enumerate(zip(idx, qv, sense)):
-            h = 1e-6 if model.pulleys[j].arm is not None else 1e-7
-            c1, c0 = np.array(centre(model, j, q + h, s)), np.array(centre(model, j, q - h, s))
-            out.append(_spring(model.pulleys[j].tensioner, q) + float(hub[j] @ ((c1 - c0) / (2 * h))))
-        return np.array(out)
+        return generalised_loads(model, idx, sense, qv, lay.hub_load_static(tension(m, lay)))
 
     def t_cont(m, lay):
         strain = lay.length / L_eff - 1

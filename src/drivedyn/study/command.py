@@ -28,7 +28,7 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
     from .spec import Study, load_study
 
     study = study_file if isinstance(study_file, Study) else load_study(study_file)
-    if study.spec.mode in ("optimise", "optimize"):
+    if study.spec.mode == "optimise":
         return _optimise(study, study_file, out, scheduler, workers, plots, quiet, console, dry_run)
     # a dry run resolves only the cases it lists (a large grid is listed in seconds)
     study, design, cases, outdir = prepare(study, out, first=50 if dry_run and not prune else None)
@@ -123,7 +123,7 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
                                progress=lambda c: bar.update(task, completed=c["done"]))
     o = res.optimum
     n = len(o.evaluations)
-    feasible = sum(1 for e in o.evaluations if e[4])
+    feasible = sum(1 for e in o.evaluations if e.feasible)
     console.print(f"{n} designs evaluated ({res.counts['ran']} run now, {res.counts['cached']} from the cache), {feasible} feasible")
     if o.values is None:
         console.print("[red]no feasible design[/]: widen the ranges, loosen the constraints or raise the budget")

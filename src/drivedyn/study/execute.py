@@ -144,18 +144,7 @@ def run_study(study, out=None, *, client=None, scheduler=None, workers=None, ret
     cache = out / "cases"
     series = list(study.spec.outputs.series)
     records: dict[str, dict] = {}
-    todo: dict[str, Case] = {}
-    for c in cases:
-        if c.toml is None:
-            records[c.key] = {"key": c.key, "status": "invalid", "message": c.message, "summary": {}}
-            continue
-        if c.key in records or c.key in todo:
-            continue
-        rec = read_record(cache, c.key, series)
-        if rec is not None and (rec["status"] in COMPLETED or not retry_failed):
-            records[c.key] = rec
-        else:
-            todo[c.key] = c
+    todo = _to_run(cases, cache, series, records, retry_failed)
     cached = sum(1 for c in cases if c.toml is not None and c.key in records)
     counts = {"total": len(cases), "cases_to_run": len(todo), "cached": cached, "done": len(cases) - len(_pending(cases, todo)),
               "not_success": sum(1 for c in cases if c.key in records and records[c.key]["status"] not in COMPLETED),
@@ -188,6 +177,8 @@ def run_optimisation(study, out=None, *, client=None, scheduler=None, workers=No
     of cases on one cluster; writes study.nc (every design evaluated, with its objective, feasibility
     and generation), best.toml (the best feasible design as a model file) and plots/optimise.png.
     The StudyRun carries ``optimum`` (optimise.Optimum)."""
+    import numpy as np
+
     from .collect import assemble, write_dataset
     from .design import Design
     from .optimise import plot_convergence, run_optimise
@@ -207,16 +198,10 @@ def run_optimisation(study, out=None, *, client=None, scheduler=None, workers=No
     evaluated = [0]
 
     def execute(cases):
-        todo = {}
-        for c in cases:
-            if c.toml is None or c.key in records or c.key in todo:
-                continue
-            rec = read_record(cache, c.key, series)
-            if rec is not None and rec["status"] in COMPLETED:
-                records[c.key] = rec
-                counts["cached"] += 1
-            else:
-                todo[c.key] = c
+        known = len(records)
+        # a design cached as not finished runs again (its generation needs a score)
+        todo = _to_run(cases, cache, series, records, retry_failed=True)
+        counts["cached"] += len(records) - known
         if todo:
             _execute(study, todo, cases, cache, series, records, counts, client, None, None, None, None)
         evaluated[0] += len(cases)
@@ -226,23 +211,21 @@ def run_optimisation(study, out=None, *, client=None, scheduler=None, workers=No
         return records
 
     try:
-        optimum = run_optimise(study, out, cache, execute)
+        optimum = run_optimise(study, execute)
     finally:
         if own_client is not None:
             own_client.close()
         if own_cluster is not None:
             own_cluster.close()
-    cases = [e[1] for e in optimum.evaluations]
+    evals = optimum.evaluations
+    cases = [e.case for e in evals]
     design = Design([p.label for p in study.spec.parameters], False, {}, [c.values for c in cases])
     ds = assemble(study, design, cases, records, cache)
-    import numpy as np
-
-    sign = 1.0 if study.spec.optimise.sense.startswith("min") else -1.0
-    ds["objective"] = ("case", np.array([sign * e[3] if e[4] else np.nan for e in optimum.evaluations]),
+    ds["objective"] = ("case", np.array([e.objective for e in evals]),
                        {"long_name": f"objective: {study.spec.optimise.objective} (nan: infeasible)"})
-    ds["feasible"] = ("case", np.array([bool(e[4]) for e in optimum.evaluations]),
+    ds["feasible"] = ("case", np.array([e.feasible for e in evals]),
                       {"long_name": "the design met every constraint and ran to its end"})
-    ds["generation"] = ("case", np.array([e[0] for e in optimum.evaluations]),
+    ds["generation"] = ("case", np.array([e.generation for e in evals]),
                         {"long_name": "generation of differential evolution"})
     ds.attrs.update(optimise_objective=study.spec.optimise.objective, optimise_sense=study.spec.optimise.sense,
                     optimise_best=float(optimum.objective) if optimum.values else float("nan"))
@@ -264,6 +247,25 @@ def run_optimisation(study, out=None, *, client=None, scheduler=None, workers=No
     run = StudyRun(ds, path, counts, files)
     run.optimum = optimum
     return run
+
+
+def _to_run(cases, cache, series, records, retry_failed) -> dict[str, Case]:
+    """The distinct cases to run (key -> case): those neither in ``records`` nor in the cache (nor
+    cached as not finished, with ``retry_failed``). Cached records and invalid cases' records go
+    into ``records``."""
+    todo: dict[str, Case] = {}
+    for c in cases:
+        if c.toml is None:
+            records[c.key] = {"key": c.key, "status": "invalid", "message": c.message, "summary": {}}
+            continue
+        if c.key in records or c.key in todo:
+            continue
+        rec = read_record(cache, c.key, series)
+        if rec is not None and (rec["status"] in COMPLETED or not retry_failed):
+            records[c.key] = rec
+        else:
+            todo[c.key] = c
+    return todo
 
 
 def _pending(cases, todo):

@@ -16,6 +16,8 @@ from __future__ import annotations
 import fnmatch
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -27,6 +29,18 @@ from .spec import to_number
 INFEASIBLE = 1e30
 
 
+class Evaluation(NamedTuple):
+    """One design evaluated: its generation, case, record, the score differential evolution saw,
+    whether it met every constraint and ran to its end, and its objective (nan when infeasible)."""
+
+    generation: int
+    case: object
+    record: dict
+    score: float
+    feasible: bool
+    objective: float
+
+
 @dataclass
 class Optimum:
     """What an optimisation found: the best feasible design (None when none was), its objective,
@@ -36,7 +50,7 @@ class Optimum:
     objective: float
     toml: str | None
     constraints: dict                  # key -> {"value", "min", "max", "margin"}
-    evaluations: list = field(default_factory=list)   # (generation, case, record, score, feasible)
+    evaluations: list = field(default_factory=list)   # Evaluation, in order
     history: list = field(default_factory=list)
 
 
@@ -56,12 +70,11 @@ def _extreme(values, largest: bool):
     return max(flat) if largest else min(flat)
 
 
-def judge(opt, record, units) -> tuple[float, bool, dict]:
-    """(score, feasible, constraint values) of one evaluated design."""
+def judge(opt, record, units) -> tuple[float, bool, dict, float]:
+    """(score, feasible, constraint values, objective) of one evaluated design."""
     summary = record.get("summary", {}) if record else {}
     ok = bool(record) and record.get("status") in COMPLETED
-    largest = opt.sense.startswith("min")
-    obj = _extreme(_matches(summary, opt.objective), largest)
+    obj = _extreme(_matches(summary, opt.objective), largest=opt.sign > 0)
     if obj is None:
         ok = False
     violation, cons = 0.0, {}
@@ -83,8 +96,8 @@ def judge(opt, record, units) -> tuple[float, bool, dict]:
                 violation += excess / max(abs(b), 1e-12)
         cons[c.key] = entry
     if not ok or violation > 0:
-        return INFEASIBLE * (1 + violation + (0 if ok else 1)), False, cons
-    return (obj if largest else -obj), True, cons
+        return INFEASIBLE * (1 + violation + (0 if ok else 1)), False, cons, math.nan
+    return opt.sign * obj, True, cons, obj
 
 
 def _check_keys(opt, records):
@@ -106,10 +119,10 @@ def _check_keys(opt, records):
             raise ModelError(f"no summary key {pattern!r} in the designs' results{hint}", field=field)
 
 
-def run_optimise(study, out, cache, execute, progress=None) -> Optimum:
+def run_optimise(study, execute) -> Optimum:
     """Differential evolution over ``study``'s ranged parameters. ``execute(cases)`` runs the cases
-    of one generation that are not in ``cache`` (study.execute's batch runner) and returns key ->
-    record for all of them."""
+    of one generation that its cache lacks (execute.run_optimisation's batch runner) and returns
+    key -> record for all of them."""
     from scipy.optimize import differential_evolution
 
     spec = study.spec
@@ -118,7 +131,7 @@ def run_optimise(study, out, cache, execute, progress=None) -> Optimum:
     labels = [p.label for p in params]
     d = len(params)
     evaluations, history = [], []
-    best = {"score": math.inf, "case": None, "record": None, "cons": {}}
+    best = {"score": math.inf, "case": None, "objective": math.nan, "cons": {}}
     units_seen: dict = {}
     generation = [0]
     stop = [None]
@@ -135,20 +148,18 @@ def run_optimise(study, out, cache, execute, progress=None) -> Optimum:
         for c in cases:
             rec = records.get(c.key) or {"status": "invalid" if c.toml is None else "missing", "message": c.message, "summary": {}}
             units_seen.update(rec.get("units") or {})
-            score, feasible, cons = judge(opt, rec, units_seen)
-            evaluations.append((generation[0], c, rec, score, feasible))
+            score, feasible, cons, obj = judge(opt, rec, units_seen)
+            evaluations.append(Evaluation(generation[0], c, rec, score, feasible, obj))
             if feasible and score < best["score"]:
-                best.update(score=score, case=c, record=rec, cons=cons)
-            history.append(best["score"] if math.isfinite(best["score"]) else math.nan)
+                best.update(score=score, case=c, objective=obj, cons=cons)
+            history.append(best["objective"])
             scores.append(score)
         if generation[0] == 0:
             try:
-                _check_keys(opt, [evaluations[-1 - i][2] for i in range(len(cases))])
+                _check_keys(opt, [e.record for e in evaluations[-len(cases):]])
             except Exception as exc:       # scipy would wrap it: stop at the generation's end, raise it then
                 stop[0] = exc
         generation[0] += 1
-        if progress is not None:
-            progress(len(evaluations), opt.budget)
         return scores
 
     popsize = max(opt.population, 1)
@@ -162,9 +173,7 @@ def run_optimise(study, out, cache, execute, progress=None) -> Optimum:
         raise stop[0]
     if best["case"] is None:
         return Optimum(None, math.nan, None, {}, evaluations, history)
-    sense = 1.0 if opt.sense.startswith("min") else -1.0
-    return Optimum(dict(best["case"].values), sense * best["score"], best["case"].toml, best["cons"], evaluations,
-                   [sense * h for h in history])
+    return Optimum(dict(best["case"].values), best["objective"], best["case"].toml, best["cons"], evaluations, history)
 
 
 def plot_convergence(opt: Optimum, path: Path, objective: str, sense: str, unit: str = "") -> Path:
@@ -173,14 +182,12 @@ def plot_convergence(opt: Optimum, path: Path, objective: str, sense: str, unit:
 
     fig, axes = figure()
     ax = axes[0, 0]
-    sign = 1.0 if sense.startswith("min") else -1.0
     n = np.arange(1, len(opt.evaluations) + 1)
-    own = [sign * e[3] if e[4] else np.nan for e in opt.evaluations]
-    ax.plot(n, own, ".", ms=3, color="0.6", label="feasible designs")
+    ax.plot(n, [e.objective for e in opt.evaluations], ".", ms=3, color="0.6", label="feasible designs")
     ax.plot(n, opt.history, lw=1.6, label="best feasible so far")
     ax.set_xlabel("designs evaluated")
     ax.set_ylabel(objective + (f" ({unit})" if unit else ""))
-    ax.set_title(f"optimisation ({'minimise' if sign > 0 else 'maximise'}): objective of the best feasible design")
+    ax.set_title(f"optimisation ({sense}): objective of the best feasible design")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, frameon=False)
     return savefig(fig, path)

@@ -189,12 +189,22 @@ class Optimise(Spec):
     (1997) 341-359, scipy.optimize), each generation one batch of cases on the cluster."""
 
     objective: str
-    sense: Literal["minimise", "maximise", "minimize", "maximize"] = "minimise"
+    sense: Literal["minimise", "maximise"] = "minimise"      # "minimize", "maximize" read as these
     constraints: list[Constraint] = []
     evaluate: Literal["run", "check"] = "run"
     budget: int = 200
     population: int = 6            # designs per generation, per design variable (scipy's popsize)
     seed: int = 0
+
+    @field_validator("sense", mode="before")
+    @classmethod
+    def _spelling(cls, v):
+        return {"minimize": "minimise", "maximize": "maximise"}.get(v, v)
+
+    @property
+    def sign(self) -> float:
+        """+1 to minimise, -1 to maximise: the score differential evolution minimises is sign x objective."""
+        return 1.0 if self.sense == "minimise" else -1.0
 
     @field_validator("budget", "population")
     @classmethod
@@ -225,13 +235,18 @@ class StudySpec(Spec):
     # "run" simulates each case; "check" evaluates what check knows (belt drives: the creep-theory
     # steady state, slip margins, modes) in milliseconds per case, for margin maps of many cases
     # "optimise": design by optimisation over the ranged parameters ([optimise], optimise.py)
-    mode: Literal["run", "check", "optimise", "optimize"] = "run"
+    mode: Literal["run", "check", "optimise"] = "run"      # "optimize" reads as "optimise"
     optimise: Optional[Optimise] = None
+
+    @field_validator("mode", mode="before")
+    @classmethod
+    def _spelling(cls, v):
+        return "optimise" if v == "optimize" else v
 
     @property
     def eval_mode(self) -> str:
         """How one case is evaluated: "run" or "check" (an optimisation's ``evaluate``)."""
-        return self.optimise.evaluate if self.mode in ("optimise", "optimize") else self.mode
+        return self.optimise.evaluate if self.mode == "optimise" else self.mode
 
     @model_validator(mode="after")
     def _consistent(self):
@@ -239,7 +254,7 @@ class StudySpec(Spec):
             raise ValueError("give exactly one of base (a model file) or [model] (the base model inline)")
         if not self.parameters:
             raise ValueError("parameters: a study needs at least one parameter")
-        if self.mode in ("optimise", "optimize"):
+        if self.mode == "optimise":
             if self.optimise is None:
                 raise ValueError("mode = \"optimise\" needs an [optimise] table (objective, constraints)")
             fixed = [p.label for p in self.parameters if p.range is None]
@@ -253,7 +268,7 @@ class StudySpec(Spec):
         dup = sorted({x for x in labels if labels.count(x) > 1})
         if dup:
             raise ValueError(f"parameters: duplicate name(s) {dup}")
-        if self.sampler.method == "grid" and self.mode not in ("optimise", "optimize"):   # optimisations draw their designs
+        if self.sampler.method == "grid" and self.mode != "optimise":   # an optimisation draws its designs
             for k, p in enumerate(self.parameters):
                 if p.mean is not None:
                     raise ValueError(f"parameters[{k}]: a normal distribution (mean/std) needs a sampled design, not a grid")
