@@ -46,7 +46,7 @@ def speeds_of(model, j):
     nonzero = [abs(x) for x in w if abs(x) > 0.05 * max(abs(x) for x in w)]
     lo, hi = min(nonzero), max(nonzero)
     if not hi > lo * (1 + 1e-9):
-        raise ModelError(f"simulation.runup = \"periodic\" sweeps a run-up: pulley {p.name!r}'s speed_time holds one "
+        raise ModelError(f"\"periodic\" sweeps a run-up: pulley {p.name!r}'s speed_time holds one "
                          "speed after its spin-up (no speed range to sweep)", field="simulation.runup")
     width = model.output.runup_bin or (hi - lo) / 20
     edges = np.arange(math.floor(lo / width) * width, hi + width, width)
@@ -152,7 +152,7 @@ def run(model, progress=None):
 
     j = crank_index(model)
     if j is None:
-        raise ModelError("simulation.runup = \"periodic\" sweeps a run-up: one pulley's speed_time must change its "
+        raise ModelError("\"periodic\" sweeps a run-up: one pulley's speed_time must change its "
                          "speed by more than 10 % (the crank)", field="simulation.runup")
     sysm = RT.build(model)
     speeds = speeds_of(model, j)
