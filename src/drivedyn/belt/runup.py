@@ -58,22 +58,47 @@ def add_runup(ds, model, bin_width=None, up_only=False) -> dict:
     """Adds the per-bin variables to ``ds`` (dim ``speed_bin``, coordinate its centre in rpm) and
     returns the summary entry ``runup`` (lists per bin), or {} when the run is no run-up.
     ``up_only``: every sample belongs to the up sweep (a periodic run-up's held speeds)."""
-    j = crank_index(model)
-    if j is None or ds.sizes.get("time", 0) < 4:
+    if crank_index(model) is None or ds.sizes.get("time", 0) < 4:
         return {}
+    r = ds["pulley_rolling_radius" if "pulley_rolling_radius" in ds else "pulley_radius"].values
+    travel = (ds["arm_travel"].values, ds["arm"].values.tolist()) if "arm_travel" in ds else None
+    tables = runup_tables(model, ds["time"].values, ds["span_tension"].values, ds["hub_load"].values,
+                          ds["speed"].values, r, ds["span"].values.tolist(), ds["pulley"].values.tolist(), travel,
+                          bin_width, up_only)
+    if tables is None:
+        return {}
+    out, variables, coords = tables
+    ds["crank_rpm"] = variables.pop("crank_rpm")
+    ds.attrs["runup_crank"] = out["crank"]
+    for name, var in coords.items():
+        ds.coords[name] = var
+    for name, var in variables.items():
+        ds[name] = var
+    return {"runup": out}
+
+
+def runup_tables(model, t, ten, hub, speed, r, spans, pulleys, travel=None, bin_width=None, up_only=False,
+                 orders=True):
+    """The run-up tables from the samples' arrays (time; span tension and hub load, pulley speed
+    (time x span / pulley); the rolling radii; ``travel``: (arm travel (time x arm), arm names) or
+    None): (the summary entry ``runup``, its Dataset variables, their coordinates), or None when
+    the run is no run-up. ``orders=False`` leaves out the order tracking (its amplitudes and
+    peaks), which the rest does not use."""
+    j = crank_index(model)
+    if j is None or len(t) < 4:
+        return None
     p = model.pulleys[j]
-    t = ds["time"].values
     rpm = np.abs(mean_speed(p, t)) * RPM
     # a crank spun up from rest: the spin-up (to the table's second row) is no part of the run-up
     knots = p.speed_time
     t0 = knots[1][0] if abs(knots[0][1]) < 0.05 * max(abs(r[1]) for r in knots) else -np.inf
     live = t >= t0
     if live.sum() < 4:
-        return {}
+        return None
     lo, hi = float(rpm[live].min()), float(rpm[live].max())
     width = bin_width * RPM if bin_width else (hi - lo) / 20
     if not width > 0:
-        return {}
+        return None
     edges = np.arange(math.floor(lo / width) * width, hi + width, width)
     nb = len(edges) - 1
     # a run-down is read apart from the run-up (the drive's response differs with the sweep's
@@ -88,24 +113,24 @@ def add_runup(ds, model, bin_width=None, up_only=False) -> dict:
     used = [b for b in range(nb) if np.sum(which == b) >= 4]
     used += [b for b in range(2 * nb - 1, nb - 1, -1) if np.sum(which == b) >= 4]
     if not used:
-        return {}
+        return None
     centre = np.array([0.5 * (edges[b % nb] + edges[b % nb + 1]) for b in used])
     sweep = ["down" if b >= nb else "up" for b in used]
-    phi = mean_angle(p, t)
-    orders = orders_of(p)
-    spans, pulleys = ds["span"].values.tolist(), ds["pulley"].values.tolist()
-    ten, hub = ds["span_tension"].values, ds["hub_load"].values
+    order_list = orders_of(p)
     # the chain's rolling radius (older results: the contact radius): the polygon effect is no slip
-    r = ds["pulley_rolling_radius" if "pulley_rolling_radius" in ds else "pulley_radius"].values
-    speed = ds["speed"].values
     vd = np.abs(speed[:, j] * r[j])
     v = np.abs(speed * r)
 
     def per_bin(x, fn):
         return np.array([fn(x[which == b], axis=0) for b in used])
 
+    phis = []
+
     def order_amp(x):
-        out = np.zeros((len(used), len(orders), x.shape[1]))
+        if not phis:
+            phis.append(mean_angle(p, t))
+        phi = phis[0]
+        out = np.zeros((len(used), len(order_list), x.shape[1]))
         for a, b in enumerate(used):
             idx = np.nonzero(which == b)[0]
             # whole engine cycles (two revolutions: half orders too) or revolutions only, so that
@@ -115,54 +140,58 @@ def add_runup(ds, model, bin_width=None, up_only=False) -> dict:
             if span >= cycle:
                 idx = idx[np.abs(phi[idx] - phi[idx[0]]) < cycle * math.floor(span / cycle)]
             xs = x[idx] - x[idx].mean(axis=0)
-            for q, k in enumerate(orders):
+            for q, k in enumerate(order_list):
                 out[a, q] = np.abs(2 / len(idx) * (np.exp(-1j * k * phi[idx]) @ xs))
         return out
 
     dims = ("speed_bin",)
-    ds["crank_rpm"] = variable(rpm, ("time",), "rpm", "crank mean speed (prescribed, without the orders)")
-    ds.attrs["runup_crank"] = p.name
-    ds.coords["speed_bin"] = variable(centre, dims, "rpm", "crank mean speed, bin centre")
-    ds.coords["sweep"] = ("speed_bin", sweep)
-    ds.coords["order"] = orders
-    ds["runup_tension_min"] = variable(per_bin(ten, np.min), dims + ("span",), "N", "span tension, bin minimum")
-    ds["runup_tension_max"] = variable(per_bin(ten, np.max), dims + ("span",), "N", "span tension, bin maximum")
-    ds["runup_tension_mean"] = variable(per_bin(ten, np.mean), dims + ("span",), "N", "span tension, bin mean")
-    ds["runup_hub_load_max"] = variable(per_bin(hub, np.max), dims + ("pulley",), "N", "hub load, bin maximum")
+    var = {"crank_rpm": variable(rpm, ("time",), "rpm", "crank mean speed (prescribed, without the orders)")}
+    coords = {"speed_bin": variable(centre, dims, "rpm", "crank mean speed, bin centre"), "sweep": ("speed_bin", sweep),
+              "order": order_list}
+    tmin, tmax = per_bin(ten, np.min), per_bin(ten, np.max)
+    var["runup_tension_min"] = variable(tmin, dims + ("span",), "N", "span tension, bin minimum")
+    var["runup_tension_max"] = variable(tmax, dims + ("span",), "N", "span tension, bin maximum")
+    var["runup_tension_mean"] = variable(per_bin(ten, np.mean), dims + ("span",), "N", "span tension, bin mean")
+    hmax = per_bin(hub, np.max)
+    var["runup_hub_load_max"] = variable(hmax, dims + ("pulley",), "N", "hub load, bin maximum")
     # slip as the bin's mean speed ratio: the instantaneous ratio also swings with the torsional
     # vibration the engine orders excite, which is no slip
     vd_bin = per_bin(vd, np.mean)
     slip = 1 - per_bin(v, np.mean) / np.where(vd_bin > 0, vd_bin, np.nan)[:, None]
-    ds["runup_slip"] = variable(slip, dims + ("pulley",), "1",
-                                "slip against the crank over the bin, 1 - mean |w r| / mean |w_c r_c| (r: the chain's rolling radius)")
-    ds["runup_tension_order"] = variable(order_amp(ten), dims + ("order", "span"), "N", "span tension, amplitude of engine order")
-    ds["runup_hub_load_order"] = variable(order_amp(hub), dims + ("order", "pulley"), "N", "hub load, amplitude of engine order")
-    out = {"crank": p.name, "speed_rpm": centre.tolist(), "sweep": sweep, "orders": orders,
-           "span_tension_min": {s: ds["runup_tension_min"].values[:, q].tolist() for q, s in enumerate(spans)},
-           "span_tension_max": {s: ds["runup_tension_max"].values[:, q].tolist() for q, s in enumerate(spans)},
-           "slip": {n: ds["runup_slip"].values[:, q].tolist() for q, n in enumerate(pulleys) if q != j},
-           "hub_load_max": {n: ds["runup_hub_load_max"].values[:, q].tolist() for q, n in enumerate(pulleys)}}
-    if "arm_travel" in ds:
-        q = ds["arm_travel"].values
-        ds["runup_arm_travel_min"] = variable(per_bin(q, np.min), dims + ("arm",), "rad", "arm travel, bin minimum")
-        ds["runup_arm_travel_max"] = variable(per_bin(q, np.max), dims + ("arm",), "rad", "arm travel, bin maximum")
-        out["arm_travel_range"] = {a: (ds["runup_arm_travel_max"].values[:, k] - ds["runup_arm_travel_min"].values[:, k]).tolist()
-                                   for k, a in enumerate(ds["arm"].values.tolist())}
-        ds["runup_arm_travel_order"] = variable(order_amp(q), dims + ("order", "arm"), "rad", "arm travel, amplitude of engine order")
+    var["runup_slip"] = variable(slip, dims + ("pulley",), "1",
+                                 "slip against the crank over the bin, 1 - mean |w r| / mean |w_c r_c| (r: the chain's rolling radius)")
+    if orders:
+        var["runup_tension_order"] = variable(order_amp(ten), dims + ("order", "span"), "N", "span tension, amplitude of engine order")
+        var["runup_hub_load_order"] = variable(order_amp(hub), dims + ("order", "pulley"), "N", "hub load, amplitude of engine order")
+    out = {"crank": p.name, "speed_rpm": centre.tolist(), "sweep": sweep, "orders": order_list,
+           "span_tension_min": {s: tmin[:, q].tolist() for q, s in enumerate(spans)},
+           "span_tension_max": {s: tmax[:, q].tolist() for q, s in enumerate(spans)},
+           "slip": {n: slip[:, q].tolist() for q, n in enumerate(pulleys) if q != j},
+           "hub_load_max": {n: hmax[:, q].tolist() for q, n in enumerate(pulleys)}}
+    if travel is not None:
+        q, arms = travel
+        qmin, qmax = per_bin(q, np.min), per_bin(q, np.max)
+        var["runup_arm_travel_min"] = variable(qmin, dims + ("arm",), "rad", "arm travel, bin minimum")
+        var["runup_arm_travel_max"] = variable(qmax, dims + ("arm",), "rad", "arm travel, bin maximum")
+        out["arm_travel_range"] = {a: (qmax[:, k] - qmin[:, k]).tolist() for k, a in enumerate(arms)}
+        if orders:
+            var["runup_arm_travel_order"] = variable(order_amp(q), dims + ("order", "arm"), "rad", "arm travel, amplitude of engine order")
+    if not orders:
+        return out, var, coords
     # order cuts of every span, hub load and arm: each order's largest amplitude over the run and
     # the crank speed where it peaks (the whole cuts: runup_*_order in results.nc, runup.png)
     peaks = {}
-    for key, var, dim in (("span_tension", "runup_tension_order", "span"), ("hub_load", "runup_hub_load_order", "pulley"),
-                          ("arm_travel", "runup_arm_travel_order", "arm")):
-        if var not in ds:
+    for key, name, names in (("span_tension", "runup_tension_order", spans), ("hub_load", "runup_hub_load_order", pulleys),
+                             ("arm_travel", "runup_arm_travel_order", travel[1] if travel is not None else [])):
+        if name not in var:
             continue
-        a = ds[var].values
+        a = var[name].values
         peaks[key] = {str(nm): {f"{k:g}": {"amplitude": float(a[:, o, q].max()),
                                            "rpm": float(centre[int(np.argmax(a[:, o, q]))])}
-                                for o, k in enumerate(orders)}
-                      for q, nm in enumerate(ds[dim].values.tolist())}
+                                for o, k in enumerate(order_list)}
+                      for q, nm in enumerate(names)}
     out["order_peaks"] = peaks
-    return {"runup": out}
+    return out, var, coords
 
 
 def table_lines(summary) -> list[str]:
