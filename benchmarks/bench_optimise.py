@@ -100,27 +100,13 @@ def one(repeats: int = 5):
         for i in range(repeats + 1):
             vals = dict(base, **{"pulleys.tensioner.arm.preload": 20.0 + 0.01 * i})    # a new model each time
             case = resolve(study, Design(labels, False, {}, [{k: vals[k] for k in labels}]), overrides_of)[0]
-            extra = {"keys": _keys(study)} if _takes_keys() else {}
+            extra = {"keys": case.keys} if getattr(case, "keys", None) else {}
             c = time.process_time()
             rec = run_case(case.toml, case.key, str(cache), "bench", [], None, study.spec.eval_mode, **extra)
             times.append(time.process_time() - c)
         times = times[1:]
         print(f"one design as a worker runs it: CPU median {statistics.median(times) * 1e3:.0f} ms "
               f"(min {min(times) * 1e3:.0f}, max {max(times) * 1e3:.0f}, {repeats} designs); status {rec['status']}")
-
-
-def _takes_keys():
-    import inspect
-
-    from drivedyn.study.cases import run_case
-
-    return "keys" in inspect.signature(run_case).parameters
-
-
-def _keys(study):
-    from drivedyn.study.execute import case_keys
-
-    return case_keys(study)
 
 
 def main():

@@ -26,6 +26,8 @@ class Analysis:
     warmup_at: str = ""
     check_data_at: str = ""    # what check knows, as a dict (check --json, studies with mode = "check")
     criteria_at: str = "criteria:evaluate"   # (model, result) -> ([Criterion], {name: why not judged})
+    lean_at: str = ""          # (model, keys, progress) -> Result with at least those summary keys, or None
+    lean_possible_at: str = ""  # (model, keys) -> whether lean_at gives them
 
     def _get(self, where: str):
         module, name = where.split(":")
@@ -64,6 +66,16 @@ class Analysis:
             return None
         return Painters.start(f"{self.package}.{self.plot_at.split(':')[0]}")
 
+    def lean_possible(self, model, keys) -> bool:
+        """Whether :meth:`run_lean` computes the summary keys ``keys`` (patterns) of ``model``
+        without the full run."""
+        return bool(self.lean_possible_at) and bool(self._get(self.lean_possible_at)(model, keys))
+
+    def run_lean(self, model, keys, progress=None):
+        """A Result with the summary keys ``keys`` (patterns) and the full run's numbers for them
+        (no Dataset, criteria or diagnostics but the solve's), or None when only the full run gives them."""
+        return self._get(self.lean_at)(model, keys, progress=progress) if self.lean_at else None
+
     def check_data(self, model) -> dict:
         if not self.check_data_at:
             raise ModelError(f"check data (check --json, a study's mode = \"check\") is for belt-drive models "
@@ -84,7 +96,7 @@ class Analysis:
 
 ANALYSES = {a.kind: a for a in (
     Analysis("belt-drive", "drivedyn.belt", "simulate:run", "statics:report", "plots:plot_all", "simulate:warm",
-             "statics:check_data"),
+             "statics:check_data", lean_at="simulate:run_lean", lean_possible_at="simulate:lean_possible"),
     Analysis("gear-train", "drivedyn.gears", "simulate:run", "report:report", "plots:plot_all"),
     Analysis("span-stability", "drivedyn.span", "analysis:run", "report:report", "plots:plot_all"),
     Analysis("toothed-mesh", "drivedyn.toothed", "analysis:run", "report:report", "plots:plot_all"),

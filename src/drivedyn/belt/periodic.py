@@ -145,11 +145,9 @@ def _anderson(phi, x0, scale, tol, memory=MEMORY, max_iter=MAX_ITER):
     return gx, res, max_iter
 
 
-def run(model, progress=None):
-    """The periodic run-up of ``model`` (rotational model): a Result with the run-up tables of a
-    time-integrated run-up, each speed's periodic solution as its samples."""
-    from ..errors import SolverError
-
+def _sweep(model, progress):
+    """The periodic solution at each speed of the sweep, recorded: (system, samples, samples kept,
+    speeds, residual and periods per speed, the held speeds' table, steps, wall time, failure)."""
     j = crank_index(model)
     if j is None:
         raise ModelError("\"periodic\" sweeps a run-up: one pulley's speed_time must change its "
@@ -225,13 +223,31 @@ def run(model, progress=None):
     except (Stopped, KeyboardInterrupt) as exc:
         failure = f"stopped: {stop_reason(exc)}"
     wall = _time.perf_counter() - wall0
+    return sysm, o, k, speeds, residual, iters, table, steps_total, wall, failure
+
+
+def run(model, progress=None, keys=None):
+    """The periodic run-up of ``model`` (rotational model): a Result with the run-up tables of a
+    time-integrated run-up, each speed's periodic solution as its samples.
+
+    ``keys`` (summary key patterns, e.g. a design loop's objective and constraints; see
+    :func:`lean_keys`): a lean Result whose summary holds only the ``runup`` entry (without the
+    order tracking unless asked for) and no Dataset, no criteria and no diagnostics but the
+    solve's own; its numbers are the full run's."""
+    from ..errors import SolverError
+
+    sysm, o, k, speeds, residual, iters, table, steps_total, wall, failure = _sweep(model, progress)
+    j = crank_index(model)
     # the energy balance restarts at each speed: not one run
     o["E"][:], o["work"][:], o["diss"][:] = np.nan, np.nan, np.nan
     # the sweep as a staircase of held speeds, for the run-up tables (runup.add_runup)
     stair = model.model_copy(update={"pulleys": [q.model_copy(update={"speed_time": table}) if n == j else q
                                                  for n, q in enumerate(model.pulleys)]}) if table else model
-    result = RT._assemble(model, sysm, o, k, steps_total, sysm.step, wall, failure, runup_model=stair,
-                          window=(table[-2][0], table[-1][0]) if table else None)
+    if keys is not None:
+        result = _lean(model, sysm, o, k, stair, orders="order_peaks" in lean_keys(keys))
+    else:
+        result = RT._assemble(model, sysm, o, k, steps_total, sysm.step, wall, failure, runup_model=stair,
+                              window=(table[-2][0], table[-1][0]) if table else None)
     done = len(residual)
     ru = result.summary.get("runup")
     if ru is not None:
@@ -247,4 +263,43 @@ def run(model, progress=None):
                             max(residual), TOLERANCE, "1")
     if failure:
         raise SolverError(failure + f" (periodic solutions kept for {done} of {len(speeds)} speeds)", partial=result)
+    return result
+
+
+#: the run-up entries a lean run gives (runup.<entry>...)
+LEAN = ("crank", "speed_rpm", "sweep", "orders", "span_tension_min", "span_tension_max", "slip", "hub_load_max",
+        "arm_travel_range", "order_peaks", "periodic_residual", "periodic_periods", "method")
+
+
+def lean_keys(keys):
+    """The run-up entries that summary key patterns ``keys`` name, or None when one of them may
+    name a key outside :data:`LEAN` (then only the full run gives it): each pattern must name its
+    entry literally, ``runup.slip.*`` but not ``runup.*``."""
+    found = set()
+    for key in keys:
+        parts = str(key).split(".")
+        if len(parts) < 2 or parts[0] != "runup" or parts[1] not in LEAN:
+            return None
+        found.add(parts[1])
+    return found
+
+
+def _lean(model, sysm, o, ns, stair, orders):
+    """The lean Result: the run-up tables from the recorded samples, as the full run computes them."""
+    import xarray as xr
+
+    from ..results import Result, unit_map
+    from .runup import runup_tables
+    from .simulate import UNITS
+
+    lay, A = sysm.layout, sysm.A
+    arms = [a for a in range(A.na) if A.kind[a] == 0]      # arm_travel: the pivoted arms'
+    travel = (o["q"][:ns, arms], [model.pulleys[A.pulley[a]].name for a in arms]) if arms else None
+    hub = np.hypot(o["hx"][:ns], o["hy"][:ns])
+    tables = runup_tables(stair, o["t"][:ns], o["T"][:ns], hub, o["om"][:ns], np.abs(lay.rho),
+                          [sp.name for sp in lay.spans], list(lay.names), travel, model.output.runup_bin,
+                          up_only=True, orders=orders) if ns >= 4 else None
+    summary = {"runup": tables[0]} if tables is not None else {}
+    result = Result("belt-drive", xr.Dataset(), summary)
+    result.units = unit_map(summary, UNITS)
     return result

@@ -241,6 +241,26 @@ def _blow_up(x, y, vx, vy, om, pen, sysm):
     return ""
 
 
+def lean_possible(model, keys) -> bool:
+    """Whether :func:`run_lean` gives the summary keys ``keys`` (patterns) of ``model``: a periodic
+    run-up of the rotational model, the keys its run-up tables (periodic.lean_keys)."""
+    if model.simulation.model != "rotational" or model.simulation.runup != "periodic":
+        return False
+    from .periodic import lean_keys
+
+    return lean_keys(keys) is not None
+
+
+def run_lean(model, keys, progress=None):
+    """A run that computes only the summary keys ``keys`` (a design loop's objective and
+    constraints), with the full run's numbers; None when only the full run gives them."""
+    if not lean_possible(model, keys):
+        return None
+    from .periodic import run as run_periodic
+
+    return run_periodic(model, progress, keys=keys)
+
+
 def run(model, progress=None) -> Result:
     if model.simulation.model == "rotational":
         from .periodic import run as run_periodic

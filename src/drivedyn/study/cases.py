@@ -58,6 +58,8 @@ class Case:
         Cache key: hash of ``toml`` (or of the overrides when invalid).
     message : str
         The validation error of an invalid case.
+    keys : list or None
+        The summary keys (patterns) a lean run computes (case_keys), or None: the full run.
     """
 
     index: int
@@ -67,6 +69,7 @@ class Case:
     key: str
     message: str = ""
     record: dict = field(default_factory=dict)
+    keys: list | None = None
 
 
 def model_key(toml: str) -> str:
@@ -74,11 +77,28 @@ def model_key(toml: str) -> str:
     return hashlib.sha256(toml.encode("utf-8")).hexdigest()[:20]
 
 
+def case_keys(study) -> list | None:
+    """The summary keys (patterns) a design of ``study`` needs, when that is less than its whole
+    summary: an optimisation's objective and constraints, unless the study asks for every key
+    (``outputs.summary`` given) or for whole variables (``outputs.series``). None: the full run."""
+    spec = study.spec
+    if spec.mode != "optimise" or spec.eval_mode != "run" or spec.outputs.series:
+        return None
+    if "summary" in spec.outputs.model_fields_set:
+        return None
+    opt = spec.optimise
+    return [opt.objective] + [c.key for c in opt.constraints]
+
+
 def resolve(study, design, overrides_of) -> list[Case]:
     """Apply each case's overrides to the base model; invalid combinations are kept, not raised."""
+    from ..analyses import analysis
     from ..model import dumps
 
     base = to_dict(study.base)
+    keys = case_keys(study)
+    if keys is not None and not analysis(study.base.kind).lean_possible(study.base, keys):
+        keys = None
     out = []
     for i, values in enumerate(design.cases):
         ov = overrides_of(study, values)
@@ -93,9 +113,12 @@ def resolve(study, design, overrides_of) -> list[Case]:
             out.append(Case(i, values, ov, None, key, msg))
             continue
         toml = dumps(model)
-        # a check of a model is another result than its run: another cache key
+        # a check of a model is another result than its run, a lean run (the keys named) another
+        # than the full run: other cache keys
         mode = study.spec.eval_mode
-        out.append(Case(i, values, ov, toml, model_key(toml if mode == "run" else f"# mode {mode}\n{toml}")))
+        lean = keys if keys is not None and analysis(model.kind).lean_possible(model, keys) else None
+        head = f"# mode {mode}\n" if mode != "run" else f"# summary {' '.join(lean)}\n" if lean else ""
+        out.append(Case(i, values, ov, toml, model_key(head + toml), keys=lean))
     return out
 
 
@@ -191,12 +214,15 @@ def _deadline(timeout):
     return progress
 
 
-def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str], timeout=None, mode: str = "run") -> dict:
+def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str], timeout=None, mode: str = "run",
+             keys=None) -> dict:
     """Run one case on a worker and return its record (also written to the cache when visible).
 
     Every failure of the case itself is caught and recorded, so the task only fails when the
     worker is lost; Dask then runs it again elsewhere. ``timeout`` (s) stops the case at its
     next progress report after that much wall time (status "failed", partial results kept).
+    ``keys``: the summary keys (patterns) the study needs, computed by the analysis's lean run
+    where it has one (no Dataset, criteria or diagnostics but the solve's; case_keys).
     """
     from ..api import run
     from ..model import loads
@@ -221,7 +247,13 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
 
             result = Result(model.kind, xr.Dataset(), analysis(model.kind).check_data(model))
         else:
-            result = run(model, progress=_deadline(timeout))
+            result = None
+            if keys:
+                from ..analyses import analysis
+
+                result = analysis(model.kind).run_lean(model, keys, progress=_deadline(timeout))
+            if result is None:
+                result = run(model, progress=_deadline(timeout))
         summary, ds, diagnostics, units = result.flat_summary(), result.ds, result.diagnostics, result.units
         status, message = result.status, result.message
         if status == "warning":  # the diagnostics, one line

@@ -308,7 +308,7 @@ def _execute(study, todo, cases, cache, series, records, counts, client, schedul
         prefix = f"drivedyn-case-{uuid.uuid4().hex[:8]}-"
         cache_dir, token = str(cache.resolve()), (cache / TOKEN).read_text().strip()
         futures = {client.submit(run_case, c.toml, k, cache_dir, token, series, study.spec.case_timeout, study.spec.eval_mode,
-                                 key=prefix + k, pure=False): k
+                                 c.keys, key=prefix + k, pure=False): k
                    for k, c in todo.items()}
         weight = {k: sum(1 for c in cases if c.key == k) for k in todo}  # duplicated cases share a run
         count_running = _executing(prefix)
