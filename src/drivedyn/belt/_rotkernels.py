@@ -247,9 +247,11 @@ def step_chunk(nsteps, t, h, R, P, A, S, W, RS, RW, gross_passes):
     om, q, qd = S.om, S.q, S.qd
     na, apul, akind, apar, atoff, atx, aty = A.na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y
     scx, scy, scvx, scvy = S.cx, S.cy, S.cvx, S.cvy
+    # the geometry of this state: after the first step, the one the last step left (the travel
+    # moves only in the tensioners' stage, whose geometry the belt's stage computes)
+    _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap)
     for _ in range(nsteps):
         # --- forces of this state: span tensions (elastic + damper), belt torques and hub forces
-        _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap)
         P_ax = 0.0
         for j in range(nk):
             uj = u[j]

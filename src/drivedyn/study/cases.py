@@ -290,9 +290,16 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
     return record
 
 
+#: the analyses this process has warmed (warm_worker: once per process, not per batch of cases)
+_WARM: set = set()
+
+
 def warm_worker(kind: str) -> str:
-    """Import the analysis on a worker and run its optional ``warmup()`` (numba compilation)."""
+    """Import the analysis on a worker and run its optional ``warmup()`` (numba compilation), once
+    per process (an optimisation sends every generation to the same workers)."""
     from ..model import analysis
 
-    analysis(kind).warmup()
+    if kind not in _WARM:
+        analysis(kind).warmup()
+        _WARM.add(kind)
     return f"{socket.gethostname()}:{os.getpid()}"
