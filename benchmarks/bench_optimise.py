@@ -16,7 +16,6 @@ designs must give the same digits).
 evaluates a case (``study.cases.run_case``), on one core: CPU per design, median of repeats.
 """
 import argparse
-import logging
 import resource
 import statistics
 import tempfile
@@ -40,17 +39,16 @@ def study_text(n: int) -> str:
 
 
 def many(n: int, workers: int):
-    from distributed import Client, LocalCluster
+    from distributed import Client
 
-    from drivedyn.study.execute import run_optimisation
+    from drivedyn.study.execute import _local_cluster, run_optimisation
 
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "study.toml"
         path.write_text(study_text(n))
         study = load_study(path)
         t0 = time.perf_counter()
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
-                               silence_logs=logging.ERROR)
+        cluster = _local_cluster(workers)      # the one a study starts
         client = Client(cluster)
         t1 = time.perf_counter()
         try:
@@ -72,7 +70,7 @@ def many(n: int, workers: int):
         print(f"  CPU per design: workers {(w1 - w0) / nd * 1e3:.1f} ms, this process {(c1 - c0) / nd * 1e3:.1f} ms, "
               f"total {((w1 - w0) + (c1 - c0)) / nd * 1e3:.1f} ms; case wall median "
               f"{statistics.median(ds['wall_time'].values) * 1e3:.1f} ms")
-        print(f"  statuses: " + ", ".join(f"{k} {v}" for k, v in run.counts.items() if isinstance(v, int) and v
+        print("  statuses: " + ", ".join(f"{k} {v}" for k, v in run.counts.items() if isinstance(v, int) and v
                                          and k in ("success", "warning", "failed", "invalid", "error", "lost", "missing")))
         print(f"  feasible {int(ds['feasible'].sum())}; best {study.spec.optimise.objective} = {o.objective:.6g}")
         for k, v in (o.values or {}).items():

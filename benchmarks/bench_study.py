@@ -13,10 +13,11 @@ import tempfile
 import time
 from pathlib import Path
 
-from distributed import Client, LocalCluster
+from distributed import Client
 
 import drivedyn
 from drivedyn.study import load_study, run_study
+from drivedyn.study.execute import _local_cluster
 
 STUDY = """
 name = "bench: 5PK pretension x load torque"
@@ -41,11 +42,8 @@ summary = ["pulleys.driven.slip", "spans.*.tension_mean"]
 
 
 def bench(study_path, workers, tmp):
-    import logging
-
     t0 = time.perf_counter()
-    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
-                           silence_logs=logging.ERROR)
+    cluster = _local_cluster(workers)      # the one a study starts
     client = Client(cluster)
     t1 = time.perf_counter()
     try:
