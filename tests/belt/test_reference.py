@@ -157,7 +157,13 @@ def test_converged_in_step(loaded):
     r2 = drivedyn.run(drivedyn.replace(m, {"simulation.step": r.summary["solver"]["step"] / 2}))
     for sp in ("driver-driven", "driven-driver"):
         assert r2.summary["spans"][sp]["tension_mean"] == pytest.approx(r.summary["spans"][sp]["tension_mean"], rel=5e-3)
-    assert r2.summary["pulleys"]["driven"]["slip"] == pytest.approx(r.summary["pulleys"]["driven"]["slip"], abs=2e-4)
+    # the window lies within the belt's first passage round the loop (1.1 s at 1.1 m/s), where the
+    # slip still drifts (0.164-0.186 % in 0.2-0.4 s, 0.197-0.201 % in 0.4-0.8 s); there the implicit
+    # scheme at its default step (h omega_c = 2 on the contact mode) lags its half step by 0.017
+    # points (0.022 with the chord-read anchors), the semi-implicit one by 0.0003. Later windows
+    # agree within 0.004 points, but their tension means wander by 0.8 % with the belt's pattern.
+    tol = 2e-4 if m.simulation.method == "semi-implicit" else 2.5e-4
+    assert r2.summary["pulleys"]["driven"]["slip"] == pytest.approx(r.summary["pulleys"]["driven"]["slip"], abs=tol)
 
 
 def test_converged_in_segments(loaded):

@@ -54,7 +54,8 @@ with the segments they anchor. Agrees with the semi-implicit scheme at about ten
 (docs/belt-drive.md, tests/belt/test_implicit.py).
 
 A step of ``step_chunk`` in stages: the joint forces (``_joint_forces``, both schemes); the segments:
-contact and friction with each segment's update (semi-implicit) or the contacts, the chain solve
+contact and friction with each segment's update (semi-implicit) or the joints' centripetal term
+(``_joint_transport``: A acts on the deviation from rolling), the contacts, the chain solve
 with its stick-slip active set (inline) and its velocity change (``_velocity_change``) and the
 update (implicit); the pulleys (``_step_pulleys``) and
 tensioners (``_step_arms``), both schemes; the accumulators (``_accumulate``).
@@ -798,6 +799,38 @@ def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jd
     return max(1, min(1000, int(REFACTOR_ANGLE / (h * wmax + 1e-300))))
 
 
+@njit(cache=True, inline="always", fastmath=FAST)
+def _joint_transport(n, h, hl, linear, eax, kax, bax, c, s, w, jdx, jdy, fx, fy, mz):
+    """Stage (implicit scheme): the joints' share of A acting on the gap's acceleration, not on its
+    linear part alone. A's joint term sig G^T G reads the velocity change G dv of a joint's two
+    ends, whose true gap acceleration also holds the ends' centripetal terms w_i^2 b + w_k^2 a. A
+    chain rolling round a pulley keeps its gaps, yet G dv = -h w^2 (chord): read alone, every
+    joint on a wrap pushed its segments apart by sig w^2 l, (h w)^2 EA / 2 (52 N at 0.024 rad per
+    step on the 6PK belt: the implicit scheme's loss of accuracy at a large turn per step). Here
+    the centripetal part joins the right-hand side, so that A acts on the deviation from rolling:
+    the force -sig G^T q, q = w_i^2 b + w_k^2 a."""
+    for j in range(n):
+        k = j - 1 if j > 0 else n - 1
+        kt = kax[j]
+        if not linear:
+            kt = kax[j] * max(eax, 1.0) * math.sqrt(jdx[j] * jdx[j] + jdy[j] * jdy[j]) ** (eax - 1.0)
+        sig = 0.5 * h * h * kt + h * bax[j]
+        ax = hl * c[k]
+        ay = hl * s[k]
+        bx = hl * c[j]
+        by = hl * s[j]
+        wi2 = w[j] * w[j]
+        wk2 = w[k] * w[k]
+        gx = -sig * (wi2 * bx + wk2 * ax)
+        gy = -sig * (wi2 * by + wk2 * ay)
+        fx[j] += gx
+        fy[j] += gy
+        mz[j] += by * gx - bx * gy
+        fx[k] -= gx
+        fy[k] -= gy
+        mz[k] += ay * gx - ax * gy
+
+
 @njit(cache=True, inline="always")
 def _velocity_change(n, nk, nC, ipl, dom, qv, cseg, zslot, lin_u, zc, yx, yy, yz, fx, fy, mz):
     """Stage (implicit scheme, chain solve): the step's acceleration (fx, fy, mz) = A_f^-1 F from the
@@ -1051,6 +1084,10 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
     na, a_pulley, a_kind, a_par, a_toff, a_tx, a_ty = A.na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y
     S_q, S_qd = S.q, S.qd
     tq_belt = np.zeros(nk)
+    tmx_ = np.zeros(ni)                  # per contact segment: the chord's tangent t_m, rolling prediction vp
+    tmy_ = np.zeros(ni)
+    vpx_ = np.zeros(ni)
+    vpy_ = np.zeros(ni)
     hubx = np.zeros(nk)
     huby = np.zeros(nk)
     nspan = span_geo.shape[0]
@@ -1097,6 +1134,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
             # whose force would exceed mu N lets go and the step is solved again (active set).
             nc = 0
             cchg = False
+            _joint_transport(n, h, hl, linear, eax, kax, bax, c, s, w, jdx, jdy, fx, fy, mz)
             # the spin damper, on segments whose neighbours two either side were free at the last step
             for i in range(n):
                 free = True
@@ -1158,12 +1196,28 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                     if N < 0.0:
                         N = 0.0
                     cN[i] = N
+                    # slip is read along the chord of the step (t_m: the tangent turned by half
+                    # the segment's turn round the pulley, h v_t / 2 dist), the direction of a
+                    # rolling segment's new velocity, whose difference from any other tangent
+                    # t is read off the rolling prediction vp (rv turned by the whole turn):
+                    # slip = om r - v_new . t - vp . (t_m - t). Read along the current tangent, a
+                    # rolling segment's new velocity shows a slip of v (h Omega)^2 / 8, 0.75 mm/s
+                    # at 0.016 rad per step: against a friction law of 1e-5 m/s the anchors let go.
+                    ps = 0.5 * h * vt_ / dist
+                    cps = math.cos(ps)
+                    sps = math.sin(ps)
+                    tmx_[i] = -ny * cps - nx * sps
+                    tmy_[i] = -ny * sps + nx * cps
+                    c2s = cps * cps - sps * sps
+                    s2s = 2.0 * sps * cps
+                    vpx_[i] = rvx * c2s - rvy * s2s
+                    vpy_[i] = rvx * s2s + rvy * c2s
                     if N > 0.0:
                         pcd += db * vn * vn
                         if stk[i] > 0.0:
                             cca[i] = ANCHOR * mu[i] * N / dv
                         else:
-                            sl = om[j] * pr[j] - (rvx * -ny + rvy * nx)
+                            sl = om[j] * pr[j] - (vpx_[i] * tmx_[i] + vpy_[i] * tmy_[i])
                             cT[i] = math.copysign(mu[i] * N, sl)
                     fx[i] += N * nx - cT[i] * ny
                     fy[i] += N * ny + cT[i] * nx
@@ -1276,7 +1330,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                         if fca[i] > 0.0:
                             tx = -fny[i]
                             ty = fnx[i]
-                            sl = om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
+                            sl = (om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
+                                  - vpx_[i] * (tmx_[i] - tx) - vpy_[i] * (tmy_[i] - ty))
                             yx[i] += fca[i] * sl * tx + cT[i] * cny[i]
                             yy[i] += fca[i] * sl * ty - cT[i] * cnx[i]
                             s0[j] += fca[i] * sl
@@ -1353,7 +1408,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                         else:
                             sg, kp, tx, ty, Tsl = -1.0, fca[i], -fny[i], fnx[i], cTb[i]
                         if kp > 0.0:
-                            sl = om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
+                            sl = (om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
+                                  - vpx_[i] * (tmx_[i] - tx) - vpy_[i] * (tmy_[i] - ty))
                             a0 += sg * kp * sl * tx
                             a1 += sg * kp * sl * ty
                             b00 -= sg * kp * tx * tx
@@ -1474,7 +1530,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                             kp = fca[i]
                             tx = -fny[i]
                             ty = fnx[i]
-                        T = kp * ((om[j] + dom[j]) * pr[j] - rvx * tx - rvy * ty)
+                        T = kp * ((om[j] + dom[j]) * pr[j] - rvx * tx - rvy * ty
+                                  - vpx_[i] * (tmx_[i] - tx) - vpy_[i] * (tmy_[i] - ty))
                         ak[i] = kp           # the anchor as this pass solved it (final loop)
                         atx[i] = tx
                         aty[i] = ty
@@ -1493,7 +1550,7 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                                 pend[npend] = i
                                 npend += 1
                     elif cT[i] != 0.0 and npass < PASSES - 1:
-                        sl = (om[j] + dom[j]) * pr[j] - rvx * -cny[i] - rvy * cnx[i]
+                        sl = (om[j] + dom[j]) * pr[j] - rvx * tmx_[i] - rvy * tmy_[i]
                         if sl * cT[i] < 0.0:
                             # a sliding segment whose slip the step would turn: it sticks
                             f0x[i] -= cT[i] * -cny[i]
@@ -1529,7 +1586,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                         tx = -ny
                         ty = nx
                     if N > 0.0:
-                        sl = (om[j] + dom[j]) * pr[j] - (vxs - pvx[j]) * tx - (vys - pvy[j]) * ty
+                        sl = ((om[j] + dom[j]) * pr[j] - (vxs - pvx[j]) * tx - (vys - pvy[j]) * ty
+                              - vpx_[i] * (tmx_[i] - tx) - vpy_[i] * (tmy_[i] - ty))
                         if ak[i] > 0.0:
                             T = ak[i] * sl        # the anchor's force at the solved velocities
                         pfr += T * sl

@@ -22,7 +22,12 @@ from .resolution import discretisation
 # Measured against the semi-implicit reference: the loaded accessory drive (0.002 rad per step at
 # its 34.5 us default) within 0.13 % in span tension; fead-runup's drive held at 3000 rpm
 # (23.6 m/s, 843 rad/s on the alternator) 0.2-1.7 % at 0.0084 rad, 2.7 % at 0.016, 34 % slip
-# at 0.032 before A's contact term followed the turn (_kernels: can); 2.4 % at 5000 rpm, 0.014
+# at 0.032 before A's contact term followed the turn (_kernels: can); 2.4 % at 5000 rpm, 0.014.
+# With the joints' centripetal term and the anchors' slip read along the chord (_kernels:
+# _joint_transport, t_m) fead-runup's drive at 0.016 rad per step agrees within 0.008 points of
+# slip and 0.9 % in span means (without them 0.08 points, and 9 % in a span minimum; minima still
+# 7 % high), but the 5PK held at 800 rad/s at 0.014 rad per step runs 3-5 % high in tension (1 % at
+# 0.007): an error not yet found, so the rule stays.
 TURN_PER_STEP = 0.003
 # a run has blown up once a segment or pulley surface moves faster than this (m/s) or a segment
 # sinks deeper than this share of the smallest pulley radius (_blow_up, _healthy)
