@@ -362,11 +362,12 @@ def energy(R, P, A, S, RS, RW):
 
 
 @njit(cache=True)
-def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, out_t, out_th, out_om, out_tq, out_tb,
+def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy, out_t, out_th, out_om, out_tq, out_tb,
                 out_hx, out_hy, out_pin, out_T, out_v, out_slip, out_gross, out_q, out_qd, out_omr, out_E,
                 out_work, out_diss):
     """Samples k0..k1-1 of ``steps`` steps each: interval means of the loads, tensions, speeds and
-    slips, the state at the sample's end, cumulative work in and dissipation. Returns the time."""
+    slips, the state at the sample's end, cumulative work in and dissipation and, with_energy, the
+    mechanical energy. Returns the time."""
     nk = R.nk
     interval = steps * h
     work = out_work[k0 - 1] if k0 > 0 else 0.0
@@ -405,5 +406,6 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, out_t, out_t
         for i in range(6):
             out_diss[k, i] = (out_diss[k - 1, i] if k > 0 else 0.0) + RW.acc_diss[i]
         out_work[k] = work
-        out_E[k] = energy(R, P, A, S, RS, RW)
+        if with_energy:
+            out_E[k] = energy(R, P, A, S, RS, RW)
     return t

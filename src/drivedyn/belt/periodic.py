@@ -172,8 +172,11 @@ def _sweep(model, progress):
         for i, w in enumerate(speeds):
             P = d.held_at(w)
             period = revs * 2 * math.pi / abs(w)
-            steps = max(1, int(math.ceil(period / sysm.step)))
-            h = period / steps
+            # the period's steps a whole number per sample: each period map evaluation records
+            # its samples, and the last one's are the periodic solution's
+            n_per = SAMPLES_PER_REV * revs
+            per_sample = max(1, int(math.ceil(period / n_per / sysm.step)))
+            h = period / (n_per * per_sample)
             S, W, RS, RW = d.S, d.W, d.RS, d.RW
             if x is None:
                 # from rest at the rigid drive's speeds (no start-up transient to wait for)
@@ -188,36 +191,34 @@ def _sweep(model, progress):
                 x[-nk:] *= ratio
             S.om[j] = w
 
-            def phi(xv, P=P, steps=steps, h=h):
+            def phi(xv, P=P, per_sample=per_sample, h=h):
                 d.set(xv)
                 S.thm[j] = 0.0
                 S.th[:] = 0.0         # the accessories' harmonics in phase with the crank each period
                 S.thr[:] = 0.0
-                RK.step_chunk(steps, 0.0, h, R, P, sysm.A, S, W, RS, RW, RT.SLIP_PASSES)
+                RK.run_samples(k, k + n_per, per_sample, 0.0, h, R, P, sysm.A, S, W, RS, RW, RT.SLIP_PASSES, False,
+                               *o.values())
                 return d.get()
 
+            # the samples kept are those of the last evaluation: the period from its start x, which
+            # the period map moved by less than the tolerance
             x, res, it = _anderson(phi, x, d.scale(w), TOLERANCE)
-            steps_total += steps * it
+            steps_total += n_per * per_sample * it
             if not np.all(np.isfinite(x)):
                 failure = f"diverged at {abs(w) * RPM:.0f} rpm (a state is not finite)"
                 break
             residual.append(res)
             iters.append(it)
-            # record the periodic solution: max(revs, 2) revolutions (whole engine cycles)
-            d.set(x)
-            S.thm[j] = 0.0
-            S.th[:] = 0.0
-            S.thr[:] = 0.0
             n_rec = ns_per
-            per_sample = max(1, int(math.ceil(max(revs, 2) * 2 * math.pi / abs(w) / n_rec / sysm.step)))
-            h_rec = max(revs, 2) * 2 * math.pi / abs(w) / n_rec / per_sample
-            RK.run_samples(k, k + n_rec, per_sample, 0.0, h_rec, R, P, sysm.A, S, W, RS, RW, RT.SLIP_PASSES,
-                           *o.values())
-            o["t"][k:k + n_rec] = t_total + (np.arange(n_rec) + 1) * per_sample * h_rec
-            table += [[t_total, float(w)], [t_total + n_rec * per_sample * h_rec, float(w)]]
-            t_total += n_rec * per_sample * h_rec + 1e-9
+            for c in range(n_per, n_rec):      # one-revolution periods: whole engine cycles, repeated
+                for arr in o.values():
+                    arr[k + c] = arr[k + c - n_per]
+                o["th"][k + c] += o["th"][k + n_per - 1]
+            dt = period / n_per
+            o["t"][k:k + n_rec] = t_total + (np.arange(n_rec) + 1) * dt
+            table += [[t_total, float(w)], [t_total + n_rec * dt, float(w)]]
+            t_total += n_rec * dt + 1e-9
             k += n_rec
-            steps_total += n_rec * per_sample
             if progress is not None:
                 progress((i + 1) / len(speeds), f"{abs(w) * RPM:.0f} rpm: {it} periods, residual {res:.2g}")
     except (Stopped, KeyboardInterrupt) as exc:

@@ -338,7 +338,7 @@ def run(model, progress=None):
     try:
         while k < nsamples:
             k1 = min(nsamples, k + chunk)
-            t = RK.run_samples(k, k1, steps, t, h, sysm.R, sysm.P, sysm.A, S, W, RS, RW, SLIP_PASSES, *o.values())
+            t = RK.run_samples(k, k1, steps, t, h, sysm.R, sysm.P, sysm.A, S, W, RS, RW, SLIP_PASSES, True, *o.values())
             if not (np.all(np.isfinite(o["om"][k1 - 1])) and np.all(np.isfinite(o["T"][k1 - 1]))):
                 bad = int(np.argmax(~np.isfinite(o["om"][k:k1]).any(axis=1) | ~np.isfinite(o["T"][k:k1]).any(axis=1)))
                 k += bad
