@@ -53,12 +53,27 @@ stick and slip by an active set solved in a small space over the factored matrix
 with the segments they anchor. Agrees with the semi-implicit scheme at about ten times its step
 (docs/belt-drive.md, tests/belt/test_implicit.py).
 
-A step of ``step_chunk`` in stages: the joint forces (``_joint_forces``, both schemes); the segments:
-contact and friction with each segment's update (semi-implicit) or the joints' centripetal term
-(``_joint_transport``: A acts on the deviation from rolling), the contacts, the chain solve
-with its stick-slip active set (inline) and its velocity change (``_velocity_change``) and the
-update (implicit); the pulleys (``_step_pulleys``) and
-tensioners (``_step_arms``), both schemes; the accumulators (``_accumulate``).
+A step of ``step_chunk`` in stages, each an inlined function of its own:
+
+  both schemes    ``_joint_forces``      the joints' elastic and damping forces and moments
+  semi-implicit   ``_update_semi``       each segment's new velocity, its contact and friction
+                                         implicit in it (``normal_force``, ``friction``), its move
+  implicit        ``_joint_transport``   the joints' centripetal term (A acts on the deviation
+                                         from rolling)
+                  ``_spin_damper``       free segments rotating against their neighbours
+                  ``_contacts``          contact (``normal_force``) and friction: anchors, sliding
+                  ``_factor``            the chain matrix and the pulleys' columns, when needed
+                  ``_base_solve``        y = A_f^-1 F_base
+                  ``_join``, ``_corrections``, ``_small_system``, ``_check``
+                                         the stick-slip active set, pass by pass
+                  ``_velocity_change``   dv from y, the pulleys' and the members' columns
+                  ``_update_implicit``   friction at the solved velocities, hub loads, the move
+  both schemes    ``_step_pulleys``      pulleys, engine orders, clutches and decouplers
+                  ``_step_arms``         tensioners (they move their pulleys' centres)
+                  ``_accumulate``        the step's share of the output accumulators
+
+Stages take the records (or plain arrays where a loop must vectorise) and are inlined into the
+time loop (numba IR): a record's field read there costs nothing more than a local array (measured).
 """
 import math
 from typing import NamedTuple
@@ -977,9 +992,653 @@ def _accumulate(h, hl, x, y, c, s, vx, vy, jfk, jdx, jdy, seg_n, seg_t, W, pax, 
     acc_diss[5] += diss_cl
 
 
+# the implicit scheme's per-segment scratch within a chunk: float columns of ``sc`` (n, NSC) ...
+(C_NX, C_NY,        # contact normal
+ C_P, C_N, C_KAP,   # penetration, normal force, A's contact coefficient
+ C_CA, C_T, C_TB,   # anchor slope now (N s/m; 0: sliding), sliding friction now and in F_base
+ C_CAN,             # centripetal acceleration v_t^2 / r (see _base_solve)
+ C_TMX, C_TMY,      # the chord's tangent t_m (see _contacts)
+ C_VPX, C_VPY,      # the rolling prediction vp
+ C_AK, C_ATX, C_ATY,    # the anchor as the last pass solved it: slope, direction
+ C_F0X, C_F0Y, C_F0Z,   # F_base: the step's forces with every segment in its factored state
+ NSC) = range(20)
+# ... and int columns of ``si`` (n, NSI): the pulley it touches (-1: none), the list of segments in
+# contact, a segment's place in the active set C (-1: none), the list of segments to join C
+(I_J, I_LIST, I_SLOT, I_PEND, NSI) = range(5)
+
+
+@njit(cache=True, inline="always")
+def _spin_damper(n, h, hl, spin_lim, ieff, w, jfk, jdx, jdy, seg_n, spd, cs, mz, pb):
+    """Stage (implicit scheme): SPIN_ZETA's damper on segments whose neighbours two either side were
+    free at the last step, where their rate departs from the neighbours' by spin_lim (SPIN_LIMIT).
+    Adds its moments to mz; returns pb less its power."""
+    for i in range(n):
+        free = True
+        for dk in range(-2, 3):
+            kk = i + dk
+            if kk < 0:
+                kk += n
+            elif kk >= n:
+                kk -= n
+            free = free and seg_n[kk] == 0.0
+        im = i - 1 if i > 0 else n - 1
+        ip = i + 1 if i < n - 1 else 0
+        spd[i] = w[im] - 2.0 * w[i] + w[ip] if free else 0.0
+        # the mode's stiffness T l (T the mean force of the segment's two joints) and its
+        # modified inertia I + h^2/2 T l; the alternating pattern sees 16 x the coefficient
+        ka = 0.5 * (jfk[i] * math.sqrt(jdx[i] * jdx[i] + jdy[i] * jdy[i])
+                    + jfk[ip] * math.sqrt(jdx[ip] * jdx[ip] + jdy[ip] * jdy[ip])) * 2.0 * hl
+        ka = max(ka, 0.0)
+        on = free and abs(spd[i]) > spin_lim
+        cs[i] = 2.0 * SPIN_ZETA * math.sqrt(ka * (ieff[i] + 0.5 * h * h * ka)) / 16.0 if on else 0.0
+    for i in range(n):
+        im = i - 1 if i > 0 else n - 1
+        ip = i + 1 if i < n - 1 else 0
+        ms = -(cs[im] * spd[im] - 2.0 * cs[i] * spd[i] + cs[ip] * spd[ip])
+        mz[i] += ms
+        pb -= ms * w[i]
+    return pb
+
+
+@njit(cache=True, inline="always")
+def _contacts(n, nk, h, hvb, g, m, c1, c2, bc, pmax, x, y, vx, vy, pcx, pcy, pvx, pvy, pr, cand_j, cand_skip, stk,
+              z, fy, si, sc):
+    """Stage (implicit scheme), gravity and contact: per segment the pulley it touches, its normal
+    and penetration, its normal force (``normal_force`` at the explicit normal velocity) and A's
+    contact coefficient, and the chord it rolls along. Returns (segments in contact, listed in
+    si[:, I_LIST]; contact damping power)."""
+    nc = 0
+    pcd = 0.0
+    for i in range(n):
+        fy[i] -= m[i] * g
+        si[i, I_J] = -1
+        jc = _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb)
+        for j in range(max(jc, 0), jc + 1):      # the contact pulley only (none: jc = -1)
+            rx = x[i] - pcx[j]
+            ry = y[i] - pcy[j]
+            d2 = rx * rx + ry * ry
+            if d2 >= pr[j] * pr[j]:
+                continue
+            dist = math.sqrt(d2)
+            nx = rx / dist
+            ny = ry / dist
+            p = pr[j] - dist
+            rvx = vx[i] - pvx[j]
+            rvy = vy[i] - pvy[j]
+            # the normal velocity at the middle of the last step's chord: a segment rolling
+            # round the pulley arrives along a chord that leaves the circle's normal by half
+            # its turn, which read at the end point is a separating v_t^2 h / 2 r (at 0.03 rad
+            # per step it took nearly all the damping's share of the normal force)
+            vt_ = -rvx * ny + rvy * nx
+            vn = rvx * nx + rvy * ny - 0.5 * h * vt_ * vt_ / dist
+            N, db = normal_force(c1[i], c2[i], bc[i], pmax, p, vn, 0.0)
+            si[i, I_J] = j
+            sc[i, C_NX] = nx
+            sc[i, C_NY] = ny
+            sc[i, C_P] = p
+            sc[i, C_KAP] = 0.5 * h * h * (c2[i] + 2.0 * c1[i] * p) + h * db
+            if N < 0.0:
+                N = 0.0
+            sc[i, C_N] = N
+            if N > 0.0:
+                pcd += db * vn * vn
+            # slip is read along the chord of the step (t_m: the tangent turned by half
+            # the segment's turn round the pulley, h v_t / 2 dist), the direction of a
+            # rolling segment's new velocity, whose difference from any other tangent
+            # t is read off the rolling prediction vp (rv turned by the whole turn):
+            # slip = om r - v_new . t - vp . (t_m - t). Read along the current tangent, a
+            # rolling segment's new velocity shows a slip of v (h Omega)^2 / 8, 0.75 mm/s
+            # at 0.016 rad per step: against a friction law of 1e-5 m/s the anchors let go.
+            ps = 0.5 * h * vt_ / dist
+            cps = math.cos(ps)
+            sps = math.sin(ps)
+            sc[i, C_TMX] = -ny * cps - nx * sps
+            sc[i, C_TMY] = -ny * sps + nx * cps
+            c2s = cps * cps - sps * sps
+            s2s = 2.0 * sps * cps
+            sc[i, C_VPX] = rvx * c2s - rvy * s2s
+            sc[i, C_VPY] = rvx * s2s + rvy * c2s
+            break       # pulleys do not overlap: one contact per segment
+        if si[i, I_J] < 0:
+            stk[i] = 0.0
+            z[i] = 0.0
+        else:
+            si[nc, I_LIST] = i
+            nc += 1
+    return nc, pcd
+
+
+@njit(cache=True, inline="always")
+def _friction(n, mu, dv, om, pr, stk, fkap, fx, fy, mz, si, sc):
+    """Stage (implicit scheme), friction: by its state at the last step, a contact segment is
+    anchored to the pulley surface (slope ANCHOR mu N / Delta_v, in A) or slides with mu N
+    against its slip (explicit); the contact forces join the step's forces, kept as F_base.
+    Returns whether the contact set differs from the one A was factored with."""
+    cchg = False
+    for i in range(n):
+        j = si[i, I_J]
+        sc[i, C_T] = 0.0
+        sc[i, C_CA] = 0.0
+        sc[i, C_AK] = 0.0
+        if j >= 0:
+            N = sc[i, C_N]
+            if N > 0.0:
+                if stk[i] > 0.0:
+                    sc[i, C_CA] = ANCHOR * mu[i] * N / dv
+                else:
+                    sl = om[j] * pr[j] - (sc[i, C_VPX] * sc[i, C_TMX] + sc[i, C_VPY] * sc[i, C_TMY])
+                    sc[i, C_T] = math.copysign(mu[i] * N, sl)
+            fx[i] += N * sc[i, C_NX] - sc[i, C_T] * sc[i, C_NY]
+            fy[i] += N * sc[i, C_NY] + sc[i, C_T] * sc[i, C_NX]
+        if (j >= 0) != (fkap[i] > 0.0):
+            cchg = True
+        sc[i, C_F0X] = fx[i]
+        sc[i, C_F0Y] = fy[i]
+        sc[i, C_F0Z] = mz[i]
+    return cchg
+
+
+@njit(cache=True, inline="always")
+def _factored_state(n, h, si, sc, fkap, fnx, fny, fca, kat, zslot):
+    """Stage (implicit scheme): the contact and friction state A is about to be factored with
+    (contact coefficients, normals, anchor slopes); empties the cache of columns."""
+    for i in range(n):
+        fkap[i] = sc[i, C_KAP] if si[i, I_J] >= 0 else 0.0
+        fnx[i] = sc[i, C_NX]
+        fny[i] = sc[i, C_NY]
+        fca[i] = sc[i, C_CA]
+        kat[i] = h * sc[i, C_CA]
+        zslot[i] = -1
+
+
+@njit(cache=True, inline="always")
+def _pulley_columns(n, nk, nc, pr, fca, fnx, fny, si, ipl, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r, lin_u, lin_g):
+    """Stage (implicit scheme, after a factorisation): each implicit pulley's anchors
+    g_k = sum fca r tau_f and their columns U_k = A_f^-1 g_k (lin_u); lin_g holds
+    G[j, k] = g_j . U_k and, in column nk, R_j = sum fca r."""
+    for jj in range(nk):
+        for kk in range(nk + 1):
+            lin_g[jj, kk] = 0.0
+    for jj in range(nk):
+        if not ipl[jj]:
+            continue
+        for i in range(n):
+            if fca[i] > 0.0 and si[i, I_J] == jj:
+                ux[i] = fca[i] * pr[jj] * -fny[i]
+                uy[i] = fca[i] * pr[jj] * fnx[i]
+                lin_g[jj, nk] += fca[i] * pr[jj]
+            else:
+                ux[i] = 0.0
+                uy[i] = 0.0
+            uz[i] = 0.0
+        _chain.solve(n, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r)
+        for i in range(n):
+            lin_u[jj, i, 0] = ux[i]
+            lin_u[jj, i, 1] = uy[i]
+            lin_u[jj, i, 2] = uz[i]
+    for q in range(nc):
+        i = si[q, I_LIST]
+        jj = si[i, I_J]
+        if fca[i] > 0.0 and ipl[jj]:
+            gx = fca[i] * pr[jj] * -fny[i]
+            gy = fca[i] * pr[jj] * fnx[i]
+            for kk in range(nk):
+                if ipl[kk]:
+                    lin_g[jj, kk] += gx * lin_u[kk, i, 0] + gy * lin_u[kk, i, 1]
+
+
+@njit(cache=True, inline="always")
+def _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, pr, fkap, fnx, fny, fca, si, cseg, sc, yx, yy, yz, s0, gyv, ipl,
+                lin_dinv, lin_y, lin_x, lin_r):
+    """Stage (implicit scheme, chain solve): y = A_f^-1 F_base, F_base the forces with every contact
+    segment in its factored state (anchored along its factored tangent with its factored slope,
+    or sliding with its friction now), and per pulley the base friction sum s0 and g_j . y.
+    Empties C (nC members before); lists in si[:, I_PEND] the segments whose state differs from
+    the factored one. Returns their number."""
+    for p in range(nC):
+        si[cseg[p], I_SLOT] = -1
+    npend = 0
+    for i in range(n):
+        yx[i] = sc[i, C_F0X]
+        yy[i] = sc[i, C_F0Y]
+        yz[i] = sc[i, C_F0Z]
+    for jj in range(nk):
+        s0[jj] = 0.0
+        gyv[jj] = 0.0
+    for q in range(nc):
+        i = si[q, I_LIST]
+        j = si[i, I_J]
+        cT = sc[i, C_T]
+        sc[i, C_TB] = cT
+        if fkap[i] > 0.0:
+            # the contact term of A, fkap fn fn^T, would read a segment's turn round the pulley
+            # (its velocity turning inward by h v_t^2 / r) as an inward normal velocity change
+            # and push back by fkap v_t^2 / r (outward; 90 N per segment at 23.6 m/s on a 75 mm
+            # crank at 38.5 us, twice its normal force): taken out here, so that A's contact
+            # term acts on the deviation from rolling round the pulley
+            tvx = vx[i] - pvx[j]
+            tvy = vy[i] - pvy[j]
+            vt = -tvx * fny[i] + tvy * fnx[i]
+            can = vt * vt / (pr[j] - sc[i, C_P])
+            sc[i, C_CAN] = can
+            yx[i] -= fkap[i] * can * fnx[i]
+            yy[i] -= fkap[i] * can * fny[i]
+        else:
+            sc[i, C_CAN] = 0.0
+        if fca[i] > 0.0:
+            tx = -fny[i]
+            ty = fnx[i]
+            sl = (om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
+                  - sc[i, C_VPX] * (sc[i, C_TMX] - tx) - sc[i, C_VPY] * (sc[i, C_TMY] - ty))
+            yx[i] += fca[i] * sl * tx + cT * sc[i, C_NY]
+            yy[i] += fca[i] * sl * ty - cT * sc[i, C_NX]
+            s0[j] += fca[i] * sl
+        else:
+            s0[j] += cT
+        if (fca[i] > 0.0) != (sc[i, C_CA] > 0.0):
+            si[npend, I_PEND] = i
+            npend += 1
+    _chain.solve(n, yx, yy, yz, lin_dinv, lin_y, lin_x, lin_r)
+    for q in range(nc):
+        i = si[q, I_LIST]
+        j = si[i, I_J]
+        if fca[i] > 0.0 and ipl[j]:
+            gyv[j] += fca[i] * pr[j] * (-fny[i] * yx[i] + fnx[i] * yy[i])
+    return npend
+
+
+@njit(cache=True, inline="always")
+def _join(n, nC, npend, si, cseg, zslot, zc, lin_cnt, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r):
+    """Stage (implicit scheme, active set): the segments in si[:, I_PEND] join C, their columns
+    Z = A_f^-1 [e_x e_y] solved unless cached. Returns (members, whether C or the cache is full:
+    then the caller refactors)."""
+    zcap = zc.shape[0] // 2
+    for a in range(npend):
+        i = si[a, I_PEND]
+        if si[i, I_SLOT] >= 0:
+            continue
+        if nC == CMAX or (zslot[i] < 0 and lin_cnt[2] == zcap):
+            return nC, True
+        if zslot[i] < 0:
+            sl_ = lin_cnt[2]
+            lin_cnt[2] += 1
+            zslot[i] = sl_
+            for col in range(2):
+                for r in range(n):
+                    ux[r] = 0.0
+                    uy[r] = 0.0
+                    uz[r] = 0.0
+                if col == 0:
+                    ux[i] = 1.0
+                else:
+                    uy[i] = 1.0
+                _chain.solve(n, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r)
+                for r in range(n):
+                    zc[2 * sl_ + col, r, 0] = ux[r]
+                    zc[2 * sl_ + col, r, 1] = uy[r]
+                    zc[2 * sl_ + col, r, 2] = uz[r]
+        cseg[nC] = i
+        si[i, I_SLOT] = nC
+        nC += 1
+    return nC, False
+
+
+@njit(cache=True, inline="always")
+def _corrections(nC, vx, vy, om, pvx, pvy, pr, fnx, fny, fca, si, sc, cseg, cpar):
+    """Stage (implicit scheme, active set): each member's force correction (its state now less its
+    factored state), affine in its velocity change and its pulley's: phi_c = a + B dv_c + e dw_j,
+    and its torque part alpha + beta . dv_c + gamma dw_j, into cpar (a0, a1, b00, b01, b11, e0,
+    e1, alpha, beta0, beta1, gamma)."""
+    for p in range(nC):
+        i = cseg[p]
+        j = si[i, I_J]
+        ctx = -sc[i, C_NY]
+        cty = sc[i, C_NX]
+        a0 = 0.0
+        a1 = 0.0
+        b00 = 0.0
+        b01 = 0.0
+        b11 = 0.0
+        e0 = 0.0
+        e1 = 0.0
+        al = 0.0
+        be0 = 0.0
+        be1 = 0.0
+        ga = 0.0
+        for side in range(2):
+            # + its state now (anchor along the current tangent, or its sliding friction),
+            # - its factored state (anchor along the factored tangent, or its friction in F_base)
+            if side == 0:
+                sg, kp, tx, ty, Tsl = 1.0, sc[i, C_CA], ctx, cty, sc[i, C_T]
+            else:
+                sg, kp, tx, ty, Tsl = -1.0, fca[i], -fny[i], fnx[i], sc[i, C_TB]
+            if kp > 0.0:
+                sl = (om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
+                      - sc[i, C_VPX] * (sc[i, C_TMX] - tx) - sc[i, C_VPY] * (sc[i, C_TMY] - ty))
+                a0 += sg * kp * sl * tx
+                a1 += sg * kp * sl * ty
+                b00 -= sg * kp * tx * tx
+                b01 -= sg * kp * tx * ty
+                b11 -= sg * kp * ty * ty
+                e0 += sg * kp * pr[j] * tx
+                e1 += sg * kp * pr[j] * ty
+                al += sg * kp * sl
+                be0 -= sg * kp * tx
+                be1 -= sg * kp * ty
+                ga += sg * kp * pr[j]
+            else:
+                a0 += sg * Tsl * ctx
+                a1 += sg * Tsl * cty
+                al += sg * Tsl
+        cpar[p, 0] = a0
+        cpar[p, 1] = a1
+        cpar[p, 2] = b00
+        cpar[p, 3] = b01
+        cpar[p, 4] = b11
+        cpar[p, 5] = e0
+        cpar[p, 6] = e1
+        cpar[p, 7] = al
+        cpar[p, 8] = be0
+        cpar[p, 9] = be1
+        cpar[p, 10] = ga
+
+
+@njit(cache=True, inline="always")
+def _small_system(h, nk, nC, pr, pinv_i, mext, zslot, zc, lin_u, lin_g, si, cseg, cpar, qm, qv, yx, yy, s0, gyv,
+                  ipl, dom, lin_cnt):
+    """Stage (implicit scheme, active set): the members' force corrections and the implicit
+    pulleys' speed changes from the dense (2 nC + nk) system: rows 2p, 2p + 1 for member p, row
+    2 nC + j for pulley j (its torque balance over the step, applied torque mext). Solved into
+    qv; the speed changes into dom."""
+    msz = 2 * nC + nk
+    for r in range(msz):
+        qv[r] = 0.0
+        for q in range(msz):
+            qm[r, q] = 0.0
+    for p in range(nC):
+        i = cseg[p]
+        j = si[i, I_J]
+        b00 = cpar[p, 2]
+        b01 = cpar[p, 3]
+        b11 = cpar[p, 4]
+        r0 = 2 * p
+        qm[r0, r0] = 1.0
+        qm[r0 + 1, r0 + 1] = 1.0
+        for d in range(nC):
+            sd = 2 * zslot[cseg[d]]
+            for col in range(2):
+                z0 = zc[sd + col, i, 0]
+                z1 = zc[sd + col, i, 1]
+                qm[r0, 2 * d + col] -= h * (b00 * z0 + b01 * z1)
+                qm[r0 + 1, 2 * d + col] -= h * (b01 * z0 + b11 * z1)
+        for kk in range(nk):
+            if ipl[kk]:
+                u0 = lin_u[kk, i, 0]
+                u1 = lin_u[kk, i, 1]
+                qm[r0, 2 * nC + kk] -= h * (b00 * u0 + b01 * u1)
+                qm[r0 + 1, 2 * nC + kk] -= h * (b01 * u0 + b11 * u1)
+        qm[r0, 2 * nC + j] -= cpar[p, 5]
+        qm[r0 + 1, 2 * nC + j] -= cpar[p, 6]
+        qv[r0] = cpar[p, 0] + h * (b00 * yx[i] + b01 * yy[i])
+        qv[r0 + 1] = cpar[p, 1] + h * (b01 * yx[i] + b11 * yy[i])
+    for jj in range(nk):
+        r0 = 2 * nC + jj
+        if not ipl[jj]:
+            qm[r0, r0] = 1.0
+            continue
+        rj = pr[jj]
+        qm[r0, r0] += 1.0 / pinv_i[jj] + h * rj * lin_g[jj, nk]
+        for kk in range(nk):
+            qm[r0, 2 * nC + kk] -= h * h * lin_g[jj, kk]
+        for d in range(nC):
+            qm[r0, 2 * d] -= h * h * lin_u[jj, cseg[d], 0]
+            qm[r0, 2 * d + 1] -= h * h * lin_u[jj, cseg[d], 1]
+        qv[r0] = h * mext[jj] - h * rj * s0[jj] + h * h * gyv[jj]
+        for p in range(nC):
+            i = cseg[p]
+            if si[i, I_J] != jj:
+                continue
+            be0 = cpar[p, 8]
+            be1 = cpar[p, 9]
+            qm[r0, r0] += h * rj * cpar[p, 10]
+            for kk in range(nk):
+                if ipl[kk]:
+                    qm[r0, 2 * nC + kk] += h * h * rj * (be0 * lin_u[kk, i, 0] + be1 * lin_u[kk, i, 1])
+            for d in range(nC):
+                sd = 2 * zslot[cseg[d]]
+                for col in range(2):
+                    qm[r0, 2 * d + col] += h * h * rj * (be0 * zc[sd + col, i, 0] + be1 * zc[sd + col, i, 1])
+            qv[r0] -= h * rj * (cpar[p, 7] + h * (be0 * yx[i] + be1 * yy[i]))
+    _small_solve(msz, qm, qv)
+    for jj in range(nk):
+        dom[jj] = qv[2 * nC + jj]
+    lin_cnt[3] += 1
+
+
+@njit(cache=True, inline="always")
+def _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, pr, fnx, fny, fca, stk, zslot, zc, lin_u,
+           lin_stat, si, sc, cseg, yx, yy, qv, dom, ipl):
+    """Stage (implicit scheme, active set): every contact segment at the velocity pass npass
+    solved. An anchor whose force would exceed mu N lets go (slides with mu N this step) in any
+    of the PASSES, a sliding segment whose slip the step would turn sticks in all but the last.
+    Changed segments not in C join si[:, I_PEND]. Returns (whether any changed, their number)."""
+    changed = False
+    for q in range(nc):
+        i = si[q, I_LIST]
+        N = sc[i, C_N]
+        if N <= 0.0:
+            continue
+        j = si[i, I_J]
+        ax_ = yx[i]
+        ay_ = yy[i]
+        for kk in range(nk):
+            if ipl[kk]:
+                ax_ += dom[kk] * lin_u[kk, i, 0]
+                ay_ += dom[kk] * lin_u[kk, i, 1]
+        for d in range(nC):
+            sd = 2 * zslot[cseg[d]]
+            ax_ += qv[2 * d] * zc[sd, i, 0] + qv[2 * d + 1] * zc[sd + 1, i, 0]
+            ay_ += qv[2 * d] * zc[sd, i, 1] + qv[2 * d + 1] * zc[sd + 1, i, 1]
+        rvx = vx[i] + h * ax_ - pvx[j]
+        rvy = vy[i] + h * ay_ - pvy[j]
+        nx = sc[i, C_NX]
+        ny = sc[i, C_NY]
+        if sc[i, C_CA] > 0.0:
+            if si[i, I_SLOT] >= 0:
+                kp = sc[i, C_CA]
+                tx = -ny
+                ty = nx
+            else:
+                kp = fca[i]
+                tx = -fny[i]
+                ty = fnx[i]
+            T = kp * ((om[j] + dom[j]) * pr[j] - rvx * tx - rvy * ty
+                      - sc[i, C_VPX] * (sc[i, C_TMX] - tx) - sc[i, C_VPY] * (sc[i, C_TMY] - ty))
+            sc[i, C_AK] = kp           # the anchor as this pass solved it (the update reads it)
+            sc[i, C_ATX] = tx
+            sc[i, C_ATY] = ty
+            if abs(T) > mu[i] * N and npass < PASSES:
+                # lets go: slides this step with mu N
+                Ts = math.copysign(mu[i] * N, T)
+                sc[i, C_AK] = 0.0
+                sc[i, C_CA] = 0.0
+                stk[i] = 0.0
+                sc[i, C_T] = Ts
+                sc[i, C_F0X] += Ts * -ny
+                sc[i, C_F0Y] += Ts * nx
+                changed = True
+                lin_stat[0] += 1
+                if si[i, I_SLOT] < 0:
+                    si[npend, I_PEND] = i
+                    npend += 1
+        elif sc[i, C_T] != 0.0 and npass < PASSES - 1:
+            cT = sc[i, C_T]
+            sl = (om[j] + dom[j]) * pr[j] - rvx * sc[i, C_TMX] - rvy * sc[i, C_TMY]
+            if sl * cT < 0.0:
+                # a sliding segment whose slip the step would turn: it sticks
+                sc[i, C_F0X] -= cT * -ny
+                sc[i, C_F0Y] -= cT * nx
+                sc[i, C_T] = 0.0
+                sc[i, C_CA] = ANCHOR * mu[i] * N / dv
+                stk[i] = 1.0
+                changed = True
+                lin_stat[1] += 1
+                if si[i, I_SLOT] < 0:
+                    si[npend, I_PEND] = i
+                    npend += 1
+    return changed, npend
+
+
+@njit(cache=True, inline="always")
+def _update_implicit(n, h, dv, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, pr, fx, fy, mz, seg_n, seg_t, seg_p, stk,
+                     fkap, fnx, fny, si, sc, dom, tq_belt, hub):
+    """Stage (implicit scheme): each segment takes its velocity change (fx, fy, mz from
+    ``_velocity_change``) and moves; its friction at the solved velocities (an anchor's force,
+    or mu N sliding), the friction power, belt torques and hub forces (hub: rows x, y), the normal
+    force the step applied (N and A's contact term), and its stick-slip state for the next step.
+    Returns the friction power."""
+    pfr = 0.0
+    for i in range(n):
+        vxs = vx[i] + h * fx[i]
+        vys = vy[i] + h * fy[i]
+        w[i] += h * mz[i]
+        j = si[i, I_J]
+        if j >= 0:
+            N = sc[i, C_N]
+            T = sc[i, C_T]
+            nx = sc[i, C_NX]
+            ny = sc[i, C_NY]
+            ak = sc[i, C_AK]
+            if ak > 0.0:
+                tx = sc[i, C_ATX]
+                ty = sc[i, C_ATY]
+            else:
+                tx = -ny
+                ty = nx
+            if N > 0.0:
+                sl = ((om[j] + dom[j]) * pr[j] - (vxs - pvx[j]) * tx - (vys - pvy[j]) * ty
+                      - sc[i, C_VPX] * (sc[i, C_TMX] - tx) - sc[i, C_VPY] * (sc[i, C_TMY] - ty))
+                if ak > 0.0:
+                    T = ak * sl        # the anchor's force at the solved velocities
+                pfr += T * sl
+                if ak == 0.0:
+                    # a sliding segment whose slip reached the band or turned sticks next step
+                    stk[i] = 1.0 if (abs(sl) < dv or sl * T < 0.0) else 0.0
+                tq_belt[j] -= pr[j] * T
+            else:
+                stk[i] = 0.0
+            # the normal force the step applied: N and A's contact term (see _base_solve)
+            N -= fkap[i] * (fnx[i] * fx[i] + fny[i] * fy[i] + sc[i, C_CAN])
+            hub[0, j] -= N * nx + T * tx
+            hub[1, j] -= N * ny + T * ty
+            seg_n[i] = N
+            seg_t[i] = T
+            seg_p[i] = sc[i, C_P]
+        else:
+            seg_n[i] = 0.0
+            seg_t[i] = 0.0
+            seg_p[i] = 0.0
+        _move(i, h, vxs, vys, x, y, vx, vy, w, phi, c, s)
+    return pfr
+
+
+@njit(cache=True, inline="always")
+def _contact_semi(i, nk, h, hm, hvb, vxs, vys, c1, c2, bc, mu, pmax, law, dv, dmax, x, y, pcx, pcy, pvx, pvy, pr, om,
+                  z, cand_j, cand_skip, tq_belt, hubx, huby):
+    """Stage (semi-implicit scheme), contact and friction of segment i at its new velocity
+    (vxs, vys) before they act: the contact damping and the regularised friction implicit in it
+    (``normal_force``, ``friction``: a scalar equation, the pulley's speed frozen over the step);
+    adds to the pulley's belt torque and hub force. Returns (vxs, vys after, N, T, penetration,
+    contact damping power, friction power)."""
+    Ntot = 0.0
+    Ttot = 0.0
+    pen = 0.0
+    pcd = 0.0
+    pfr = 0.0
+    incontact = False
+    jc = _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb)
+    for j in range(max(jc, 0), jc + 1):      # the contact pulley only (none: jc = -1)
+        rx = x[i] - pcx[j]
+        ry = y[i] - pcy[j]
+        d2 = rx * rx + ry * ry
+        if d2 >= pr[j] * pr[j]:
+            continue
+        incontact = True
+        dist = math.sqrt(d2)
+        inv = 1.0 / dist
+        nx = rx * inv
+        ny = ry * inv
+        p = pr[j] - dist
+        pen = p
+        # velocities relative to the pulley centre (a tensioner moves it)
+        rvx = vxs - pvx[j]
+        rvy = vys - pvy[j]
+        vn = rvx * nx + rvy * ny
+        N, db = normal_force(c1[i], c2[i], bc[i], pmax, p, vn, hm)
+        if N <= 0.0:
+            continue
+        vn_new = vn + hm * N
+        pcd += db * vn_new * vn_new
+        # slip of the pulley surface relative to the segment, along tau = Z x n = (-ny, nx)
+        T, sl = friction(mu[i], law, dv, dmax, N, om[j] * pr[j] - (rvx * -ny + rvy * nx), hm, h, z, i)
+        pfr += T * sl
+        # force N n + T tau, tau = Z x n = (-ny, nx)
+        vxs += hm * (N * nx + T * -ny)
+        vys += hm * (N * ny + T * nx)
+        Ntot += N
+        Ttot += T
+        tq_belt[j] -= pr[j] * T
+        hubx[j] -= N * nx + T * -ny
+        huby[j] -= N * ny + T * nx
+    if not incontact:
+        z[i] = 0.0
+    return vxs, vys, Ntot, Ttot, pen, pcd, pfr
+
+
+class Scratch(NamedTuple):
+    """What a call of ``step_chunk`` works in, allocated by it for ``_advance`` (which allocates
+    nothing). Per segment: the implicit scheme's columns C_* (sc) and I_* (si), the spin damper's
+    second differences and coefficients (spd, cs), A's anchor terms (kat), the base solve y and a
+    column being solved (u) (sized 0 for the semi-implicit scheme); copies of 1 / m, 1 / I and the
+    joints' moments (jmk, jmi), h / m, h / I and the scaled inertia. The active set C: its members,
+    their corrections and the small system. Per pulley: the base friction sum s0, g_j . y, the
+    speed change dom, the applied torque, whether the chain solve integrates it (ipl), the belt's
+    torque and its force (hub: rows x, y)."""
+    sc: np.ndarray
+    si: np.ndarray
+    spd: np.ndarray
+    cs: np.ndarray
+    kat: np.ndarray
+    yx: np.ndarray
+    yy: np.ndarray
+    yz: np.ndarray
+    ux: np.ndarray
+    uy: np.ndarray
+    uz: np.ndarray
+    inv_m: np.ndarray
+    inv_i: np.ndarray
+    jmk: np.ndarray
+    jmi: np.ndarray
+    hm: np.ndarray
+    hi: np.ndarray
+    ieff: np.ndarray
+    cseg: np.ndarray
+    cpar: np.ndarray
+    qm: np.ndarray
+    qv: np.ndarray
+    s0: np.ndarray
+    gyv: np.ndarray
+    dom: np.ndarray
+    mext: np.ndarray
+    ipl: np.ndarray
+    tq_belt: np.ndarray
+    hub: np.ndarray
+
+
 @njit(cache=True)
 def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
-    """Advance ``nsteps`` semi-implicit Euler steps from time t; returns the new time.
+    """Advance ``nsteps`` steps from time t (semi-implicit Euler, or the implicit scheme with
+    ``lin`` = True and ``B.implicit``); returns the new time.
 
     Accumulates into W (added h * value, the caller divides by the interval): acc_tq_ext[j]
     applied torque, acc_tq_belt[j] belt torque on the pulley, acc_hubx/y[j] belt force on the
@@ -988,126 +1647,77 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
     (along the segment) of tracked segments, acc_diss[0:5] dissipation in axial dampers, bending
     dampers, contact damping, friction, tensioners, clutches. Tensioners (A) move their pulleys' centres
     in S (cx, cy, cvx, cvy); contact and friction act on the velocity relative to the centre.
+    The stages of a step: see the module's doc.
     """
-    # every array of the records taken out once, before the loops: reading a record's field in
-    # the time loop costs a reference-count pair per read
-    n, nk, hl, g, iscale, eax, eb, linear, turn = B.n, P.nk, B.hl, B.g, B.iscale, B.eax, B.eb, B.linear, B.turn
-    x, y, phi, c, s, vx, vy, w, th, om, z = S.x, S.y, S.phi, S.c, S.s, S.vx, S.vy, S.w, S.th, S.om, S.z
-    c1, c2, bc, mu, pmax, law, dv, dmax = Ct
-    kax, bax, kb, bb, inertia = B.kax, B.bax, B.kb, B.bb, B.inertia
-    pcx, pcy, pvx, pvy, pr = S.cx, S.cy, S.cvx, S.cvy, P.r
-    fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, seg_p = W.fx, W.fy, W.mz, W.jfk, W.jdx, W.jdy, W.seg_n, W.seg_t, W.seg_p
-    span_geo, span_joint, track_seg = W.span_geo, W.span_joint, W.track
-    acc_pin, acc_tq_ext, acc_tq_belt, acc_hubx, acc_huby = W.acc_pin, W.acc_tq_ext, W.acc_tq_belt, W.acc_hubx, W.acc_huby
-    acc_span, acc_track, acc_diss = W.acc_span, W.acc_track, W.acc_diss
-    pmode, pinv_i = P.mode, P.inv_i
     # lin: None for the semi-implicit scheme, True for the implicit one (B.implicit): its type
     # prunes the implicit scheme's branch at compile time, so that the semi-implicit kernel does
     # not compile it (cold start 38 s against 17 s with it compiled in, measured)
     implicit = B.implicit
     if implicit != (lin is not None):
         raise ValueError("step_chunk: lin must be given for the implicit scheme only")
+    n, nk = B.n, P.nk
+    ni = n if implicit else 0
+    nci = CMAX if implicit else 0
+    msz = 2 * nci + nk if implicit else 0
+    ipl = np.zeros(nk, dtype=np.bool_)
+    for j in range(nk):
+        ipl[j] = implicit and P.mode[j] == 0 and P.cl_kind[j] == 0
+    f = np.zeros
+    X = Scratch(f((ni, NSC)), np.full((ni, NSI), -1, dtype=np.int64), f(ni), f(ni), f(ni), f(ni), f(ni), f(ni), f(ni),
+                f(ni), f(ni), B.inv_m.copy(), B.inv_i.copy(), f(n), f(n), h * B.inv_m, h / (B.inertia * B.iscale),
+                B.inertia * B.iscale, np.zeros(nci, dtype=np.int64), f((nci, 11)), f((msz, msz)), f(msz), f(nk),
+                f(nk), f(nk), f(nk), ipl, f(nk), f((2, nk)))
+    t = _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X)
+    W.tq_belt[:] = X.tq_belt
+    W.hubx[:] = X.hub[0]
+    W.huby[:] = X.hub[1]
+    W.energy[0] = energy(B, Ct, P, A, S)   # here, not by a second call from Python (12 us per call)
+    _probe(n, nk, S, P, W)
+    return t
+
+
+# Compiled without numba's reference counting (_nrt=False: it allocates nothing, ``step_chunk``
+# gives it its scratch): each array an inlined stage takes, or a record's field it reads, in the
+# time loop otherwise costs an atomic reference-count pair, which was half of the semi-implicit
+# step (6.3 against 3.4 us at 150 segments, measured with numba's atomicity switched off)
+@njit(cache=True, _nrt=False)
+def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
+    """The time loop of ``step_chunk``, in stages (the module's doc)."""
+    # every array of the records and the scratch taken out once, before the loops
+    n, nk, hl, g, eax, eb, linear, turn = B.n, P.nk, B.hl, B.g, B.eax, B.eb, B.linear, B.turn
+    x, y, phi, c, s, vx, vy, w, th, om, z = S.x, S.y, S.phi, S.c, S.s, S.vx, S.vy, S.w, S.th, S.om, S.z
+    c1, c2, bc, mu, pmax, law, dv, dmax = Ct
+    kax, bax, kb, bb = B.kax, B.bax, B.kb, B.bb
+    pcx, pcy, pvx, pvy, pr = S.cx, S.cy, S.cvx, S.cvy, P.r
+    fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, seg_p = W.fx, W.fy, W.mz, W.jfk, W.jdx, W.jdy, W.seg_n, W.seg_t, W.seg_p
+    acc_diss, pinv_i = W.acc_diss, P.inv_i
     lin_d, lin_o, lin_e, lin_dinv, lin_y, lin_x, lin_r = W.lin_d, W.lin_o, W.lin_e, W.lin_dinv, W.lin_y, W.lin_x, W.lin_r
-    lin_sig, lin_gam, lin_cnt, m_, lin_geo = W.lin_sig, W.lin_gam, W.lin_cnt, B.m, W.lin_geo
-    ieff = inertia * iscale
+    lin_sig, lin_gam, lin_cnt, lin_stat, m_, lin_geo = W.lin_sig, W.lin_gam, W.lin_cnt, W.lin_stat, B.m, W.lin_geo
+    fkap, fnx, fny, fca, stk = W.lin_fk, W.lin_fnx, W.lin_fny, W.lin_fa, W.lin_st
+    zslot, zc, lin_g, lin_u = W.lin_zslot, W.lin_zc, W.lin_g, W.lin_u
+    cand_j, cand_skip = W.cand_j, W.cand_skip
+    tq_const, tq_visc, hm_off, hm_order, hm_amp, hm_phase = P.tq_const, P.tq_visc, P.hm_off, P.hm_order, P.hm_amp, P.hm_phase
+    tt_off, tt_x, tt_y, ts_off, ts_x, ts_y = P.tt_off, P.tt_x, P.tt_y, P.ts_off, P.ts_x, P.ts_y
+    tq_drag, w_drag, tq_quad, tq_pow, w_cut = P.tq_drag, P.w_drag, P.tq_quad, P.tq_pow, P.w_cut
+    na, a_pulley, a_kind, a_par, a_toff, a_tx, a_ty = A.na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y
+    S_q, S_qd = S.q, S.qd
+    sc, si, spd, cs, kat, yx, yy, yz, ux, uy, uz = X.sc, X.si, X.spd, X.cs, X.kat, X.yx, X.yy, X.yz, X.ux, X.uy, X.uz
+    inv_m, inv_i, jmk, jmi, hm_, hi_, ieff = X.inv_m, X.inv_i, X.jmk, X.jmi, X.hm, X.hi, X.ieff
+    cseg, cpar, qm, qv, s0, gyv, dom, mext, ipl = X.cseg, X.cpar, X.qm, X.qv, X.s0, X.gyv, X.dom, X.mext, X.ipl
+    tq_belt, hub = X.tq_belt, X.hub
+    hubx = hub[0]
+    huby = hub[1]
+    implicit = B.implicit
     hj = 0.0 if implicit else h       # the implicit scheme's dampers are in the chain matrix
-    ni = n if implicit else 0          # the implicit scheme's scratch, sized 0 for the other
-    # SPIN_ZETA's damper: per free segment its coefficient cs and second difference spd, active
-    # above spin_lim (the alternating pattern of amplitude W has a second difference of 4 W)
-    spd = np.zeros(ni)
-    cs = np.zeros(ni)
+    nC = 0                            # members of the active set C
+    # the spin damper acts above this second difference of the rates (the alternating pattern
+    # of amplitude W has a second difference of 4 W)
     spin_lim = 0.0
     for j in range(nk):
         spin_lim = max(spin_lim, abs(om[j]))
     spin_lim = 4.0 * SPIN_LIMIT * max(spin_lim, 10.0)
-    # per segment: the pulley it touches (-1: none), normal, penetration, normal force, matrix
-    # coefficient; f*: those the chain matrix was factored with
-    cj = np.full(ni, -1, dtype=np.int64)
-    cnx = np.zeros(ni)
-    cny = np.zeros(ni)
-    cp = np.zeros(ni)
-    cN = np.zeros(ni)
-    ckap = np.zeros(ni)
-    fkap = W.lin_fk
-    fnx = W.lin_fnx
-    fny = W.lin_fny
-    # stuck segments (friction inside its band at the last step): anchored to the pulley surface
-    # in the chain matrix by the secant slope of the friction law, mu N / Delta_v (implicit
-    # scheme, Threlfall law); fca: the slope the matrix was factored with
-    stk = W.lin_st
-    cca = np.zeros(ni)
-    fca = W.lin_fa
-    kat = np.zeros(ni)
-    cT = np.zeros(ni)
-    clist = np.zeros(ni, dtype=np.int64)   # the segments in contact this step
-    ak = np.zeros(ni)                     # this pass's anchors: slope (N s/m) and direction
-    atx = np.zeros(ni)
-    aty = np.zeros(ni)
-    zslot = W.lin_zslot                  # cache slot of a segment's columns A_f^-1 [e_x e_y] (-1: none)
-    zc, lin_g = W.lin_zc, W.lin_g
-    zcap = zc.shape[0] // 2                  # segments with cached columns (ZMAX; 0: refactor at each change)
-    nci = CMAX if implicit else 0
-    cseg = np.zeros(nci, dtype=np.int64)     # the members of C (segments not in their factored state)
-    cslot = np.full(ni, -1, dtype=np.int64)  # a segment's place in C (-1: not a member)
-    pend = np.zeros(ni, dtype=np.int64)      # segments to join C
-    cpar = np.zeros((nci, 11))               # a member's correction, affine in dv and dw
-    msz_ = 2 * nci + nk if implicit else 0
-    qm = np.zeros((msz_, msz_))              # the small system
-    qv = np.zeros(msz_)
-    nC = 0
-    yx = np.zeros(ni)                        # y = A_f^-1 F_base
-    yy = np.zeros(ni)
-    yz = np.zeros(ni)
-    cTb = np.zeros(ni)                       # a sliding segment's friction in F_base
-    can = np.zeros(ni)                       # a contact segment's centripetal acceleration v_t^2 / r
-    s0 = np.zeros(nk)                        # per pulley: base friction sum, g_j . y
-    gyv = np.zeros(nk)
-    # pulleys integrated with the chain solve: dynamic, no clutch (the others explicit)
-    ipl = np.zeros(nk, dtype=np.bool_)
-    for j in range(nk):
-        ipl[j] = implicit and pmode[j] == 0 and P.cl_kind[j] == 0
-    lin_u = W.lin_u
-    ux = np.zeros(ni)
-    uy = np.zeros(ni)
-    uz = np.zeros(ni)
-    dom = np.zeros(nk)
-    f0x = np.zeros(ni)
-    f0y = np.zeros(ni)
-    f0z = np.zeros(ni)
-    tq_const, tq_visc, hm_off, hm_order, hm_amp, hm_phase = P.tq_const, P.tq_visc, P.hm_off, P.hm_order, P.hm_amp, P.hm_phase
-    tt_off, tt_x, tt_y, ts_off, ts_x, ts_y = P.tt_off, P.tt_x, P.tt_y, P.ts_off, P.ts_x, P.ts_y
-    sp_off, sp_x, sp_y = P.sp_off, P.sp_x, P.sp_y
-    tq_drag, w_drag, tq_quad, tq_pow, w_cut = P.tq_drag, P.w_drag, P.tq_quad, P.tq_pow, P.w_cut
-    so_off, so_order, so_amp, so_ang, so_phase = P.so_off, P.so_order, P.so_amp, P.so_ang, P.so_phase
-    cl_kind, cl_ir, cl_k, cl_c, cl_s = P.cl_kind, P.cl_ir, P.cl_k, P.cl_c, P.cl_s
-    thm, thr, omr, dcp = S.thm, S.thr, S.omr, S.dcp
-    na, a_pulley, a_kind, a_par, a_toff, a_tx, a_ty = A.na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y
-    S_q, S_qd = S.q, S.qd
-    tq_belt = np.zeros(nk)
-    tmx_ = np.zeros(ni)                  # per contact segment: the chord's tangent t_m, rolling prediction vp
-    tmy_ = np.zeros(ni)
-    vpx_ = np.zeros(ni)
-    vpy_ = np.zeros(ni)
-    hubx = np.zeros(nk)
-    huby = np.zeros(nk)
-    nspan = span_geo.shape[0]
-    ntrack = track_seg.shape[0]
-    # fresh local copies of what the joint loop reads and writes per segment: the compiler then
-    # knows they alias nothing and vectorises that loop
-    inv_m = B.inv_m.copy()
-    inv_i = B.inv_i.copy()
-    jmk = np.empty(n)
-    jmi = np.empty(n)
-    # h / m and h / I once per chunk: divisions cost more than the rest of a segment's update
-    hm_ = np.empty(n)
-    hi_ = np.empty(n)
-    for i in range(n):
-        hm_[i] = h * inv_m[i]
-        # selective mass scaling of the segments' rotation: inertia x iscale (see system.py)
-        hi_[i] = h / (inertia[i] * iscale)
     hg = h * g
     # contact candidates (_contact_candidate): the speed bound of this chunk, per step
-    cand_j, cand_skip = W.cand_j, W.cand_skip
     vmax = 0.0
     for i in range(n):
         vmax = max(vmax, vx[i] * vx[i] + vy[i] * vy[i])
@@ -1120,7 +1730,6 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                                 mz, jfk, jdx, jdy, hj, inv_m, inv_i, jmk, jmi)
         pcd = 0.0
         pfr = 0.0
-        diss_cl = 0.0
         for j in range(nk):
             tq_belt[j] = 0.0
             hubx[j] = 0.0
@@ -1132,533 +1741,77 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
             # anchored to the pulley surface in A by the friction law's secant slope mu N / dv
             # (pulley speeds frozen over the step), its friction the anchor's force. An anchor
             # whose force would exceed mu N lets go and the step is solved again (active set).
-            nc = 0
-            cchg = False
             _joint_transport(n, h, hl, linear, eax, kax, bax, c, s, w, jdx, jdy, fx, fy, mz)
-            # the spin damper, on segments whose neighbours two either side were free at the last step
-            for i in range(n):
-                free = True
-                for dk in range(-2, 3):
-                    kk = i + dk
-                    if kk < 0:
-                        kk += n
-                    elif kk >= n:
-                        kk -= n
-                    free = free and seg_n[kk] == 0.0
-                im = i - 1 if i > 0 else n - 1
-                ip = i + 1 if i < n - 1 else 0
-                spd[i] = w[im] - 2.0 * w[i] + w[ip] if free else 0.0
-                # the mode's stiffness T l (T the mean force of the segment's two joints) and its
-                # modified inertia I + h^2/2 T l; the alternating pattern sees 16 x the coefficient
-                ka = 0.5 * (jfk[i] * math.sqrt(jdx[i] * jdx[i] + jdy[i] * jdy[i])
-                            + jfk[ip] * math.sqrt(jdx[ip] * jdx[ip] + jdy[ip] * jdy[ip])) * 2.0 * hl
-                ka = max(ka, 0.0)
-                on = free and abs(spd[i]) > spin_lim
-                cs[i] = 2.0 * SPIN_ZETA * math.sqrt(ka * (ieff[i] + 0.5 * h * h * ka)) / 16.0 if on else 0.0
-            for i in range(n):
-                im = i - 1 if i > 0 else n - 1
-                ip = i + 1 if i < n - 1 else 0
-                ms = -(cs[im] * spd[im] - 2.0 * cs[i] * spd[i] + cs[ip] * spd[ip])
-                mz[i] += ms
-                pb -= ms * w[i]
-            for i in range(n):
-                fy[i] -= m_[i] * g
-                cj[i] = -1
-                cT[i] = 0.0
-                cca[i] = 0.0
-                ak[i] = 0.0
-                jc = _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb)
-                for j in range(max(jc, 0), jc + 1):      # the contact pulley only (none: jc = -1)
-                    rx = x[i] - pcx[j]
-                    ry = y[i] - pcy[j]
-                    d2 = rx * rx + ry * ry
-                    if d2 >= pr[j] * pr[j]:
-                        continue
-                    dist = math.sqrt(d2)
-                    nx = rx / dist
-                    ny = ry / dist
-                    p = pr[j] - dist
-                    db = smoothstep(p / pmax) * bc[i]
-                    rvx = vx[i] - pvx[j]
-                    rvy = vy[i] - pvy[j]
-                    # the normal velocity at the middle of the last step's chord: a segment rolling
-                    # round the pulley arrives along a chord that leaves the circle's normal by half
-                    # its turn, which read at the end point is a separating v_t^2 h / 2 r (at 0.03 rad
-                    # per step it took nearly all the damping's share of the normal force)
-                    vt_ = -rvx * ny + rvy * nx
-                    vn = rvx * nx + rvy * ny - 0.5 * h * vt_ * vt_ / dist
-                    N = c1[i] * p * p + c2[i] * p - db * vn
-                    cj[i] = j
-                    cnx[i] = nx
-                    cny[i] = ny
-                    cp[i] = p
-                    ckap[i] = 0.5 * h * h * (c2[i] + 2.0 * c1[i] * p) + h * db
-                    if N < 0.0:
-                        N = 0.0
-                    cN[i] = N
-                    # slip is read along the chord of the step (t_m: the tangent turned by half
-                    # the segment's turn round the pulley, h v_t / 2 dist), the direction of a
-                    # rolling segment's new velocity, whose difference from any other tangent
-                    # t is read off the rolling prediction vp (rv turned by the whole turn):
-                    # slip = om r - v_new . t - vp . (t_m - t). Read along the current tangent, a
-                    # rolling segment's new velocity shows a slip of v (h Omega)^2 / 8, 0.75 mm/s
-                    # at 0.016 rad per step: against a friction law of 1e-5 m/s the anchors let go.
-                    ps = 0.5 * h * vt_ / dist
-                    cps = math.cos(ps)
-                    sps = math.sin(ps)
-                    tmx_[i] = -ny * cps - nx * sps
-                    tmy_[i] = -ny * sps + nx * cps
-                    c2s = cps * cps - sps * sps
-                    s2s = 2.0 * sps * cps
-                    vpx_[i] = rvx * c2s - rvy * s2s
-                    vpy_[i] = rvx * s2s + rvy * c2s
-                    if N > 0.0:
-                        pcd += db * vn * vn
-                        if stk[i] > 0.0:
-                            cca[i] = ANCHOR * mu[i] * N / dv
-                        else:
-                            sl = om[j] * pr[j] - (vpx_[i] * tmx_[i] + vpy_[i] * tmy_[i])
-                            cT[i] = math.copysign(mu[i] * N, sl)
-                    fx[i] += N * nx - cT[i] * ny
-                    fy[i] += N * ny + cT[i] * nx
-                    break       # pulleys do not overlap: one contact per segment
-                if cj[i] < 0:
-                    stk[i] = 0.0
-                    z[i] = 0.0
-                else:
-                    clist[nc] = i
-                    nc += 1
-                if (cj[i] >= 0) != (fkap[i] > 0.0):
-                    cchg = True
-                f0x[i] = fx[i]
-                f0y[i] = fy[i]
-                f0z[i] = mz[i]
+            pb = _spin_damper(n, h, hl, spin_lim, ieff, w, jfk, jdx, jdy, seg_n, spd, cs, mz, pb)
+            nc, pcd = _contacts(n, nk, h, hvb, g, m_, c1, c2, bc, pmax, x, y, vx, vy, pcx, pcy, pvx, pvy, pr, cand_j,
+                                cand_skip, stk, z, fy, si, sc)
+            cchg = _friction(n, mu, dv, om, pr, stk, fkap, fx, fy, mz, si, sc)
+            for j in range(nk):
+                if ipl[j]:
+                    mext[j] = _torque(j, t, th[j], om[j], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
+                                      tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
             # The step's linear system, its stick-slip active set solved in a small space (CMAX,
-            # ZMAX above). One banded solve per step gives y = A_f^-1 F_base, F_base the
-            # forces with every contact segment in its factored state (anchored along its factored
-            # tangent with its factored slope, or sliding with its friction at the solve). A segment
-            # whose state differs (set C) adds a force correction phi_c at its centre, a pulley its
-            # speed change dw_k: dv = h (y + sum_k dw_k U_k + sum_c Z_c phi_c), U_k = A_f^-1 g_k and
-            # Z_c = A_f^-1 [e_x e_y]_c cached. phi and dw solve a dense (2 |C| + nk) system; each
-            # pass checks every contact segment (anchors letting go, slips turning) at O(|C| + nk)
-            # each; a segment that changes joins C. The chain matrix is refactored at the current
-            # state when the contact set changes, the segments have turned, or C outgrows its cache.
+            # ZMAX above). One banded solve per step gives y = A_f^-1 F_base (_base_solve). A
+            # segment whose state differs from the factored one (set C) adds a force correction
+            # phi_c at its centre, a pulley its speed change dw_k: dv = h (y + sum_k dw_k U_k +
+            # sum_c Z_c phi_c), U_k = A_f^-1 g_k and Z_c = A_f^-1 [e_x e_y]_c cached. phi and dw
+            # solve a dense (2 |C| + nk) system; each pass checks every contact segment (anchors
+            # letting go, slips turning) at O(|C| + nk) each; a segment that changes joins C. The
+            # chain matrix is refactored at the current state when the contact set changes, the
+            # segments have turned (REFACTOR_ANGLE), or C outgrows its cache.
             need = lin_cnt[0] <= 0 or cchg
             base = True
             npass = 0
             npend = 0
             while True:
                 if need:
-                    for i in range(n):
-                        fkap[i] = ckap[i] if cj[i] >= 0 else 0.0
-                        fnx[i] = cnx[i]
-                        fny[i] = cny[i]
-                        fca[i] = cca[i]
-                        kat[i] = h * cca[i]
-                        zslot[i] = -1
+                    _factored_state(n, h, si, sc, fkap, fnx, fny, fca, kat, zslot)
                     lin_cnt[2] = 0
-                    cchg = False
                     lin_cnt[0] = _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jdx, jdy,
                                            turn, m_, ieff, lin_sig, lin_gam, lin_geo, fkap, kat, fnx, fny, lin_d,
                                            lin_o, lin_e, lin_dinv, lin_y, lin_x)
                     lin_cnt[1] += 1
-                    # each implicit pulley's anchors g_k = sum fca r tau_f, U_k = A_f^-1 g_k; lin_g
-                    # holds G[j, k] = g_j . U_k and, in column nk, R_j = sum fca r
-                    for jj in range(nk):
-                        for kk in range(nk + 1):
-                            lin_g[jj, kk] = 0.0
-                    for jj in range(nk):
-                        if not ipl[jj]:
-                            continue
-                        for i in range(n):
-                            if fca[i] > 0.0 and cj[i] == jj:
-                                ux[i] = fca[i] * pr[jj] * -fny[i]
-                                uy[i] = fca[i] * pr[jj] * fnx[i]
-                                lin_g[jj, nk] += fca[i] * pr[jj]
-                            else:
-                                ux[i] = 0.0
-                                uy[i] = 0.0
-                            uz[i] = 0.0
-                        _chain.solve(n, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r)
-                        for i in range(n):
-                            lin_u[jj, i, 0] = ux[i]
-                            lin_u[jj, i, 1] = uy[i]
-                            lin_u[jj, i, 2] = uz[i]
-                    for q in range(nc):
-                        i = clist[q]
-                        jj = cj[i]
-                        if fca[i] > 0.0 and ipl[jj]:
-                            gx = fca[i] * pr[jj] * -fny[i]
-                            gy = fca[i] * pr[jj] * fnx[i]
-                            for kk in range(nk):
-                                if ipl[kk]:
-                                    lin_g[jj, kk] += gx * lin_u[kk, i, 0] + gy * lin_u[kk, i, 1]
+                    _pulley_columns(n, nk, nc, pr, fca, fnx, fny, si, ipl, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r,
+                                    lin_u, lin_g)
                     need = False
                     base = True
                 if base:
-                    # y = A_f^-1 F_base, and per pulley the base friction sum s0 and g_j . y
-                    for p in range(nC):
-                        cslot[cseg[p]] = -1
+                    npend = _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, pr, fkap, fnx, fny, fca, si, cseg, sc,
+                                        yx, yy, yz, s0, gyv, ipl, lin_dinv, lin_y, lin_x, lin_r)
                     nC = 0
-                    npend = 0
-                    for i in range(n):
-                        yx[i] = f0x[i]
-                        yy[i] = f0y[i]
-                        yz[i] = f0z[i]
-                    for jj in range(nk):
-                        s0[jj] = 0.0
-                        gyv[jj] = 0.0
-                    for q in range(nc):
-                        i = clist[q]
-                        j = cj[i]
-                        cTb[i] = cT[i]
-                        if fkap[i] > 0.0:
-                            # the contact term of A, fkap fn fn^T, would read a segment's turn
-                            # round the pulley (its velocity turning inward by h v_t^2 / r) as
-                            # an inward normal velocity change and push back by fkap v_t^2 / r
-                            # (outward; 90 N per segment at 23.6 m/s on a 75 mm crank at 38.5 us,
-                            # twice its normal force): taken out here, so that A's contact term
-                            # acts on the deviation from rolling round the pulley
-                            tvx = vx[i] - pvx[j]
-                            tvy = vy[i] - pvy[j]
-                            vt = -tvx * fny[i] + tvy * fnx[i]
-                            can[i] = vt * vt / (pr[j] - cp[i])
-                            yx[i] -= fkap[i] * can[i] * fnx[i]
-                            yy[i] -= fkap[i] * can[i] * fny[i]
-                        else:
-                            can[i] = 0.0
-                        if fca[i] > 0.0:
-                            tx = -fny[i]
-                            ty = fnx[i]
-                            sl = (om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
-                                  - vpx_[i] * (tmx_[i] - tx) - vpy_[i] * (tmy_[i] - ty))
-                            yx[i] += fca[i] * sl * tx + cT[i] * cny[i]
-                            yy[i] += fca[i] * sl * ty - cT[i] * cnx[i]
-                            s0[j] += fca[i] * sl
-                        else:
-                            s0[j] += cT[i]
-                        if (fca[i] > 0.0) != (cca[i] > 0.0):
-                            pend[npend] = i
-                            npend += 1
-                    _chain.solve(n, yx, yy, yz, lin_dinv, lin_y, lin_x, lin_r)
-                    for q in range(nc):
-                        i = clist[q]
-                        j = cj[i]
-                        if fca[i] > 0.0 and ipl[j]:
-                            gyv[j] += fca[i] * pr[j] * (-fny[i] * yx[i] + fnx[i] * yy[i])
                     base = False
-                # the changed segments join C, their columns solved unless cached
-                over = False
-                for a in range(npend):
-                    i = pend[a]
-                    if cslot[i] >= 0:
-                        continue
-                    if nC == CMAX or (zslot[i] < 0 and lin_cnt[2] == zcap):
-                        over = True
-                        break
-                    if zslot[i] < 0:
-                        sl_ = lin_cnt[2]
-                        lin_cnt[2] += 1
-                        zslot[i] = sl_
-                        for col in range(2):
-                            for r in range(n):
-                                ux[r] = 0.0
-                                uy[r] = 0.0
-                                uz[r] = 0.0
-                            if col == 0:
-                                ux[i] = 1.0
-                            else:
-                                uy[i] = 1.0
-                            _chain.solve(n, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r)
-                            for r in range(n):
-                                zc[2 * sl_ + col, r, 0] = ux[r]
-                                zc[2 * sl_ + col, r, 1] = uy[r]
-                                zc[2 * sl_ + col, r, 2] = uz[r]
-                    cseg[nC] = i
-                    cslot[i] = nC
-                    nC += 1
+                nC, over = _join(n, nC, npend, si, cseg, zslot, zc, lin_cnt, ux, uy, uz, lin_dinv, lin_y, lin_x,
+                                 lin_r)
                 npend = 0
                 if over:
                     need = True
                     continue
-                # each member's force correction, affine in its velocity change and its pulley's:
-                # phi_c = a + B dv_c + e dw_j, and its torque part alpha + beta . dv_c + gamma dw_j
-                for p in range(nC):
-                    i = cseg[p]
-                    j = cj[i]
-                    ctx = -cny[i]
-                    cty = cnx[i]
-                    a0 = 0.0
-                    a1 = 0.0
-                    b00 = 0.0
-                    b01 = 0.0
-                    b11 = 0.0
-                    e0 = 0.0
-                    e1 = 0.0
-                    al = 0.0
-                    be0 = 0.0
-                    be1 = 0.0
-                    ga = 0.0
-                    for side in range(2):
-                        # + its state now (anchor along the current tangent, or its sliding
-                        # friction), - its factored state (anchor along the factored tangent, or
-                        # its friction in F_base)
-                        if side == 0:
-                            sg, kp, tx, ty, Tsl = 1.0, cca[i], ctx, cty, cT[i]
-                        else:
-                            sg, kp, tx, ty, Tsl = -1.0, fca[i], -fny[i], fnx[i], cTb[i]
-                        if kp > 0.0:
-                            sl = (om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
-                                  - vpx_[i] * (tmx_[i] - tx) - vpy_[i] * (tmy_[i] - ty))
-                            a0 += sg * kp * sl * tx
-                            a1 += sg * kp * sl * ty
-                            b00 -= sg * kp * tx * tx
-                            b01 -= sg * kp * tx * ty
-                            b11 -= sg * kp * ty * ty
-                            e0 += sg * kp * pr[j] * tx
-                            e1 += sg * kp * pr[j] * ty
-                            al += sg * kp * sl
-                            be0 -= sg * kp * tx
-                            be1 -= sg * kp * ty
-                            ga += sg * kp * pr[j]
-                        else:
-                            a0 += sg * Tsl * ctx
-                            a1 += sg * Tsl * cty
-                            al += sg * Tsl
-                    cpar[p, 0] = a0
-                    cpar[p, 1] = a1
-                    cpar[p, 2] = b00
-                    cpar[p, 3] = b01
-                    cpar[p, 4] = b11
-                    cpar[p, 5] = e0
-                    cpar[p, 6] = e1
-                    cpar[p, 7] = al
-                    cpar[p, 8] = be0
-                    cpar[p, 9] = be1
-                    cpar[p, 10] = ga
-                # the small system: rows 2p, 2p + 1 for member p, row 2 nC + j for pulley j
-                msz = 2 * nC + nk
-                for r in range(msz):
-                    qv[r] = 0.0
-                    for q in range(msz):
-                        qm[r, q] = 0.0
-                for p in range(nC):
-                    i = cseg[p]
-                    j = cj[i]
-                    b00 = cpar[p, 2]
-                    b01 = cpar[p, 3]
-                    b11 = cpar[p, 4]
-                    r0 = 2 * p
-                    qm[r0, r0] = 1.0
-                    qm[r0 + 1, r0 + 1] = 1.0
-                    for d in range(nC):
-                        sd = 2 * zslot[cseg[d]]
-                        for col in range(2):
-                            z0 = zc[sd + col, i, 0]
-                            z1 = zc[sd + col, i, 1]
-                            qm[r0, 2 * d + col] -= h * (b00 * z0 + b01 * z1)
-                            qm[r0 + 1, 2 * d + col] -= h * (b01 * z0 + b11 * z1)
-                    for kk in range(nk):
-                        if ipl[kk]:
-                            u0 = lin_u[kk, i, 0]
-                            u1 = lin_u[kk, i, 1]
-                            qm[r0, 2 * nC + kk] -= h * (b00 * u0 + b01 * u1)
-                            qm[r0 + 1, 2 * nC + kk] -= h * (b01 * u0 + b11 * u1)
-                    qm[r0, 2 * nC + j] -= cpar[p, 5]
-                    qm[r0 + 1, 2 * nC + j] -= cpar[p, 6]
-                    qv[r0] = cpar[p, 0] + h * (b00 * yx[i] + b01 * yy[i])
-                    qv[r0 + 1] = cpar[p, 1] + h * (b01 * yx[i] + b11 * yy[i])
-                for jj in range(nk):
-                    r0 = 2 * nC + jj
-                    if not ipl[jj]:
-                        qm[r0, r0] = 1.0
-                        continue
-                    rj = pr[jj]
-                    qm[r0, r0] += 1.0 / pinv_i[jj] + h * rj * lin_g[jj, nk]
-                    for kk in range(nk):
-                        qm[r0, 2 * nC + kk] -= h * h * lin_g[jj, kk]
-                    for d in range(nC):
-                        qm[r0, 2 * d] -= h * h * lin_u[jj, cseg[d], 0]
-                        qm[r0, 2 * d + 1] -= h * h * lin_u[jj, cseg[d], 1]
-                    mext = _torque(jj, t, th[jj], om[jj], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
-                                   tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
-                    qv[r0] = h * mext - h * rj * s0[jj] + h * h * gyv[jj]
-                    for p in range(nC):
-                        i = cseg[p]
-                        if cj[i] != jj:
-                            continue
-                        be0 = cpar[p, 8]
-                        be1 = cpar[p, 9]
-                        qm[r0, r0] += h * rj * cpar[p, 10]
-                        for kk in range(nk):
-                            if ipl[kk]:
-                                qm[r0, 2 * nC + kk] += h * h * rj * (be0 * lin_u[kk, i, 0] + be1 * lin_u[kk, i, 1])
-                        for d in range(nC):
-                            sd = 2 * zslot[cseg[d]]
-                            for col in range(2):
-                                qm[r0, 2 * d + col] += h * h * rj * (be0 * zc[sd + col, i, 0] + be1 * zc[sd + col, i, 1])
-                        qv[r0] -= h * rj * (cpar[p, 7] + h * (be0 * yx[i] + be1 * yy[i]))
-                _small_solve(msz, qm, qv)
-                for jj in range(nk):
-                    dom[jj] = qv[2 * nC + jj]
-                lin_cnt[3] += 1
-                # check every contact segment at its new velocity
-                changed = False
-                for q in range(nc):
-                    i = clist[q]
-                    if cN[i] <= 0.0:
-                        continue
-                    j = cj[i]
-                    ax_ = yx[i]
-                    ay_ = yy[i]
-                    for kk in range(nk):
-                        if ipl[kk]:
-                            ax_ += dom[kk] * lin_u[kk, i, 0]
-                            ay_ += dom[kk] * lin_u[kk, i, 1]
-                    for d in range(nC):
-                        sd = 2 * zslot[cseg[d]]
-                        ax_ += qv[2 * d] * zc[sd, i, 0] + qv[2 * d + 1] * zc[sd + 1, i, 0]
-                        ay_ += qv[2 * d] * zc[sd, i, 1] + qv[2 * d + 1] * zc[sd + 1, i, 1]
-                    rvx = vx[i] + h * ax_ - pvx[j]
-                    rvy = vy[i] + h * ay_ - pvy[j]
-                    if cca[i] > 0.0:
-                        if cslot[i] >= 0:
-                            kp = cca[i]
-                            tx = -cny[i]
-                            ty = cnx[i]
-                        else:
-                            kp = fca[i]
-                            tx = -fny[i]
-                            ty = fnx[i]
-                        T = kp * ((om[j] + dom[j]) * pr[j] - rvx * tx - rvy * ty
-                                  - vpx_[i] * (tmx_[i] - tx) - vpy_[i] * (tmy_[i] - ty))
-                        ak[i] = kp           # the anchor as this pass solved it (final loop)
-                        atx[i] = tx
-                        aty[i] = ty
-                        if abs(T) > mu[i] * cN[i] and npass < PASSES:
-                            # lets go: slides this step with mu N
-                            Ts = math.copysign(mu[i] * cN[i], T)
-                            ak[i] = 0.0
-                            cca[i] = 0.0
-                            stk[i] = 0.0
-                            cT[i] = Ts
-                            f0x[i] += Ts * -cny[i]
-                            f0y[i] += Ts * cnx[i]
-                            changed = True
-                            W.lin_stat[0] += 1
-                            if cslot[i] < 0:
-                                pend[npend] = i
-                                npend += 1
-                    elif cT[i] != 0.0 and npass < PASSES - 1:
-                        sl = (om[j] + dom[j]) * pr[j] - rvx * tmx_[i] - rvy * tmy_[i]
-                        if sl * cT[i] < 0.0:
-                            # a sliding segment whose slip the step would turn: it sticks
-                            f0x[i] -= cT[i] * -cny[i]
-                            f0y[i] -= cT[i] * cnx[i]
-                            cT[i] = 0.0
-                            cca[i] = ANCHOR * mu[i] * cN[i] / dv
-                            stk[i] = 1.0
-                            changed = True
-                            W.lin_stat[1] += 1
-                            if cslot[i] < 0:
-                                pend[npend] = i
-                                npend += 1
+                _corrections(nC, vx, vy, om, pvx, pvy, pr, fnx, fny, fca, si, sc, cseg, cpar)
+                _small_system(h, nk, nC, pr, pinv_i, mext, zslot, zc, lin_u, lin_g, si, cseg, cpar, qm, qv, yx, yy,
+                              s0, gyv, ipl, dom, lin_cnt)
+                changed, npend = _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, pr, fnx, fny, fca,
+                                        stk, zslot, zc, lin_u, lin_stat, si, sc, cseg, yx, yy, qv, dom, ipl)
                 npass += 1
                 if not changed:
                     break
-            # the velocity change over A^-1 F (stage)
             _velocity_change(n, nk, nC, ipl, dom, qv, cseg, zslot, lin_u, zc, yx, yy, yz, fx, fy, mz)
             lin_cnt[0] -= 1
+            pfr = _update_implicit(n, h, dv, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, pr, fx, fy, mz, seg_n, seg_t,
+                                   seg_p, stk, fkap, fnx, fny, si, sc, dom, tq_belt, hub)
+        else:
             for i in range(n):
-                vxs = vx[i] + h * fx[i]
-                vys = vy[i] + h * fy[i]
-                w[i] += h * mz[i]
-                j = cj[i]
-                if j >= 0:
-                    N = cN[i]
-                    T = cT[i]
-                    nx = cnx[i]
-                    ny = cny[i]
-                    if ak[i] > 0.0:
-                        tx = atx[i]
-                        ty = aty[i]
-                    else:
-                        tx = -ny
-                        ty = nx
-                    if N > 0.0:
-                        sl = ((om[j] + dom[j]) * pr[j] - (vxs - pvx[j]) * tx - (vys - pvy[j]) * ty
-                              - vpx_[i] * (tmx_[i] - tx) - vpy_[i] * (tmy_[i] - ty))
-                        if ak[i] > 0.0:
-                            T = ak[i] * sl        # the anchor's force at the solved velocities
-                        pfr += T * sl
-                        if ak[i] == 0.0:
-                            # a sliding segment whose slip reached the band or turned sticks next step
-                            stk[i] = 1.0 if (abs(sl) < dv or sl * T < 0.0) else 0.0
-                        tq_belt[j] -= pr[j] * T
-                    else:
-                        stk[i] = 0.0
-                    # the normal force the step applied: N and A's contact term (see can)
-                    N -= fkap[i] * (fnx[i] * fx[i] + fny[i] * fy[i] + can[i])
-                    hubx[j] -= N * nx + T * tx
-                    huby[j] -= N * ny + T * ty
-                    seg_n[i] = N
-                    seg_t[i] = T
-                    seg_p[i] = cp[i]
-                else:
-                    seg_n[i] = 0.0
-                    seg_t[i] = 0.0
-                    seg_p[i] = 0.0
+                hm = hm_[i]
+                vxs, vys, N, T, pen, pc, pf = _contact_semi(i, nk, h, hm, hvb, vx[i] + hm * fx[i],
+                                                            vy[i] + hm * fy[i] - hg, c1, c2, bc, mu, pmax, law, dv,
+                                                            dmax, x, y, pcx, pcy, pvx, pvy, pr, om, z, cand_j,
+                                                            cand_skip, tq_belt, hubx, huby)
+                pcd += pc
+                pfr += pf
+                seg_n[i] = N
+                seg_t[i] = T
+                seg_p[i] = pen
+                w[i] += hi_[i] * mz[i]
                 _move(i, h, vxs, vys, x, y, vx, vy, w, phi, c, s)
-        for i in range(n if not implicit else 0):
-            hm = hm_[i]
-            vxs = vx[i] + hm * fx[i]
-            vys = vy[i] + hm * fy[i] - hg
-            Ntot = 0.0
-            Ttot = 0.0
-            pen = 0.0
-            incontact = False
-            jc = _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb)
-            for j in range(max(jc, 0), jc + 1):      # the contact pulley only (none: jc = -1)
-                rx = x[i] - pcx[j]
-                ry = y[i] - pcy[j]
-                d2 = rx * rx + ry * ry
-                if d2 >= pr[j] * pr[j]:
-                    continue
-                incontact = True
-                # contact damping and friction implicit in the segment's new velocity
-                dist = math.sqrt(d2)
-                inv = 1.0 / dist
-                nx = rx * inv
-                ny = ry * inv
-                p = pr[j] - dist
-                pen = p
-                # velocities relative to the pulley centre (a tensioner moves it)
-                rvx = vxs - pvx[j]
-                rvy = vys - pvy[j]
-                vn = rvx * nx + rvy * ny
-                N, db = normal_force(c1[i], c2[i], bc[i], pmax, p, vn, hm)
-                if N <= 0.0:
-                    continue
-                vn_new = vn + hm * N
-                pcd += db * vn_new * vn_new
-                # slip of the pulley surface relative to the segment, along tau = Z x n = (-ny, nx)
-                T, sl = friction(mu[i], law, dv, dmax, N, om[j] * pr[j] - (rvx * -ny + rvy * nx), hm, h, z, i)
-                pfr += T * sl
-                # force N n + T tau, tau = Z x n = (-ny, nx)
-                vxs += hm * (N * nx + T * -ny)
-                vys += hm * (N * ny + T * nx)
-                Ntot += N
-                Ttot += T
-                tq_belt[j] -= pr[j] * T
-                hubx[j] -= N * nx + T * -ny
-                huby[j] -= N * ny + T * nx
-            if not incontact:
-                z[i] = 0.0
-            seg_n[i] = Ntot
-            seg_t[i] = Ttot
-            seg_p[i] = pen
-            w[i] += hi_[i] * mz[i]
-            _move(i, h, vxs, vys, x, y, vx, vy, w, phi, c, s)
         # pulleys, then tensioners, under this step's belt torques and hub forces
         diss_cl = _step_pulleys(t, h, tq_belt, hubx, huby, P, S, W)
         if na > 0:     # tensioners, under this step's hub forces; they move the centres
@@ -1666,14 +1819,16 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
                                           pvy, hubx, huby, h)
         _accumulate(h, hl, x, y, c, s, vx, vy, jfk, jdx, jdy, seg_n, seg_t, W, pax, pb, pcd, pfr, diss_cl)
         t += h
-    W.tq_belt[:] = tq_belt
-    W.hubx[:] = hubx
-    W.huby[:] = huby
-    W.energy[0] = energy(B, Ct, P, A, S)   # here, not by a second call from Python (12 us per call)
-    # the run's health for the caller (simulate._healthy) in one pass, 0.5 us against
-    # 50 us for the same checks in numpy per output sample: a sum that is finite only if every
-    # coordinate and speed is, the largest squared segment speed, pulley surface speed,
-    # penetration and segment turning rate
+    return t
+
+
+@njit(cache=True, inline="always")
+def _probe(n, nk, S, P, W):
+    """The run's health for the caller (simulate._healthy) in one pass, 0.5 us against 50 us for
+    the same checks in numpy per output sample: a sum that is finite only if every coordinate and
+    speed is, the largest squared segment speed, pulley surface speed, penetration, segment
+    turning rate and pulley speed."""
+    x, y, vx, vy, w, om, pr, seg_p = S.x, S.y, S.vx, S.vy, S.w, S.om, P.r, W.seg_p
     fin = 0.0
     v2m = 0.0
     pm = 0.0
@@ -1695,7 +1850,8 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
     W.probe[3] = pm
     W.probe[4] = wm_
     W.probe[5] = wc
-    return t
+
+
 
 
 @njit(cache=True)
