@@ -93,6 +93,31 @@ def test_two_pulley_forced_response(ratio):
     assert a_driven / a_crank == pytest.approx(H, rel=0.02)
 
 
+
+def test_step_convergence_is_second_order():
+    """The two-pulley drive at 3000 rpm (the belt's transport through the wraps, creep), axial
+    damping, a crank speed order below resonance: the driven pulley's speed response against the
+    step. Halving the step quarters its change (the belt's stage reads the tensions, wraps and
+    damper rates of the step's middle; with this step's values the change halved)."""
+    b, rpm = 0.5, 3000
+    J = _lumped_inertia(2e-3)
+    wn = math.sqrt(2 * EA / 0.4 * R * R / J)
+    w0 = rpm * math.pi / 30
+    order = 0.8 * wn / w0
+    W = order * w0
+
+    def response(h):
+        m = two_pulley(duration=1.0, rpm=rpm, orders=[(order, 0.5)], damping=b, interval=2e-4, window=(0.8, 1.0))
+        r = drivedyn.run(drivedyn.replace(m, {"simulation.step": h}))
+        t = r.ds["time"].values
+        sel = t > 0.8
+        X = np.column_stack([np.cos(W * t[sel]), np.sin(W * t[sel]), np.ones(sel.sum())])
+        fit = lambda y: float(np.hypot(*np.linalg.lstsq(X, y, rcond=None)[0][:2]))
+        return fit(r.ds["speed"].sel(pulley="driven").values[sel]) / fit(r.ds["speed"].sel(pulley="crank").values[sel])
+
+    a = [response(h) for h in (4e-5, 2e-5, 1e-5)]
+    assert (a[0] - a[1]) / (a[1] - a[2]) == pytest.approx(4.0, rel=0.1)
+
 def _creep_tensions(M, T0, mu, c=0.0):
     """Tight and slack span tensions of the two-pulley drive under torque M by creep theory, the
     belt's unstretched length kept: spans at their strain, each wrap an adhesion arc at its entry

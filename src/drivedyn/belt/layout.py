@@ -84,10 +84,12 @@ def layout_from(names, centers, radii, sides, orientation=None) -> Layout:
         orientation = _orientation(centers[inside_idx]) if len(inside_idx) >= 3 else _orientation(centers)
     rho = np.array([orientation * r if s == "inside" else -orientation * r for r, s in zip(radii, sides)])
 
+    # the checks on plain floats: a design loop builds hundreds of layouts per model (tensioner tables)
+    cx, cy, rr = centers[:, 0].tolist(), centers[:, 1].tolist(), radii.tolist()
     for a in range(nk):
         for b in range(a + 1, nk):
-            d = float(np.hypot(*(centers[b] - centers[a])))
-            if d < radii[a] + radii[b]:
+            d = math.hypot(cx[b] - cx[a], cy[b] - cy[a])
+            if d < rr[a] + rr[b]:
                 raise ModelError(f"pulleys {names[a]!r} and {names[b]!r} overlap (centre distance {d * 1e3:.1f} mm "
                                  f"< sum of radii {(radii[a] + radii[b]) * 1e3:.1f} mm)", field="pulleys")
 
@@ -127,13 +129,14 @@ def layout_from(names, centers, radii, sides, orientation=None) -> Layout:
 
     # spans must not cut through other pulleys
     for sp in spans:
-        p0, p1 = np.array(sp.p0), np.array(sp.p1)
+        (x0, y0), (x1, y1) = sp.p0, sp.p1
+        ex, ey = x1 - x0, y1 - y0
         for j in range(nk):
             if j in (sp.start, sp.end):
                 continue
-            t = np.clip(np.dot(centers[j] - p0, p1 - p0) / max(sp.length ** 2, 1e-300), 0, 1)
-            dist = float(np.hypot(*(p0 + t * (p1 - p0) - centers[j])))
-            if dist < radii[j] * (1 - 1e-9):
+            t = min(max(((cx[j] - x0) * ex + (cy[j] - y0) * ey) / max(sp.length ** 2, 1e-300), 0.0), 1.0)
+            dist = math.hypot(x0 + t * ex - cx[j], y0 + t * ey - cy[j])
+            if dist < rr[j] * (1 - 1e-9):
                 raise ModelError(f"span {sp.name} passes through pulley {names[j]!r}", field="pulleys")
 
     length = sum(sp.length for sp in spans) + float(np.sum(radii * wrap))

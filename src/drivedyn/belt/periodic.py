@@ -88,7 +88,7 @@ class _Drive:
 
     def get(self):
         S, RS = self.S, self.RS
-        return np.concatenate([S.om[self.dyn], S.omr[self.cl], S.dcp[self.cl], S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs])
+        return np.concatenate([S.om[self.dyn], S.omr[self.cl], S.dcp[self.cl], S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp, RS.ed])
 
     def set(self, x):
         S, RS = self.S, self.RS
@@ -97,7 +97,7 @@ class _Drive:
         for arr, idx in parts:
             arr[idx] = x[k:k + len(idx)]
             k += len(idx)
-        for arr in (S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs):
+        for arr in (S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp, RS.ed):
             arr[:] = x[k:k + len(arr)]
             k += len(arr)
         # the belt rolled onto the span ends is a function of the travel: no spurious transfer at
@@ -116,7 +116,8 @@ class _Drive:
         # a span's content: the change that moves its tension by the rest tension
         du = R.L * sysm.rest_tension / R.EA
         return np.concatenate([sp, 1e-3 * np.ones(len(self.cl)), 1e-3 * np.ones(na), 1e-3 * (abs(w) + 1) * np.ones(na),
-                               du, du, 100 * du * abs(w), 100 * vw * np.ones(R.nk)])
+                               du, du, 100 * du * abs(w), 100 * vw * np.ones(R.nk),
+                               sysm.rest_tension * np.ones(R.nk), 100 * du / R.L * abs(w)])
 
 
 def _anderson(phi, x0, scale, tol, memory=MEMORY, max_iter=MAX_ITER):
@@ -188,7 +189,7 @@ def _sweep(model, progress):
                 ratio = w / speeds[i - 1]
                 nd, nc = len(d.dyn), len(d.cl)
                 x[:nd + nc] *= ratio
-                x[-nk:] *= ratio
+                x[-3 * nk:-2 * nk] *= ratio      # the spans' speeds (vs)
             S.om[j] = w
 
             def phi(xv, P=P, per_sample=per_sample, h=h):
