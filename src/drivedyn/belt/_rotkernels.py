@@ -267,7 +267,10 @@ def energy(R, P, A, S, RS, RW):
     return E
 
 
-@njit(cache=True)
+# compiled without numba's reference counting (it allocates nothing): each array a stage inlined in
+# the step loop takes, or a record's field it reads (the segment model's _step_pulleys reads about
+# forty), otherwise costs an atomic reference-count pair per step
+@njit(cache=True, _nrt=False)
 def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy, out_t, out_th, out_om, out_tq, out_tb,
                 out_hx, out_hy, out_pin, out_T, out_v, out_slip, out_gross, out_q, out_qd, out_omr, out_E,
                 out_work, out_diss):
