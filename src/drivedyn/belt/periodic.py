@@ -24,7 +24,7 @@ import numpy as np
 from ..errors import ModelError, Stopped, stop_reason
 from . import _rotkernels as RK
 from . import rotational as RT
-from .runup import RPM, crank_index
+from .runup import RPM, crank_index, period_revolutions
 
 #: periodicity tolerance: the largest change over one period of a tension (share of the rest
 #: tension), a speed (share of the crank's) or the arm travel (share of 1 mrad)
@@ -53,19 +53,6 @@ def speeds_of(model, j):
     centres = 0.5 * (edges[:-1] + edges[1:])
     sign = math.copysign(1.0, max(w, key=abs))
     return sign * centres[(edges[1:] > lo) & (edges[:-1] < hi)]
-
-
-def _revs(model, j, rho) -> int:
-    """Crank revolutions in one period: the crank's orders (2 with half orders) and each
-    accessory's own harmonics at its nominal speed ratio (a 7th order on a pulley turning 1.25
-    times the crank: 4 revolutions); at most 8."""
-    orders = [o.order for o in model.pulleys[j].speed_orders]
-    for k, p in enumerate(model.pulleys):
-        orders += [hm.order * abs(rho[j] / rho[k]) for hm in p.harmonics]
-    for n in range(1, 9):
-        if all(abs(n * o - round(n * o)) < 0.02 for o in orders):
-            return n
-    return 8
 
 
 class _Drive:
@@ -155,7 +142,7 @@ def _sweep(model, progress):
                          "speed by more than 10 % (the crank)", field="simulation.runup")
     sysm = RT.build(model)
     speeds = speeds_of(model, j)
-    revs = _revs(model, j, sysm.R.rho)
+    revs = period_revolutions(model, j, sysm.R.rho)
     d = _Drive(sysm, j)
     R = sysm.R
     nk, na = R.nk, sysm.A.na

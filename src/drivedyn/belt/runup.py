@@ -35,6 +35,19 @@ def crank_index(model):
     return None
 
 
+def period_revolutions(model, j, rho) -> int:
+    """Crank revolutions in one period of the drive's excitation, pulley j the crank: its orders
+    (2 with half orders) and each accessory's own harmonics at its nominal speed ratio
+    |rho_j / rho_k| (a 7th order on a pulley turning 1.25 times the crank: 4 revolutions); at most 8."""
+    orders = [o.order for o in model.pulleys[j].speed_orders]
+    for k, p in enumerate(model.pulleys):
+        orders += [hm.order * abs(rho[j] / rho[k]) for hm in p.harmonics]
+    for n in range(1, 9):
+        if all(abs(n * o - round(n * o)) < 0.02 for o in orders):
+            return n
+    return 8
+
+
 def mean_speed(p, t):
     xs = np.array([r[0] for r in p.speed_time])
     ys = np.array([r[1] for r in p.speed_time])
