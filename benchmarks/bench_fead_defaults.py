@@ -1,0 +1,45 @@
+"""Accessory-drive answers at the defaults against a refined reference: the six-pulley drive of
+examples/fead-runup.toml held at a crank speed with its 2nd/4th orders (0.8 s, window 0.6-0.8 s),
+at belt.segments = "auto" (the default) and at 150 segments, against a run at four times the
+"auto" segments: every pulley's mean slip (percentage points off the reference), every span's
+tension minimum and maximum (% off), the arm's travel range, status and wall time.
+
+Run: python benchmarks/bench_fead_defaults.py [--rpm 3000] [--refine 4]
+(not a timed test; numbers depend on the machine: the 4x reference takes about a minute)
+"""
+import argparse
+import math
+
+import drivedyn
+from bench_fead_convergence import held
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--rpm", type=float, default=3000.0)
+    ap.add_argument("--refine", type=int, default=4)
+    a = ap.parse_args()
+    drivedyn.run(drivedyn.replace(held(a.rpm, 150), {"simulation.duration": 0.01, "output.steady_window": None}))
+    runs = {}
+    for label, segs in (("150", 150), ("auto", "auto")):
+        runs[label] = drivedyn.run(held(a.rpm, segs))
+    n_ref = a.refine * runs["auto"].summary["belt"]["segments"]
+    runs[f"{n_ref}"] = ref = drivedyn.run(held(a.rpm, n_ref))
+    rs = ref.summary
+    print(f"held at {a.rpm:.0f} rpm, orders 2 and 4; reference {n_ref} segments")
+    for label, r in runs.items():
+        s = r.summary
+        dslip = max(abs(100 * (s["pulleys"][p]["slip"] - rs["pulleys"][p]["slip"])) for p in s["pulleys"])
+        dmin = max(abs(s["spans"][q]["tension_min"] / rs["spans"][q]["tension_min"] - 1) for q in s["spans"])
+        dmax = max(abs(s["spans"][q]["tension_max"] / rs["spans"][q]["tension_max"] - 1) for q in s["spans"])
+        arm = s["tensioners"]["tensioner"]
+        codes = ",".join(d.code for d in r.diagnostics) or "-"
+        print(f"  {label:>5s}: {s['belt']['segments']:5d} segments, wall {s['solver']['wall_time']:6.1f} s; slips "
+              + " / ".join(f"{100 * s['pulleys'][p]['slip']:.3f}" for p in s["pulleys"])
+              + f" %, largest off {dslip:.3f} points; span minima off up to {100 * dmin:.1f} %, maxima "
+              f"{100 * dmax:.1f} %; arm range {(arm['travel_max'] - arm['travel_min']) * 180 / math.pi:.3f} deg; "
+              f"{r.status}: {codes}", flush=True)
+
+
+if __name__ == "__main__":
+    main()
