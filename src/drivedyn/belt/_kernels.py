@@ -53,16 +53,19 @@ stick and slip by an active set solved in a small space over the factored matrix
 with the segments they anchor. Agrees with the semi-implicit scheme at about ten times its step
 (docs/belt-drive.md, tests/belt/test_implicit.py).
 
-A step of ``step_chunk`` in stages, each an inlined function of its own:
+A step of ``step_chunk`` (its time loop ``_advance``) in stages, each an inlined function:
 
   both schemes    ``_joint_forces``      the joints' elastic and damping forces and moments
-  semi-implicit   ``_update_semi``       each segment's new velocity, its contact and friction
-                                         implicit in it (``normal_force``, ``friction``), its move
+  semi-implicit   ``_contact_semi``      per segment, at its new velocity under the joints and
+                                         gravity: contact and friction implicit in it
+                                         (``normal_force``, ``friction``); then ``_move``
   implicit        ``_joint_transport``   the joints' centripetal term (A acts on the deviation
                                          from rolling)
                   ``_spin_damper``       free segments rotating against their neighbours
-                  ``_contacts``          contact (``normal_force``) and friction: anchors, sliding
-                  ``_factor``            the chain matrix and the pulleys' columns, when needed
+                  ``_contacts``          gravity; contact (``normal_force``), the chord rolled along
+                  ``_friction``          anchors (stuck) and sliding friction; F_base
+                  ``_factored_state``, ``_refactor``, ``_pulley_columns``
+                                         the chain matrix and the pulleys' columns, when needed
                   ``_base_solve``        y = A_f^-1 F_base
                   ``_join``, ``_corrections``, ``_small_system``, ``_check``
                                          the stick-slip active set, pass by pass
@@ -72,8 +75,9 @@ A step of ``step_chunk`` in stages, each an inlined function of its own:
                   ``_step_arms``         tensioners (they move their pulleys' centres)
                   ``_accumulate``        the step's share of the output accumulators
 
-Stages take the records (or plain arrays where a loop must vectorise) and are inlined into the
-time loop (numba IR): a record's field read there costs nothing more than a local array (measured).
+``_advance`` is compiled without numba's reference counting (it allocates nothing; ``step_chunk``
+gives it its scratch, ``Scratch``): an array an inlined stage takes, or a record's field it reads,
+otherwise costs an atomic reference-count pair per call, half of a semi-implicit step (measured).
 """
 import math
 from typing import NamedTuple
