@@ -2,8 +2,6 @@
 constraints name, with the full run's numbers; when a study takes it, and its own cache key."""
 import json
 
-import pytest
-
 import drivedyn
 from drivedyn.analyses import analysis
 from drivedyn.belt.periodic import lean_keys

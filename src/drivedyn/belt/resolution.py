@@ -120,8 +120,6 @@ def check(model, result, run) -> None:
     rather than under-states the error of quantities that converge faster (the chordal and wrap
     effects are of second and higher order in the segment length). A ``unconverged-resolution``
     diagnostic when an estimate exceeds its target."""
-    import dataclasses
-
     n = result.summary["belt"]["segments"]
     n2 = max(MIN_SEGMENTS // 2, int(round(CHECK_RATIO * n)))
     coarse = model.model_copy(update={

@@ -314,7 +314,6 @@ def new_states(sysm: RotSystem):
 
 def run(model, progress=None):
     from ..limits import steps_problem
-    from ..results import Result
 
     sysm = build(model)
     sim, out = model.simulation, model.output

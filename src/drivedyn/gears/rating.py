@@ -29,7 +29,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, field
 
-from .geometry import inv, inv_inverse
+from .geometry import inv
 
 #: Materials with their allowable stress numbers and the published worked example they come from.
 #: class: ISO 6336 material class (Eh case-hardened, V through-hardened, NT nitrided, St, GG).

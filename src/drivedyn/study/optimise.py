@@ -111,12 +111,12 @@ def _check_keys(opt, records):
     if not done:
         return
     keys = set().union(*(r.get("summary", {}).keys() for r in done))
-    for field, pattern in [("optimise.objective", opt.objective)] + [(f"optimise.constraints[{i}].key", c.key)
+    for name, pattern in [("optimise.objective", opt.objective)] + [(f"optimise.constraints[{i}].key", c.key)
                                                                      for i, c in enumerate(opt.constraints)]:
         if pattern not in keys and not any(fnmatch.fnmatchcase(k, pattern) for k in keys):
             close = difflib.get_close_matches(pattern, sorted(keys), n=1)
             hint = f" (did you mean {close[0]!r}?)" if close else ""
-            raise ModelError(f"no summary key {pattern!r} in the designs' results{hint}", field=field)
+            raise ModelError(f"no summary key {pattern!r} in the designs' results{hint}", field=name)
 
 
 def run_optimise(study, execute) -> Optimum:
