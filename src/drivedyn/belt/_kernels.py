@@ -1681,9 +1681,10 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
     for j in range(nk):
         ipl[j] = implicit and P.mode[j] == 0 and P.cl_kind[j] == 0
     f = np.zeros
+    ieff = B.inertia * B.iscale      # the segments' rotational inertia as integrated (see system.py)
     X = Scratch(f((ni, NSC)), np.full((ni, NSI), -1, dtype=np.int64), f(ni), f(ni), f(ni), f(ni), f(ni), f(ni), f(ni),
-                f(ni), f(ni), B.inv_m.copy(), B.inv_i.copy(), f(n), f(n), h * B.inv_m, h / (B.inertia * B.iscale),
-                B.inertia * B.iscale, np.zeros(nci, dtype=np.int64), f((nci, 11)), f((msz, msz)), f(msz), f(nk),
+                f(ni), f(ni), B.inv_m.copy(), B.inv_i.copy(), f(n), f(n), h * B.inv_m, h / ieff,
+                ieff, np.zeros(nci, dtype=np.int64), f((nci, 11)), f((msz, msz)), f(msz), f(nk),
                 f(nk), f(nk), f(nk), ipl, f(nk), f((2, nk)))
     t = _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X)
     W.tq_belt[:] = X.tq_belt
