@@ -7,7 +7,7 @@ import math
 import pytest
 
 import drivedyn
-from drivedyn.belt.resolution import WRAP_SEGMENTS, auto_segments
+from drivedyn.belt.resolution import SAG_RATIO, WRAP_SEGMENTS, auto_segments
 from drivedyn.belt.steady import steady_state
 from drivedyn.model import from_dict, to_dict
 
@@ -26,16 +26,22 @@ def held(rpm, segments="auto", duration=0.8):
     return from_dict(d)
 
 
-def test_auto_puts_enough_segments_on_the_shortest_wrap():
+def test_auto_resolves_the_shortest_wrap_and_the_chordal_landing():
+    """The chord sag l^2 / (8 r) against the contact depth at the pretension's pressure T0 / r,
+    written out here for the 28 mm alternator (c1 p^2 + c2 p = T0 / r, the example's 6PK contact),
+    sets the count on this drive; the 45 degree tensioner wrap then holds more than six."""
     m = held(3000)
     n, why = auto_segments(m)
-    assert "tensioner" in why                          # the 45 degree wrap on the 35 mm tensioner
+    assert "chord sag" in why and "alternator" in why
     from drivedyn.belt.layout import compute_layout
 
     lay = compute_layout(m)
     l = lay.length / n
-    assert 35e-3 * math.radians(45) / l >= WRAP_SEGMENTS * 0.97
-    assert 300 < n < 360
+    T0, r, c1, c2 = 350.0, 0.028, 4.54e11, 9.75e7
+    p = (-c2 + math.sqrt(c2 * c2 + 4 * c1 * T0 / r)) / (2 * c1)
+    assert l * l / (8 * r * p) == pytest.approx(SAG_RATIO, rel=0.01)
+    assert 35e-3 * math.radians(45) / l >= WRAP_SEGMENTS
+    assert 640 < n < 700
 
 
 @pytest.mark.slow
@@ -55,6 +61,7 @@ def test_slip_at_the_defaults_against_creep_theory():
     d = r.summary["discretisation"]
     assert d["segments"] == auto_segments(m)[0] and d["shortest_wrap"] == "tensioner"
     assert d["segments_on_shortest_wrap"] >= 0.97 * WRAP_SEGMENTS
+    assert d["chord_sag_to_depth"] <= SAG_RATIO
     assert "coarse-discretisation" not in [x.code for x in r.diagnostics]
 
 

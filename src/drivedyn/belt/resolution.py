@@ -14,8 +14,20 @@ slip and span tension (tests/belt/test_resolution.py measures both against refin
   points with 2.8 segments on it and by 0.004 with 5.6; the crank span's tension band is 10 %
   narrow at 150 segments against 600 (3 % at 300).
 
-"auto" takes the longest segment that puts WRAP_SEGMENTS on the shortest wrap and is at most
-CHORD_RATIO of the smallest radius, with MIN_SEGMENTS at least.
+- chordal landing: a segment wrapped on a pulley of radius r stands off the circle by its chord
+  sag l^2 / (8 r) at its ends, and each landing segment drops that far into the contact at the
+  polygon frequency v / l. Where the sag is not small against the depth p to which the belt's
+  tension presses it into the groove (contact pressure T / r, steady.penetration), landings shake
+  the contact, the wraps carry their load in bursts and the drive's response at the engine orders
+  is off by several per cent, converging only once the sag is a fraction of p. Measured
+  (benchmarks/bench_fead_convergence.py, examples/fead-runup.toml's drive held at 3000 rpm with its
+  orders; a two-pulley drive's torsional mode while running): sag / depth 0.87 (330 segments):
+  span minima up to 9 % off a 4x refined run, torsional mode 3-14 % low at 0.9-1.1 (4-24 m/s);
+  0.22-0.27: within 1-2 % (4 % with the tensioner arm's dry friction in the loop).
+
+"auto" takes the longest segment that puts WRAP_SEGMENTS on the shortest wrap, is at most
+CHORD_RATIO of the smallest radius and whose chord sag is at most SAG_RATIO of the contact depth at
+the pretension on every pulley, with MIN_SEGMENTS at least.
 """
 from __future__ import annotations
 
@@ -23,6 +35,7 @@ import math
 
 from ..errors import ModelError
 from .layout import compute_layout
+from .steady import penetration
 
 #: segments on the shortest wrap (the wrap-resolution rule above)
 WRAP_SEGMENTS = 6
@@ -30,11 +43,32 @@ WRAP_SEGMENTS = 6
 #: the rolling-radius correction, impacts of entering segments small)
 CHORD_RATIO = 0.3
 MIN_SEGMENTS = 60
+#: largest chord sag l^2 / (8 r) against the contact depth at the pretension (the chordal rule above)
+SAG_RATIO = 0.25
 #: wraps shorter than this (deg) are left out of the wrap rule: a 7-degree idler wrap would ask for
 #: 3000 segments and carries almost no torque; discretisation.unresolved_wraps names them
 WRAP_MIN_DEG = 20.0
 #: "auto" never picks more (the semi-implicit scheme's cost grows as n^2)
 MAX_AUTO = 2000
+
+
+def depths(model, layout) -> list[float]:
+    """Per pulley, the contact depth p (m) at the pressure T / r of the belt's tension at rest: the
+    pretension, or for a given unstretched length the tension stretching it over the drawn path
+    (0 for a slack belt)."""
+    T = model.belt.pretension
+    if T is None:
+        T = max(0.0, model.belt.axial_stiffness * (layout.length / model.belt.length - 1.0))
+    c = model.contact
+    return [float(penetration(T / p.radius, c.stiffness_quadratic, c.stiffness_linear)) for p in model.pulleys]
+
+
+def chord_sag(model, layout, l) -> tuple[float, int]:
+    """The largest chord sag l^2 / (8 r) of segments of length l against the contact depth at rest
+    over the pulleys, and that pulley's index (inf where the belt is slack)."""
+    ratios = [l * l / (8.0 * p.radius * d) if d > 0 else math.inf for p, d in zip(model.pulleys, depths(model, layout))]
+    j = max(range(len(ratios)), key=ratios.__getitem__)
+    return ratios[j], j
 
 
 def auto_segments(model, layout=None) -> tuple[int, str]:
@@ -44,12 +78,15 @@ def auto_segments(model, layout=None) -> tuple[int, str]:
     arcs = [w * r if math.degrees(w) >= WRAP_MIN_DEG else math.inf for w, r in zip(lay.wrap, radii)]
     j = min(range(len(arcs)), key=arcs.__getitem__)
     k = min(range(len(radii)), key=radii.__getitem__)
-    by_wrap, by_chord = arcs[j] / WRAP_SEGMENTS, CHORD_RATIO * radii[k]
-    if by_wrap <= by_chord:
-        l, why = by_wrap, (f"{WRAP_SEGMENTS} segments on the shortest wrap ({model.pulleys[j].name}, "
-                           f"{math.degrees(lay.wrap[j]):.0f} deg on {radii[j] * 1e3:.3g} mm)")
-    else:
-        l, why = by_chord, f"segments at most {CHORD_RATIO:g} x the smallest radius ({model.pulleys[k].name}, {radii[k] * 1e3:.3g} mm)"
+    sags = [math.sqrt(SAG_RATIO * 8.0 * r * d) if d > 0 else math.inf for r, d in zip(radii, depths(model, lay))]
+    q = min(range(len(sags)), key=sags.__getitem__)
+    rules = [(arcs[j] / WRAP_SEGMENTS, f"{WRAP_SEGMENTS} segments on the shortest wrap ({model.pulleys[j].name}, "
+                                       f"{math.degrees(lay.wrap[j]):.0f} deg on {radii[j] * 1e3:.3g} mm)"),
+             (CHORD_RATIO * radii[k], f"segments at most {CHORD_RATIO:g} x the smallest radius ({model.pulleys[k].name}, "
+                                      f"{radii[k] * 1e3:.3g} mm)"),
+             (sags[q], f"chord sag at most {SAG_RATIO:g} x the contact depth at rest ({model.pulleys[q].name}, "
+                       f"{radii[q] * 1e3:.3g} mm)")]
+    l, why = min(rules, key=lambda rule: rule[0])
     n = max(MIN_SEGMENTS, math.ceil(lay.length / l))
     if n > MAX_AUTO:
         raise ModelError(f"\"auto\" would need {n} segments ({why}), over the {MAX_AUTO} it may pick: give "
@@ -82,6 +119,7 @@ def discretisation(model, sysm) -> dict:
             "unresolved_wraps": {p.name: float(math.degrees(lay.wrap[j])) for j, p in enumerate(model.pulleys)
                                  if j not in resolved_},
             "chordal_speed_error": float(l * l / (12 * r_min * r_min)),
+            "chord_sag_to_depth": chord_sag(model, lay, l)[0],
             "slip_measured_against": "the chain's rolling radius (polygon effect removed)"}
 
 
