@@ -123,7 +123,8 @@ def test_agrees_with_semi_implicit(name):
     337 segments: span tensions 0.5-0.9 % above the reference (567.6 against 564.6 N on the
     water pump-alternator span), slips within 0.015 points, at 34.5 us against 1.25 us (14 s
     against 1.7 s wall). With 110 segments the accessory drive agreed to 0.05 %."""
-    ref, new = _pair(name)
+    # the accessory drive at the 337 segments measured here ("auto" takes 386 since its chord-sag rule)
+    ref, new = _pair(name) if name == "belt-5pk" else _pair(name, **{"belt.segments": 337})
     tol = 0.005 if name == "belt-5pk" else 0.01
     assert new["solver"]["step"] > 8 * ref["solver"]["step"]
     # no segment of a free span spins (the scheme's spin damping, _kernels.SPIN_ZETA): without it
