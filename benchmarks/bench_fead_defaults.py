@@ -5,7 +5,7 @@ at belt.segments = "auto" (the default) and at 150 segments, against a run at fo
 tension minimum and maximum (% off), the arm's travel range, status and wall time.
 
 Run: python benchmarks/bench_fead_defaults.py [--rpm 3000] [--refine 4]
-(not a timed test; numbers depend on the machine: the 4x reference takes about a minute)
+(not a timed test; numbers depend on the machine: the 4x reference takes several minutes)
 """
 import argparse
 import math
