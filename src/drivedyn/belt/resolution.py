@@ -19,11 +19,13 @@ slip and span tension (tests/belt/test_resolution.py measures both against refin
   polygon frequency v / l. Where the sag is not small against the depth p to which the belt's
   tension presses it into the groove (contact pressure T / r, steady.penetration), landings shake
   the contact, the wraps carry their load in bursts and the drive's response at the engine orders
-  is off by several per cent, converging only once the sag is a fraction of p. Measured
-  (benchmarks/bench_fead_convergence.py, examples/fead-runup.toml's drive held at 3000 rpm with its
-  orders; a two-pulley drive's torsional mode while running): sag / depth 0.87 (330 segments):
-  span minima up to 9 % off a 4x refined run, torsional mode 3-14 % low at 0.9-1.1 (4-24 m/s);
-  0.22-0.27: within 1-2 % (4 % with the tensioner arm's dry friction in the loop).
+  is off by several per cent, converging only once the sag is a fraction of p. Measured on
+  examples/fead-runup.toml's drive held at 3000 rpm with its orders (benchmarks/
+  bench_fead_convergence.py): at sag / depth 0.87 (330 segments) span minima up to 9 % off 1320
+  segments; at 0.25 (666) within 2.8 % of 1332 but one (4.5 %, moving with the tensioner arm's dry
+  friction; with the arm held, within 1.7 % at 660). A two-pulley drive's torsional mode, measured
+  while running, is 3.3 % low at 4 m/s and 14 % low at 24 m/s at sag / depth 1.07, within 0.7 % at
+  0.27.
 
 "auto" takes the longest segment that puts WRAP_SEGMENTS on the shortest wrap, is at most
 CHORD_RATIO of the smallest radius and whose chord sag is at most SAG_RATIO of the contact depth at
@@ -114,12 +116,13 @@ def discretisation(model, sysm) -> dict:
     short = min(per_wrap, key=per_wrap.get) if per_wrap else None
     r_min = min(p.radius for p in model.pulleys)
     rule = auto_segments(model, lay)[1] if model.belt.segments == "auto" else "given (belt.segments)"
+    sag = chord_sag(model, lay, l)[0]
     return {"segments": int(sysm.n), "segment_length": float(l), "rule": rule,
             "shortest_wrap": short, "segments_on_shortest_wrap": per_wrap[short] if short else None,
             "unresolved_wraps": {p.name: float(math.degrees(lay.wrap[j])) for j, p in enumerate(model.pulleys)
                                  if j not in resolved_},
             "chordal_speed_error": float(l * l / (12 * r_min * r_min)),
-            "chord_sag_to_depth": chord_sag(model, lay, l)[0],
+            "chord_sag_to_depth": sag if math.isfinite(sag) else None,     # None: a slack belt
             "slip_measured_against": "the chain's rolling radius (polygon effect removed)"}
 
 
