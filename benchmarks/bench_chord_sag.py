@@ -62,7 +62,7 @@ def main():
         for k in a.factors:
             n = int(round(k * n_auto))
             r = drivedyn.run(drive(n, omega))
-            sag = chord_sag(m, lay, lay.length / n)[0]
+            sag = chord_sag(m, lay, lay.length / n)
             print(f"  {n:5d} segments, sag/depth {sag:5.2f}: {ringing(r):7.1f} Hz, wall {r.summary['solver']['wall_time']:.1f} s",
                   flush=True)
 

@@ -744,20 +744,22 @@ SKIP_MAX = 64
 
 @njit(cache=True, inline="always")
 def _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb):
-    """The pulley whose circle holds segment i's centre, or -1; pulleys do not overlap, so at most
-    one. Not every pulley is tested every step: a segment on a pulley is tested against that one
-    first; a free segment, once tested against all, is not tested again for as many steps as it
-    needs to cross its clearance to the nearest pulley at the speed bound hvb / h (twice the
-    fastest segment and pulley centre, plus 1 m/s; at most SKIP_MAX steps)."""
+    """The pulley whose circle holds segment i's centre, or -1, and the centre's offset from it
+    (rx, ry) and its square d2 (zeros for -1); pulleys do not overlap, so at most one. Not every
+    pulley is tested every step: a segment on a pulley is tested against that one first; a free
+    segment, once tested against all, is not tested again for as many steps as it needs to cross
+    its clearance to the nearest pulley at the speed bound hvb / h (twice the fastest segment and
+    pulley centre, plus 1 m/s; at most SKIP_MAX steps)."""
     j0 = cand_j[i]
     if j0 >= 0:
         rx = x[i] - pcx[j0]
         ry = y[i] - pcy[j0]
-        if rx * rx + ry * ry < pr[j0] * pr[j0]:
-            return j0
+        d2 = rx * rx + ry * ry
+        if d2 < pr[j0] * pr[j0]:
+            return j0, rx, ry, d2
     elif cand_skip[i] > 0:
         cand_skip[i] -= 1
-        return -1
+        return -1, 0.0, 0.0, 0.0
     gmin = 1e300
     for j in range(nk):
         rx = x[i] - pcx[j]
@@ -765,11 +767,11 @@ def _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb):
         d2 = rx * rx + ry * ry
         if d2 < pr[j] * pr[j]:
             cand_j[i] = j
-            return j
+            return j, rx, ry, d2
         gmin = min(gmin, math.sqrt(d2) - pr[j])
     cand_j[i] = -1
     cand_skip[i] = min(SKIP_MAX, int(gmin / hvb))
-    return -1
+    return -1, 0.0, 0.0, 0.0
 
 
 @njit(cache=True, inline="always")
@@ -1067,13 +1069,8 @@ def _contacts(n, nk, h, hvb, g, m, c1, c2, bc, pmax, x, y, vx, vy, pcx, pcy, pvx
     for i in range(n):
         fy[i] -= m[i] * g
         si[i, I_J] = -1
-        jc = _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb)
-        for j in range(max(jc, 0), jc + 1):      # the contact pulley only (none: jc = -1)
-            rx = x[i] - pcx[j]
-            ry = y[i] - pcy[j]
-            d2 = rx * rx + ry * ry
-            if d2 >= pr[j] * pr[j]:
-                continue
+        j, rx, ry, d2 = _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb)
+        if j >= 0:      # pulleys do not overlap: one contact per segment
             dist = math.sqrt(d2)
             nx = rx / dist
             ny = ry / dist
@@ -1115,7 +1112,6 @@ def _contacts(n, nk, h, hvb, g, m, c1, c2, bc, pmax, x, y, vx, vy, pcx, pcy, pvx
             s2s = 2.0 * sps * cps
             sc[i, C_VPX] = rvx * c2s - rvy * s2s
             sc[i, C_VPY] = rvx * s2s + rvy * c2s
-            break       # pulleys do not overlap: one contact per segment
         if si[i, I_J] < 0:
             stk[i] = 0.0
             z[i] = 0.0
@@ -1572,15 +1568,8 @@ def _contact_semi(i, nk, h, hm, hvb, vxs, vys, c1, c2, bc, mu, pmax, law, dv, dm
     pen = 0.0
     pcd = 0.0
     pfr = 0.0
-    incontact = False
-    jc = _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb)
-    for j in range(max(jc, 0), jc + 1):      # the contact pulley only (none: jc = -1)
-        rx = x[i] - pcx[j]
-        ry = y[i] - pcy[j]
-        d2 = rx * rx + ry * ry
-        if d2 >= pr[j] * pr[j]:
-            continue
-        incontact = True
+    j, rx, ry, d2 = _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb)
+    if j >= 0:      # the contact pulley only
         dist = math.sqrt(d2)
         inv = 1.0 / dist
         nx = rx * inv
@@ -1594,21 +1583,21 @@ def _contact_semi(i, nk, h, hm, hvb, vxs, vys, c1, c2, bc, mu, pmax, law, dv, dm
         N, db = normal_force(c1[i], c2[i], bc[i], pmax, p, vn, hm)
         if N <= 0.0:
             pcd += clipped_power(c1[i], c2[i], p, vn)
-            continue
-        vn_new = vn + hm * N
-        pcd += db * vn_new * vn_new
-        # slip of the pulley surface relative to the segment, along tau = Z x n = (-ny, nx)
-        T, sl = friction(mu[i], law, dv, dmax, N, om[j] * pr[j] - (rvx * -ny + rvy * nx), hm, h, z, i)
-        pfr += T * sl
-        # force N n + T tau, tau = Z x n = (-ny, nx)
-        vxs += hm * (N * nx + T * -ny)
-        vys += hm * (N * ny + T * nx)
-        Ntot += N
-        Ttot += T
-        tq_belt[j] -= pr[j] * T
-        hubx[j] -= N * nx + T * -ny
-        huby[j] -= N * ny + T * nx
-    if not incontact:
+        else:
+            vn_new = vn + hm * N
+            pcd += db * vn_new * vn_new
+            # slip of the pulley surface relative to the segment, along tau = Z x n = (-ny, nx)
+            T, sl = friction(mu[i], law, dv, dmax, N, om[j] * pr[j] - (rvx * -ny + rvy * nx), hm, h, z, i)
+            pfr += T * sl
+            # force N n + T tau, tau = Z x n = (-ny, nx)
+            vxs += hm * (N * nx + T * -ny)
+            vys += hm * (N * ny + T * nx)
+            Ntot += N
+            Ttot += T
+            tq_belt[j] -= pr[j] * T
+            hubx[j] -= N * nx + T * -ny
+            huby[j] -= N * ny + T * nx
+    else:
         z[i] = 0.0
     return vxs, vys, Ntot, Ttot, pen, pcd, pfr
 

@@ -65,12 +65,10 @@ def depths(model, layout) -> list[float]:
     return [float(penetration(T / p.radius, c.stiffness_quadratic, c.stiffness_linear)) for p in model.pulleys]
 
 
-def chord_sag(model, layout, l) -> tuple[float, int]:
+def chord_sag(model, layout, l) -> float:
     """The largest chord sag l^2 / (8 r) of segments of length l against the contact depth at rest
-    over the pulleys, and that pulley's index (inf where the belt is slack)."""
-    ratios = [l * l / (8.0 * p.radius * d) if d > 0 else math.inf for p, d in zip(model.pulleys, depths(model, layout))]
-    j = max(range(len(ratios)), key=ratios.__getitem__)
-    return ratios[j], j
+    over the pulleys (inf where the belt is slack)."""
+    return max(l * l / (8.0 * p.radius * d) if d > 0 else math.inf for p, d in zip(model.pulleys, depths(model, layout)))
 
 
 def auto_segments(model, layout=None) -> tuple[int, str]:
@@ -116,7 +114,7 @@ def discretisation(model, sysm) -> dict:
     short = min(per_wrap, key=per_wrap.get) if per_wrap else None
     r_min = min(p.radius for p in model.pulleys)
     rule = auto_segments(model, lay)[1] if model.belt.segments == "auto" else "given (belt.segments)"
-    sag = chord_sag(model, lay, l)[0]
+    sag = chord_sag(model, lay, l)
     return {"segments": int(sysm.n), "segment_length": float(l), "rule": rule,
             "shortest_wrap": short, "segments_on_shortest_wrap": per_wrap[short] if short else None,
             "unresolved_wraps": {p.name: float(math.degrees(lay.wrap[j])) for j, p in enumerate(model.pulleys)
