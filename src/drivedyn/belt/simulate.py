@@ -387,6 +387,7 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
               "last_step": float(h), "wall_time": float(wall), "simulated_time": t_end,
               "status": "failed" if failure else "success",
               "step": float(h), "stability_limit": float(sysm.step_limit),
+              "rotation_scaling": bool(sysm.belt.iscale > 1.0),
               "real_time_factor": float(t_end / wall) if wall > 0 else float("nan")}
     if integrator(model) == "implicit" and getattr(rec, "implicit", None):
         solver["factorisations"], solver["active_set_passes"], solver["stick_slip_changes"] = rec.implicit
