@@ -60,3 +60,36 @@ def test_check_report_lists_everything():
     text = drivedyn.check(drivedyn.example_path("belt-accessory"))
     for word in ("crankshaft", "idler", "wrap", "hub load", "f1 Hz", "alternator-idler", "measure here", "slip margin"):
         assert word in text
+
+
+def test_the_placement_walk_is_exact_on_a_six_pulley_path():
+    """The compiled walk (initial._walk) on examples/fead-runup.toml's path (a back-side idler,
+    a 28 mm alternator, 0.8 um gaps at 666 segments): every chord is l and every gap g to round-off,
+    every chord end lies on the path (its distance to the nearest line or arc, taken here), and
+    the walk closes on the path's length."""
+    from drivedyn.belt.initial import _Path, _walk
+
+    m = drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-runup")), {"belt.segments": 666})
+    init = initial_state(m, compute_layout(m))
+    n, l, g = 666, init.seg_length, init.gap
+    path = _Path(init.layout)
+    S, E, s_end = _walk(path, n, l, g)
+    assert np.hypot(*(E - S).T) == pytest.approx(l, rel=1e-12)
+    assert np.hypot(*(np.roll(S, -1, axis=0) - E)[:-1].T) == pytest.approx(g, rel=1e-8)
+    assert abs(s_end - path.length) < 1e-9
+
+    def off_path(p):
+        best = math.inf
+        for piece in init.layout.pieces():
+            if piece[0] == "line":
+                _, a, b, L = piece
+                u = min(max(np.dot(p - a, b - a) / L ** 2, 0.0), 1.0)
+                best = min(best, float(np.hypot(*(a + u * (b - a) - p))))
+            else:
+                _, c, R, a0, sweep, _ = piece
+                ang = (math.atan2(p[1] - c[1], p[0] - c[0]) - a0) * math.copysign(1, sweep) % (2 * math.pi)
+                if ang <= abs(sweep) + 1e-9 or ang >= 2 * math.pi - 1e-9:
+                    best = min(best, abs(float(np.hypot(*(p - c))) - R))
+        return best
+
+    assert max(off_path(p) for p in np.vstack([S, E])) < 1e-12
