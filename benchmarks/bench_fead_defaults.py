@@ -30,14 +30,16 @@ def main():
     for label, r in runs.items():
         s = r.summary
         dslip = max(abs(100 * (s["pulleys"][p]["slip"] - rs["pulleys"][p]["slip"])) for p in s["pulleys"])
-        dmin = max(abs(s["spans"][q]["tension_min"] / rs["spans"][q]["tension_min"] - 1) for q in s["spans"])
-        dmax = max(abs(s["spans"][q]["tension_max"] / rs["spans"][q]["tension_max"] - 1) for q in s["spans"])
+        off = {k: {q: s["spans"][q][k] / rs["spans"][q][k] - 1 for q in s["spans"]} for k in ("tension_min", "tension_max")}
+        qmin = max(off["tension_min"], key=lambda q: abs(off["tension_min"][q]))
+        qmax = max(off["tension_max"], key=lambda q: abs(off["tension_max"][q]))
+        dmin, dmax = abs(off["tension_min"][qmin]), abs(off["tension_max"][qmax])
         arm = s["tensioners"]["tensioner"]
         codes = ",".join(d.code for d in r.diagnostics) or "-"
         print(f"  {label:>5s}: {s['belt']['segments']:5d} segments, wall {s['solver']['wall_time']:6.1f} s; slips "
               + " / ".join(f"{100 * s['pulleys'][p]['slip']:.3f}" for p in s["pulleys"])
-              + f" %, largest off {dslip:.3f} points; span minima off up to {100 * dmin:.1f} %, maxima "
-              f"{100 * dmax:.1f} %; arm range {(arm['travel_max'] - arm['travel_min']) * 180 / math.pi:.3f} deg; "
+              + f" %, largest off {dslip:.3f} points; span minima off up to {100 * dmin:.1f} % ({qmin}), maxima "
+              f"{100 * dmax:.1f} % ({qmax}); arm range {(arm['travel_max'] - arm['travel_min']) * 180 / math.pi:.3f} deg; "
               f"{r.status}: {codes}", flush=True)
 
 
