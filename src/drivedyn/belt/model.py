@@ -341,9 +341,8 @@ class Simulation(Spec):
     method: Literal["auto", "implicit", "semi-implicit", "rkf45"] = "auto"
     step: Optional[quantity("s", gt=0)] = None
     # the segments' rotational inertia x 3.3 (system.ROTATION_SCALE): a 1.3x longer stable step of
-    # the semi-implicit scheme; "auto": where the chord sag is resolved (resolution.py), so that the
-    # scaled inertia's share of a landing is small (system.rotation_scaled)
-    rotation_scaling: Union[Literal["auto"], bool] = "auto"
+    # the semi-implicit scheme, opt-in (what it changes: system.py)
+    rotation_scaling: bool = False
     # run the drive a second time at 0.7 x the segments and report the change as an estimate of
     # the discretisation error (resolution.py; about 1.5 x the cost)
     resolution_check: bool = False
@@ -471,7 +470,7 @@ def integrator(model) -> str:
     """The belt integration scheme a run uses: ``simulation.method``, where "auto" (the default)
     is the implicit scheme (the step set by the dynamics, agreeing with the semi-implicit
     reference on the seed drives) unless the drive has tensioners, clutches or speed orders, the
-    elastic-plastic friction law or rotation_scaling = true; then the semi-implicit scheme.
+    elastic-plastic friction law or asks for rotation scaling; then the semi-implicit scheme.
     The implicit scheme integrates tensioners, clutches and speed orders (tests/belt/test_implicit.py
     against the semi-implicit reference), but on accessory drives at their "auto" resolution its
     accuracy rule (simulate.TURN_PER_STEP) and the refactorisations at every segment landing make it
@@ -480,7 +479,7 @@ def integrator(model) -> str:
     if method != "auto":
         return method
     if (_semi_implicit_only(model.pulleys) or model.friction.law == "elastic-plastic"
-            or model.simulation.rotation_scaling is True):
+            or model.simulation.rotation_scaling):
         return "semi-implicit"
     return "implicit"
 

@@ -15,7 +15,7 @@ from ..tables import flatten
 from .layout import Layout, compute_layout
 from . import tensioner
 from .model import integrator
-from .resolution import SAG_RATIO, chord_sag, resolved
+from .resolution import resolved
 
 
 @dataclass
@@ -127,7 +127,7 @@ def _build(model, drawn, settle: bool) -> BeltSystem:
     ones = np.ones(n)
     m = belt.mass_per_length * l * ones
     inertia = m * l * l / 12.0                                      # eq. 2
-    scaled = integrator(model) == "semi-implicit" and rotation_scaled(drawn, layout, l)
+    scaled = integrator(model) == "semi-implicit" and model.simulation.rotation_scaling
     B = K.Belt(
         n=int(n), m=m, inertia=inertia, inv_m=1.0 / m, inv_i=1.0 / inertia,
         kax=belt.axial_stiffness / l ** e * ones,                     # F = EA (g / l)^e
@@ -364,26 +364,18 @@ def damping_depth(model, init) -> float:
 
 # Selective mass scaling of the segments' rotation: I = m l^2/12 -> 3.3 I = 1.1 m l^2/4, just above
 # the m l^2/4 that takes the alternating rotation mode (omega^2 = 12 k/m) below the zig-zag modes
-# (4 k/m): the step grows by 1.27 on examples/fead-runup.toml's drive, 1.5 on the 5PK.
-# What it changes is the landings: a segment landing on a pulley stops turning relative to it, and
-# the scaled inertia raises that turn's energy, I (v/r)^2 / 2, by 3.3 (the landing's whole energy
-# by about 1.6). Where the chord sag is resolved (at most SAG_RATIO x the contact depth) the
-# landings are small against the wraps' own contact losses and it changes nothing measurable:
-# examples/fead-runup.toml's drive held at 3000 / 5000 rpm with its orders, 666 segments: contact
-# losses 101.3 against 101.9 W and 178.5 against 178.9 W, span bands within the scatter of the
-# unscaled run against 1332 segments, 1.24-1.30x faster. At a coarse count they do not: the
-# accessory drive at 11 m/s, its sag several times the depth, lost 33 against 24 W in contact and
-# friction.
+# (4 k/m): the step grows by 1.27 on examples/fead-runup.toml's drive, 1.5 on the 5PK. Opt-in
+# (simulation.rotation_scaling). What it changes is the landings: a segment landing on a pulley
+# stops turning relative to it, and the scaled inertia raises that turn's energy, I (v/r)^2 / 2, by
+# 3.3 (the landing's whole energy by about 1.6). Where the chord sag is resolved (resolution.py) that
+# leaves the losses and the modes as they were (fead-runup's drive held at 3000 / 5000 rpm with its
+# orders, 666 segments: contact-damping loss 101.3 against 101.9 W, 178.5 against 178.9 W; a
+# two-pulley drive's torsional mode at 24 m/s within 0.3 %), but not a tensioner arm's dry friction,
+# which the stronger landing kicks on its pulley dither: the alternator-tensioner span's minimum
+# 260-264 N at 666-930 segments scaled against 253 N unscaled and 247-248 N at 2664 (3000 rpm;
+# with the arm held, scaled and unscaled agree to 1 N). Not the default for that. At a coarse count
+# the landings dominate: the accessory drive at 11 m/s lost 33 against 24 W in contact and friction.
 ROTATION_SCALE = 3.3
-
-
-def rotation_scaled(model, layout, l) -> bool:
-    """Whether the semi-implicit scheme scales the segments' rotation (simulation.rotation_scaling:
-    true, false, or "auto": where the chord sag of segments of length l is resolved)."""
-    rs = model.simulation.rotation_scaling
-    if rs == "auto":
-        return chord_sag(model, layout, l) <= SAG_RATIO * (1 + 1e-9)
-    return bool(rs)
 
 
 def effective_inertia(sysm) -> np.ndarray:
