@@ -151,6 +151,8 @@ def _next(pc, total, s, px, py, c):
 
 @njit(cache=True)
 def _walk_pieces(pc, total, n, l, g):
+    """``_walk`` on the piece array: chord, gap, chord, ... from arc length 0; s = -1 where a
+    chord or gap finds no end on the path."""
     starts = np.empty((n, 2))
     ends = np.empty((n, 2))
     s = 0.0
