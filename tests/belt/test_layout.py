@@ -3,8 +3,11 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 import drivedyn
+from drivedyn.errors import ModelError
 from drivedyn.belt.initial import initial_state
 from drivedyn.belt.layout import compute_layout, layout_from
 from drivedyn.belt.statics import capstan_torque
@@ -62,34 +65,59 @@ def test_check_report_lists_everything():
         assert word in text
 
 
+def _off_path(layout, p):
+    """Distance of point p from the path of ``layout`` (its nearest line or arc), written here."""
+    best = math.inf
+    for piece in layout.pieces():
+        if piece[0] == "line":
+            _, a, b, L = piece
+            u = min(max(np.dot(p - a, b - a) / L ** 2, 0.0), 1.0)
+            best = min(best, float(np.hypot(*(a + u * (b - a) - p))))
+        else:
+            _, c, R, a0, sweep, _ = piece
+            ang = (math.atan2(p[1] - c[1], p[0] - c[0]) - a0) * math.copysign(1, sweep) % (2 * math.pi)
+            if ang <= abs(sweep) + 1e-9 or ang >= 2 * math.pi - 1e-9:
+                best = min(best, abs(float(np.hypot(*(p - c))) - R))
+    return best
+
+
+def _check_walk(layout, n, l, g, closes):
+    from drivedyn.belt.initial import _Path, _walk
+
+    path = _Path(layout)
+    S, E, s_end = _walk(path, n, l, g)
+    assert np.hypot(*(E - S).T) == pytest.approx(l, rel=1e-12)
+    if g > 0:
+        assert np.hypot(*(np.roll(S, -1, axis=0) - E)[:-1].T) == pytest.approx(g, rel=1e-8, abs=1e-15)
+    if closes:
+        assert abs(s_end - path.length) < 1e-9
+    assert max(_off_path(layout, p) for p in np.vstack([S, E])) < 1e-12
+
+
 def test_the_placement_walk_is_exact_on_a_six_pulley_path():
     """The compiled walk (initial._walk) on examples/fead-runup.toml's path (a back-side idler,
     a 28 mm alternator, 0.8 um gaps at 666 segments): every chord is l and every gap g to round-off,
     every chord end lies on the path (its distance to the nearest line or arc, taken here), and
     the walk closes on the path's length."""
-    from drivedyn.belt.initial import _Path, _walk
-
     m = drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-runup")), {"belt.segments": 666})
     init = initial_state(m, compute_layout(m))
-    n, l, g = 666, init.seg_length, init.gap
-    path = _Path(init.layout)
-    S, E, s_end = _walk(path, n, l, g)
-    assert np.hypot(*(E - S).T) == pytest.approx(l, rel=1e-12)
-    assert np.hypot(*(np.roll(S, -1, axis=0) - E)[:-1].T) == pytest.approx(g, rel=1e-8)
-    assert abs(s_end - path.length) < 1e-9
+    _check_walk(init.layout, 666, init.seg_length, init.gap, closes=True)
 
-    def off_path(p):
-        best = math.inf
-        for piece in init.layout.pieces():
-            if piece[0] == "line":
-                _, a, b, L = piece
-                u = min(max(np.dot(p - a, b - a) / L ** 2, 0.0), 1.0)
-                best = min(best, float(np.hypot(*(a + u * (b - a) - p))))
-            else:
-                _, c, R, a0, sweep, _ = piece
-                ang = (math.atan2(p[1] - c[1], p[0] - c[0]) - a0) * math.copysign(1, sweep) % (2 * math.pi)
-                if ang <= abs(sweep) + 1e-9 or ang >= 2 * math.pi - 1e-9:
-                    best = min(best, abs(float(np.hypot(*(p - c))) - R))
-        return best
 
-    assert max(off_path(p) for p in np.vstack([S, E])) < 1e-12
+@settings(max_examples=60, deadline=None)
+@given(nk=st.integers(2, 5), seed=st.integers(0, 10 ** 6), n=st.sampled_from([12, 37, 150, 700]),
+       fill=st.floats(0.95, 0.999), gap=st.sampled_from([0.0, 1e-9, 1e-4, 0.02]))
+def test_the_placement_walk_on_random_paths(nk, seed, n, fill, gap):
+    """The same on random paths: 2-5 pulleys of 15-80 mm, one on its back, chords from 12 to 700
+    to a loop, gaps from none to 2 % of a chord (a chord may span whole short pieces)."""
+    rng = np.random.default_rng(seed)
+    ang = 2 * np.pi * np.arange(nk) / nk + rng.uniform(-0.2, 0.2, nk)
+    rad = rng.uniform(0.12, 0.3, nk)
+    centers = np.stack([rad * np.cos(ang), rad * np.sin(ang)], 1)
+    sides = ["back" if nk >= 4 and k == 1 else "inside" for k in range(nk)]
+    try:
+        lay = layout_from([f"p{k}" for k in range(nk)], centers, rng.uniform(0.015, 0.08, nk), sides)
+    except ModelError:       # a back-side idler outside its span: not a drive
+        assume(False)
+    l = lay.length / n * fill / (1 + gap)
+    _check_walk(lay, n, l, gap * l, closes=False)
