@@ -138,18 +138,13 @@ def test_energy_balance_closes_where_segments_leave_faster_than_the_contact_push
     the contact force is held at zero and the damper takes the contact's elastic energy. Counted
     as contact damping, the balance closes; without it 37.6 W of 3795 W (1.0 %) were missing and
     the run warned energy-residual (measured)."""
-    from drivedyn.model import from_dict, to_dict
+    import sys
+    from pathlib import Path
 
-    d = to_dict(drivedyn.load(drivedyn.example_path("fead-runup")))
-    w = -3000 * math.pi / 30
-    d["pulleys"][0]["speed_time"] = [[0.0, 0.0], [0.3, w], [0.5, w]]
-    d["pulleys"][0].pop("speed_orders", None)
-    for p in d["pulleys"]:
-        p.pop("harmonics", None)
-    d["belt"]["segments"] = 150
-    d["simulation"]["duration"] = 0.5
-    d["output"].update(runup_bin=None, steady_window=[0.3, 0.5])
-    r = drivedyn.run(from_dict(d))
+    sys.path.insert(0, str(Path(__file__).parents[2] / "benchmarks"))
+    from bench_fead_convergence import held
+
+    r = drivedyn.run(held(3000, 150, orders=False, duration=0.5))
     p = r.summary["power"]
     assert abs(p["energy_residual_window"]) < 2e-3 and abs(p["unaccounted"]) < 2e-3 * p["input"]
     assert "energy-residual" not in codes(r)

@@ -74,12 +74,19 @@ def _walk(path: _Path, n: int, l: float, g: float):
 
 
 @njit(cache=True)
-def _point(pc, total, s):
-    """The path's point at arc length s (taken modulo the length)."""
-    s = s % total
+def _piece(pc, s):
+    """The piece holding arc length s, 0 <= s < the path's length."""
     k = pc.shape[0] - 1
     while k > 0 and pc[k, 1] > s:
         k -= 1
+    return k
+
+
+@njit(cache=True)
+def _point(pc, total, s):
+    """The path's point at arc length s (taken modulo the length)."""
+    s = s % total
+    k = _piece(pc, s)
     u = (s - pc[k, 1]) / pc[k, 2] if pc[k, 2] > 0 else 0.0
     if pc[k, 0] == 0.0:
         return pc[k, 3] + (pc[k, 5] - pc[k, 3]) * u, pc[k, 4] + (pc[k, 6] - pc[k, 4]) * u
@@ -96,9 +103,7 @@ def _next(pc, total, s, px, py, c):
     m = pc.shape[0]
     sm = s % total
     base = s - sm
-    k = m - 1
-    while k > 0 and pc[k, 1] > sm:
-        k -= 1
+    k = _piece(pc, sm)
     eps = 1e-12
     for it in range(m + 2):
         kk = (k + it) % m
@@ -159,17 +164,15 @@ def _walk_pieces(pc, total, n, l, g):
     px, py = _point(pc, total, 0.0)
     for i in range(n):
         starts[i, 0], starts[i, 1] = px, py
-        if l > 0.0:
-            s = _next(pc, total, s, px, py, l)
-            if s < 0.0:
-                return starts, ends, -1.0
-            px, py = _point(pc, total, s)
-        ends[i, 0], ends[i, 1] = px, py
-        if g > 0.0:
-            s = _next(pc, total, s, px, py, g)
-            if s < 0.0:
-                return starts, ends, -1.0
-            px, py = _point(pc, total, s)
+        for k in range(2):               # the chord, then the gap to the next one
+            c = l if k == 0 else g
+            if c > 0.0:
+                s = _next(pc, total, s, px, py, c)
+                if s < 0.0:
+                    return starts, ends, -1.0
+                px, py = _point(pc, total, s)
+            if k == 0:
+                ends[i, 0], ends[i, 1] = px, py
     return starts, ends, s
 
 

@@ -23,9 +23,9 @@ slip and span tension (tests/belt/test_resolution.py measures both against refin
   examples/fead-runup.toml's drive held at 3000 rpm with its orders (benchmarks/
   bench_fead_convergence.py): at sag / depth 0.87 (330 segments) span minima up to 9 % off 1320
   segments; at 0.25 (666) within 2.8 % of 1332 but one (4.5 %; with the tensioner arm held, or the
-  alternator's one-way clutch replaced by a rigid rotor, every minimum within 1.7-1.9 % at 660-666). A two-pulley drive's torsional mode, measured
-  while running, is 3.3 % low at 4 m/s and 14 % low at 24 m/s at sag / depth 1.07, within 0.7 % at
-  0.27.
+  alternator's one-way clutch replaced by a rigid rotor, every minimum within 1.7-1.9 % at
+  660-666). A two-pulley drive's torsional mode, measured while running, is 3.3 % low at 4 m/s
+  and 14 % low at 24 m/s at sag / depth 1.07, within 0.7 % at 0.27.
 
 "auto" takes the longest segment that puts WRAP_SEGMENTS on the shortest wrap, is at most
 CHORD_RATIO of the smallest radius and whose chord sag is at most SAG_RATIO of the contact depth at
