@@ -127,10 +127,34 @@ def _stretch_derivatives(model, lay, tens, h=None):
     return g, H
 
 
+@dataclass
+class Linear:
+    """The drive's linear model about its steady state (belt stuck to every wrap)."""
+    dofs: tuple               # names, as Modes.dofs
+    K: np.ndarray             # stiffness (n, n)
+    M: np.ndarray             # mass, one-way clutches overrunning (rotors free)
+    M_locked: np.ndarray      # mass, one-way clutches transmitting (rotors on their pulleys)
+    G: np.ndarray             # (spans, n): span stretch per unit DOF (m per rad or per travel unit)
+    span_stiffness: np.ndarray  # EA / L per span (N/m)
+
+
 def modes(model, layout: Layout | None = None, tensions=None, travel=None) -> Modes:
     """Modes of ``model`` about the layout it draws (give a tensioned drive at its equilibrium:
     tensioner.equilibrium(model).model). ``tensions``: per span (N), default the pretension;
     ``travel``: per tensioner, its travel from the drawn position (for a spring table's slope)."""
+    lin = linear_model(model, layout, tensions, travel)
+    if lin is None:
+        return Modes((), [], [], [], 0)
+    out = _eigen(lin.K, lin.M_locked, lin.dofs)
+    if lin.M_locked is not lin.M:
+        out.free_rotor_hz = _eigen(lin.K, lin.M, lin.dofs).frequencies_hz
+    return out
+
+
+def linear_model(model, layout: Layout | None = None, tensions=None, travel=None, held_as_dofs=False):
+    """K, M and the span stretch map of the drive (arguments as ``modes``); ``held_as_dofs``: the
+    pulleys with a prescribed speed are DOFs too (in pulley order with the free ones), for a forced
+    response to their motion. None when nothing is free to move."""
     lay = layout or compute_layout(model)
     pulleys = model.pulleys
     nk = len(pulleys)
@@ -138,7 +162,7 @@ def modes(model, layout: Layout | None = None, tensions=None, travel=None) -> Mo
     EA, mass = belt.axial_stiffness, belt.mass_per_length
     T = np.full(len(lay.spans), float(belt.pretension or 0.0)) if tensions is None else np.asarray(tensions, float)
     # --- the DOFs and each pulley's point kinematics: dP/dx (2 x ndof) and d2P (ndof x ndof x 2) ---
-    free = [j for j, p in enumerate(pulleys) if not p.speed_time]
+    free = [j for j, p in enumerate(pulleys) if held_as_dofs or not p.speed_time]
     names = [lay.names[j] for j in free]
     col = {("rot", j): a for a, j in enumerate(free)}
     tens = [j for j, p in enumerate(pulleys) if p.tensioner is not None]
@@ -154,7 +178,7 @@ def modes(model, layout: Layout | None = None, tensions=None, travel=None) -> Mo
         names.append(f"{pulleys[j].name}.rotor")
     n = len(names)
     if not free and not tens:
-        return Modes((), [], [], [], 0)
+        return None
 
     def point(j, pt):
         """Velocity Jacobian (2, n) of the belt's material point pt on pulley j."""
@@ -205,14 +229,11 @@ def modes(model, layout: Layout | None = None, tensions=None, travel=None) -> Mo
         M[r, r] += pulleys[j].clutch.inertia
     K = 0.5 * (K + K.T)
     one_way = [j for j in free if pulleys[j].clutch is not None and pulleys[j].clutch.type == "one-way"]
-    locked = M.copy()
+    locked = M.copy() if one_way else M
     for j in one_way:
         a = col[("rot", j)]
         locked[a, a] += pulleys[j].clutch.inertia
-    out = _eigen(K, locked, tuple(names))
-    if one_way:
-        out.free_rotor_hz = _eigen(K, M, tuple(names)).frequencies_hz
-    return out
+    return Linear(tuple(names), K, M, locked, G, np.array([EA / sp.length for sp in lay.spans]))
 
 
 def _eigen(K, M, names) -> Modes:
@@ -233,14 +254,27 @@ def drive_modes(model, tensions=None) -> Modes:
     """Modes of a drive as built: a tensioned drive about the static equilibrium of the continuous
     belt and its tensioners (rotational.rest_state, the rotational model's rest state), at that rest
     tension unless span ``tensions`` are given."""
+    built, _, travel = _as_built(model)
+    return modes(built, tensions=tensions, travel=travel)
+
+
+def drive_linear_model(model, tensions=None, held_as_dofs=False):
+    """``linear_model`` of a drive as built (as ``drive_modes``)."""
+    built, _, travel = _as_built(model)
+    return linear_model(built, tensions=tensions, travel=travel, held_as_dofs=held_as_dofs)
+
+
+def _as_built(model):
+    """The drive with its tensioners at the rest equilibrium, the rest tension and their travel
+    (the drawn drive, None, None without tensioners)."""
     from . import tensioner
     from .rotational import installed_length, rest_state
 
     idx = tensioner.indices(model)
     if not idx:
-        return modes(model, tensions=tensions)
+        return model, None, None
     travel, T, _ = rest_state(model, installed_length(model, compute_layout(model)))
     sense = tensioner.senses(model)
     moved = tensioner.with_centres(model, {j: tensioner.centre(model, j, q, s) for j, q, s in zip(idx, travel, sense)})
     belt = moved.belt.model_copy(update={"pretension": float(T), "length": None})
-    return modes(moved.model_copy(update={"belt": belt}), tensions=tensions, travel=travel)
+    return moved.model_copy(update={"belt": belt}), T, travel
