@@ -254,27 +254,27 @@ def drive_modes(model, tensions=None) -> Modes:
     """Modes of a drive as built: a tensioned drive about the static equilibrium of the continuous
     belt and its tensioners (rotational.rest_state, the rotational model's rest state), at that rest
     tension unless span ``tensions`` are given."""
-    built, _, travel = _as_built(model)
+    built, travel = _as_built(model)
     return modes(built, tensions=tensions, travel=travel)
 
 
 def drive_linear_model(model, tensions=None, held_as_dofs=False):
     """``linear_model`` of a drive as built (as ``drive_modes``)."""
-    built, _, travel = _as_built(model)
+    built, travel = _as_built(model)
     return linear_model(built, tensions=tensions, travel=travel, held_as_dofs=held_as_dofs)
 
 
 def _as_built(model):
-    """The drive with its tensioners at the rest equilibrium, the rest tension and their travel
-    (the drawn drive, None, None without tensioners)."""
+    """The drive with its tensioners at the rest equilibrium (its pretension the rest tension) and
+    their travel; the drawn drive and None without tensioners."""
     from . import tensioner
     from .rotational import installed_length, rest_state
 
     idx = tensioner.indices(model)
     if not idx:
-        return model, None, None
+        return model, None
     travel, T, _ = rest_state(model, installed_length(model, compute_layout(model)))
     sense = tensioner.senses(model)
     moved = tensioner.with_centres(model, {j: tensioner.centre(model, j, q, s) for j, q, s in zip(idx, travel, sense)})
     belt = moved.belt.model_copy(update={"pretension": float(T), "length": None})
-    return moved.model_copy(update={"belt": belt}), T, travel
+    return moved.model_copy(update={"belt": belt}), travel
