@@ -3,7 +3,7 @@ crank's orders, against the linear model with the belt stuck to every wrap.
 
 fead-runup's drive held at a crank speed with its 2nd and 4th orders (0.8 s, window 0.6-0.8 s). For
 each span: the mean tension and the amplitude (N) and phase (deg, against the crank's speed) of
-its tension at each order, from
+its tension at each order (the phase of Y in Re(Y e^(i W t)): negative lags), from
 
 - the segment model (belt.segments, default "auto"),
 - the rotational model (simulation.model = "rotational"),
@@ -54,8 +54,15 @@ def drive(rpm, segments, linear, small, mu):
     return from_dict(d)
 
 
+def amplitude(t, y, W):
+    """Complex amplitude Y of y at W (y ~ Re(Y e^(i W t)) + mean), least squares over t."""
+    X = np.column_stack([np.cos(W * t), np.sin(W * t), np.ones(len(t))])
+    a, b, _ = np.linalg.lstsq(X, y, rcond=None)[0]
+    return complex(a, -b)
+
+
 def from_run(r, orders, rpm):
-    """Per span: mean, and per order the complex amplitude against the crank's speed."""
+    """Per span: mean, and per order the complex amplitude with the crank's speed at phase 0."""
     t = r.ds["time"].values
     w = (t > 0.6 + 1e-9) & (t <= 0.8 + 1e-9)
     T = r.ds["span_tension"].values[w]
@@ -63,9 +70,8 @@ def from_run(r, orders, rpm):
     out = {}
     for k in orders:
         W = k * rpm * math.pi / 30
-        e = np.exp(-1j * W * t[w])
-        ref = np.mean((crank - crank.mean()) * e)
-        out[k] = np.array([np.mean((T[:, j] - T[:, j].mean()) * e) for j in range(T.shape[1])]) / ref * abs(ref) * 2
+        ref = amplitude(t[w], crank, W)
+        out[k] = np.array([amplitude(t[w], T[:, j], W) for j in range(T.shape[1])]) / ref * abs(ref)
     return T.mean(axis=0), out
 
 
@@ -93,12 +99,12 @@ def from_linear(m, tensions, orders, rpm):
 
 
 def two_pulley(rpm, ratio, load, segments, mu):
-    """The clean two-pulley case (module doc); its crank's order frequency (rad/s)."""
+    """The clean two-pulley case (module doc), its crank's order frequency (rad/s) and its linear
+    model (the crank a DOF)."""
     EA, m, R, L, J = 1.5e5, 0.1, 0.05, 0.15, 2e-3
     lin = linear_model(_two(EA, m, R, L, J, rpm, 1.0, 0.0, "auto", mu), held_as_dofs=True)
-    wn = float(np.sqrt(lin.K[1, 1] / lin.M[1, 1]))
-    W = ratio * wn
-    return _two(EA, m, R, L, J, rpm, W / (rpm * math.pi / 30), load, segments, mu), W
+    W = ratio * float(np.sqrt(lin.K[1, 1] / lin.M[1, 1]))
+    return _two(EA, m, R, L, J, rpm, W / (rpm * math.pi / 30), load, segments, mu), W, lin
 
 
 def _two(EA, m, R, L, J, rpm, order, load, segments, mu):
@@ -119,15 +125,13 @@ def _two(EA, m, R, L, J, rpm, order, load, segments, mu):
 def _response(r, W):
     t = r.ds["time"].values
     sel = t > 0.4
-    X = np.column_stack([np.cos(W * t[sel]), np.sin(W * t[sel]), np.ones(sel.sum())])
-    fit = lambda y: complex(*np.linalg.lstsq(X, y, rcond=None)[0][:2])
-    return fit(r.ds["speed"].sel(pulley="driven").values[sel]) / fit(r.ds["speed"].sel(pulley="crank").values[sel])
+    speed = lambda p: r.ds["speed"].sel(pulley=p).values[sel]
+    return amplitude(t[sel], speed("driven"), W) / amplitude(t[sel], speed("crank"), W)
 
 
 def main_two_pulley(a):
     seg = a.segments if a.segments == "auto" else int(a.segments)
-    m, W = two_pulley(a.rpm, a.ratio, a.load, seg, a.mu)
-    lin = linear_model(m, held_as_dofs=True)
+    m, W, lin = two_pulley(a.rpm, a.ratio, a.load, seg, a.mu)
     D = lin.K - W * W * lin.M
     rows = [("linear (stuck)", -D[1, 0] / D[1, 1], "")]
     r = drivedyn.run(drivedyn.replace(m, {"simulation.model": "rotational"}))
@@ -136,7 +140,7 @@ def main_two_pulley(a):
         r = drivedyn.run(m)
         rows.append((f"segments {r.summary['belt']['segments']}", _response(r, W), r.status))
     print(f"two pulleys at {a.rpm:.0f} rpm, order at {a.ratio} x the stuck mode ({W / 2 / math.pi:.1f} Hz), "
-          f"load {a.load} N m: the driven pulley's speed over the crank's")
+          f"load {a.load} N m: the driven pulley's speed over the crank's (phase < 0: it lags)")
     for name, H, status in rows:
         print(f"  {name:16s} |H| {abs(H):.4f}  phase {np.degrees(np.angle(H)):6.1f} deg  {status}")
 

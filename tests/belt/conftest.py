@@ -1,8 +1,13 @@
 import copy
+import sys
+from pathlib import Path
 
 import pytest
 
 from drivedyn.model import from_dict
+
+# tests that reuse a benchmark's drive (bench_fead_convergence.held, bench_chord_sag.drive) import it
+sys.path.insert(0, str(Path(__file__).parents[2] / "benchmarks"))
 
 BASE = {
     "kind": "belt-drive",

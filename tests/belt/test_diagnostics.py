@@ -138,10 +138,6 @@ def test_energy_balance_closes_where_segments_leave_faster_than_the_contact_push
     the contact force is held at zero and the damper takes the contact's elastic energy. Counted
     as contact damping, the balance closes; without it 37.6 W of 3795 W (1.0 %) were missing and
     the run warned energy-residual (measured)."""
-    import sys
-    from pathlib import Path
-
-    sys.path.insert(0, str(Path(__file__).parents[2] / "benchmarks"))
     from bench_fead_convergence import held
 
     r = drivedyn.run(held(3000, 150, orders=False, duration=0.5))

@@ -3,7 +3,6 @@ stick-slip active set in a small space against refactoring at each change, a dri
 staying at rest beyond the explicit limit, and agreement with the semi-implicit reference on the
 seed's drives at the default step (about ten times the reference's), with convergence in the step."""
 import numpy as np
-from pathlib import Path
 
 import pytest
 
@@ -166,9 +165,6 @@ def test_tensioner_clutch_and_orders_against_semi_implicit():
     segments): slips % compressor / idler / pump / alternator / tensioner 0.046 / 0.041 / 0.053 /
     0.061 / 0.080 against 0.049 / 0.041 / 0.055 / 0.063 / 0.079, crank span 400-773 N against
     398-775 N, arm travel 0.88 against 0.86 deg."""
-    import sys
-
-    sys.path.insert(0, str(Path(__file__).parents[2] / "benchmarks"))
     from bench_fead_convergence import held
 
     base = drivedyn.replace(held(3000, 330, duration=0.6), {"output.steady_window": [0.4, 0.6]})

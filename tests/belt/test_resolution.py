@@ -108,10 +108,6 @@ def test_chord_sag_rule_converges_a_running_drives_torsional_mode():
     the driven pulley) rings at its first torsional mode: at "auto" (chord sag 0.25 x the contact
     depth) within 1 % of twice the segments, while half of them (sag = depth: the landings shake
     the contact) ring more than 5 % low (measured: 299.7 / 298.7 Hz, 244.7 Hz at half)."""
-    import sys
-    from pathlib import Path
-
-    sys.path.insert(0, str(Path(__file__).parents[2] / "benchmarks"))
     from bench_chord_sag import drive, ringing
 
     n = auto_segments(drive("auto"))[0]
@@ -127,10 +123,6 @@ def test_rotation_scaling_where_the_chord_sag_is_resolved():
     the segments (sag = depth) the landings carry the losses and scaling nearly doubles them. The
     two-pulley drive of benchmarks/bench_chord_sag.py at 24 m/s, semi-implicit (measured: 298.9
     against 299.7 Hz, losses 1.46 against 1.36 W at "auto"; 9.1 against 5.0 W at half)."""
-    import sys
-    from pathlib import Path
-
-    sys.path.insert(0, str(Path(__file__).parents[2] / "benchmarks"))
     from bench_chord_sag import drive, ringing
 
     n = auto_segments(drive("auto"))[0]
