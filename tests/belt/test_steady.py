@@ -50,9 +50,9 @@ def unstretched_length(model, st):
     return L
 
 
-@pytest.mark.parametrize("mu", [0.3, 1.0])
-def test_two_pulley_closed_form(mu):
-    m = loaded(M=6.0, mu=mu)
+@pytest.mark.parametrize("mu, radius", [(0.3, "contact"), (1.0, "contact"), (1.0, "centre")])
+def test_two_pulley_closed_form(mu, radius):
+    m = loaded(M=6.0, mu=mu, **{"friction.radius": radius})
     st = steady_state(m)
     EA, r, c = m.belt.axial_stiffness, 0.027, st.centrifugal
     T1, T2 = st.spans["driver-driven"], st.spans["driven-driver"]   # driver turns clockwise: lower span tight
@@ -63,10 +63,18 @@ def test_two_pulley_closed_form(mu):
         assert p.slip_arc == pytest.approx(math.log((T1 - c) / (T2 - c)) / mu, rel=1e-12)
     assert drv.creep == pytest.approx((T1 - T2) / (EA + T1), rel=1e-12)
     assert dvn.creep == pytest.approx(-(T1 - T2) / (EA + T2), rel=1e-12)
-    # speeds: each pulley turns with the belt arriving at it; the driven load holds it at w
+    # speeds: each pulley turns with the belt arriving at it, at the contact radius or ("centre")
+    # on its centre line's radius at the depth of its entry tension's pressure, r - p(T_in - c);
+    # the driven load holds it at w
+    sink = (lambda T: depth(m, T, r)) if radius == "centre" else (lambda T: 0.0)
+    r1, r2, r0 = r - sink(T1 - c), r - sink(T2 - c), r - sink(550.0)
     assert dvn.speed == pytest.approx(-8 * math.pi, rel=1e-9)
-    assert dvn.speed / drv.speed == pytest.approx((EA + T2) / (EA + T1), rel=1e-12)
-    assert c == pytest.approx(m.belt.mass_per_length * (drv.speed * r) ** 2, rel=1e-9)
+    assert dvn.speed / drv.speed == pytest.approx((EA + T2) / (EA + T1) * r1 / r2, rel=1e-9)
+    assert c == pytest.approx(m.belt.mass_per_length * (drv.speed * r1) ** 2, rel=1e-7)
+    # the speed ratio against the rolling radii at rest, r - p(T0)
+    assert dvn.speed_ratio == pytest.approx(dvn.speed * r0 / (drv.speed * r0), rel=1e-12)
+    if radius == "centre":
+        assert r1 < r0 < r2               # the tight side runs deeper than at rest, the slack side shallower
 
 
 @pytest.mark.parametrize("path", ["belt-5pk.toml", "belt-accessory.toml"])

@@ -32,8 +32,15 @@
   from the end of segment i-1 to the start of segment i (eqs. 18, 20); bending moment
   M = c_B (dphi)^e_B + b_B dw (eq. 19); contact N = c1 p^2 + c2 p + delta(p) b pdot (eqs. 9-10);
   friction T = mu(v_T) N (eqs. 11-17, Threlfall's law: cubic step from -mu to +mu over |v| < dv).
-- The friction acts at the contact radius r_j (pulley surface speed om_j r_j, moment -r_j T on the
-  pulley), so that friction power is exactly T * slip (energy-consistent reading of eqs. 12, 22).
+- Eq. (12), v_kj = theta'_j x r_hat_ji, has a unit vector where a radius belongs; two readings
+  (``friction.radius``, ``Contact.centre``), each with slip om_j a - v_t and moment -a T on the
+  pulley, so that friction power is exactly T * slip (eq. 22 has the same unit vector):
+  "contact" (the default), a = r_j: the belt's centre line runs at the pulley surface's speed, the
+  thin belt of classical creep theory; a stuck segment centred at r_j - p then orbits a little
+  faster than its pulley, and stuck belt at different depths drifts apart at EA / (r^2 k').
+  "centre", a = |r_ji| = r_j - p: stuck belt turns with its pulley, its speed follows its depth
+  (a V-belt's pitch radius shrinks as it sinks into the groove), and a belt landing on a wrap
+  slides while it sinks (its centre line shortens by p / r).
 - Contact and friction are written once (``contact``: geometry, ``normal_force``, ``friction``)
   for both integrators: with hm = h / m > 0 they are the implicit updates of the semi-implicit
   scheme, with hm = 0 the explicit forces of the seed's equations (RKF45 right-hand side).
@@ -125,6 +132,7 @@ class Contact(NamedTuple):
     law: int                 # LAW_THRELFALL | LAW_ELASTIC_PLASTIC
     dv: float                # Threlfall's Delta_v (m/s)
     dmax: float              # elastic-plastic displacement limit Delta_max (m)
+    centre: bool             # friction read at the segment's centre (r - p), else at the contact radius r
 
 
 class Pulleys(NamedTuple):
@@ -284,13 +292,14 @@ class Work(NamedTuple):
     lin_gam: np.ndarray
     lin_fk: np.ndarray       # (n,) contact coefficient each segment had when the matrix was factored
     lin_fa: np.ndarray       # (n,) anchor slope (friction, N s/m) it was factored with
+    lin_far: np.ndarray      # (n,) its friction's arm (distance from the pulley's centre) then
     lin_fnx: np.ndarray      # (n,) contact normal it was factored with
     lin_fny: np.ndarray
     lin_geo: np.ndarray      # (n,) scratch: geometric stiffness terms
     lin_u: np.ndarray        # (nk, n, 3): A^-1 of each pulley's anchors (its unit speed change)
     lin_zslot: np.ndarray    # (n,) int64: cache slot of a segment's column A_f^-1 w (-1: none)
     lin_zc: np.ndarray       # (2 ZMAX, n, 3) cached columns A_f^-1 e_x, A_f^-1 e_y at a segment
-    lin_g: np.ndarray        # (nk, nk + 1): the pulleys' coupling g_j . U_k and sum of fca r
+    lin_g: np.ndarray        # (nk, nk + 1): the pulleys' coupling g_j . U_k and sum of fca r^2
     lin_stat: np.ndarray     # (4): stick-slip changes within steps (let go, anchored), unused, unused
     cand_j: np.ndarray       # int64 (n): contact candidates, the pulley a segment touched (-1: none)
     cand_skip: np.ndarray    # int64 (n): steps in which a free segment cannot reach a pulley
@@ -463,7 +472,7 @@ def contact(Ct, i, rx, ry, d2, r, vx, vy, om, hm, h, z):
     vn_new = vn + hm * N
     # tangent tau = Z x n; slip of the pulley surface relative to the segment
     vt = vx * -ny + vy * nx
-    T, sl = friction(Ct.mu[i], Ct.law, Ct.dv, Ct.dmax, N, om * r - vt, hm, h, z, i)
+    T, sl = friction(Ct.mu[i], Ct.law, Ct.dv, Ct.dmax, N, om * (dist if Ct.centre else r) - vt, hm, h, z, i)
     return p, N, T, nx, ny, db * vn_new * vn_new, T * sl
 
 
@@ -1011,14 +1020,15 @@ def _accumulate(h, hl, x, y, c, s, vx, vy, jfk, jdx, jdy, seg_n, seg_t, W, pax, 
 
 # the implicit scheme's per-segment scratch within a chunk: float columns of ``sc`` (n, NSC) ...
 (C_NX, C_NY,        # contact normal
- C_P, C_N, C_KAP,   # penetration, normal force, A's contact coefficient
+ C_P, C_R,          # penetration, distance from the pulley's centre (friction's arm)
+ C_N, C_KAP,        # normal force, A's contact coefficient
  C_CA, C_T, C_TB,   # anchor slope now (N s/m; 0: sliding), sliding friction now and in F_base
  C_CAN,             # centripetal acceleration v_t^2 / r (see _base_solve)
  C_TMX, C_TMY,      # the chord's tangent t_m (see _contacts)
  C_VPX, C_VPY,      # the rolling prediction vp
- C_AK, C_ATX, C_ATY,    # the anchor as the last pass solved it: slope, direction
+ C_AK, C_ATX, C_ATY, C_ATR,  # the anchor as the last pass solved it: slope, direction, arm
  C_F0X, C_F0Y, C_F0Z,   # F_base: the step's forces with every segment in its factored state
- NSC) = range(20)
+ NSC) = range(22)
 # ... and int columns of ``si`` (n, NSI): the pulley it touches (-1: none), the list of segments in
 # contact, a segment's place in the active set C (-1: none), the list of segments to join C
 (I_J, I_LIST, I_SLOT, I_PEND, NSI) = range(5)
@@ -1058,8 +1068,8 @@ def _spin_damper(n, h, hl, spin_lim, ieff, w, jfk, jdx, jdy, seg_n, spd, cs, mz,
 
 
 @njit(cache=True, inline="always")
-def _contacts(n, nk, h, hvb, g, m, c1, c2, bc, pmax, x, y, vx, vy, pcx, pcy, pvx, pvy, pr, cand_j, cand_skip, stk,
-              z, fy, si, sc):
+def _contacts(n, nk, h, hvb, g, m, c1, c2, bc, pmax, centre, x, y, vx, vy, pcx, pcy, pvx, pvy, pr, cand_j, cand_skip,
+              stk, z, fy, si, sc):
     """Stage (implicit scheme), gravity and contact: per segment the pulley it touches, its normal
     and penetration, its normal force (``normal_force`` at the explicit normal velocity) and A's
     contact coefficient, and the chord it rolls along. Returns (segments in contact, listed in
@@ -1088,6 +1098,7 @@ def _contacts(n, nk, h, hvb, g, m, c1, c2, bc, pmax, x, y, vx, vy, pcx, pcy, pvx
             sc[i, C_NX] = nx
             sc[i, C_NY] = ny
             sc[i, C_P] = p
+            sc[i, C_R] = dist if centre else pr[j]
             sc[i, C_KAP] = 0.5 * h * h * (c2[i] + 2.0 * c1[i] * p) + h * db
             if N < 0.0:
                 N = 0.0
@@ -1139,7 +1150,7 @@ def _friction(n, mu, dv, om, pr, stk, fkap, fx, fy, mz, si, sc):
                 if stk[i] > 0.0:
                     sc[i, C_CA] = ANCHOR * mu[i] * N / dv
                 else:
-                    sl = om[j] * pr[j] - (sc[i, C_VPX] * sc[i, C_TMX] + sc[i, C_VPY] * sc[i, C_TMY])
+                    sl = om[j] * sc[i, C_R] - (sc[i, C_VPX] * sc[i, C_TMX] + sc[i, C_VPY] * sc[i, C_TMY])
                     sc[i, C_T] = math.copysign(mu[i] * N, sl)
             fx[i] += N * sc[i, C_NX] - sc[i, C_T] * sc[i, C_NY]
             fy[i] += N * sc[i, C_NY] + sc[i, C_T] * sc[i, C_NX]
@@ -1152,23 +1163,24 @@ def _friction(n, mu, dv, om, pr, stk, fkap, fx, fy, mz, si, sc):
 
 
 @njit(cache=True, inline="always")
-def _factored_state(n, h, si, sc, fkap, fnx, fny, fca, kat, zslot):
+def _factored_state(n, h, si, sc, fkap, fnx, fny, fca, far, kat, zslot):
     """Stage (implicit scheme): the contact and friction state A is about to be factored with
-    (contact coefficients, normals, anchor slopes); empties the cache of columns."""
+    (contact coefficients, normals, anchor slopes and arms); empties the cache of columns."""
     for i in range(n):
         fkap[i] = sc[i, C_KAP] if si[i, I_J] >= 0 else 0.0
         fnx[i] = sc[i, C_NX]
         fny[i] = sc[i, C_NY]
         fca[i] = sc[i, C_CA]
+        far[i] = sc[i, C_R]
         kat[i] = h * sc[i, C_CA]
         zslot[i] = -1
 
 
 @njit(cache=True, inline="always")
-def _pulley_columns(n, nk, nc, pr, fca, fnx, fny, si, ipl, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r, lin_u, lin_g):
+def _pulley_columns(n, nk, nc, far, fca, fnx, fny, si, ipl, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r, lin_u, lin_g):
     """Stage (implicit scheme, after a factorisation): each implicit pulley's anchors
-    g_k = sum fca r tau_f and their columns U_k = A_f^-1 g_k (lin_u); lin_g holds
-    G[j, k] = g_j . U_k and, in column nk, R_j = sum fca r."""
+    g_k = sum fca r tau_f (r: each anchor's factored arm) and their columns U_k = A_f^-1 g_k
+    (lin_u); lin_g holds G[j, k] = g_j . U_k and, in column nk, R_j = sum fca r^2."""
     for jj in range(nk):
         for kk in range(nk + 1):
             lin_g[jj, kk] = 0.0
@@ -1177,9 +1189,9 @@ def _pulley_columns(n, nk, nc, pr, fca, fnx, fny, si, ipl, ux, uy, uz, lin_dinv,
             continue
         for i in range(n):
             if fca[i] > 0.0 and si[i, I_J] == jj:
-                ux[i] = fca[i] * pr[jj] * -fny[i]
-                uy[i] = fca[i] * pr[jj] * fnx[i]
-                lin_g[jj, nk] += fca[i] * pr[jj]
+                ux[i] = fca[i] * far[i] * -fny[i]
+                uy[i] = fca[i] * far[i] * fnx[i]
+                lin_g[jj, nk] += fca[i] * far[i] * far[i]
             else:
                 ux[i] = 0.0
                 uy[i] = 0.0
@@ -1193,19 +1205,20 @@ def _pulley_columns(n, nk, nc, pr, fca, fnx, fny, si, ipl, ux, uy, uz, lin_dinv,
         i = si[q, I_LIST]
         jj = si[i, I_J]
         if fca[i] > 0.0 and ipl[jj]:
-            gx = fca[i] * pr[jj] * -fny[i]
-            gy = fca[i] * pr[jj] * fnx[i]
+            gx = fca[i] * far[i] * -fny[i]
+            gy = fca[i] * far[i] * fnx[i]
             for kk in range(nk):
                 if ipl[kk]:
                     lin_g[jj, kk] += gx * lin_u[kk, i, 0] + gy * lin_u[kk, i, 1]
 
 
 @njit(cache=True, inline="always")
-def _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, pr, fkap, fnx, fny, fca, si, cseg, sc, yx, yy, yz, s0, gyv, ipl,
-                lin_dinv, lin_y, lin_x, lin_r):
+def _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, fkap, fnx, fny, fca, far, si, cseg, sc, yx, yy, yz, s0, gyv,
+                ipl, lin_dinv, lin_y, lin_x, lin_r):
     """Stage (implicit scheme, chain solve): y = A_f^-1 F_base, F_base the forces with every contact
-    segment in its factored state (anchored along its factored tangent with its factored slope,
-    or sliding with its friction now), and per pulley the base friction sum s0 and g_j . y.
+    segment in its factored state (anchored along its factored tangent with its factored slope
+    and arm, or sliding with its friction now), and per pulley the base friction torque s0 and
+    g_j . y.
     Empties C (nC members before); lists in si[:, I_PEND] the segments whose state differs from
     the factored one. Returns their number."""
     for p in range(nC):
@@ -1232,7 +1245,7 @@ def _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, pr, fkap, fnx, fny, fca, si
             tvx = vx[i] - pvx[j]
             tvy = vy[i] - pvy[j]
             vt = -tvx * fny[i] + tvy * fnx[i]
-            can = vt * vt / (pr[j] - sc[i, C_P])
+            can = vt * vt / sc[i, C_R]
             sc[i, C_CAN] = can
             yx[i] -= fkap[i] * can * fnx[i]
             yy[i] -= fkap[i] * can * fny[i]
@@ -1241,13 +1254,13 @@ def _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, pr, fkap, fnx, fny, fca, si
         if fca[i] > 0.0:
             tx = -fny[i]
             ty = fnx[i]
-            sl = (om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
+            sl = (om[j] * far[i] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
                   - sc[i, C_VPX] * (sc[i, C_TMX] - tx) - sc[i, C_VPY] * (sc[i, C_TMY] - ty))
             yx[i] += fca[i] * sl * tx + cT * sc[i, C_NY]
             yy[i] += fca[i] * sl * ty - cT * sc[i, C_NX]
-            s0[j] += fca[i] * sl
+            s0[j] += fca[i] * sl * far[i]
         else:
-            s0[j] += cT
+            s0[j] += cT * sc[i, C_R]
         if (fca[i] > 0.0) != (sc[i, C_CA] > 0.0):
             si[npend, I_PEND] = i
             npend += 1
@@ -1256,7 +1269,7 @@ def _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, pr, fkap, fnx, fny, fca, si
         i = si[q, I_LIST]
         j = si[i, I_J]
         if fca[i] > 0.0 and ipl[j]:
-            gyv[j] += fca[i] * pr[j] * (-fny[i] * yx[i] + fnx[i] * yy[i])
+            gyv[j] += fca[i] * far[i] * (-fny[i] * yx[i] + fnx[i] * yy[i])
     return npend
 
 
@@ -1297,11 +1310,11 @@ def _join(n, nC, npend, si, cseg, zslot, zc, lin_cnt, ux, uy, uz, lin_dinv, lin_
 
 
 @njit(cache=True, inline="always")
-def _corrections(nC, vx, vy, om, pvx, pvy, pr, fnx, fny, fca, si, sc, cseg, cpar):
+def _corrections(nC, vx, vy, om, pvx, pvy, fnx, fny, fca, far, si, sc, cseg, cpar):
     """Stage (implicit scheme, active set): each member's force correction (its state now less its
     factored state), affine in its velocity change and its pulley's: phi_c = a + B dv_c + e dw_j,
-    and its torque part alpha + beta . dv_c + gamma dw_j, into cpar (a0, a1, b00, b01, b11, e0,
-    e1, alpha, beta0, beta1, gamma)."""
+    and its torque on the pulley's belt side alpha + beta . dv_c + gamma dw_j (the friction times
+    its arm), into cpar (a0, a1, b00, b01, b11, e0, e1, alpha, beta0, beta1, gamma)."""
     for p in range(nC):
         i = cseg[p]
         j = si[i, I_J]
@@ -1322,27 +1335,28 @@ def _corrections(nC, vx, vy, om, pvx, pvy, pr, fnx, fny, fca, si, sc, cseg, cpar
             # + its state now (anchor along the current tangent, or its sliding friction),
             # - its factored state (anchor along the factored tangent, or its friction in F_base)
             if side == 0:
-                sg, kp, tx, ty, Tsl = 1.0, sc[i, C_CA], ctx, cty, sc[i, C_T]
+                sg, kp, tx, ty, Tsl, ar = 1.0, sc[i, C_CA], ctx, cty, sc[i, C_T], sc[i, C_R]
             else:
                 sg, kp, tx, ty, Tsl = -1.0, fca[i], -fny[i], fnx[i], sc[i, C_TB]
+                ar = far[i] if kp > 0.0 else sc[i, C_R]
             if kp > 0.0:
-                sl = (om[j] * pr[j] - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
+                sl = (om[j] * ar - (vx[i] - pvx[j]) * tx - (vy[i] - pvy[j]) * ty
                       - sc[i, C_VPX] * (sc[i, C_TMX] - tx) - sc[i, C_VPY] * (sc[i, C_TMY] - ty))
                 a0 += sg * kp * sl * tx
                 a1 += sg * kp * sl * ty
                 b00 -= sg * kp * tx * tx
                 b01 -= sg * kp * tx * ty
                 b11 -= sg * kp * ty * ty
-                e0 += sg * kp * pr[j] * tx
-                e1 += sg * kp * pr[j] * ty
-                al += sg * kp * sl
-                be0 -= sg * kp * tx
-                be1 -= sg * kp * ty
-                ga += sg * kp * pr[j]
+                e0 += sg * kp * ar * tx
+                e1 += sg * kp * ar * ty
+                al += sg * kp * sl * ar
+                be0 -= sg * kp * tx * ar
+                be1 -= sg * kp * ty * ar
+                ga += sg * kp * ar * ar
             else:
                 a0 += sg * Tsl * ctx
                 a1 += sg * Tsl * cty
-                al += sg * Tsl
+                al += sg * Tsl * ar
         cpar[p, 0] = a0
         cpar[p, 1] = a1
         cpar[p, 2] = b00
@@ -1357,7 +1371,7 @@ def _corrections(nC, vx, vy, om, pvx, pvy, pr, fnx, fny, fca, si, sc, cseg, cpar
 
 
 @njit(cache=True, inline="always")
-def _small_system(h, nk, nC, pr, pinv_i, mext, zslot, zc, lin_u, lin_g, si, cseg, cpar, qm, qv, yx, yy, s0, gyv,
+def _small_system(h, nk, nC, pinv_i, mext, zslot, zc, lin_u, lin_g, si, cseg, cpar, qm, qv, yx, yy, s0, gyv,
                   ipl, dom, lin_cnt):
     """Stage (implicit scheme, active set): the members' force corrections and the implicit
     pulleys' speed changes from the dense (2 nC + nk) system: rows 2p, 2p + 1 for member p, row
@@ -1399,29 +1413,28 @@ def _small_system(h, nk, nC, pr, pinv_i, mext, zslot, zc, lin_u, lin_g, si, cseg
         if not ipl[jj]:
             qm[r0, r0] = 1.0
             continue
-        rj = pr[jj]
-        qm[r0, r0] += 1.0 / pinv_i[jj] + h * rj * lin_g[jj, nk]
+        qm[r0, r0] += 1.0 / pinv_i[jj] + h * lin_g[jj, nk]
         for kk in range(nk):
             qm[r0, 2 * nC + kk] -= h * h * lin_g[jj, kk]
         for d in range(nC):
             qm[r0, 2 * d] -= h * h * lin_u[jj, cseg[d], 0]
             qm[r0, 2 * d + 1] -= h * h * lin_u[jj, cseg[d], 1]
-        qv[r0] = h * mext[jj] - h * rj * s0[jj] + h * h * gyv[jj]
+        qv[r0] = h * mext[jj] - h * s0[jj] + h * h * gyv[jj]
         for p in range(nC):
             i = cseg[p]
             if si[i, I_J] != jj:
                 continue
             be0 = cpar[p, 8]
             be1 = cpar[p, 9]
-            qm[r0, r0] += h * rj * cpar[p, 10]
+            qm[r0, r0] += h * cpar[p, 10]
             for kk in range(nk):
                 if ipl[kk]:
-                    qm[r0, 2 * nC + kk] += h * h * rj * (be0 * lin_u[kk, i, 0] + be1 * lin_u[kk, i, 1])
+                    qm[r0, 2 * nC + kk] += h * h * (be0 * lin_u[kk, i, 0] + be1 * lin_u[kk, i, 1])
             for d in range(nC):
                 sd = 2 * zslot[cseg[d]]
                 for col in range(2):
-                    qm[r0, 2 * d + col] += h * h * rj * (be0 * zc[sd + col, i, 0] + be1 * zc[sd + col, i, 1])
-            qv[r0] -= h * rj * (cpar[p, 7] + h * (be0 * yx[i] + be1 * yy[i]))
+                    qm[r0, 2 * d + col] += h * h * (be0 * zc[sd + col, i, 0] + be1 * zc[sd + col, i, 1])
+            qv[r0] -= h * (cpar[p, 7] + h * (be0 * yx[i] + be1 * yy[i]))
     _small_solve(msz, qm, qv)
     for jj in range(nk):
         dom[jj] = qv[2 * nC + jj]
@@ -1429,7 +1442,7 @@ def _small_system(h, nk, nC, pr, pinv_i, mext, zslot, zc, lin_u, lin_g, si, cseg
 
 
 @njit(cache=True, inline="always")
-def _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, pr, fnx, fny, fca, stk, zslot, zc, lin_u,
+def _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, fnx, fny, fca, far, stk, zslot, zc, lin_u,
            lin_stat, si, sc, cseg, yx, yy, qv, dom, ipl):
     """Stage (implicit scheme, active set): every contact segment at the velocity pass npass
     solved. An anchor whose force would exceed mu N lets go (slides with mu N this step) in any
@@ -1461,15 +1474,18 @@ def _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, pr, fnx, f
                 kp = sc[i, C_CA]
                 tx = -ny
                 ty = nx
+                ar = sc[i, C_R]
             else:
                 kp = fca[i]
                 tx = -fny[i]
                 ty = fnx[i]
-            T = kp * ((om[j] + dom[j]) * pr[j] - rvx * tx - rvy * ty
+                ar = far[i]
+            T = kp * ((om[j] + dom[j]) * ar - rvx * tx - rvy * ty
                       - sc[i, C_VPX] * (sc[i, C_TMX] - tx) - sc[i, C_VPY] * (sc[i, C_TMY] - ty))
             sc[i, C_AK] = kp           # the anchor as this pass solved it (the update reads it)
             sc[i, C_ATX] = tx
             sc[i, C_ATY] = ty
+            sc[i, C_ATR] = ar
             if abs(T) > mu[i] * N and npass < PASSES:
                 # lets go: slides this step with mu N
                 Ts = math.copysign(mu[i] * N, T)
@@ -1486,7 +1502,7 @@ def _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, pr, fnx, f
                     npend += 1
         elif sc[i, C_T] != 0.0 and npass < PASSES - 1:
             cT = sc[i, C_T]
-            sl = (om[j] + dom[j]) * pr[j] - rvx * sc[i, C_TMX] - rvy * sc[i, C_TMY]
+            sl = (om[j] + dom[j]) * sc[i, C_R] - rvx * sc[i, C_TMX] - rvy * sc[i, C_TMY]
             if sl * cT < 0.0:
                 # a sliding segment whose slip the step would turn: it sticks
                 sc[i, C_F0X] -= cT * -ny
@@ -1525,11 +1541,13 @@ def _update_implicit(n, h, dv, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, pr, fx,
             if ak > 0.0:
                 tx = sc[i, C_ATX]
                 ty = sc[i, C_ATY]
+                ar = sc[i, C_ATR]
             else:
                 tx = -ny
                 ty = nx
+                ar = sc[i, C_R]
             if N > 0.0:
-                sl = ((om[j] + dom[j]) * pr[j] - (vxs - pvx[j]) * tx - (vys - pvy[j]) * ty
+                sl = ((om[j] + dom[j]) * ar - (vxs - pvx[j]) * tx - (vys - pvy[j]) * ty
                       - sc[i, C_VPX] * (sc[i, C_TMX] - tx) - sc[i, C_VPY] * (sc[i, C_TMY] - ty))
                 if ak > 0.0:
                     T = ak * sl        # the anchor's force at the solved velocities
@@ -1537,7 +1555,7 @@ def _update_implicit(n, h, dv, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, pr, fx,
                 if ak == 0.0:
                     # a sliding segment whose slip reached the band or turned sticks next step
                     stk[i] = 1.0 if (abs(sl) < dv or sl * T < 0.0) else 0.0
-                tq_belt[j] -= pr[j] * T
+                tq_belt[j] -= ar * T
             else:
                 stk[i] = 0.0
             # the normal force the step applied: N and A's contact term (see _base_solve)
@@ -1556,7 +1574,7 @@ def _update_implicit(n, h, dv, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, pr, fx,
 
 
 @njit(cache=True, inline="always")
-def _contact_semi(i, nk, h, hm, hvb, vxs, vys, c1, c2, bc, mu, pmax, law, dv, dmax, x, y, pcx, pcy, pvx, pvy, pr, om,
+def _contact_semi(i, nk, h, hm, hvb, vxs, vys, c1, c2, bc, mu, pmax, law, dv, dmax, centre, x, y, pcx, pcy, pvx, pvy, pr, om,
                   z, cand_j, cand_skip, tq_belt, hubx, huby):
     """Stage (semi-implicit scheme), contact and friction of segment i at its new velocity
     (vxs, vys) before they act: the contact damping and the regularised friction implicit in it
@@ -1587,14 +1605,15 @@ def _contact_semi(i, nk, h, hm, hvb, vxs, vys, c1, c2, bc, mu, pmax, law, dv, dm
             vn_new = vn + hm * N
             pcd += db * vn_new * vn_new
             # slip of the pulley surface relative to the segment, along tau = Z x n = (-ny, nx)
-            T, sl = friction(mu[i], law, dv, dmax, N, om[j] * pr[j] - (rvx * -ny + rvy * nx), hm, h, z, i)
+            arm = dist if centre else pr[j]
+            T, sl = friction(mu[i], law, dv, dmax, N, om[j] * arm - (rvx * -ny + rvy * nx), hm, h, z, i)
             pfr += T * sl
             # force N n + T tau, tau = Z x n = (-ny, nx)
             vxs += hm * (N * nx + T * -ny)
             vys += hm * (N * ny + T * nx)
             Ntot += N
             Ttot += T
-            tq_belt[j] -= pr[j] * T
+            tq_belt[j] -= arm * T
             hubx[j] -= N * nx + T * -ny
             huby[j] -= N * ny + T * nx
     else:
@@ -1694,14 +1713,14 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
     # every array of the records and the scratch taken out once, before the loops
     n, nk, hl, g, eax, eb, linear, turn = B.n, P.nk, B.hl, B.g, B.eax, B.eb, B.linear, B.turn
     x, y, phi, c, s, vx, vy, w, th, om, z = S.x, S.y, S.phi, S.c, S.s, S.vx, S.vy, S.w, S.th, S.om, S.z
-    c1, c2, bc, mu, pmax, law, dv, dmax = Ct
+    c1, c2, bc, mu, pmax, law, dv, dmax, centre = Ct
     kax, bax, kb, bb = B.kax, B.bax, B.kb, B.bb
     pcx, pcy, pvx, pvy, pr = S.cx, S.cy, S.cvx, S.cvy, P.r
     fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, seg_p = W.fx, W.fy, W.mz, W.jfk, W.jdx, W.jdy, W.seg_n, W.seg_t, W.seg_p
     acc_diss, pinv_i = W.acc_diss, P.inv_i
     lin_d, lin_o, lin_e, lin_dinv, lin_y, lin_x, lin_r = W.lin_d, W.lin_o, W.lin_e, W.lin_dinv, W.lin_y, W.lin_x, W.lin_r
     lin_sig, lin_gam, lin_cnt, lin_stat, m_, lin_geo = W.lin_sig, W.lin_gam, W.lin_cnt, W.lin_stat, B.m, W.lin_geo
-    fkap, fnx, fny, fca, stk = W.lin_fk, W.lin_fnx, W.lin_fny, W.lin_fa, W.lin_st
+    fkap, fnx, fny, fca, far, stk = W.lin_fk, W.lin_fnx, W.lin_fny, W.lin_fa, W.lin_far, W.lin_st
     zslot, zc, lin_g, lin_u = W.lin_zslot, W.lin_zc, W.lin_g, W.lin_u
     cand_j, cand_skip = W.cand_j, W.cand_skip
     tq_const, tq_visc, hm_off, hm_order, hm_amp, hm_phase = P.tq_const, P.tq_visc, P.hm_off, P.hm_order, P.hm_amp, P.hm_phase
@@ -1751,7 +1770,7 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
             # whose force would exceed mu N lets go and the step is solved again (active set).
             _joint_transport(n, h, hl, linear, eax, kax, bax, c, s, w, jdx, jdy, fx, fy, mz)
             pb = _spin_damper(n, h, hl, spin_lim, ieff, w, jfk, jdx, jdy, seg_n, spd, cs, mz, pb)
-            nc, pcd = _contacts(n, nk, h, hvb, g, m_, c1, c2, bc, pmax, x, y, vx, vy, pcx, pcy, pvx, pvy, pr, cand_j,
+            nc, pcd = _contacts(n, nk, h, hvb, g, m_, c1, c2, bc, pmax, centre, x, y, vx, vy, pcx, pcy, pvx, pvy, pr, cand_j,
                                 cand_skip, stk, z, fy, si, sc)
             cchg = _friction(n, mu, dv, om, pr, stk, fkap, fx, fy, mz, si, sc)
             for j in range(nk):
@@ -1773,18 +1792,18 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
             npend = 0
             while True:
                 if need:
-                    _factored_state(n, h, si, sc, fkap, fnx, fny, fca, kat, zslot)
+                    _factored_state(n, h, si, sc, fkap, fnx, fny, fca, far, kat, zslot)
                     lin_cnt[2] = 0
                     lin_cnt[0] = _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jdx, jdy,
                                            turn, m_, ieff, lin_sig, lin_gam, lin_geo, fkap, kat, fnx, fny, lin_d,
                                            lin_o, lin_e, lin_dinv, lin_y, lin_x)
                     lin_cnt[1] += 1
-                    _pulley_columns(n, nk, nc, pr, fca, fnx, fny, si, ipl, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r,
+                    _pulley_columns(n, nk, nc, far, fca, fnx, fny, si, ipl, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r,
                                     lin_u, lin_g)
                     need = False
                     base = True
                 if base:
-                    npend = _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, pr, fkap, fnx, fny, fca, si, cseg, sc,
+                    npend = _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, fkap, fnx, fny, fca, far, si, cseg, sc,
                                         yx, yy, yz, s0, gyv, ipl, lin_dinv, lin_y, lin_x, lin_r)
                     nC = 0
                     base = False
@@ -1794,10 +1813,10 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
                 if over:
                     need = True
                     continue
-                _corrections(nC, vx, vy, om, pvx, pvy, pr, fnx, fny, fca, si, sc, cseg, cpar)
-                _small_system(h, nk, nC, pr, pinv_i, mext, zslot, zc, lin_u, lin_g, si, cseg, cpar, qm, qv, yx, yy,
+                _corrections(nC, vx, vy, om, pvx, pvy, fnx, fny, fca, far, si, sc, cseg, cpar)
+                _small_system(h, nk, nC, pinv_i, mext, zslot, zc, lin_u, lin_g, si, cseg, cpar, qm, qv, yx, yy,
                               s0, gyv, ipl, dom, lin_cnt)
-                changed, npend = _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, pr, fnx, fny, fca,
+                changed, npend = _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, fnx, fny, fca, far,
                                         stk, zslot, zc, lin_u, lin_stat, si, sc, cseg, yx, yy, qv, dom, ipl)
                 npass += 1
                 if not changed:
@@ -1811,7 +1830,7 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
                 hm = hm_[i]
                 vxs, vys, N, T, pen, pc, pf = _contact_semi(i, nk, h, hm, hvb, vx[i] + hm * fx[i],
                                                             vy[i] + hm * fy[i] - hg, c1, c2, bc, mu, pmax, law, dv,
-                                                            dmax, x, y, pcx, pcy, pvx, pvy, pr, om, z, cand_j,
+                                                            dmax, centre, x, y, pcx, pcy, pvx, pvy, pr, om, z, cand_j,
                                                             cand_skip, tq_belt, hubx, huby)
                 pcd += pc
                 pfr += pf

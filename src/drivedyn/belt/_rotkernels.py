@@ -32,6 +32,7 @@ class Rot(NamedTuple):
     mu: np.ndarray           # friction coefficient per wrap
     c1: float                # contact law per unit length (N/m^3, N/m^2), the belt's depth in the groove
     c2: float
+    centre: bool             # friction.radius = "centre": the belt runs on its depth's radius r - p
     L: np.ndarray            # span lengths at rest (m)
     dx: np.ndarray           # span directions at rest (unit)
     dy: np.ndarray
@@ -279,6 +280,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     mechanical energy. Returns the time."""
     nk = R.nk
     EA, bax, m, c1, c2 = R.EA, R.bax, R.m, R.c1, R.c2
+    dc = 1.0 if R.centre else 0.0          # the depth's share in the running radius
     rho, mu = R.rho, R.mu
     Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw = R.L, R.dx, R.dy, R.wrap, R.q0, R.dq, R.tL, R.t0, R.t1, R.tdx, R.tdy, R.tw
     L, Ld, t0, t1, dx, dy, wrap = RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap
@@ -335,7 +337,12 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 ji = (k - 1) % nk
                 vw = rho[k] * om[k]
                 c = m * vw * vw
-                tq[k] = rho[k] * (T[k] - T[ji])
+                # the friction's moment on the pulley: the spans' pull (less the belt's momentum
+                # flux) on the friction's radius at each end (friction.radius: r, or r - p(T))
+                r = abs(rho[k])
+                ro = r - dc * _depth((T[k] - c) / r, c1, c2)
+                ri = r - dc * _depth((T[ji] - c) / r, c1, c2)
+                tq[k] = (ro * (T[k] - c) - ri * (T[ji] - c)) * (1.0 if rho[k] >= 0.0 else -1.0)
                 # the wrap's pressure (T - c) / r: the hub carries the spans' pull less the belt's
                 # centrifugal force on the wrap
                 hubx[k] = (T[k] - c) * dx[k] - (T[ji] - c) * dx[ji]
@@ -357,9 +364,11 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 Ti, To = Tm[ji], Tm[k]
                 ei = Ti / EA
                 eo = To / EA
-                # the belt arrives in adhesion: it moves with the pulley surface at the strain of the
-                # span it comes from; the wrap's content relaxes to its steady value over one passage
+                # the belt arrives in adhesion: it moves with the pulley at the friction's radius
+                # (r, or r - p(T_in)) at the strain of the span it comes from; the wrap's content
+                # relaxes to its steady value over one passage
                 r = abs(rho[k])
+                ve = vw * (1.0 - dc * _depth(((Ti if vw >= 0.0 else To) - c) / r, c1, c2) / r)
                 if vw >= 0.0:
                     Weq = wrap_content(r, wm[k], Ti, To, c, mu[k], EA, c1, c2)
                 else:
@@ -369,10 +378,10 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 else:
                     dW = 0.0
                 if vw >= 0.0:
-                    fa[k] = vw / (1.0 + ei)
+                    fa[k] = ve / (1.0 + ei)
                     fb[k] = fa[k] - dW / h
                 else:
-                    fb[k] = vw / (1.0 + eo)
+                    fb[k] = ve / (1.0 + eo)
                     fa[k] = fb[k] + dW / h
                 Wc[k] += dW
                 # friction (creep) power on the wrap: the spans' power in less the pulley's

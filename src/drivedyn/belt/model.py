@@ -309,11 +309,22 @@ class Contact(Spec):
 
 
 class Friction(Spec):
+    """Friction between belt and pulleys (seed 000, eqs. 11-17): Threlfall's regularised Coulomb
+    law (or the elastic-plastic one) with its coefficient, per-zone coefficients, and `radius`,
+    where the pulley's speed is read for the slip and the friction's moment arm: "contact" (the
+    contact radius: classical creep theory's thin belt) or "centre" (the segment's centre below
+    it: stuck belt turns with the pulley and its speed follows its depth; docs/belt-drive.md)."""
+
     law: Literal["threlfall", "elastic-plastic"] = "threlfall"
     coefficient: float = 1.0
     velocity_threshold: quantity("m/s", gt=0) = 1e-5
     displacement_limit: quantity("m", gt=0) = 1e-4
     zones: list[FrictionZone] = []
+    # where the pulley's speed is read for slip and the friction's moment arm (seed 000, eq. 12):
+    # "contact", the contact radius (the belt's centre line runs at the pulley surface's speed, as
+    # in classical creep theory); "centre", the segment's centre below it (stuck belt turns with the
+    # pulley, so its speed follows its depth in the groove, as a V-belt's pitch radius does)
+    radius: Literal["contact", "centre"] = "contact"
 
     @field_validator("coefficient")
     @classmethod

@@ -76,6 +76,16 @@ class RotSystem:
     omega_max: float       # bound on the fastest mode (rad/s)
 
 
+def rolling_radii(model, lay: Layout, tension: float) -> np.ndarray:
+    """Per pulley: belt speed over pulley speed at rest, the radius slip is read against: the
+    contact radius, or with friction.radius = "centre" the belt's centre line's, less the depth of
+    the pressure tension / r (steady.penetration)."""
+    r = np.abs(lay.rho)
+    if model.friction.radius != "centre":
+        return r
+    return r - penetration(tension / r, model.contact.stiffness_quadratic, model.contact.stiffness_linear)
+
+
 def installed_length(model, lay: Layout) -> float:
     """Unstretched belt length: ``belt.length``, or what the drawn path holds at the pretension with
     the belt sunk into each wrap by its static depth (as steady.drive_of)."""
@@ -199,7 +209,7 @@ def build(model) -> RotSystem:
                bax=float(belt.axial_damping), m=float(belt.mass_per_length),
                mu=np.full(len(lay.names), float(model.friction.coefficient)),
                c1=float(model.contact.stiffness_quadratic), c2=float(model.contact.stiffness_linear),
-               L=np.array([sp.length for sp in lay.spans]),
+               centre=model.friction.radius == "centre", L=np.array([sp.length for sp in lay.spans]),
                dx=np.array([math.cos(sp.angle) for sp in lay.spans]), dy=np.array([math.sin(sp.angle) for sp in lay.spans]),
                wrap=lay.wrap.astype(float), q0=q0, dq=dq, tL=tL, t0=t0, t1=t1, tdx=tdx, tdy=tdy, tw=tw)
     P = _pulleys(model.pulleys, running_senses(model, drawn))
@@ -271,13 +281,13 @@ class _Init:
 
 class _View:
     """The rotational system seen through the segment model's system interface (simulate._summary,
-    diagnose): layout, pulleys, arms, rest state; the continuum rolls at the contact radius."""
+    diagnose): layout, pulleys, arms, rest state; the continuum rolls on ``rolling_radii``."""
 
     def __init__(self, sysm: RotSystem):
         self.model, self.layout, self.pulleys, self.arms = sysm.model, sysm.layout, sysm.P, sysm.A
         self.rest = _Rest(sysm) if sysm.A.na else None
         self.init = _Init(sysm.rest_tension)
-        self.rolling_radius = np.abs(sysm.layout.rho)
+        self.rolling_radius = rolling_radii(sysm.model, sysm.layout, sysm.rest_tension)
         self.n = 0
 
 
@@ -297,7 +307,7 @@ def new_states(sysm: RotSystem):
                acc_span=z((0, 2)), acc_track=z((0, 3)), acc_diss=z(6), energy=z(1), probe=z(6),
                span_geo=z((0, 4)), span_joint=np.zeros(0, np.int64), track=np.zeros(0, np.int64),
                lin_d=z((0, 9)), lin_o=z((0, 9)), lin_e=z((0, 9)), lin_dinv=z((0, 9)), lin_y=z((0, 9)),
-               lin_x=z((0, 9)), lin_r=z((0, 3)), lin_sig=e, lin_gam=e, lin_fk=e, lin_fa=e, lin_fnx=e, lin_fny=e,
+               lin_x=z((0, 9)), lin_r=z((0, 3)), lin_sig=e, lin_gam=e, lin_fk=e, lin_fa=e, lin_far=e, lin_fnx=e, lin_fny=e,
                lin_geo=e, lin_u=z((0, 0, 3)), lin_zslot=np.zeros(0, np.int64), lin_zc=z((0, 0, 3)), lin_g=z((nk, nk + 1)),
                lin_stat=z(4), cand_j=np.zeros(0, np.int64), cand_skip=np.zeros(0, np.int64), lin_st=e,
                lin_cnt=np.zeros(4, np.int64))
@@ -393,7 +403,8 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_mod
             "pulley_x": variable(lay.centers[:, 0].copy(), ("pulley",), "m", "pulley centre x (a tensioner's: at rest)"),
             "pulley_y": variable(lay.centers[:, 1].copy(), ("pulley",), "m", "pulley centre y (a tensioner's: at rest)"),
             "pulley_radius": variable([p.radius for p in model.pulleys], ("pulley",), "m", "contact radius"),
-            "pulley_rolling_radius": variable(np.abs(lay.rho), ("pulley",), "m", "belt speed over pulley speed at no load (the contact radius)"),
+            "pulley_rolling_radius": variable(rolling_radii(model, lay, sysm.rest_tension), ("pulley",), "m",
+                                              "belt speed over pulley speed at rest (friction.radius)"),
         },
         coords={"time": o["t"][:ns], "pulley": names, "span": spans,
                 "mechanism": ["axial_damping", "bending_damping", "contact_damping", "friction", "tensioner", "clutch"]},

@@ -10,8 +10,11 @@ stiffness EA, mass per length m, speed v (centrifugal tension c = m v^2):
 - torque balance of pulley j: M_j + rho_j (T_exit - T_entry) = 0 (rho_j the radius signed by the
   sense the travelling belt turns round it), so all span tensions follow from one of them;
 - mass conservation: a belt element at tension T runs at v0 (1 + T/EA); a pulley turns with the
-  belt at its entry, so the speed ratio of two pulleys is (EA + T_in,b)/(EA + T_in,a) and the creep
-  of pulley j (1 - v_exit/v_entry) is (T_in - T_out)/(EA + T_in);
+  belt at its entry, omega = v0 (1 + T_in/EA) / r, and the creep of pulley j (1 - v_exit/v_entry)
+  is (T_in - T_out)/(EA + T_in). With friction.radius = "centre" (the friction read at the belt's
+  centre line) the stuck belt runs on r - p(T_in) (below: the depth) and speed ratios are read
+  against the rolling radii at rest, r - p(T_rest), as the dynamic model's slip is; this theory
+  then leaves out the slide of a belt landing on a wrap while it sinks (docs/belt-drive.md);
 - the unstretched length L0 is fixed at installation (sum of L_k/(1 + T_k/EA) over spans plus
   the wraps' integrals of (r - p) dphi/(1 + T/EA)); it, not T1 + T2 = 2 T0, sets the tension level;
 - the belt sinks into the pulley by the depth p at which the contact law carries the pressure
@@ -46,7 +49,7 @@ class PulleySteady:
     slip_arc: float        # rad (inf: gross slip)
     adhesion_arc: float    # rad
     creep: float           # 1 - v_exit / v_entry = (T_in - T_out) / (EA + T_in)
-    speed_ratio: float     # omega r / (omega r) of the driver = (EA + T_in) / (EA + T_in,driver)
+    speed_ratio: float     # omega r0 / (omega r0) of the driver, r0 = r - p(T_rest) the rolling radius at rest
     slip_margin: float = math.inf   # load multiplier at which this pulley's slip arc fills its wrap
 
 
@@ -137,6 +140,16 @@ class Drive:
     L0: float
     c1: float = 0.0        # contact law per unit length (N/m^3, N/m^2); c2 = inf: rigid pulleys
     c2: float = math.inf
+    t_rest: float = 0.0    # the belt's tension at rest (N): sets the rolling radii r0 at rest
+    centre: bool = False   # friction.radius = "centre": a stuck belt runs at its depth's radius
+
+    def running_radius(self, j, t_in, c):
+        """Signed radius (m) a stuck belt entering pulley j at tension t_in runs at: the contact
+        radius, or with friction.radius = "centre" the radius of its centre line, r - p(t_in - c)."""
+        if not self.centre:
+            return float(self.rho[j])
+        r = abs(self.rho[j])
+        return math.copysign(r - float(penetration((t_in - c) / r, self.c1, self.c2)), self.rho[j])
 
 
 def drive_of(model, layout: Layout | None = None) -> Drive:
@@ -155,8 +168,15 @@ def drive_of(model, layout: Layout | None = None) -> Drive:
         sunk = float(np.sum(lay.wrap * penetration(b.pretension / radii, c1, c2)))
         L0 = (lay.length - sunk) / (1 + b.pretension / EA)
     mu = np.full(len(lay.names), model.friction.coefficient)
-    return Drive(lay.names, lay.rho.copy(), lay.wrap.copy(), np.array([sp.length for sp in lay.spans]),
-                 tuple(sp.name for sp in lay.spans), mu, EA, b.mass_per_length, L0, float(c1), float(c2))
+    d = Drive(lay.names, lay.rho.copy(), lay.wrap.copy(), np.array([sp.length for sp in lay.spans]),
+              tuple(sp.name for sp in lay.spans), mu, EA, b.mass_per_length, L0, float(c1), float(c2),
+              centre=model.friction.radius == "centre")
+    if b.pretension is not None:
+        d.t_rest = float(b.pretension)
+    else:
+        T = tensions(d, np.zeros(len(lay.names)), 0.0, True)
+        d.t_rest = float(T[0]) if T is not None else 0.0
+    return d
 
 
 def _entry_exit(nk, forward):
@@ -258,10 +278,11 @@ def applied_torque(p, omega):
     return M
 
 
-def _speeds(d: Drive, v0, T, forward):
-    """Pulley speeds (rad/s): each turns with the belt arriving at it, v0 (1 + T_in/EA)."""
+def _speeds(d: Drive, v0, T, forward, c=0.0):
+    """Pulley speeds (rad/s): each turns with the belt arriving at it, v0 (1 + T_in/EA), on its
+    running radius r - p(T_in - c)."""
     ee = _entry_exit(len(d.names), forward)
-    return np.array([v0 * (1 + T[a] / d.EA) / d.rho[j] for j, (a, _) in enumerate(ee)])
+    return np.array([v0 * (1 + T[a] / d.EA) / d.running_radius(j, T[a], c) for j, (a, _) in enumerate(ee)])
 
 
 def _steady_speed(model, d: Drive, T, prescribed):
@@ -274,10 +295,10 @@ def _steady_speed(model, d: Drive, T, prescribed):
         v_try = w * d.rho[j]
         forward = v_try >= 0
         a = _entry_exit(len(d.names), forward)[j][0]
-        return w * d.rho[j] / (1 + T[a] / d.EA)
+        return w * d.running_radius(j, T[a], 0.0) / (1 + T[a] / d.EA)
 
     def g(v0):
-        w = _speeds(d, v0, T, v0 >= 0)
+        w = _speeds(d, v0, T, v0 >= 0, d.m * v0 * v0)
         return sum(applied_torque(p, w[j]) / d.rho[j] for j, p in enumerate(pulleys))
 
     # candidates: table corners mapped to belt speed, and wide brackets; net torque is piecewise linear
@@ -323,16 +344,19 @@ def steady_state(model, layout: Layout | None = None, loads=None, speed=None, wi
         state = "running" if v else "at rest"
     else:
         state, v0 = "running", None
-        for _ in range(4):                 # loads depend on the speeds, speeds on the tensions (creep)
+        for _ in range(12):                # loads depend on the speeds, speeds on the tensions (creep, depth)
             v0 = _steady_speed(model, d, T, presc[0] if presc else None)
             if v0 is None:
                 break
-            w = _speeds(d, v0, T, v0 >= 0)
+            w = _speeds(d, v0, T, v0 >= 0, d.m * v0 * v0)
             M = np.array([applied_torque(p, w[j]) for j, p in enumerate(pulleys)])
             Tn = tensions(d, _balanced(d, M, w, presc), d.m * (v0 * (1 + T.mean() / d.EA)) ** 2, v0 >= 0)
             if Tn is None:
                 break
+            done = np.max(np.abs(Tn - T)) <= 1e-13 * np.max(np.abs(Tn))
             T = Tn
+            if done:
+                break
         if v0 is None:
             # loads never balance at a steady speed: the drive accelerates as one body (belt
             # acceleration a, pulley j at a / rho_j); the inertia torques -J_j a / rho_j close the balance
@@ -392,13 +416,18 @@ def _solve(d: Drive, M, v, accel, state, presc, notes, with_margins=True) -> Ste
     if slack:
         over = [int(np.argmin(marg))]
     e_drv = 1 + T[ee[drv][0]] / d.EA
-    w = _speeds(d, v / e_drv, T, forward)
+    cw = d.m * (v / e_drv) ** 2        # the depths' centrifugal share, as the loads were read (steady_state)
+    w = _speeds(d, v / e_drv, T, forward, cw)
+    # speed ratios against the rolling radii at rest (r - p(T_rest)): the dynamic model's slip
+    turn = np.array([(1 + T[a] / d.EA) * abs(d.running_radius(j, d.t_rest, 0.0) / d.running_radius(j, T[a], cw))
+                     for j, (a, _) in enumerate(ee)])
+    ratio = turn / turn[drv]
     ps = {}
     for j, name in enumerate(d.names):
         a, b = ee[j]
         ps[name] = PulleySteady(name, float(d.wrap[j]), float(abs(d.rho[j])), float(Mb[j]), float(w[j]),
                                 float(T[a]), float(T[b]), float(arcs[j]), float(max(d.wrap[j] - arcs[j], 0.0)),
-                                float((T[a] - T[b]) / (d.EA + T[a])), float((1 + T[a] / d.EA) / e_drv),
+                                float((T[a] - T[b]) / (d.EA + T[a])), float(ratio[j]),
                                 float(marg[j]))
     k = int(np.argmin(marg))
     return Steady(state, float(v), accel, c, d.L0, d.names[drv], {n: float(t) for n, t in zip(d.span_names, T)},

@@ -41,18 +41,20 @@ class BeltSystem:
     @property
     def rolling_radius(self) -> np.ndarray:
         """Per pulley: belt speed over pulley speed of the discrete chain rolling with no load (its
-        own kinematics), r (1 + l^2 / (12 r^2)) to first order. A stuck segment's centre moves at
-        the surface speed w r (friction acts at the contact radius) on the circle r - p0 it is
-        pressed to; one pitch l + g passes per angle 2 asin(l / 2 R_e) + 2 asin(g / 2 R_e), its
-        chord ends on R_e = sqrt((r - p0)^2 + l^2 / 4) (initial.py). Speed ratios against it are
-        free of the polygon effect, which is no slip."""
+        own kinematics). A stuck segment rides on the circle r_c = r - p0 it is pressed to and moves
+        at the pulley's speed at the friction's radius a (``friction.radius``: a = r, "contact";
+        a = r_c, "centre", turning with the pulley); one pitch l + g passes per angle
+        2 asin(l / 2 R_e) + 2 asin(g / 2 R_e), its chord ends on R_e = sqrt(r_c^2 + l^2 / 4)
+        (initial.py): a (1 + l^2 / (12 r_c^2)) to first order. Speed ratios against it are free of
+        the polygon effect, which is no slip."""
         init = self.init
         l, g = init.seg_length, init.gap
         r = np.array([p.radius for p in self.model.pulleys])
         rc = r - init.penetration
         Re = np.sqrt(rc ** 2 + l * l / 4)
         pitch_angle = 2 * np.arcsin(np.minimum(l / (2 * Re), 1.0)) + 2 * np.arcsin(np.minimum(g / (2 * Re), 1.0))
-        return (l + g) * r / (rc * pitch_angle)
+        arm = rc if self.model.friction.radius == "centre" else r
+        return (l + g) * arm / (rc * pitch_angle)
 
     @property
     def groups(self):
@@ -147,7 +149,8 @@ def _build(model, drawn, settle: bool) -> BeltSystem:
         c2=model.contact.stiffness_linear * l * ones,
         bc=model.contact.damping * l * ones,
         mu=mu, pmax=damping_depth(model, init), law=int(K.LAWS[model.friction.law]),
-        dv=float(model.friction.velocity_threshold), dmax=float(model.friction.displacement_limit))
+        dv=float(model.friction.velocity_threshold), dmax=float(model.friction.displacement_limit),
+        centre=model.friction.radius == "centre")
     P = _pulleys(model.pulleys, running_senses(model, layout))
     A = tensioner.arms_record(drawn)   # travel measured from the drawn centres
     span_mid = np.array([sp.midpoint for sp in layout.spans])
@@ -345,7 +348,7 @@ def new_work(sysm, state=None) -> K.Work:
                   span_geo=np.ascontiguousarray(sysm.span_geo, dtype=float).reshape(nspan, 4),
                   span_joint=span_joint, track=np.ascontiguousarray(sysm.track, dtype=np.int64),
                   lin_d=z((nl, 9)), lin_o=z((nl, 9)), lin_e=z((nl, 9)), lin_dinv=z((nl, 9)), lin_y=z((nl, 9)),
-                  lin_x=z((nl, 9)), lin_r=z((nl, 3)), lin_sig=z(nl), lin_gam=z(nl), lin_fk=z(nl), lin_fa=z(nl), lin_fnx=z(nl), lin_fny=z(nl), lin_geo=z(nl), lin_u=z((nk if nl else 0, nl, 3)), lin_zslot=np.full(nl, -1, dtype=np.int64), lin_zc=z((2 * K.ZMAX if nl else 0, nl, 3)), lin_g=z((nk, nk + 1)), lin_stat=z(4), cand_j=np.full(n, -1, dtype=np.int64), cand_skip=np.zeros(n, dtype=np.int64), lin_st=z(nl), lin_cnt=np.zeros(4, dtype=np.int64))
+                  lin_x=z((nl, 9)), lin_r=z((nl, 3)), lin_sig=z(nl), lin_gam=z(nl), lin_fk=z(nl), lin_fa=z(nl), lin_far=z(nl), lin_fnx=z(nl), lin_fny=z(nl), lin_geo=z(nl), lin_u=z((nk if nl else 0, nl, 3)), lin_zslot=np.full(nl, -1, dtype=np.int64), lin_zc=z((2 * K.ZMAX if nl else 0, nl, 3)), lin_g=z((nk, nk + 1)), lin_stat=z(4), cand_j=np.full(n, -1, dtype=np.int64), cand_skip=np.zeros(n, dtype=np.int64), lin_st=z(nl), lin_cnt=np.zeros(4, dtype=np.int64))
 
 
 def clear_accumulators(W: K.Work):
