@@ -4,7 +4,7 @@ at belt.segments = "auto" (the default) and at 150 segments, against a run at fo
 "auto" segments: every pulley's mean slip (percentage points off the reference), every span's
 tension minimum and maximum (% off), the arm's travel range, status and wall time.
 
-Run: python benchmarks/bench_fead_defaults.py [--rpm 3000] [--refine 4]
+Run: python benchmarks/bench_fead_defaults.py [--rpm 3000] [--refine 4] [--law elastic-plastic]
 (not a timed test; numbers depend on the machine: the 4x reference takes several minutes)
 """
 import argparse
@@ -18,13 +18,17 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--rpm", type=float, default=3000.0)
     ap.add_argument("--refine", type=int, default=4)
+    ap.add_argument("--law", default=None, help="friction.law for every run (default: the example's)")
     a = ap.parse_args()
-    drivedyn.run(drivedyn.replace(held(a.rpm, 150), {"simulation.duration": 0.01, "output.steady_window": None}))
+    def make(rpm, segs):
+        m = held(rpm, segs)
+        return drivedyn.replace(m, {"friction.law": a.law}) if a.law else m
+    drivedyn.run(drivedyn.replace(make(a.rpm, 150), {"simulation.duration": 0.01, "output.steady_window": None}))
     runs = {}
     for label, segs in (("150", 150), ("auto", "auto")):
-        runs[label] = drivedyn.run(held(a.rpm, segs))
+        runs[label] = drivedyn.run(make(a.rpm, segs))
     n_ref = a.refine * runs["auto"].summary["belt"]["segments"]
-    runs[f"{n_ref}"] = ref = drivedyn.run(held(a.rpm, n_ref))
+    runs[f"{n_ref}"] = ref = drivedyn.run(make(a.rpm, n_ref))
     rs = ref.summary
     print(f"held at {a.rpm:.0f} rpm, orders 2 and 4; reference {n_ref} segments")
     for label, r in runs.items():
