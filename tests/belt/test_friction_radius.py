@@ -71,3 +71,21 @@ def test_slip_follows_the_stuck_arcs():
             assert np.all(np.abs(p0) < 1e-3 * R)     # the chain's polygon factor only
     # landing on the driver, the belt slides while it sinks: with "centre" it must also shorten by p / r
     assert driver_arc["centre"] < driver_arc["contact"] - 0.05, driver_arc
+
+
+def test_centre_in_the_implicit_scheme():
+    """The implicit scheme carries each anchor's own arm (r - p) through its factored pulley
+    columns: it agrees with the semi-implicit scheme (measured at 300 segments: slip 0.6622 against
+    0.6611 %, spans within 0.3 %), and both close the energy balance (status success)."""
+    runs = {}
+    for method in ("semi-implicit", "implicit"):
+        m = make(**{"pulleys.0.torque_time": [[0.0, 0.0], [0.05, -15.0]], "pulleys.1.torque_speed": [[-25.1, 15.0], [25.1, -15.0]],
+                    "belt.segments": 300, "friction.radius": "centre", "simulation.duration": 0.4,
+                    "simulation.method": method, "output.steady_window": [0.3, 0.4]})
+        r = drivedyn.run(m)
+        assert r.status == "success", (method, [d.message for d in r.diagnostics])
+        runs[method] = r.summary
+    a, b = runs["semi-implicit"], runs["implicit"]
+    assert b["pulleys"]["driven"]["slip"] == pytest.approx(a["pulleys"]["driven"]["slip"], abs=5e-5)
+    for sp, v in a["spans"].items():
+        assert b["spans"][sp]["tension_mean"] == pytest.approx(v["tension_mean"], rel=0.005), sp
