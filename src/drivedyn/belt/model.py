@@ -419,6 +419,9 @@ class Model(Spec):
         if self.simulation.method == "rkf45" and _semi_implicit_only(self.pulleys):
             raise ValueError("simulation.method: rkf45 does not integrate tensioners, clutches or speed orders; "
                              "use semi-implicit or implicit")
+        if self.simulation.method == "implicit" and self.friction.law == "elastic-plastic":
+            raise ValueError("simulation.method: the implicit scheme anchors stuck segments (Coulomb friction) and has no "
+                             "elastic-plastic law; use semi-implicit or auto")
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
             raise ValueError("output.steady_window ends after simulation.duration")
         self._clutch_on_driver()
