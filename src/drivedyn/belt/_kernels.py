@@ -40,7 +40,9 @@
   faster than its pulley, and stuck belt at different depths drifts apart at EA / (r^2 k').
   "centre", a = |r_ji| = r_j - p: stuck belt turns with its pulley, its speed follows its depth
   (a V-belt's pitch radius shrinks as it sinks into the groove), and a belt landing on a wrap
-  slides while it sinks (its centre line shortens by p / r).
+  must also shorten by p / r as it sinks. In both a landing segment reaches the contact radius
+  before the tangent point and crosses it at an angle to the pulley's tangent, so with Threlfall's
+  law the belt slides where it lands (docs/belt-drive.md, "Friction's radius").
 - Contact and friction are written once (``contact``: geometry, ``normal_force``, ``friction``)
   for both integrators: with hm = h / m > 0 they are the implicit updates of the semi-implicit
   scheme, with hm = 0 the explicit forces of the seed's equations (RKF45 right-hand side).
@@ -1213,8 +1215,8 @@ def _pulley_columns(n, nk, nc, far, fca, fnx, fny, si, ipl, ux, uy, uz, lin_dinv
 
 
 @njit(cache=True, inline="always")
-def _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, fkap, fnx, fny, fca, far, si, cseg, sc, yx, yy, yz, s0, gyv,
-                ipl, lin_dinv, lin_y, lin_x, lin_r):
+def _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, pr, fkap, fnx, fny, fca, far, si, cseg, sc, yx, yy, yz, s0,
+                gyv, ipl, lin_dinv, lin_y, lin_x, lin_r):
     """Stage (implicit scheme, chain solve): y = A_f^-1 F_base, F_base the forces with every contact
     segment in its factored state (anchored along its factored tangent with its factored slope
     and arm, or sliding with its friction now), and per pulley the base friction torque s0 and
@@ -1245,7 +1247,7 @@ def _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, fkap, fnx, fny, fca, far, s
             tvx = vx[i] - pvx[j]
             tvy = vy[i] - pvy[j]
             vt = -tvx * fny[i] + tvy * fnx[i]
-            can = vt * vt / sc[i, C_R]
+            can = vt * vt / (pr[j] - sc[i, C_P])
             sc[i, C_CAN] = can
             yx[i] -= fkap[i] * can * fnx[i]
             yy[i] -= fkap[i] * can * fny[i]
@@ -1803,7 +1805,7 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
                     need = False
                     base = True
                 if base:
-                    npend = _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, fkap, fnx, fny, fca, far, si, cseg, sc,
+                    npend = _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, pr, fkap, fnx, fny, fca, far, si, cseg, sc,
                                         yx, yy, yz, s0, gyv, ipl, lin_dinv, lin_y, lin_x, lin_r)
                     nC = 0
                     base = False

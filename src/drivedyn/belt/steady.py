@@ -49,7 +49,7 @@ class PulleySteady:
     slip_arc: float        # rad (inf: gross slip)
     adhesion_arc: float    # rad
     creep: float           # 1 - v_exit / v_entry = (T_in - T_out) / (EA + T_in)
-    speed_ratio: float     # omega r0 / (omega r0) of the driver, r0 = r - p(T_rest) the rolling radius at rest
+    speed_ratio: float     # omega r0 / (omega r0) of the driver, r0 the rolling radius at rest (Drive.running_radius)
     slip_margin: float = math.inf   # load multiplier at which this pulley's slip arc fills its wrap
 
 
@@ -173,7 +173,7 @@ def drive_of(model, layout: Layout | None = None) -> Drive:
               centre=model.friction.radius == "centre")
     if b.pretension is not None:
         d.t_rest = float(b.pretension)
-    else:
+    elif d.centre:          # the rolling radii at rest need the tension the length gives
         T = tensions(d, np.zeros(len(lay.names)), 0.0, True)
         d.t_rest = float(T[0]) if T is not None else 0.0
     return d
@@ -280,7 +280,7 @@ def applied_torque(p, omega):
 
 def _speeds(d: Drive, v0, T, forward, c=0.0):
     """Pulley speeds (rad/s): each turns with the belt arriving at it, v0 (1 + T_in/EA), on its
-    running radius r - p(T_in - c)."""
+    running radius (``Drive.running_radius``)."""
     ee = _entry_exit(len(d.names), forward)
     return np.array([v0 * (1 + T[a] / d.EA) / d.running_radius(j, T[a], c) for j, (a, _) in enumerate(ee)])
 
