@@ -171,6 +171,28 @@ def test_creep_and_the_capstan_limit():
     assert (T1 - c) / (T2 - c) == pytest.approx(lim, rel=0.02)
 
 
+@pytest.mark.parametrize("radius", ["contact", "centre"])
+def test_slip_with_the_belts_depth_against_creep_theory(radius):
+    """The belt sunk into its grooves (the 5PK contact law, depth about 0.1 mm): the rotational model's
+    slip and tensions against steady creep theory (belt/steady.py) for either friction.radius; with
+    "centre" each pulley turns with the belt on r - p(T_in), a larger slip. Measured: slip 0.13271 /
+    0.19170 % against 0.13271 / 0.19120 %."""
+    from drivedyn.belt.steady import steady_state
+
+    m = drivedyn.replace(two_pulley(duration=0.6, rpm=600, torque=-10.0, damping=0.2),
+                         {"contact.stiffness_linear": 8.125e7, "contact.stiffness_quadratic": 3.782e11,
+                          "friction.radius": radius})
+    r = drivedyn.run(m)
+    assert r.status == "success"
+    st = steady_state(m)
+    slip = r.summary["pulleys"]["driven"]["slip"]
+    assert slip == pytest.approx(1 - abs(st.pulleys["driven"].speed_ratio), rel=0.01)
+    for sp, T in st.spans.items():
+        assert r.summary["spans"][sp]["tension_mean"] == pytest.approx(T, rel=2e-3), sp
+    if radius == "centre":
+        assert slip > 1.3 * (1 - (EA + 301.2) / (EA + 500.9))       # more than the strain's creep
+
+
 def _hull_length(centres, radii):
     """Length of a belt round circles all inside its loop, listed counter-clockwise: external
     tangents sqrt(d^2 - (r_b - r_a)^2) plus the arcs between them."""
