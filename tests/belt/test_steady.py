@@ -69,10 +69,12 @@ def test_two_pulley_closed_form(mu, radius):
     sink = (lambda T: depth(m, T, r)) if radius == "centre" else (lambda T: 0.0)
     r1, r2, r0 = r - sink(T1 - c), r - sink(T2 - c), r - sink(550.0)
     assert dvn.speed == pytest.approx(-8 * math.pi, rel=1e-9)
-    assert dvn.speed / drv.speed == pytest.approx((EA + T2) / (EA + T1) * r1 / r2, rel=1e-9)
-    assert c == pytest.approx(m.belt.mass_per_length * (drv.speed * r1) ** 2, rel=1e-7)
-    # the speed ratio against the rolling radii at rest, r - p(T0)
-    assert dvn.speed_ratio == pytest.approx(dvn.speed * r0 / (drv.speed * r0), rel=1e-12)
+    # ("centre": the depths read the centrifugal tension at the unstretched speed, 1e-9 apart)
+    exact = radius == "contact"
+    assert dvn.speed / drv.speed == pytest.approx((EA + T2) / (EA + T1) * r1 / r2, rel=1e-12 if exact else 1e-9)
+    assert c == pytest.approx(m.belt.mass_per_length * (drv.speed * r1) ** 2, rel=1e-9 if exact else 1e-7)
+    # the speed ratio against the rolling radii at rest r0 (equal pulleys: their r0 cancel)
+    assert dvn.speed_ratio == pytest.approx(dvn.speed / drv.speed, rel=1e-12)
     if radius == "centre":
         assert r1 < r0 < r2               # the tight side runs deeper than at rest, the slack side shallower
 

@@ -280,7 +280,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     mechanical energy. Returns the time."""
     nk = R.nk
     EA, bax, m, c1, c2 = R.EA, R.bax, R.m, R.c1, R.c2
-    dc = 1.0 if R.centre else 0.0          # the depth's share in the running radius
+    centre = R.centre                       # the belt runs on r - p(T) (friction.radius = "centre")
     rho, mu = R.rho, R.mu
     Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw = R.L, R.dx, R.dy, R.wrap, R.q0, R.dq, R.tL, R.t0, R.t1, R.tdx, R.tdy, R.tw
     L, Ld, t0, t1, dx, dy, wrap = RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap
@@ -339,10 +339,13 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 c = m * vw * vw
                 # the friction's moment on the pulley: the spans' pull (less the belt's momentum
                 # flux) on the friction's radius at each end (friction.radius: r, or r - p(T))
-                r = abs(rho[k])
-                ro = r - dc * _depth((T[k] - c) / r, c1, c2)
-                ri = r - dc * _depth((T[ji] - c) / r, c1, c2)
-                tq[k] = (ro * (T[k] - c) - ri * (T[ji] - c)) * (1.0 if rho[k] >= 0.0 else -1.0)
+                if centre:
+                    r = abs(rho[k])
+                    ro = r - _depth((T[k] - c) / r, c1, c2)
+                    ri = r - _depth((T[ji] - c) / r, c1, c2)
+                    tq[k] = (ro * (T[k] - c) - ri * (T[ji] - c)) * (1.0 if rho[k] >= 0.0 else -1.0)
+                else:
+                    tq[k] = rho[k] * (T[k] - T[ji])
                 # the wrap's pressure (T - c) / r: the hub carries the spans' pull less the belt's
                 # centrifugal force on the wrap
                 hubx[k] = (T[k] - c) * dx[k] - (T[ji] - c) * dx[ji]
@@ -368,7 +371,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 # (r, or r - p(T_in)) at the strain of the span it comes from; the wrap's content
                 # relaxes to its steady value over one passage
                 r = abs(rho[k])
-                ve = vw * (1.0 - dc * _depth(((Ti if vw >= 0.0 else To) - c) / r, c1, c2) / r)
+                ve = vw * (1.0 - _depth(((Ti if vw >= 0.0 else To) - c) / r, c1, c2) / r) if centre else vw
                 if vw >= 0.0:
                     Weq = wrap_content(r, wm[k], Ti, To, c, mu[k], EA, c1, c2)
                 else:

@@ -320,11 +320,7 @@ class Friction(Spec):
     velocity_threshold: quantity("m/s", gt=0) = 1e-5
     displacement_limit: quantity("m", gt=0) = 1e-4
     zones: list[FrictionZone] = []
-    # where the pulley's speed is read for slip and the friction's moment arm (seed 000, eq. 12):
-    # "contact", the contact radius (the belt's centre line runs at the pulley surface's speed, as
-    # in classical creep theory); "centre", the segment's centre below it (stuck belt turns with the
-    # pulley, so its speed follows its depth in the groove, as a V-belt's pitch radius does)
-    radius: Literal["contact", "centre"] = "contact"
+    radius: Literal["contact", "centre"] = "contact"     # seed 000, eq. 12: see the docstring
 
     @field_validator("coefficient")
     @classmethod
