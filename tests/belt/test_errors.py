@@ -35,13 +35,6 @@ def test_bad_input_one_line_exit_2(tmp_path, capsys, edit, expect):
     assert "m.toml" in err              # every model error names the file, also those found while assembling
 
 
-def test_implicit_scheme_refuses_the_elastic_plastic_law(tmp_path, capsys):
-    text = GOOD.replace('method = "semi-implicit"', 'method = "implicit"', 1).replace('law = "threlfall"', 'law = "elastic-plastic"', 1)
-    code, err = run_cli(tmp_path, text, capsys)
-    assert code == 2 and len(err.splitlines()) == 1
-    assert "simulation.method" in err and "elastic-plastic" in err
-
-
 def test_missing_file(capsys):
     assert main(["run", "/nonexistent/model.toml"]) == 2
     assert "file not found" in capsys.readouterr().err

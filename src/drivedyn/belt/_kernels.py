@@ -1030,7 +1030,9 @@ def _accumulate(h, hl, x, y, c, s, vx, vy, jfk, jdx, jdy, seg_n, seg_t, W, pax, 
  C_VPX, C_VPY,      # the rolling prediction vp
  C_AK, C_ATX, C_ATY, C_ATR,  # the anchor as the last pass solved it: slope, direction, arm
  C_F0X, C_F0Y, C_F0Z,   # F_base: the step's forces with every segment in its factored state
- NSC) = range(22)
+ C_T0, C_T0B,       # an anchor's explicit force now and in F_base (elastic-plastic: K z; Threlfall: 0)
+ C_DB, C_VN, C_HCN,  # contact damping rate delta(p) b, the normal velocity it was read at, h v_t^2 / r
+ NSC) = range(27)
 # ... and int columns of ``si`` (n, NSI): the pulley it touches (-1: none), the list of segments in
 # contact, a segment's place in the active set C (-1: none), the list of segments to join C
 (I_J, I_LIST, I_SLOT, I_PEND, NSI) = range(5)
@@ -1105,9 +1107,11 @@ def _contacts(n, nk, h, hvb, g, m, c1, c2, bc, pmax, centre, x, y, vx, vy, pcx, 
             if N < 0.0:
                 N = 0.0
             sc[i, C_N] = N
-            if N > 0.0:
-                pcd += db * vn * vn
-            else:
+            # the damping's power is counted at the solved velocity (_update_implicit)
+            sc[i, C_DB] = db if N > 0.0 else 0.0
+            sc[i, C_VN] = vn
+            sc[i, C_HCN] = h * vt_ * vt_ / dist
+            if N <= 0.0:
                 pcd += clipped_power(c1[i], c2[i], p, vn)
             # slip is read along the chord of the step (t_m: the tangent turned by half
             # the segment's turn round the pulley, h v_t / 2 dist), the direction of a
@@ -1135,27 +1139,37 @@ def _contacts(n, nk, h, hvb, g, m, c1, c2, bc, pmax, centre, x, y, vx, vy, pcx, 
 
 
 @njit(cache=True, inline="always")
-def _friction(n, mu, dv, om, pr, stk, fkap, fx, fy, mz, si, sc):
+def _friction(n, h, Ct, om, stk, z, fkap, fx, fy, mz, si, sc):
     """Stage (implicit scheme), friction: by its state at the last step, a contact segment is
-    anchored to the pulley surface (slope ANCHOR mu N / Delta_v, in A) or slides with mu N
-    against its slip (explicit); the contact forces join the step's forces, kept as F_base.
+    anchored to the pulley surface (in A) or slides with mu N against its slip (explicit); the
+    contact forces join the step's forces, kept as F_base. The anchor: Threlfall's law, slope
+    ANCHOR mu N / Delta_v; the elastic-plastic law, its bristle T = K (z + h slip), K = mu N /
+    Delta_max: slope h K and the explicit force K z (C_T0), as ``friction`` integrates it; a
+    bristle short of Delta_max is elastic (anchored), one at it slides until its slip turns.
     Returns whether the contact set differs from the one A was factored with."""
+    mu, law, dv, dmax = Ct.mu, Ct.law, Ct.dv, Ct.dmax
     cchg = False
     for i in range(n):
         j = si[i, I_J]
         sc[i, C_T] = 0.0
+        sc[i, C_T0] = 0.0
         sc[i, C_CA] = 0.0
         sc[i, C_AK] = 0.0
         if j >= 0:
             N = sc[i, C_N]
             if N > 0.0:
-                if stk[i] > 0.0:
+                if law == LAW_ELASTIC_PLASTIC and (stk[i] > 0.0 or abs(z[i]) < dmax):
+                    K = mu[i] * N / dmax
+                    sc[i, C_CA] = h * K
+                    sc[i, C_T0] = K * z[i]
+                elif law != LAW_ELASTIC_PLASTIC and stk[i] > 0.0:
                     sc[i, C_CA] = ANCHOR * mu[i] * N / dv
                 else:
                     sl = om[j] * sc[i, C_R] - (sc[i, C_VPX] * sc[i, C_TMX] + sc[i, C_VPY] * sc[i, C_TMY])
                     sc[i, C_T] = math.copysign(mu[i] * N, sl)
-            fx[i] += N * sc[i, C_NX] - sc[i, C_T] * sc[i, C_NY]
-            fy[i] += N * sc[i, C_NY] + sc[i, C_T] * sc[i, C_NX]
+            ft = sc[i, C_T] + sc[i, C_T0]
+            fx[i] += N * sc[i, C_NX] - ft * sc[i, C_NY]
+            fy[i] += N * sc[i, C_NY] + ft * sc[i, C_NX]
         if (j >= 0) != (fkap[i] > 0.0):
             cchg = True
         sc[i, C_F0X] = fx[i]
@@ -1238,6 +1252,8 @@ def _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, pr, fkap, fnx, fny, fca, fa
         j = si[i, I_J]
         cT = sc[i, C_T]
         sc[i, C_TB] = cT
+        sc[i, C_T0B] = sc[i, C_T0]
+        s0[j] += sc[i, C_T0] * sc[i, C_R]
         if fkap[i] > 0.0:
             # the contact term of A, fkap fn fn^T, would read a segment's turn round the pulley
             # (its velocity turning inward by h v_t^2 / r) as an inward normal velocity change
@@ -1333,6 +1349,11 @@ def _corrections(nC, vx, vy, om, pvx, pvy, fnx, fny, fca, far, si, sc, cseg, cpa
         be0 = 0.0
         be1 = 0.0
         ga = 0.0
+        # an anchor's explicit force (elastic-plastic K z) now less the one in F_base
+        dT0 = sc[i, C_T0] - sc[i, C_T0B]
+        a0 += dT0 * ctx
+        a1 += dT0 * cty
+        al += dT0 * sc[i, C_R]
         for side in range(2):
             # + its state now (anchor along the current tangent, or its sliding friction),
             # - its factored state (anchor along the factored tangent, or its friction in F_base)
@@ -1444,12 +1465,13 @@ def _small_system(h, nk, nC, pinv_i, mext, zslot, zc, lin_u, lin_g, si, cseg, cp
 
 
 @njit(cache=True, inline="always")
-def _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, fnx, fny, fca, far, stk, zslot, zc, lin_u,
-           lin_stat, si, sc, cseg, yx, yy, qv, dom, ipl):
+def _check(h, nk, nc, nC, npend, npass, Ct, vx, vy, om, pvx, pvy, fnx, fny, fca, far, stk, z, zslot,
+           zc, lin_u, lin_stat, si, sc, cseg, yx, yy, qv, dom, ipl):
     """Stage (implicit scheme, active set): every contact segment at the velocity pass npass
     solved. An anchor whose force would exceed mu N lets go (slides with mu N this step) in any
     of the PASSES, a sliding segment whose slip the step would turn sticks in all but the last.
     Changed segments not in C join si[:, I_PEND]. Returns (whether any changed, their number)."""
+    mu, law, dv, dmax = Ct.mu, Ct.law, Ct.dv, Ct.dmax
     changed = False
     for q in range(nc):
         i = si[q, I_LIST]
@@ -1482,8 +1504,8 @@ def _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, fnx, fny, 
                 tx = -fny[i]
                 ty = fnx[i]
                 ar = far[i]
-            T = kp * ((om[j] + dom[j]) * ar - rvx * tx - rvy * ty
-                      - sc[i, C_VPX] * (sc[i, C_TMX] - tx) - sc[i, C_VPY] * (sc[i, C_TMY] - ty))
+            T = sc[i, C_T0] + kp * ((om[j] + dom[j]) * ar - rvx * tx - rvy * ty
+                                    - sc[i, C_VPX] * (sc[i, C_TMX] - tx) - sc[i, C_VPY] * (sc[i, C_TMY] - ty))
             sc[i, C_AK] = kp           # the anchor as this pass solved it (the update reads it)
             sc[i, C_ATX] = tx
             sc[i, C_ATY] = ty
@@ -1495,8 +1517,10 @@ def _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, fnx, fny, 
                 sc[i, C_CA] = 0.0
                 stk[i] = 0.0
                 sc[i, C_T] = Ts
-                sc[i, C_F0X] += Ts * -ny
-                sc[i, C_F0Y] += Ts * nx
+                dT = Ts - sc[i, C_T0]
+                sc[i, C_T0] = 0.0
+                sc[i, C_F0X] += dT * -ny
+                sc[i, C_F0Y] += dT * nx
                 changed = True
                 lin_stat[0] += 1
                 if si[i, I_SLOT] < 0:
@@ -1506,11 +1530,19 @@ def _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, fnx, fny, 
             cT = sc[i, C_T]
             sl = (om[j] + dom[j]) * sc[i, C_R] - rvx * sc[i, C_TMX] - rvy * sc[i, C_TMY]
             if sl * cT < 0.0:
-                # a sliding segment whose slip the step would turn: it sticks
-                sc[i, C_F0X] -= cT * -ny
-                sc[i, C_F0Y] -= cT * nx
+                # a sliding segment whose slip the step would turn: it sticks (elastic-plastic:
+                # its bristle held at z, its force K z)
+                T0 = 0.0
+                if law == LAW_ELASTIC_PLASTIC:
+                    K = mu[i] * N / dmax
+                    T0 = K * z[i]
+                    sc[i, C_CA] = h * K
+                else:
+                    sc[i, C_CA] = ANCHOR * mu[i] * N / dv
+                sc[i, C_F0X] += (T0 - cT) * -ny
+                sc[i, C_F0Y] += (T0 - cT) * nx
                 sc[i, C_T] = 0.0
-                sc[i, C_CA] = ANCHOR * mu[i] * N / dv
+                sc[i, C_T0] = T0
                 stk[i] = 1.0
                 changed = True
                 lin_stat[1] += 1
@@ -1521,14 +1553,18 @@ def _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, fnx, fny, 
 
 
 @njit(cache=True, inline="always")
-def _update_implicit(n, h, dv, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, pr, fx, fy, mz, seg_n, seg_t, seg_p, stk,
-                     fkap, fnx, fny, si, sc, dom, tq_belt, hub):
+def _update_implicit(n, h, Ct, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, fx, fy, mz, seg_n, seg_t,
+                     seg_p, stk, z, fkap, fnx, fny, si, sc, dom, tq_belt, hub):
     """Stage (implicit scheme): each segment takes its velocity change (fx, fy, mz from
     ``_velocity_change``) and moves; its friction at the solved velocities (an anchor's force,
     or mu N sliding), the friction power, belt torques and hub forces (hub: rows x, y), the normal
     force the step applied (N and A's contact term), and its stick-slip state for the next step.
-    Returns the friction power."""
+    Returns the friction power and the contact damping's: its force -delta b (v_n + dv_n), the
+    part in A only where A holds the contact, times the solved normal velocity v_n + dv_n (dv_n:
+    the velocity change along n less a rolling segment's turn, h v_t^2 / r, as A reads it)."""
+    mu, law, dv, dmax = Ct.mu, Ct.law, Ct.dv, Ct.dmax
     pfr = 0.0
+    pcd = 0.0
     for i in range(n):
         vxs = vx[i] + h * fx[i]
         vys = vy[i] + h * fy[i]
@@ -1536,6 +1572,10 @@ def _update_implicit(n, h, dv, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, pr, fx,
         j = si[i, I_J]
         if j >= 0:
             N = sc[i, C_N]
+            if N > 0.0:
+                # the normal velocity change less the turn of a rolling segment's velocity
+                dvn = h * (sc[i, C_NX] * fx[i] + sc[i, C_NY] * fy[i]) + sc[i, C_HCN]
+                pcd += sc[i, C_DB] * (sc[i, C_VN] + (dvn if fkap[i] > 0.0 else 0.0)) * (sc[i, C_VN] + dvn)
             T = sc[i, C_T]
             nx = sc[i, C_NX]
             ny = sc[i, C_NY]
@@ -1552,9 +1592,18 @@ def _update_implicit(n, h, dv, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, pr, fx,
                 sl = ((om[j] + dom[j]) * ar - (vxs - pvx[j]) * tx - (vys - pvy[j]) * ty
                       - sc[i, C_VPX] * (sc[i, C_TMX] - tx) - sc[i, C_VPY] * (sc[i, C_TMY] - ty))
                 if ak > 0.0:
-                    T = ak * sl        # the anchor's force at the solved velocities
+                    T = sc[i, C_T0] + ak * sl        # the anchor's force at the solved velocities
                 pfr += T * sl
-                if ak == 0.0:
+                if law == LAW_ELASTIC_PLASTIC:
+                    # the bristle's new state, T = K z; at Delta_max it slides on, until its slip turns
+                    dm = dmax * T / (mu[i] * N)
+                    if ak > 0.0 and abs(dm) < dmax:
+                        z[i] = dm
+                        stk[i] = 1.0
+                    else:
+                        z[i] = math.copysign(dmax, T)
+                        stk[i] = 1.0 if sl * T < 0.0 else 0.0
+                elif ak == 0.0:
                     # a sliding segment whose slip reached the band or turned sticks next step
                     stk[i] = 1.0 if (abs(sl) < dv or sl * T < 0.0) else 0.0
                 tq_belt[j] -= ar * T
@@ -1572,7 +1621,7 @@ def _update_implicit(n, h, dv, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, pr, fx,
             seg_t[i] = 0.0
             seg_p[i] = 0.0
         _move(i, h, vxs, vys, x, y, vx, vy, w, phi, c, s)
-    return pfr
+    return pfr, pcd
 
 
 @njit(cache=True, inline="always")
@@ -1774,7 +1823,7 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
             pb = _spin_damper(n, h, hl, spin_lim, ieff, w, jfk, jdx, jdy, seg_n, spd, cs, mz, pb)
             nc, pcd = _contacts(n, nk, h, hvb, g, m_, c1, c2, bc, pmax, centre, x, y, vx, vy, pcx, pcy, pvx, pvy, pr, cand_j,
                                 cand_skip, stk, z, fy, si, sc)
-            cchg = _friction(n, mu, dv, om, pr, stk, fkap, fx, fy, mz, si, sc)
+            cchg = _friction(n, h, Ct, om, stk, z, fkap, fx, fy, mz, si, sc)
             for j in range(nk):
                 if ipl[j]:
                     mext[j] = _torque(j, t, th[j], om[j], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
@@ -1818,15 +1867,17 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
                 _corrections(nC, vx, vy, om, pvx, pvy, fnx, fny, fca, far, si, sc, cseg, cpar)
                 _small_system(h, nk, nC, pinv_i, mext, zslot, zc, lin_u, lin_g, si, cseg, cpar, qm, qv, yx, yy,
                               s0, gyv, ipl, dom, lin_cnt)
-                changed, npend = _check(h, nk, nc, nC, npend, npass, mu, dv, vx, vy, om, pvx, pvy, fnx, fny, fca, far,
-                                        stk, zslot, zc, lin_u, lin_stat, si, sc, cseg, yx, yy, qv, dom, ipl)
+                changed, npend = _check(h, nk, nc, nC, npend, npass, Ct, vx, vy, om, pvx, pvy, fnx, fny,
+                                        fca, far, stk, z, zslot, zc, lin_u, lin_stat, si, sc, cseg, yx, yy, qv, dom,
+                                        ipl)
                 npass += 1
                 if not changed:
                     break
             _velocity_change(n, nk, nC, ipl, dom, qv, cseg, zslot, lin_u, zc, yx, yy, yz, fx, fy, mz)
             lin_cnt[0] -= 1
-            pfr = _update_implicit(n, h, dv, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, pr, fx, fy, mz, seg_n, seg_t,
-                                   seg_p, stk, fkap, fnx, fny, si, sc, dom, tq_belt, hub)
+            pfr, pcd_ = _update_implicit(n, h, Ct, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, fx, fy, mz,
+                                         seg_n, seg_t, seg_p, stk, z, fkap, fnx, fny, si, sc, dom, tq_belt, hub)
+            pcd += pcd_
         else:
             for i in range(n):
                 hm = hm_[i]

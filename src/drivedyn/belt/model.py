@@ -415,9 +415,6 @@ class Model(Spec):
         if self.simulation.method == "rkf45" and _semi_implicit_only(self.pulleys):
             raise ValueError("simulation.method: rkf45 does not integrate tensioners, clutches or speed orders; "
                              "use semi-implicit or implicit")
-        if self.simulation.method == "implicit" and self.friction.law == "elastic-plastic":
-            raise ValueError("simulation.method: the implicit scheme anchors stuck segments (Coulomb friction) and has no "
-                             "elastic-plastic law; use semi-implicit or auto")
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
             raise ValueError("output.steady_window ends after simulation.duration")
         self._clutch_on_driver()
@@ -479,8 +476,8 @@ class Model(Spec):
 def integrator(model) -> str:
     """The belt integration scheme a run uses: ``simulation.method``, where "auto" (the default)
     is the implicit scheme (the step set by the dynamics, agreeing with the semi-implicit
-    reference on the seed drives) unless the drive has tensioners, clutches or speed orders, the
-    elastic-plastic friction law or asks for rotation scaling; then the semi-implicit scheme.
+    reference on the seed drives) unless the drive has tensioners, clutches or speed orders or
+    asks for rotation scaling; then the semi-implicit scheme.
     The implicit scheme integrates tensioners, clutches and speed orders (tests/belt/test_implicit.py
     against the semi-implicit reference), but on accessory drives at their "auto" resolution its
     accuracy rule (simulate.TURN_PER_STEP) and the refactorisations at every segment landing make it
@@ -488,8 +485,7 @@ def integrator(model) -> str:
     method = model.simulation.method
     if method != "auto":
         return method
-    if (_semi_implicit_only(model.pulleys) or model.friction.law == "elastic-plastic"
-            or model.simulation.rotation_scaling):
+    if _semi_implicit_only(model.pulleys) or model.simulation.rotation_scaling:
         return "semi-implicit"
     return "implicit"
 
