@@ -1596,10 +1596,14 @@ def _update_implicit(n, h, Ct, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, fx, fy,
                 pfr += T * sl
                 if law == LAW_ELASTIC_PLASTIC:
                     # the bristle's new state, T = K z; at Delta_max it slides on, until its slip turns
-                    dm = dmax * T / (mu[i] * N)
+                    muN = mu[i] * N
+                    dm = dmax * T / muN if muN > 0.0 else 0.0
                     if ak > 0.0 and abs(dm) < dmax:
                         z[i] = dm
                         stk[i] = 1.0
+                    elif muN == 0.0:    # no grip (mu = 0): no bristle
+                        z[i] = 0.0
+                        stk[i] = 0.0
                     else:
                         z[i] = math.copysign(dmax, T)
                         stk[i] = 1.0 if sl * T < 0.0 else 0.0
