@@ -1820,8 +1820,9 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
             # Every force through the chain matrix, dv = h A^-1 F (see _chain.py). Contact normal
             # forces explicit at (x_n, v_n), their stiffness and damping in A. Friction: a
             # sliding segment carries mu N against its slip (explicit, saturated); a stuck one is
-            # anchored to the pulley surface in A by the friction law's secant slope mu N / dv
-            # (pulley speeds frozen over the step), its friction the anchor's force. An anchor
+            # anchored to the pulley surface in A (Threlfall: the law's secant slope mu N / dv;
+            # elastic-plastic: its bristle, slope h K, K z explicit; pulley speeds frozen over
+            # the step), its friction the anchor's force. An anchor
             # whose force would exceed mu N lets go and the step is solved again (active set).
             _joint_transport(n, h, hl, linear, eax, kax, bax, c, s, w, jdx, jdy, fx, fy, mz)
             pb = _spin_damper(n, h, hl, spin_lim, ieff, w, jfk, jdx, jdy, seg_n, spd, cs, mz, pb)
