@@ -207,6 +207,9 @@ def linear_model(model, layout: Layout | None = None, tensions=None, travel=None
         K += (EA / sp.length) * np.outer(G[k], G[k])
         Ja, Jb = point(sp.start, sp.p0), point(sp.end, sp.p1)
         M += mass * sp.length / 6 * (2 * Ja.T @ Ja + Ja.T @ Jb + Jb.T @ Ja + 2 * Jb.T @ Jb)
+    if model.friction.law == "elastic-plastic":
+        dK, G = _wrap_compliance(model, lay, T, G)
+        K += dK
     for j in range(nk):
         # the wrap's belt, carried by pulley j
         a0, sweep = lay.arc_start[j], lay.wrap[j] * math.copysign(1.0, lay.rho[j])
@@ -234,6 +237,45 @@ def linear_model(model, layout: Layout | None = None, tensions=None, travel=None
         a = col[("rot", j)]
         locked[a, a] += pulleys[j].clutch.inertia
     return Linear(tuple(names), K, M, locked, G, np.array([EA / sp.length for sp in lay.spans]))
+
+
+def _wrap_compliance(model, lay, T, G):
+    """The wraps' compliance under the elastic-plastic friction law: every stuck bit of belt is held
+    to its pulley by a bristle of stiffness mu N / Delta_max, per unit length k' = mu T / (r
+    Delta_max) at tension T, so the belt on a wrap moves against the rim where the spans pull it.
+    Along the wrap its displacement u relative to the rim obeys EA u'' = k' u (a shear lag of length
+    1 / beta, beta^2 = k' / EA), whose two ends, u_in where the belt arrives and u_out where it
+    leaves, then carry the energy EA beta / 2 [(u_in^2 + u_out^2) coth(beta L) - 2 u_in u_out
+    csch(beta L)] (L = r x wrap). A span's stretch gains u_in of its end pulley less u_out of its
+    start pulley. These massless displacements are condensed out. Linearised at rest: every bristle
+    elastic (a loaded wrap's sliding arc has none, which this leaves out). Returns the stiffness to
+    add to the adhesion model's and the span stretch map with the wraps' displacements condensed."""
+    nk, n = len(lay.names), G.shape[1]
+    EA, mu, dmax = model.belt.axial_stiffness, model.friction.coefficient, model.friction.displacement_limit
+    H = np.zeros((len(lay.spans), 2 * nk))          # columns 2 j: u_in on pulley j, 2 j + 1: u_out
+    Kww = np.zeros((2 * nk, 2 * nk))
+    t_wrap = np.zeros(nk)
+    for k, sp in enumerate(lay.spans):
+        H[k, 2 * sp.end] += 1.0
+        H[k, 2 * sp.start + 1] -= 1.0
+        t_wrap[sp.end] += 0.5 * T[k]
+        t_wrap[sp.start] += 0.5 * T[k]
+    for j in range(nk):
+        r = float(lay.radii[j])
+        L = r * float(lay.wrap[j])
+        kb = mu * max(t_wrap[j], 0.0) / (r * dmax)
+        if kb <= 0.0 or L <= 0.0:          # no grip: the belt's ends slide freely
+            continue
+        b = math.sqrt(kb / EA)
+        x = b * L
+        # coth and csch for any beta L (a long wrap: csch -> 0, each end a shear lag EA beta)
+        cth, csh = (1.0 / math.tanh(x), 1.0 / math.sinh(x)) if x < 300 else (1.0, 0.0)
+        Kww[2 * j:2 * j + 2, 2 * j:2 * j + 2] += EA * b * np.array([[cth, -csh], [-csh, cth]])
+    ks = np.array([EA / sp.length for sp in lay.spans])
+    Kxw = (G * ks[:, None]).T @ H
+    Kww += (H * ks[:, None]).T @ H
+    C = np.linalg.solve(Kww, Kxw.T)                  # u = -C x
+    return -Kxw @ C, G - H @ C
 
 
 def _eigen(K, M, names) -> Modes:
