@@ -5,7 +5,8 @@ Discrete model in the spirit of Hwang, Mote & Lee (J. Mech. Des. 116, 1994) and 
 (a pulley with a prescribed speed is held), the travel q of each tensioner (arm angle about its
 pivot, or slide) and, with a decoupler, its rotor's rotation.
 
-The belt sticks to the wraps and rolls on the pulleys without slip. A pulley turning by theta feeds
+The belt sticks to the wraps and rolls on the pulleys without slip (with the elastic-plastic
+friction law, the wraps' bristles give: ``_wrap_compliance``). A pulley turning by theta feeds
 its signed radius times theta into the span it leaves; a tensioner moving by q changes a span's
 straight length and turns its tangent points round the pulleys, and the belt that rolls on or off
 there (rho times the turn) is taken from or given to the span. The stretch is then, to first order,
