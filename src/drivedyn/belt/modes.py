@@ -251,7 +251,7 @@ def _wrap_compliance(model, lay, T, G):
     start pulley. These massless displacements are condensed out. Linearised at rest: every bristle
     elastic (a loaded wrap's sliding arc has none, which this leaves out). Returns the stiffness to
     add to the adhesion model's and the span stretch map with the wraps' displacements condensed."""
-    nk, n = len(lay.names), G.shape[1]
+    nk = len(lay.names)
     EA, mu, dmax = model.belt.axial_stiffness, model.friction.coefficient, model.friction.displacement_limit
     H = np.zeros((len(lay.spans), 2 * nk))          # columns 2 j: u_in on pulley j, 2 j + 1: u_out
     Kww = np.zeros((2 * nk, 2 * nk))
