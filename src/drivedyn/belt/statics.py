@@ -203,7 +203,8 @@ def _steady_lines(data, model) -> list:
         out.append(f"  slip margin {st['slip_margin']:.3f}: the loads x {st['slip_margin']:.3f} make pulley "
                    f"{st['limiting_pulley']} slip grossly (its slip arc reaches its wrap)")
     fr = ", ".join(f"{f:.1f}" for f in md["frequencies_hz"]) or "none"
-    out.append(f"rotational modes (spans EA/L with the belt's mass, DOFs {', '.join(md['dofs'])}): {fr} Hz"
+    wraps = (", the wraps' pre-sliding compliance" if model.friction.law == "elastic-plastic" else "")
+    out.append(f"rotational modes (spans EA/L with the belt's mass{wraps}, DOFs {', '.join(md['dofs'])}): {fr} Hz"
                + (" (one-way clutches locked)" if md.get("free_rotor_hz") else ""))
     if md.get("free_rotor_hz"):
         out.append("  clutches overrunning (rotors free): " + ", ".join(f"{f:.1f}" for f in md["free_rotor_hz"]) + " Hz")
