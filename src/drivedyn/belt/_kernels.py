@@ -1139,13 +1139,23 @@ def _contacts(n, nk, h, hvb, g, m, c1, c2, bc, pmax, centre, x, y, vx, vy, pcx, 
 
 
 @njit(cache=True, inline="always")
+def _anchor(law, mu, N, dv, dmax, h, z):
+    """A stuck segment's anchor in the implicit scheme: its slope in A and its explicit force.
+    Threlfall: the law's secant ANCHOR mu N / Delta_v, no force; elastic-plastic: the bristle
+    T = K (z + h slip), K = mu N / Delta_max, as ``friction`` integrates it: slope h K, force K z."""
+    if law == LAW_ELASTIC_PLASTIC:
+        K = mu * N / dmax
+        return h * K, K * z
+    return ANCHOR * mu * N / dv, 0.0
+
+
+@njit(cache=True, inline="always")
 def _friction(n, h, Ct, om, stk, z, fkap, fx, fy, mz, si, sc):
     """Stage (implicit scheme), friction: by its state at the last step, a contact segment is
     anchored to the pulley surface (in A) or slides with mu N against its slip (explicit); the
-    contact forces join the step's forces, kept as F_base. The anchor: Threlfall's law, slope
-    ANCHOR mu N / Delta_v; the elastic-plastic law, its bristle T = K (z + h slip), K = mu N /
-    Delta_max: slope h K and the explicit force K z (C_T0), as ``friction`` integrates it; a
-    bristle short of Delta_max is elastic (anchored), one at it slides until its slip turns.
+    contact forces join the step's forces, kept as F_base. The anchor: ``_anchor`` (its explicit
+    force in C_T0); an elastic-plastic bristle short of Delta_max is elastic (anchored), one at it
+    slides until its slip turns.
     Returns whether the contact set differs from the one A was factored with."""
     mu, law, dv, dmax = Ct.mu, Ct.law, Ct.dv, Ct.dmax
     cchg = False
@@ -1158,12 +1168,8 @@ def _friction(n, h, Ct, om, stk, z, fkap, fx, fy, mz, si, sc):
         if j >= 0:
             N = sc[i, C_N]
             if N > 0.0:
-                if law == LAW_ELASTIC_PLASTIC and (stk[i] > 0.0 or abs(z[i]) < dmax):
-                    K = mu[i] * N / dmax
-                    sc[i, C_CA] = h * K
-                    sc[i, C_T0] = K * z[i]
-                elif law != LAW_ELASTIC_PLASTIC and stk[i] > 0.0:
-                    sc[i, C_CA] = ANCHOR * mu[i] * N / dv
+                if stk[i] > 0.0 or (law == LAW_ELASTIC_PLASTIC and abs(z[i]) < dmax):
+                    sc[i, C_CA], sc[i, C_T0] = _anchor(law, mu[i], N, dv, dmax, h, z[i])
                 else:
                     sl = om[j] * sc[i, C_R] - (sc[i, C_VPX] * sc[i, C_TMX] + sc[i, C_VPY] * sc[i, C_TMY])
                     sc[i, C_T] = math.copysign(mu[i] * N, sl)
@@ -1532,13 +1538,8 @@ def _check(h, nk, nc, nC, npend, npass, Ct, vx, vy, om, pvx, pvy, fnx, fny, fca,
             if sl * cT < 0.0:
                 # a sliding segment whose slip the step would turn: it sticks (elastic-plastic:
                 # its bristle held at z, its force K z)
-                T0 = 0.0
-                if law == LAW_ELASTIC_PLASTIC:
-                    K = mu[i] * N / dmax
-                    T0 = K * z[i]
-                    sc[i, C_CA] = h * K
-                else:
-                    sc[i, C_CA] = ANCHOR * mu[i] * N / dv
+                ca, T0 = _anchor(law, mu[i], N, dv, dmax, h, z[i])
+                sc[i, C_CA] = ca
                 sc[i, C_F0X] += (T0 - cT) * -ny
                 sc[i, C_F0Y] += (T0 - cT) * nx
                 sc[i, C_T] = 0.0
