@@ -33,6 +33,7 @@ class Rot(NamedTuple):
     c1: float                # contact law per unit length (N/m^3, N/m^2), the belt's depth in the groove
     c2: float
     centre: bool             # friction.radius = "centre": the belt runs on its depth's radius r - p
+    dmax: float              # the elastic-plastic law's Delta_max (m): the wraps' bristles; 0: adhesion
     L: np.ndarray            # span lengths at rest (m)
     dx: np.ndarray           # span directions at rest (unit)
     dy: np.ndarray
@@ -164,6 +165,9 @@ class RotState(NamedTuple):
     t1: np.ndarray
     Tp: np.ndarray           # span tensions of the last step (N)
     ed: np.ndarray           # the span dampers' strain rate of the last step (1/s)
+    Tb: np.ndarray           # per wrap: the tension its belt carries, the bristles' rest (N; elastic-plastic law)
+    off: np.ndarray          # per span: belt the bristles let out of the wraps into it (m, unstretched)
+    eb: np.ndarray           # per wrap: the bristles' energy (J)
 
 
 class RotWork(NamedTuple):
@@ -188,6 +192,80 @@ class RotWork(NamedTuple):
     acc_slip: np.ndarray     # per wrap: sliding speed (m/s) and time in gross slip (s)
     acc_gross: np.ndarray
     acc_diss: np.ndarray     # (6): axial damping, 0, 0, friction (creep and slip), tensioner, clutch
+    cc: np.ndarray           # per wrap: the bristles' compliances coth(beta L) / (EA beta), csch(beta L) / (EA beta)
+    cs: np.ndarray
+    bm: np.ndarray           # (nk, nk) and (nk): the bristles' linear system
+    bv: np.ndarray
+    ex: np.ndarray           # per span: the damper's strain rate of the step (1/s)
+
+
+@njit(cache=True, inline="always")
+def _beta(EA, mu, q, r, dmax):
+    """1 / the shear lag's length (1/m) at the wrap's tension less the belt's momentum flux q; a
+    wrap without grip lets the belt through (a shear lag of 1000 m stands for it)."""
+    return math.sqrt(max(mu * q / (r * dmax), 1e-6 * EA) / EA)
+
+
+@njit(cache=True, inline="always")
+def _compliances(nk, EA, m, mu, dmax, rho, om, wrap, Tb, cc, cs):
+    """Per wrap, the compliances of its bristles' shear lag (belt/modes.py, ``_wrap_compliance``):
+    each stuck bit of belt is held to the rim by mu N / Delta_max, per unit length k' = mu (T - m
+    v^2) / (r Delta_max), and the belt's displacement u against the rim obeys EA u'' = k' u over the
+    wrap's length L = r theta (a shear lag of length 1 / beta, beta^2 = k' / EA). Its two ends, pulled
+    by tension changes dT_in (the arriving span) and dT_out (the leaving one), move by
+    u_in = -cc dT_in + cs dT_out and u_out = -cs dT_in + cc dT_out (forward positive), cc = coth(beta
+    L) / (EA beta), cs = csch(beta L) / (EA beta)."""
+    for k in range(nk):
+        r = abs(rho[k])
+        vw = rho[k] * om[k]
+        beta = _beta(EA, mu[k], Tb[k] - m * vw * vw, r, dmax)
+        x = max(beta * r * wrap[k], 1e-6)
+        if x > 20.0:
+            ct = 1.0
+            ch = 2.0 * math.exp(-x)
+        else:
+            e2 = math.exp(-2.0 * x)
+            ct = (1.0 + e2) / (1.0 - e2)
+            ch = 2.0 * math.exp(-x) / (1.0 - e2)
+        cc[k] = ct / (EA * beta)
+        cs[k] = ch / (EA * beta)
+
+
+@njit(cache=True, inline="always")
+def _bristle_energy(k, ji, T, Tb, cc, cs):
+    """Energy of wrap k's bristles (J) under the span tensions T (complementary, linear: 1/2 dT . C dT)."""
+    a = T[ji] - Tb[k]
+    b = T[k] - Tb[k]
+    return 0.5 * (cc[k] * (a * a + b * b) - 2.0 * cs[k] * a * b)
+
+
+@njit(cache=True, inline="always")
+def _bristles(nk, EA, L, u, T, Tb, cc, cs, bm, bv, off):
+    """The span tensions T (in: without the bristles; out: with them) when the wraps' bristles let
+    belt out where the spans pull: span j holds u_j + off_j, off_j = u_out of its start pulley less
+    u_in of its end pulley (``_compliances``), and T_j = EA (L_j / (u_j + off_j) - 1) linearised in
+    off_j: T_j = T0_j - s_j off_j, s_j = EA L_j / u_j^2. A cyclic tridiagonal system in T, solved
+    densely (a few pulleys)."""
+    for j in range(nk):
+        for i in range(nk):
+            bm[j, i] = 0.0
+    for j in range(nk):
+        k1 = (j + 1) % nk
+        jm = (j - 1) % nk
+        sj = EA * L[j] / (u[j] * u[j])
+        bm[j, j] += 1.0 + sj * (cc[j] + cc[k1])
+        bm[j, jm] -= sj * cs[j]
+        bm[j, k1] -= sj * cs[k1]
+        bv[j] = T[j] + sj * ((cc[j] - cs[j]) * Tb[j] + (cc[k1] - cs[k1]) * Tb[k1])
+    K._small_solve(nk, bm, bv)
+    for j in range(nk):
+        k1 = (j + 1) % nk
+        jm = (j - 1) % nk
+        uo = -cs[j] * (bv[jm] - Tb[j]) + cc[j] * (bv[j] - Tb[j])
+        ui = -cc[k1] * (bv[j] - Tb[k1]) + cs[k1] * (bv[k1] - Tb[k1])
+        off[j] = uo - ui
+    for j in range(nk):
+        T[j] = bv[j]
 
 
 @njit(cache=True, inline="always")
@@ -258,13 +336,15 @@ def energy(R, P, A, S, RS, RW):
         E += 0.5 * A.inertia[a] * S.qd[a] ** 2 + K.spring_energy(A, a, S.q[a])
     geometry(R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap)
     for j in range(R.nk):
-        eps = RW.L[j] / RS.u[j] - 1.0
+        uj = RS.u[j] + RS.off[j]
+        eps = RW.L[j] / uj - 1.0
         if eps > 0.0:
-            E += 0.5 * R.EA * eps * eps * RS.u[j]
+            E += 0.5 * R.EA * eps * eps * uj
         ji = (j - 1) % R.nk
-        e_in = RW.L[ji] / RS.u[ji] - 1.0
+        e_in = RW.L[ji] / (RS.u[ji] + RS.off[ji]) - 1.0
         if e_in > 0.0:
             E += 0.5 * R.EA * e_in * e_in * RS.W[j]
+        E += RS.eb[j]
     return E
 
 
@@ -287,6 +367,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     T, fa, fb, tq, hubx, huby, slip = RW.T, RW.a, RW.b, RW.tq, RW.hubx, RW.huby, RW.slip
     acc_T, acc_v, acc_slip, acc_gross, acc_diss = RW.acc_T, RW.acc_v, RW.acc_slip, RW.acc_gross, RW.acc_diss
     u, Wc, ud, vs, rt0, rt1, Tp, ed = RS.u, RS.W, RS.ud, RS.vs, RS.t0, RS.t1, RS.Tp, RS.ed
+    dmax, Tb, off, eb, cc, cs, bm, bv, exr = R.dmax, RS.Tb, RS.off, RS.eb, RW.cc, RW.cs, RW.bm, RW.bv, RW.ex
     Tm, wm = RW.Tm, RW.wm
     om, q, qd = S.om, S.q, S.qd
     na, apul, akind, apar, atoff, atx, aty = A.na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y
@@ -320,12 +401,17 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 # step back): extrapolated from the last two steps' rates
                 ex = 1.5 * epsd - 0.5 * ed[j]
                 ed[j] = epsd
-                epsd = ex
-                Tj = EA * eps + bax * epsd
+                exr[j] = ex
+                T[j] = EA * eps + bax * ex
+            if dmax > 0.0:         # the wraps' bristles give where the spans pull
+                _compliances(nk, EA, m, mu, dmax, rho, om, wrap, Tb, cc, cs)
+                _bristles(nk, EA, L, u, T, Tb, cc, cs, bm, bv, off)
+            for j in range(nk):
+                Tj = T[j]
                 if Tj < 0.0:          # a slack span carries nothing (the belt buckles)
                     Tj = 0.0
                 else:
-                    P_ax += bax * epsd * epsd * L[j]
+                    P_ax += bax * exr[j] * exr[j] * L[j]
                 T[j] = Tj
                 # the belt's stage moves the contents over the step at the new speeds: it reads
                 # the tensions at the step's middle, extrapolated (second order in h; this step's
@@ -387,6 +473,15 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                     fb[k] = ve / (1.0 + eo)
                     fa[k] = fb[k] + dW / h
                 Wc[k] += dW
+                if dmax > 0.0 and vw != 0.0:
+                    # the belt on the wrap carries the tension it arrived with: fresh belt
+                    # replaces the shear lag's zone at the entry (1 / beta) at the belt's speed
+                    # (the whole wrap, if shorter); the energy the bristles let go is friction's
+                    rate = max(_beta(EA, mu[k], Tb[k] - c, r, dmax), 1.0 / (r * wm[k]))
+                    e0 = _bristle_energy(k, ji, T, Tb, cc, cs)
+                    Tb[k] += (1.0 - math.exp(-h * abs(vw) * rate)) * (T[ji] - Tb[k])
+                    eb[k] = _bristle_energy(k, ji, T, Tb, cc, cs)
+                    P_fr += (e0 - eb[k]) / h
                 # friction (creep) power on the wrap: the spans' power in less the pulley's
                 P_fr += T[k] * fb[k] * (1.0 + eo) - T[ji] * fa[k] * (1.0 + ei) - tq[k] * om[k]
             for j in range(nk):
@@ -403,7 +498,11 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 Wc[k1] += d1
                 ud[j] = u_old      # (the rate once the return map has acted)
                 vs[j] = 0.5 * (fb[j] + fa[k1]) * (1.0 + eps)
+            for j in range(nk):
+                u[j] += off[j]         # the return map reads the spans' tensions
             P_sl = _return_map(nk, EA, m, mu, u, vs, L, wrap, slip, h, passes) if passes > 0 else 0.0
+            for j in range(nk):
+                u[j] -= off[j]
             for j in range(nk):
                 ud[j] = (u[j] - ud[j]) / h
             for k in range(nk):

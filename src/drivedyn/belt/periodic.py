@@ -75,7 +75,7 @@ class _Drive:
 
     def get(self):
         S, RS = self.S, self.RS
-        return np.concatenate([S.om[self.dyn], S.omr[self.cl], S.dcp[self.cl], S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp, RS.ed])
+        return np.concatenate([S.om[self.dyn], S.omr[self.cl], S.dcp[self.cl], S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp, RS.ed, RS.Tb])
 
     def set(self, x):
         S, RS = self.S, self.RS
@@ -84,7 +84,7 @@ class _Drive:
         for arr, idx in parts:
             arr[idx] = x[k:k + len(idx)]
             k += len(idx)
-        for arr in (S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp, RS.ed):
+        for arr in (S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp, RS.ed, RS.Tb):
             arr[:] = x[k:k + len(arr)]
             k += len(arr)
         # the belt rolled onto the span ends is a function of the travel: no spurious transfer at
@@ -104,7 +104,8 @@ class _Drive:
         du = R.L * sysm.rest_tension / R.EA
         return np.concatenate([sp, 1e-3 * np.ones(len(self.cl)), 1e-3 * np.ones(na), 1e-3 * (abs(w) + 1) * np.ones(na),
                                du, du, 100 * du * abs(w), 100 * vw * np.ones(R.nk),
-                               sysm.rest_tension * np.ones(R.nk), 100 * du / R.L * abs(w)])
+                               sysm.rest_tension * np.ones(R.nk), 100 * du / R.L * abs(w),
+                               sysm.rest_tension * np.ones(R.nk)])
 
 
 def _anderson(phi, x0, scale, tol, memory=MEMORY, max_iter=MAX_ITER):

@@ -209,7 +209,8 @@ def build(model) -> RotSystem:
                bax=float(belt.axial_damping), m=float(belt.mass_per_length),
                mu=np.full(len(lay.names), float(model.friction.coefficient)),
                c1=float(model.contact.stiffness_quadratic), c2=float(model.contact.stiffness_linear),
-               centre=model.friction.radius == "centre", L=np.array([sp.length for sp in lay.spans]),
+               centre=model.friction.radius == "centre",
+               dmax=float(model.friction.displacement_limit) if model.friction.law == "elastic-plastic" else 0.0, L=np.array([sp.length for sp in lay.spans]),
                dx=np.array([math.cos(sp.angle) for sp in lay.spans]), dy=np.array([math.sin(sp.angle) for sp in lay.spans]),
                wrap=lay.wrap.astype(float), q0=q0, dq=dq, tL=tL, t0=t0, t1=t1, tdx=tdx, tdy=tdy, tw=tw)
     P = _pulleys(model.pulleys, running_senses(model, drawn))
@@ -315,10 +316,11 @@ def new_states(sysm: RotSystem):
     EA = R.EA
     c1, c2 = R.c1, R.c2
     Wc = np.array([RK.wrap_content(abs(R.rho[j]), R.wrap[j], T, T, 0.0, R.mu[j], EA, c1, c2) for j in range(nk)])
-    RS = RK.RotState(u=R.L / (1 + T / EA), W=Wc, ud=z(nk), vs=z(nk), t0=z(nk), t1=z(nk), Tp=np.full(nk, T), ed=z(nk))
+    RS = RK.RotState(u=R.L / (1 + T / EA), W=Wc, ud=z(nk), vs=z(nk), t0=z(nk), t1=z(nk), Tp=np.full(nk, T), ed=z(nk),
+                     Tb=np.full(nk, T), off=z(nk), eb=z(nk))
     RW = RK.RotWork(L=z(nk), Ld=z(nk), t0=z(nk), t1=z(nk), dx=z(nk), dy=z(nk), wrap=z(nk), T=z(nk), Tm=z(nk), wm=z(nk), a=z(nk), b=z(nk),
                     tq=z(nk), hubx=z(nk), huby=z(nk), slip=z(nk), acc_T=z(nk), acc_v=z(nk), acc_slip=z(nk),
-                    acc_gross=z(nk), acc_diss=z(6))
+                    acc_gross=z(nk), acc_diss=z(6), cc=z(nk), cs=z(nk), bm=z((nk, nk)), bv=z(nk), ex=z(nk))
     return S, W, RS, RW
 
 
