@@ -14,7 +14,7 @@ BASE = {
     "belt": {"mass_per_length": 0.096, "axial_stiffness": 1.52e5, "axial_damping": 0.164,
              "bending_stiffness": 2.08e-4, "pretension": 550.0, "segments": 100},
     "contact": {"stiffness_linear": 8.125e7, "stiffness_quadratic": 3.782e11, "damping": 3.75e4, "damping_depth": 1e-3},
-    "friction": {"coefficient": 1.0, "velocity_threshold": 1e-5},
+    "friction": {"law": "threlfall", "coefficient": 1.0, "velocity_threshold": 1e-5},     # the seed's law
     "gravity": 0.0,
     "simulation": {"duration": 0.3},
     "output": {"interval": 1e-3, "frames": 10},
@@ -26,7 +26,8 @@ BASE = {
 
 
 def make(**changes):
-    """The two-pulley 5PK drive of the seed (100 segments, no gravity) with dotted-path changes."""
+    """The two-pulley 5PK drive of the seed (100 segments, no gravity, Threlfall's law) with dotted-path
+    changes."""
     from drivedyn.model import set_path
 
     data = copy.deepcopy(BASE)

@@ -25,7 +25,7 @@ def drive():
         "kind": "belt-drive",
         "belt": {"mass_per_length": MASS, "axial_stiffness": EA, "pretension": 400.0},
         "contact": {"stiffness_linear": 1e12, "stiffness_quadratic": 0.0},
-        "friction": {"coefficient": 1.0},
+        "friction": {"law": "threlfall", "coefficient": 1.0},       # adhesion: the closed form above
         "pulleys": [{"name": "crank", "center": [0, 0], "radius": R, "speed_time": [[0, 0], [1, 50]]},
                     {"name": "driven", "center": [L, 0], "radius": R, "inertia": J}]})
 

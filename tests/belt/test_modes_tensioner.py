@@ -32,7 +32,7 @@ def drive(mass=0.1, segments=200, duration=0.5):
         "belt": {"mass_per_length": mass, "axial_stiffness": 1.5e5, "axial_damping": 0.0, "pretension": 300.0,
                  "segments": segments, "bending_stiffness": 2e-4},
         "contact": {"stiffness_linear": 8e7, "stiffness_quadratic": 4e11, "damping": 3e4},
-        "friction": {"coefficient": 1.0, "velocity_threshold": 1e-5},
+        "friction": {"law": "threlfall", "coefficient": 1.0, "velocity_threshold": 1e-5},    # adhesion, as the Hessian here
         "simulation": {"duration": duration}, "output": {"interval": 1e-4, "frames": 2},
         "pulleys": [
             {"name": "crank", "center": [0, 0], "radius": 0.075, "speed_time": [[0, 0], [1, 0]]},

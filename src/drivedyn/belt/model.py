@@ -309,13 +309,14 @@ class Contact(Spec):
 
 
 class Friction(Spec):
-    """Friction between belt and pulleys (seed 000, eqs. 11-17): Threlfall's regularised Coulomb
-    law (or the elastic-plastic one) with its coefficient, per-zone coefficients, and `radius`,
+    """Friction between belt and pulleys: the elastic-plastic law (a stuck bit of belt held by its
+    cover's shear up to the displacement limit Delta_max, then sliding with mu N; docs/belt-drive.md)
+    or seed 000's Threlfall regularised Coulomb law (eqs. 11-17), with its coefficient, per-zone coefficients, and `radius`,
     where the pulley's speed is read for the slip and the friction's moment arm: "contact" (the
     contact radius: classical creep theory's thin belt) or "centre" (the segment's centre below
     it: stuck belt turns with the pulley and its speed follows its depth; docs/belt-drive.md)."""
 
-    law: Literal["threlfall", "elastic-plastic"] = "threlfall"
+    law: Literal["threlfall", "elastic-plastic"] = "elastic-plastic"
     coefficient: float = 1.0
     velocity_threshold: quantity("m/s", gt=0) = 1e-5
     displacement_limit: quantity("m", gt=0) = 1e-4
@@ -348,8 +349,9 @@ class Simulation(Spec):
     method: Literal["auto", "implicit", "semi-implicit", "rkf45"] = "auto"
     step: Optional[quantity("s", gt=0)] = None
     # the segments' rotational inertia x 3.3 (system.ROTATION_SCALE): a 1.3x longer stable step of
-    # the semi-implicit scheme, opt-in (what it changes: system.py)
-    rotation_scaling: bool = False
+    # the semi-implicit scheme (what it changes: system.py); None: with the elastic-plastic
+    # friction law, where it leaves the answers as they were
+    rotation_scaling: Optional[bool] = None
     # run the drive a second time at 0.7 x the segments and report the change as an estimate of
     # the discretisation error (resolution.py; about 1.5 x the cost)
     resolution_check: bool = False
@@ -485,7 +487,7 @@ def integrator(model) -> str:
     method = model.simulation.method
     if method != "auto":
         return method
-    if _semi_implicit_only(model.pulleys) or model.simulation.rotation_scaling:
+    if _semi_implicit_only(model.pulleys) or model.simulation.rotation_scaling is True:
         return "semi-implicit"
     return "implicit"
 

@@ -27,7 +27,8 @@ slip and span tension (tests/belt/test_resolution.py measures both against refin
   660-666). A two-pulley drive's torsional mode, measured while running, is 3.3 % low at 4 m/s
   and 14 % low at 24 m/s at sag / depth 1.07, within 0.7 % at 0.27.
 
-- the friction law decides how much of the landing must be resolved: with Threlfall's law a
+- the friction law decides how much of the landing must be resolved (the elastic-plastic law is
+  the default): with Threlfall's law a
   landing segment slides at once (docs/belt-drive.md, "Friction's radius"), with the elastic-plastic
   law its pre-sliding displacement takes the landing up. The same drive with the elastic-plastic
   law at sag / depth 1.0 (333 segments) is within 2.0 / 2.8 / 3.2 % (span minima), 0.5 / 1.3 /

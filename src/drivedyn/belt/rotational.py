@@ -16,6 +16,10 @@ and slip prediction of serpentine belt drives; creep as Kong & Parker, J. Appl. 
   T - m v^2 ~ exp(mu phi), the belt sunk into the groove by its contact pressure; steady.py) over
   one passage time r theta / |v|, and the flux out is the flux in less the content's change.
   Belt is conserved: sum u + sum W = L0 at every step.
+- With the elastic-plastic friction law (the default) the wraps' bristles give: a shear lag at each
+  wrap end lets belt out into the span that pulls (its tension less the tension the belt carries
+  on the wrap, which follows the arriving span's as fresh belt enters), the same compliance as
+  ``check``'s modes (modes._wrap_compliance; _rotkernels._compliances, _bristles).
 - A tensioner moving the tangent points rolls belt from a span onto its pulleys (adhesion): the
   stretch of a span per unit travel is then the projection of the pulley centre's motion on the
   span (modes.py), the same gradient as ``check``'s modes.

@@ -129,7 +129,7 @@ def _build(model, drawn, settle: bool) -> BeltSystem:
     ones = np.ones(n)
     m = belt.mass_per_length * l * ones
     inertia = m * l * l / 12.0                                      # eq. 2
-    scaled = integrator(model) == "semi-implicit" and model.simulation.rotation_scaling
+    scaled = integrator(model) == "semi-implicit" and rotation_scaled(model)
     B = K.Belt(
         n=int(n), m=m, inertia=inertia, inv_m=1.0 / m, inv_i=1.0 / inertia,
         kax=belt.axial_stiffness / l ** e * ones,                     # F = EA (g / l)^e
@@ -367,8 +367,8 @@ def damping_depth(model, init) -> float:
 
 # Selective mass scaling of the segments' rotation: I = m l^2/12 -> 3.3 I = 1.1 m l^2/4, just above
 # the m l^2/4 that takes the alternating rotation mode (omega^2 = 12 k/m) below the zig-zag modes
-# (4 k/m): the step grows by 1.27 on examples/fead-runup.toml's drive, 1.5 on the 5PK. Opt-in
-# (simulation.rotation_scaling). What it changes is the landings: a segment landing on a pulley
+# (4 k/m): the step grows by 1.27 on examples/fead-runup.toml's drive, 1.5 on the 5PK
+# (simulation.rotation_scaling; by default with the elastic-plastic law only). What it changes is the landings: a segment landing on a pulley
 # stops turning relative to it, and the scaled inertia raises that turn's energy, I (v/r)^2 / 2, by
 # 3.3 (the landing's whole energy by about 1.6). Where the chord sag is resolved (resolution.py) that
 # leaves the losses and the modes as they were (fead-runup's drive held at 3000 / 5000 rpm with its
@@ -376,9 +376,22 @@ def damping_depth(model, init) -> float:
 # two-pulley drive's torsional mode at 24 m/s within 0.3 %), but not a tensioner arm's dry friction,
 # which the stronger landing kicks on its pulley dither: the alternator-tensioner span's minimum
 # 260-264 N at 666-930 segments scaled against 253 N unscaled and 247-248 N at 2664 (3000 rpm;
-# with the arm held, scaled and unscaled agree to 1 N). Not the default for that. At a coarse count
+# with the arm held, scaled and unscaled agree to 1 N). Not the default with Threlfall's law for
+# that; the elastic-plastic law's pre-sliding takes the kicks up (rotation_scaled). At a coarse count
 # the landings dominate: the accessory drive at 11 m/s lost 33 against 24 W in contact and friction.
 ROTATION_SCALE = 3.3
+
+
+def rotation_scaled(model) -> bool:
+    """Whether the semi-implicit scheme scales the segments' rotation: ``simulation.rotation_scaling``,
+    where None (the default) scales with the elastic-plastic friction law. With it the bristles take
+    up the stronger landings: examples/fead-runup.toml's drive held with its orders, scaled against
+    1332 segments unscaled, span minima within 1.6 / 2.5 / 1.2 %, maxima 0.7 / 0.5 / 1.7 %, slips
+    0.014 / 0.011 / 0.004 points at 1000 / 3000 / 5000 rpm (333 / 330 / 330 segments;
+    benchmarks/bench_fead_defaults.py), where Threlfall's law scaled reads the alternator-tensioner
+    span's minimum 5 % high (below)."""
+    rs = model.simulation.rotation_scaling
+    return bool(rs) if rs is not None else model.friction.law == "elastic-plastic"
 
 
 def effective_inertia(sysm) -> np.ndarray:
