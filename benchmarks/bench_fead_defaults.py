@@ -6,7 +6,7 @@ tension minimum and maximum (% off), the arm's travel range, status and wall tim
 
 Run: python benchmarks/bench_fead_defaults.py [--rpm 3000] [--refine 4] [--law elastic-plastic]
 [--method implicit --step 19.2e-6] (the method and step for the "150" and "auto" runs; the
-reference is semi-implicit at its own step)
+reference is semi-implicit at its own step, unscaled)
 (not a timed test; numbers depend on the machine: the 4x reference takes several minutes)
 """
 import argparse
@@ -28,7 +28,7 @@ def main():
         m = held(rpm, segs)
         over = {"friction.law": a.law} if a.law else {}
         if ref:
-            over["simulation.method"] = "semi-implicit"
+            over.update({"simulation.method": "semi-implicit", "simulation.rotation_scaling": False})
         else:
             over.update({k: v for k, v in (("simulation.method", a.method), ("simulation.step", a.step)) if v})
         return drivedyn.replace(m, over) if over else m
