@@ -335,8 +335,10 @@ class Simulation(Spec):
     """How the drive is simulated: for how long, which belt model (``model``: "segments", the belt
     as rigid segments, seed 000; "rotational", pulleys, rotors and tensioners with the spans as
     axial springs and creep on the wraps, docs/belt-drive.md), which integration scheme for the
-    segments (``method``, ``step``), and a run-up by time integration or as periodic solutions per
-    crank-speed bin (``runup``, rotational model)."""
+    segments (``method``, ``step``; ``rotation_scaling``, the segments' rotational inertia x 3.3
+    for a longer stable step of the semi-implicit scheme, left out (none) means on with the
+    elastic-plastic friction law and off with Threlfall's), and a run-up by time integration or as
+    periodic solutions per crank-speed bin (``runup``, rotational model)."""
 
     duration: quantity("s", gt=0) = 1.0
     # "segments": the belt as a chain of rigid segments (seed 000); "rotational": pulleys, arms and
