@@ -311,10 +311,11 @@ class Contact(Spec):
 class Friction(Spec):
     """Friction between belt and pulleys: the elastic-plastic law (a stuck bit of belt held by its
     cover's shear up to the displacement limit Delta_max, then sliding with mu N; docs/belt-drive.md)
-    or seed 000's Threlfall regularised Coulomb law (eqs. 11-17), with its coefficient, per-zone coefficients, and `radius`,
-    where the pulley's speed is read for the slip and the friction's moment arm: "contact" (the
-    contact radius: classical creep theory's thin belt) or "centre" (the segment's centre below
-    it: stuck belt turns with the pulley and its speed follows its depth; docs/belt-drive.md)."""
+    or seed 000's Threlfall regularised Coulomb law (eqs. 11-17), with its coefficient, per-zone
+    coefficients, and `radius`, where the pulley's speed is read for the slip and the friction's
+    moment arm: "contact" (the contact radius: classical creep theory's thin belt) or "centre" (the
+    segment's centre below it: stuck belt turns with the pulley and its speed follows its depth;
+    docs/belt-drive.md)."""
 
     law: Literal["threlfall", "elastic-plastic"] = "elastic-plastic"
     coefficient: float = 1.0

@@ -214,7 +214,8 @@ def build(model) -> RotSystem:
                mu=np.full(len(lay.names), float(model.friction.coefficient)),
                c1=float(model.contact.stiffness_quadratic), c2=float(model.contact.stiffness_linear),
                centre=model.friction.radius == "centre",
-               dmax=float(model.friction.displacement_limit) if model.friction.law == "elastic-plastic" else 0.0, L=np.array([sp.length for sp in lay.spans]),
+               dmax=float(model.friction.displacement_limit) if model.friction.law == "elastic-plastic" else 0.0,
+               L=np.array([sp.length for sp in lay.spans]),
                dx=np.array([math.cos(sp.angle) for sp in lay.spans]), dy=np.array([math.sin(sp.angle) for sp in lay.spans]),
                wrap=lay.wrap.astype(float), q0=q0, dq=dq, tL=tL, t0=t0, t1=t1, tdx=tdx, tdy=tdy, tw=tw)
     P = _pulleys(model.pulleys, running_senses(model, drawn))

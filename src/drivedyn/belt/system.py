@@ -368,8 +368,8 @@ def damping_depth(model, init) -> float:
 # Selective mass scaling of the segments' rotation: I = m l^2/12 -> 3.3 I = 1.1 m l^2/4, just above
 # the m l^2/4 that takes the alternating rotation mode (omega^2 = 12 k/m) below the zig-zag modes
 # (4 k/m): the step grows by 1.27 on examples/fead-runup.toml's drive, 1.5 on the 5PK
-# (simulation.rotation_scaling; by default with the elastic-plastic law only). What it changes is the landings: a segment landing on a pulley
-# stops turning relative to it, and the scaled inertia raises that turn's energy, I (v/r)^2 / 2, by
+# (simulation.rotation_scaling; by default with the elastic-plastic law only). What it changes is
+# the landings: a segment landing on a pulley stops turning relative to it, and the scaled inertia raises that turn's energy, I (v/r)^2 / 2, by
 # 3.3 (the landing's whole energy by about 1.6). Where the chord sag is resolved (resolution.py) that
 # leaves the losses and the modes as they were (fead-runup's drive held at 3000 / 5000 rpm with its
 # orders, 666 segments: contact-damping loss 101.3 against 101.9 W, 178.5 against 178.9 W; a
