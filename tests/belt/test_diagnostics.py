@@ -148,5 +148,8 @@ def test_energy_balance_closes_where_segments_leave_faster_than_the_contact_push
     r = drivedyn.run(held(3000, "auto", orders=False, duration=0.5))
     p = r.summary["power"]
     assert r.summary["solver"]["rotation_scaling"]
+    # the summary says which friction law the answers rest on
+    assert r.summary["belt"]["friction_law"] == "elastic-plastic" and r.summary["belt"]["displacement_limit"] == 1e-4
+    assert r.units["belt.displacement_limit"] == "m"
     assert abs(p["energy_residual_window"]) < 3e-3 and abs(p["unaccounted"]) < 3e-3 * p["input"]
     assert "energy-residual" not in codes(r)

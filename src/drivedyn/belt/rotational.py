@@ -381,7 +381,7 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_mod
     from ..model import dumps
     from ..results import Result, unit_map, variable
     from ..window import in_window, steady_window
-    from .simulate import UNITS, _clutch_variables, _summary, _tensioner_variables
+    from .simulate import UNITS, _clutch_variables, _summary, _tensioner_variables, friction_law
 
     lay = sysm.layout
     names, spans = list(lay.names), [sp.name for sp in lay.spans]
@@ -439,7 +439,7 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_mod
             "step_frequency_error": float((h * sysm.omega_max) ** 2 / 24)}
     summary = _summary(model, view, ds, solver, sel, window, disc)
     summary["belt"] = {"pretension": float(sysm.rest_tension), "path_length": float(lay.length),
-                       "unstretched_length": float(sysm.L0), "model": "rotational"}
+                       "unstretched_length": float(sysm.L0), "model": "rotational", **friction_law(model)}
     gross = ds["gross_slip_share"].values[sel] if np.any(sel) else np.zeros((0, len(names)))
     for j, nm in enumerate(names):
         p = summary["pulleys"][nm]

@@ -454,7 +454,7 @@ UNITS = {
     "pulleys.*.chordal_error": "1", "pulleys.*.slip_margin": "1",
     "spans.*.tension_*": "N", "spans.*.speed_mean": "m/s",
     "power.efficiency": "1", "power.energy_residual_*": "1", "power.*": "W",
-    "belt.pretension": "N", "belt.segment_length": "m", "belt.path_length": "m",
+    "belt.pretension": "N", "belt.segment_length": "m", "belt.path_length": "m", "belt.displacement_limit": "m",
     "discretisation.segment_length": "m", "discretisation.chordal_speed_error": "1",
     "discretisation.segments*": "", "discretisation.unresolved_wraps.*": "deg",
     "discretisation.estimate.coarse_segments": "", "discretisation.estimate.*": "1", "discretisation.*": "",
@@ -483,6 +483,13 @@ def warm():
                    "pulleys": [{"name": "a", "center": [0, 0], "radius": 0.03},
                                {"name": "b", "center": [0.2, 0], "radius": 0.03}]})
     run(m)
+
+
+def friction_law(model) -> dict:
+    """What the summary says of the friction law (the answers depend on it: docs/belt-drive.md,
+    Delta_max): its name and, for the elastic-plastic law, Delta_max."""
+    f = model.friction
+    return {"friction_law": f.law, **({"displacement_limit": float(f.displacement_limit)} if f.law == "elastic-plastic" else {})}
 
 
 def _summary(model, sysm, ds, solver, sel, window, disc=None) -> dict:
@@ -555,7 +562,7 @@ def _summary(model, sysm, ds, solver, sel, window, disc=None) -> dict:
             "energy_residual_relative": float("nan"),     # diagnose._energy: against the work in
         },
         "belt": {"pretension": sysm.init.tension, "segment_length": sysm.init.seg_length,
-                 "segments": sysm.n, "path_length": sysm.layout.length},
+                 "segments": sysm.n, "path_length": sysm.layout.length, **friction_law(model)},
         "discretisation": discretisation(model, sysm) if disc is None else disc,
         **_tensioner_summary(ds, sysm, sel),
         **_clutch_summary(ds, sel),
