@@ -75,7 +75,8 @@ class _Drive:
 
     def get(self):
         S, RS = self.S, self.RS
-        return np.concatenate([S.om[self.dyn], S.omr[self.cl], S.dcp[self.cl], S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp, RS.ed, RS.Tb])
+        return np.concatenate([S.om[self.dyn], S.omr[self.cl], S.dcp[self.cl], S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp,
+                               RS.ed, RS.Tb])
 
     def set(self, x):
         S, RS = self.S, self.RS

@@ -489,7 +489,9 @@ def friction_law(model) -> dict:
     """What the summary says of the friction law (the answers depend on it: docs/belt-drive.md,
     Delta_max): its name and, for the elastic-plastic law, Delta_max."""
     f = model.friction
-    return {"friction_law": f.law, **({"displacement_limit": float(f.displacement_limit)} if f.law == "elastic-plastic" else {})}
+    if f.law == "elastic-plastic":
+        return {"friction_law": f.law, "displacement_limit": float(f.displacement_limit)}
+    return {"friction_law": f.law}
 
 
 def _summary(model, sysm, ds, solver, sel, window, disc=None) -> dict:

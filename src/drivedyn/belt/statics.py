@@ -138,17 +138,16 @@ def report(model) -> str:
     sysm = build(model, settle=False)       # the report needs no settled segment positions
     lay = sysm.layout
     T0 = sysm.init.tension
-    belt = model.belt
+    belt, fr = model.belt, model.friction
     lines = [f"belt drive: {model.name or '(unnamed)'}",
              f"loop: {'counter-clockwise' if lay.orientation > 0 else 'clockwise'} in the listed order; "
              f"path length {lay.length * 1e3:.2f} mm at the contact radii",
              f"belt: unstretched length {sysm.init.seg_length * sysm.n * 1e3:.2f} mm, pretension {T0:.1f} N "
              f"(strain {T0 / belt.axial_stiffness * 100:.3f} %), {sysm.n} segments of {sysm.init.seg_length * 1e3:.3f} mm"
              + (f" (auto: {auto_segments(model)[1]})" if belt.segments == "auto" else ""),
-             "friction: " + (f"elastic-plastic law, mu {model.friction.coefficient:g}, Delta_max "
-                             f"{model.friction.displacement_limit * 1e3:g} mm" if model.friction.law == "elastic-plastic"
-                             else f"Threlfall's law (seed 000), mu {model.friction.coefficient:g}, Delta_v "
-                                  f"{model.friction.velocity_threshold:g} m/s"),
+             "friction: " + (f"elastic-plastic law, mu {fr.coefficient:g}, Delta_max {fr.displacement_limit * 1e3:g} mm"
+                             if fr.law == "elastic-plastic" else
+                             f"Threlfall's law (seed 000), mu {fr.coefficient:g}, Delta_v {fr.velocity_threshold:g} m/s"),
              "", f"{'pulley':14s} {'x mm':>9s} {'y mm':>9s} {'r mm':>7s} {'side':>6s} {'wrap deg':>9s} {'hub load N':>11s} "
              f"{'hub dir deg':>11s} {'penetr. mm':>10s}"]
     hub = lay.hub_load_static(T0)

@@ -369,16 +369,17 @@ def damping_depth(model, init) -> float:
 # the m l^2/4 that takes the alternating rotation mode (omega^2 = 12 k/m) below the zig-zag modes
 # (4 k/m): the step grows by 1.27 on examples/fead-runup.toml's drive, 1.5 on the 5PK
 # (simulation.rotation_scaling; by default with the elastic-plastic law only). What it changes is
-# the landings: a segment landing on a pulley stops turning relative to it, and the scaled inertia raises that turn's energy, I (v/r)^2 / 2, by
-# 3.3 (the landing's whole energy by about 1.6). Where the chord sag is resolved (resolution.py) that
-# leaves the losses and the modes as they were (fead-runup's drive held at 3000 / 5000 rpm with its
-# orders, 666 segments: contact-damping loss 101.3 against 101.9 W, 178.5 against 178.9 W; a
-# two-pulley drive's torsional mode at 24 m/s within 0.3 %), but not a tensioner arm's dry friction,
-# which the stronger landing kicks on its pulley dither: the alternator-tensioner span's minimum
-# 260-264 N at 666-930 segments scaled against 253 N unscaled and 247-248 N at 2664 (3000 rpm;
-# with the arm held, scaled and unscaled agree to 1 N). Not the default with Threlfall's law for
-# that; the elastic-plastic law's pre-sliding takes the kicks up (rotation_scaled). At a coarse count
-# the landings dominate: the accessory drive at 11 m/s lost 33 against 24 W in contact and friction.
+# the landings: a segment landing on a pulley stops turning relative to it, and the scaled inertia
+# raises that turn's energy, I (v/r)^2 / 2, by 3.3 (the landing's whole energy by about 1.6). Where
+# the chord sag is resolved (resolution.py) that leaves the losses and the modes as they were
+# (fead-runup's drive held at 3000 / 5000 rpm with its orders, 666 segments: contact-damping loss
+# 101.3 against 101.9 W, 178.5 against 178.9 W; a two-pulley drive's torsional mode at 24 m/s within
+# 0.3 %), but not a tensioner arm's dry friction, which the stronger landing kicks on its pulley
+# dither: the alternator-tensioner span's minimum 260-264 N at 666-930 segments scaled against 253 N
+# unscaled and 247-248 N at 2664 (3000 rpm; with the arm held, scaled and unscaled agree to 1 N).
+# Not the default with Threlfall's law for that; the elastic-plastic law's pre-sliding takes the
+# kicks up (rotation_scaled). At a coarse count the landings dominate: the accessory drive at 11 m/s
+# lost 33 against 24 W in contact and friction.
 ROTATION_SCALE = 3.3
 
 
