@@ -34,6 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.linalg import eigh
 
+from ._rotkernels import wrap_axial_stiffness
 from .layout import Layout, compute_layout
 
 #: points per wrap for its mass (the wrap is an arc carried rigidly by its pulley)
@@ -244,15 +245,18 @@ def _wrap_compliance(model, lay, T, G):
     """The wraps' compliance under the elastic-plastic friction law: every stuck bit of belt is held
     to its pulley by a bristle of stiffness mu N / Delta_max, per unit length k' = mu T / (r
     Delta_max) at tension T, so the belt on a wrap moves against the rim where the spans pull it.
-    Along the wrap its displacement u relative to the rim obeys EA u'' = k' u (a shear lag of length
-    1 / beta, beta^2 = k' / EA), whose two ends, u_in where the belt arrives and u_out where it
-    leaves, then carry the energy EA beta / 2 [(u_in^2 + u_out^2) coth(beta L) - 2 u_in u_out
-    csch(beta L)] (L = r x wrap). A span's stretch gains u_in of its end pulley less u_out of its
-    start pulley. These massless displacements are condensed out. Linearised at rest: every bristle
-    elastic (a loaded wrap's sliding arc has none, which this leaves out). Returns the stiffness to
-    add to the adhesion model's and the span stretch map with the wraps' displacements condensed."""
+    Along the wrap its displacement u relative to the rim obeys EA_w u'' = k' u (a shear lag of length
+    1 / beta, beta^2 = k' / EA_w; EA_w the wrap's axial stiffness with the belt's sinking into the
+    rim, ``_rotkernels.wrap_axial_stiffness``), whose two ends, u_in where the belt arrives and
+    u_out where it leaves, then carry the energy EA_w beta / 2 [(u_in^2 + u_out^2) coth(beta L) - 2
+    u_in u_out csch(beta L)] (L = r x wrap). A span's stretch gains u_in of its end pulley less
+    u_out of its start pulley. These massless displacements are condensed out. Linearised at rest:
+    every bristle elastic (a loaded wrap's sliding arc has none, which this leaves out). Returns the
+    stiffness to add to the adhesion model's and the span stretch map with the wraps' displacements
+    condensed."""
     nk = len(lay.names)
     EA, mu, dmax = model.belt.axial_stiffness, model.friction.coefficient, model.friction.displacement_limit
+    c1, c2 = float(model.contact.stiffness_quadratic), float(model.contact.stiffness_linear)
     H = np.zeros((len(lay.spans), 2 * nk))          # columns 2 j: u_in on pulley j, 2 j + 1: u_out
     Kww = np.zeros((2 * nk, 2 * nk))
     t_wrap = np.zeros(nk)
@@ -267,11 +271,12 @@ def _wrap_compliance(model, lay, T, G):
         kb = mu * max(t_wrap[j], 0.0) / (r * dmax)
         if kb <= 0.0 or L <= 0.0:          # no grip: the belt's ends slide freely
             continue
-        b = math.sqrt(kb / EA)
+        ew = wrap_axial_stiffness(EA, c1, c2, max(t_wrap[j], 0.0) / r, r)
+        b = math.sqrt(kb / ew)
         x = b * L
-        # coth and csch for any beta L (a long wrap: csch -> 0, each end a shear lag EA beta)
+        # coth and csch for any beta L (a long wrap: csch -> 0, each end a shear lag EA_w beta)
         cth, csh = (1.0 / math.tanh(x), 1.0 / math.sinh(x)) if x < 300 else (1.0, 0.0)
-        Kww[2 * j:2 * j + 2, 2 * j:2 * j + 2] += EA * b * np.array([[cth, -csh], [-csh, cth]])
+        Kww[2 * j:2 * j + 2, 2 * j:2 * j + 2] += ew * b * np.array([[cth, -csh], [-csh, cth]])
     ks = np.array([EA / sp.length for sp in lay.spans])
     Kxw = (G * ks[:, None]).T @ H
     Kww += (H * ks[:, None]).T @ H
