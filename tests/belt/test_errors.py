@@ -55,3 +55,41 @@ def test_roundtrip_of_examples():
     for name in ("belt-5pk", "belt-accessory", "belt-verification"):
         m = drivedyn.load(drivedyn.example_path(name))
         assert drivedyn.loads(drivedyn.dumps(m)) == m
+
+
+def _raising_after(real, calls):
+    """``real`` for ``calls`` calls, then a ZeroDivisionError, as a compiled step raises when a
+    state runs away (a span or joint of zero length)."""
+    count = [0]
+
+    def step(*args):
+        count[0] += 1
+        if count[0] > calls:
+            raise ZeroDivisionError("division by zero")
+        return real(*args)
+    return step
+
+
+def test_a_division_by_zero_in_the_step_keeps_results(model_factory, monkeypatch, tmp_path):
+    from drivedyn.belt import _kernels as K
+
+    monkeypatch.setattr(K, "step_chunk", _raising_after(K.step_chunk, 20))
+    m = model_factory(simulation__duration=0.05, simulation__method="semi-implicit")
+    with pytest.raises(drivedyn.SolverError, match=r"diverged after t = .* division by zero") as info:
+        drivedyn.run(m)
+    part = info.value.partial
+    assert part is not None and not part.success
+    assert 0 < part.ds.sizes["time"] < 0.05 / m.output.interval
+    part.save(tmp_path)
+
+
+@pytest.mark.parametrize("runup", ["time", "periodic"])
+def test_a_division_by_zero_in_the_rotational_step_keeps_results(monkeypatch, runup):
+    from drivedyn.belt import _rotkernels as RK
+
+    monkeypatch.setattr(RK, "run_samples", _raising_after(RK.run_samples, 20))
+    m = drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-runup")),
+                         {"simulation.model": "rotational", "simulation.runup": runup})
+    with pytest.raises(drivedyn.SolverError, match="diverged .* division by zero") as info:
+        drivedyn.run(m)
+    assert info.value.partial is not None and not info.value.partial.success

@@ -213,6 +213,8 @@ def _sweep(model, progress):
                 progress((i + 1) / len(speeds), f"{abs(w) * RPM:.0f} rpm: {it} periods, residual {res:.2g}")
     except (Stopped, KeyboardInterrupt) as exc:
         failure = f"stopped: {stop_reason(exc)}"
+    except ZeroDivisionError:      # an iterate ran away inside a period: the speeds before it stand
+        failure = f"diverged at {abs(w) * RPM:.0f} rpm (a division by zero in the step: a state ran away)"
     wall = _time.perf_counter() - wall0
     return sysm, o, k, speeds, residual, iters, table, steps_total, wall, failure
 

@@ -366,6 +366,8 @@ def run(model, progress=None):
                 progress(k / nsamples, f"t = {t:.3f} s")
     except (Stopped, KeyboardInterrupt) as exc:
         failure = f"stopped: {stop_reason(exc)}"
+    except ZeroDivisionError:      # a state ran away inside a chunk: keep the whole chunks before it
+        failure = f"diverged after t = {o['t'][k - 1] if k else 0.0:.6g} s (a division by zero in the step: a state ran away)"
     wall = _time.perf_counter() - wall0
     o["E"] -= E0
     o["t"][:k] = (np.arange(k) + 1) * interval      # exact sample times

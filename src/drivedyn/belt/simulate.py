@@ -315,6 +315,11 @@ def run(model, progress=None) -> Result:
             nsteps = getattr(rec, "steps_done", rec.ns * steps_per_sample)
         else:
             nsteps, h = rec.steps, rec.step or h
+    except ZeroDivisionError:
+        # a state ran away inside a sample (a joint or a span of zero length): keep the samples before it
+        failure = (f"diverged after t = {rec.t[rec.ns - 1] if rec.ns else 0.0:.6g} s (a division by zero in the "
+                   "step: a state ran away; is the step above the stability limit?)")
+        nsteps = getattr(rec, "steps_done", rec.ns * steps_per_sample) if integrator(model) != "rkf45" else rec.steps
     wall = _time.perf_counter() - wall0
     result = _assemble(model, sysm, rec, wall, nsteps, h, failure)
     if not failure and sim.resolution_check:
