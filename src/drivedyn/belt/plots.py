@@ -421,7 +421,7 @@ def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), r
     ax.set_title("Campbell diagram: rotational modes (blue; dotted: clutch overrunning),\n"
                  "span flap f1 (coloured; squares: crossings in the run), orders of the driver (dashed)", fontsize=9)
     if ax.get_legend_handles_labels()[0]:
-        ax.legend(loc="upper left", fontsize=7, ncol=2)
+        _legend(ax)        # beside the axes: inside, it hid the top modes' and orders' labels
     ax.grid(alpha=0.3)
     return ax
 
