@@ -200,24 +200,34 @@ def test_static_compliance_of_the_wraps():
     arm as the linear model's stiffness says (K x = f), the wraps' bristles and the belt's sinking
     into the rims included: measured within 0.13 / 0.22 / 0.40 % (alternator, tensioner pulley,
     arm) at Delta_max 0.1 mm, where the shear lag of the belt's own EA alone is 5.8-6.6 % too stiff.
-    A static load separates the stiffness from the masses, which the free response mixes."""
+    The rotational model, whose wraps carry the same lags, turns within 0.2 / 0.35 / 0.46 % of the
+    segment model (its wraps with the belt's own EA: 6 % less). A static load separates the
+    stiffness from the masses, which the free response mixes."""
     d = to_dict(drive(mass=0.1, segments=200, duration=0.6))
     d["friction"]["law"] = "elastic-plastic"
     d["pulleys"][2]["torque_time"] = [[0, 0], [0.3, 0.5], [1.0, 0.5]]
     d["belt"]["axial_damping"] = 20.0                 # settles the ramp's ringing
     d["output"]["steady_window"] = [0.4, 0.6]
     m = from_dict(d)
-    r = drivedyn.run(m)
     lm = drive_linear_model(m)
     f = np.zeros(len(lm.dofs))
     f[lm.dofs.index("alternator")] = 0.5
     want = np.linalg.solve(lm.K, f)
-    t = r.ds["time"].values
-    sel = t > 0.45
-    for dof, pulley in (("alternator", "alternator"), ("tensioner", "tensioner")):
-        th = r.ds["angle"].sel(pulley=pulley).values
-        got = th[sel].mean() - th[0]
-        assert got == pytest.approx(want[lm.dofs.index(dof)], rel=0.01), dof
-    arm = r.ds["arm_travel"].values[:, 0]
-    # arm_travel is measured into the belt, the DOF counter-clockwise: compare magnitudes
-    assert abs(arm[sel].mean() - arm[0]) == pytest.approx(abs(want[lm.dofs.index("tensioner.arm")]), rel=0.01)
+
+    def turned(r):
+        """Alternator and tensioner pulley turns, and the arm's travel (measured into the belt; the
+        linear model's DOF turns counter-clockwise: compared in magnitude), over the held load."""
+        sel = r.ds["time"].values > 0.45
+        out = []
+        for p in ("alternator", "tensioner"):
+            th = r.ds["angle"].sel(pulley=p).values
+            out.append(th[sel].mean() - th[0])
+        arm = r.ds["arm_travel"].values[:, 0]
+        return np.array(out + [abs(arm[sel].mean() - arm[0])])
+
+    seg = turned(drivedyn.run(m))
+    lin = np.array([want[lm.dofs.index("alternator")], want[lm.dofs.index("tensioner")],
+                    abs(want[lm.dofs.index("tensioner.arm")])])
+    np.testing.assert_allclose(seg, lin, rtol=0.01)
+    rot = turned(drivedyn.run(drivedyn.replace(m, {"simulation.model": "rotational"})))
+    np.testing.assert_allclose(rot, seg, rtol=0.01)
