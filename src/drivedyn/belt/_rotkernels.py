@@ -480,10 +480,9 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                     Weq = wrap_content(r, wm[k], Ti, To, c, mu[k], EA, c1, c2)
                 else:
                     Weq = wrap_content(r, wm[k], To, Ti, c, mu[k], EA, c1, c2)
-                if vw != 0.0:
-                    dW = (Weq - Wc[k]) * (1.0 - math.exp(-h * abs(vw) / (r * wm[k])))
-                else:
-                    dW = 0.0
+                # the share of the wrap's belt that one step renews
+                renew = 1.0 - math.exp(-h * abs(vw) / (r * wm[k])) if vw != 0.0 else 0.0
+                dW = (Weq - Wc[k]) * renew
                 if vw >= 0.0:
                     fa[k] = ve / (1.0 + ei)
                     fb[k] = fa[k] - dW / h
@@ -499,7 +498,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                     # then oscillated by itself at about 60 Hz, spans 7-1235 N (at 0.3 v beta, as
                     # at the passage rate, it holds still and the run-up's results move < 0.2 %)
                     e0 = _bristle_energy(k, ji, T, Tb, cc, cs)
-                    Tb[k] += (1.0 - math.exp(-h * abs(vw) / (r * wm[k]))) * (T[ji] - Tb[k])
+                    Tb[k] += renew * (T[ji] - Tb[k])
                     eb[k] = _bristle_energy(k, ji, T, Tb, cc, cs)
                     P_fr += (e0 - eb[k]) / h
                 # friction (creep) power on the wrap: the spans' power in less the pulley's

@@ -307,19 +307,18 @@ def run(model, progress=None) -> Result:
             from .rkf45 import integrate_rkf45
 
             done, failure, nsteps, h = integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval)
-    except (Stopped, KeyboardInterrupt) as exc:
-        # a time limit or Ctrl-C: keep the whole samples recorded so far (rec.ns counts them)
-        why = stop_reason(exc)
-        failure = f"stopped: {why}"
+    except (Stopped, KeyboardInterrupt, ZeroDivisionError) as exc:
+        # a time limit, Ctrl-C, or a state that ran away inside a sample (a joint or a span of zero
+        # length): keep the whole samples recorded so far (rec.ns counts them)
+        if isinstance(exc, ZeroDivisionError):
+            failure = (f"diverged after t = {rec.t[rec.ns - 1] if rec.ns else 0.0:.6g} s (a division by zero in "
+                       "the step: a state ran away; is the step above the stability limit?)")
+        else:
+            failure = f"stopped: {stop_reason(exc)}"
         if integrator(model) != "rkf45":
             nsteps = getattr(rec, "steps_done", rec.ns * steps_per_sample)
         else:
             nsteps, h = rec.steps, rec.step or h
-    except ZeroDivisionError:
-        # a state ran away inside a sample (a joint or a span of zero length): keep the samples before it
-        failure = (f"diverged after t = {rec.t[rec.ns - 1] if rec.ns else 0.0:.6g} s (a division by zero in the "
-                   "step: a state ran away; is the step above the stability limit?)")
-        nsteps = getattr(rec, "steps_done", rec.ns * steps_per_sample) if integrator(model) != "rkf45" else rec.steps
     wall = _time.perf_counter() - wall0
     result = _assemble(model, sysm, rec, wall, nsteps, h, failure)
     if not failure and sim.resolution_check:
