@@ -125,6 +125,28 @@ def test_resolution_check_reports_the_change_against_a_coarser_run():
     flagged = [d for d in r.diagnostics if d.code == "unconverged-resolution"]
     assert bool(flagged) == (worst > TENSION_TARGET or max(e["slip"].values()) > 3e-4)
     assert r.units["discretisation.estimate.slip_largest"] == "1"
+    # the losses: the change at second order (the landing impacts fall as l^2), in W
+    f2 = 1 / ((80 / n2) ** 2 - 1)
+    la, lb = r.summary["power"]["losses"], other["power"]["losses"]
+    for k in la:
+        assert e["power_loss"][k] == pytest.approx(abs(la[k] - lb[k]) * f2, rel=1e-9, abs=1e-12)
+    assert e["power_loss_relative"] == pytest.approx(sum(e["power_loss"].values()) / sum(map(abs, la.values())))
+    assert r.units["discretisation.estimate.power_loss.contact_damping"] == "W"
+
+
+def test_the_loss_estimate_against_a_refined_run():
+    """The losses' estimate is second order: on the 5PK drive at 80 segments (checked at 56) it
+    estimates the change of the losses to 320 segments within 30 % (0.57 against 0.47 W, nearly
+    all friction; 640 segments lose 0.015 W less than 320), where the first-order factor of the
+    slips and tensions would state 2.9 times the change."""
+    base = drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")),
+                            {"simulation.duration": 0.3, "output.steady_window": [0.2, 0.3], "belt.segments": 80,
+                             "output.segments": [0]})
+    r = drivedyn.run(drivedyn.replace(base, {"simulation.resolution_check": True}))
+    est = sum(r.summary["discretisation"]["estimate"]["power_loss"].values())
+    fine = drivedyn.run(drivedyn.replace(base, {"belt.segments": 320})).summary["power"]["losses"]
+    real = abs(sum(r.summary["power"]["losses"].values()) - sum(fine.values()))
+    assert 0.7 < est / real < 1.3
 
 
 @pytest.mark.slow
