@@ -179,8 +179,9 @@ def check(model, result, run) -> None:
     change of each compared quantity, over (1 / CHECK_RATIO - 1), into
     ``summary.discretisation.estimate`` as its error estimate: first order assumed, which over-
     rather than under-states the error of quantities that converge faster (the chordal and wrap
-    effects are of second and higher order in the segment length). A ``unconverged-resolution``
-    diagnostic when an estimate exceeds its target."""
+    effects are of second and higher order in the segment length). The steady window's losses get
+    a second-order estimate (``power_loss``, W). A ``unconverged-resolution`` diagnostic when a
+    slip or tension estimate exceeds its target."""
     n = result.summary["belt"]["segments"]
     n2 = max(MIN_SEGMENTS // 2, int(round(CHECK_RATIO * n)))
     coarse = model.model_copy(update={
