@@ -1,7 +1,9 @@
 """Convergence of the accessory drive's answers in the number of segments: the six-pulley drive of
 examples/fead-runup.toml held at a constant crank speed with its 2nd/4th orders (0.8 s, window
-0.6-0.8 s): every pulley's slip, the crank-compressor span's tension band, the arm's travel, the wall
-time and the status, per resolution; and, without orders, the slips against steady creep theory.
+0.6-0.8 s): every pulley's slip, the crank-compressor span's tension band, the arm's travel, the
+contact damping and the transmission efficiency (the losses converge as 1 / n^2: 136 / 98 / 90 W at
+333 / 666 / 1332 segments at 3000 rpm), the wall time and the status, per resolution; and, without
+orders, the slips against steady creep theory.
 
 Run: python benchmarks/bench_fead_convergence.py [--rpm 3000] [--segments 150 300 600]
 (not a timed test; numbers depend on the machine)
@@ -36,8 +38,11 @@ def row(r):
     arm = next(iter(s.get("tensioners", {}).values()), {})
     travel = (arm.get("travel_max", math.nan) - arm.get("travel_min", math.nan)) * 180 / math.pi
     codes = ",".join(d.code for d in r.diagnostics) or "-"
+    pw = s.get("power", {})
     return (f"{s['belt']['segments']:5d} {s['solver']['wall_time']:7.1f} {slips:>44s} "
-            f"{sp['tension_min']:6.0f}-{sp['tension_max']:<6.0f} {travel:6.2f} {r.status}:{codes}")
+            f"{sp['tension_min']:6.0f}-{sp['tension_max']:<6.0f} {travel:6.2f} "
+            f"{pw.get('losses', {}).get('contact_damping', math.nan):7.1f} {pw.get('efficiency', math.nan):6.4f} "
+            f"{r.status}:{codes}")
 
 
 def main():
@@ -54,7 +59,7 @@ def main():
         if names is None:
             names = list(r.summary["pulleys"])[1:]
             print(f"{'n':>5s} {'wall s':>7s} {'slip %: ' + ' / '.join(names):>44s} {'span 1 min-max N':>14s} "
-                  f"{'arm deg':>6s} status")
+                  f"{'arm deg':>6s} {'cont. W':>7s} {'effic.':>6s} status")
         print(row(r), flush=True)
     if a.no_orders:
         from drivedyn.belt.steady import steady_state
