@@ -98,15 +98,20 @@ def test_a_wrap_with_too_few_segments_is_reported():
     assert r.summary["discretisation"]["segments_on_shortest_wrap"] < 3
 
 
+def _five_pk_at_80():
+    """The resolution check's test drive: the 5PK at 80 segments of 15 mm, 0.3 s."""
+    return drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")),
+                            {"simulation.duration": 0.3, "output.steady_window": [0.2, 0.3], "belt.segments": 80,
+                             "output.segments": [0]})
+
+
 def test_resolution_check_reports_the_change_against_a_coarser_run():
     """simulation.resolution_check runs the drive again at 0.7 x its segments: its estimate is that
     change times 1 / (1 / 0.7 - 1), checked here against a second run made by hand; an estimate over
     its target is a warning naming the quantity (the 5PK drive at 80 segments of 15 mm)."""
     from drivedyn.belt.resolution import CHECK_RATIO, TENSION_TARGET
 
-    base = drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")),
-                            {"simulation.duration": 0.3, "output.steady_window": [0.2, 0.3], "belt.segments": 80,
-                             "output.segments": [0]})
+    base = _five_pk_at_80()
     r = drivedyn.run(drivedyn.replace(base, {"simulation.resolution_check": True}))
     e = r.summary["discretisation"]["estimate"]
     n2 = round(CHECK_RATIO * 80)
@@ -139,9 +144,7 @@ def test_the_loss_estimate_against_a_refined_run():
     estimates the change of the losses to 320 segments within 30 % (0.57 against 0.47 W, nearly
     all friction; 640 segments lose 0.015 W less than 320), where the first-order factor of the
     slips and tensions would state 2.9 times the change."""
-    base = drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")),
-                            {"simulation.duration": 0.3, "output.steady_window": [0.2, 0.3], "belt.segments": 80,
-                             "output.segments": [0]})
+    base = _five_pk_at_80()
     r = drivedyn.run(drivedyn.replace(base, {"simulation.resolution_check": True}))
     est = sum(r.summary["discretisation"]["estimate"]["power_loss"].values())
     fine = drivedyn.run(drivedyn.replace(base, {"belt.segments": 320})).summary["power"]["losses"]
