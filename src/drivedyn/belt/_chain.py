@@ -39,44 +39,6 @@ import numpy as np
 from numba import njit
 
 
-@njit(cache=True, inline="always")
-def _sym_inverse(a, ia, out, io):
-    """out[io] = a[ia]^-1 for a symmetric positive definite 3 x 3 (rows of 9, row-major)."""
-    a00, a01, a02, a11, a12, a22 = a[ia, 0], a[ia, 1], a[ia, 2], a[ia, 4], a[ia, 5], a[ia, 8]
-    c00 = a11 * a22 - a12 * a12
-    c01 = a02 * a12 - a01 * a22
-    c02 = a01 * a12 - a02 * a11
-    c11 = a00 * a22 - a02 * a02
-    c12 = a01 * a02 - a00 * a12
-    c22 = a00 * a11 - a01 * a01
-    inv = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02)
-    out[io, 0] = c00 * inv
-    out[io, 1] = c01 * inv
-    out[io, 2] = c02 * inv
-    out[io, 3] = c01 * inv
-    out[io, 4] = c11 * inv
-    out[io, 5] = c12 * inv
-    out[io, 6] = c02 * inv
-    out[io, 7] = c12 * inv
-    out[io, 8] = c22 * inv
-
-
-@njit(cache=True, inline="always")
-def _mul(a, ia, b, ib, out, io):
-    """out[io] = a[ia] b[ib] (3 x 3 blocks, row-major)."""
-    for r in range(3):
-        for c in range(3):
-            out[io, 3 * r + c] = a[ia, 3 * r] * b[ib, c] + a[ia, 3 * r + 1] * b[ib, 3 + c] + a[ia, 3 * r + 2] * b[ib, 6 + c]
-
-
-@njit(cache=True, inline="always")
-def _sub_tmul(a, ia, b, ib, out, io):
-    """out[io] -= a[ia]^T b[ib] (3 x 3 blocks, row-major)."""
-    for r in range(3):
-        for c in range(3):
-            out[io, 3 * r + c] -= a[ia, r] * b[ib, c] + a[ia, 3 + r] * b[ib, 3 + c] + a[ia, 6 + r] * b[ib, 6 + c]
-
-
 @njit(cache=True)
 def factor(n, hl, c, s, m, inertia, sig, gam, geo, kap, kat, knx, kny, dmat, omat, emat, dinv, ymat, xmat):
     """Assemble and factor A (see the module doc) at the segment angles (c, s): m, inertia per
@@ -135,16 +97,120 @@ def factor(n, hl, c, s, m, inertia, sig, gam, geo, kap, kat, knx, kny, dmat, oma
         for q in range(3):
             emat[0, 3 * r + q] += omat[0, 3 * q + r]
             emat[n - 2, 3 * r + q] += omat[n - 1, 3 * r + q]
+    _eliminate(n, dmat, omat, emat, dinv, ymat, xmat)
+
+
+@njit(cache=True, inline="always")
+def _eliminate(n, dmat, omat, emat, dinv, ymat, xmat):
+    """The block elimination of ``factor``, its running blocks in scalars: row i's reduced diagonal
+    D (symmetric), its border block E and the last row's diagonal L (symmetric), so that each row
+    reads its assembled blocks once and writes its three factors once (written with the 3 x 3
+    helpers over the arrays it took 96 ns per segment, measured on 333 segments)."""
     last = n - 1
+    d00, d01, d02, d11, d12, d22 = dmat[0, 0], dmat[0, 1], dmat[0, 2], dmat[0, 4], dmat[0, 5], dmat[0, 8]
+    e00, e01, e02, e10, e11, e12, e20, e21, e22 = (emat[0, 0], emat[0, 1], emat[0, 2], emat[0, 3], emat[0, 4],
+                                                   emat[0, 5], emat[0, 6], emat[0, 7], emat[0, 8])
+    l00, l01, l02, l11, l12, l22 = (dmat[last, 0], dmat[last, 1], dmat[last, 2], dmat[last, 4], dmat[last, 5],
+                                    dmat[last, 8])
     for i in range(n - 1):
-        _sym_inverse(dmat, i, dinv, i)
-        _mul(dinv, i, emat, i, xmat, i)
-        _sub_tmul(emat, i, xmat, i, dmat, last)
+        # P = D^-1 (symmetric), by cofactors
+        c00 = d11 * d22 - d12 * d12
+        c01 = d02 * d12 - d01 * d22
+        c02 = d01 * d12 - d02 * d11
+        inv = 1.0 / (d00 * c00 + d01 * c01 + d02 * c02)
+        p00 = c00 * inv
+        p01 = c01 * inv
+        p02 = c02 * inv
+        p11 = (d00 * d22 - d02 * d02) * inv
+        p12 = (d01 * d02 - d00 * d12) * inv
+        p22 = (d00 * d11 - d01 * d01) * inv
+        dinv[i, 0] = p00
+        dinv[i, 1] = p01
+        dinv[i, 2] = p02
+        dinv[i, 3] = p01
+        dinv[i, 4] = p11
+        dinv[i, 5] = p12
+        dinv[i, 6] = p02
+        dinv[i, 7] = p12
+        dinv[i, 8] = p22
+        # X = P E
+        x00 = p00 * e00 + p01 * e10 + p02 * e20
+        x01 = p00 * e01 + p01 * e11 + p02 * e21
+        x02 = p00 * e02 + p01 * e12 + p02 * e22
+        x10 = p01 * e00 + p11 * e10 + p12 * e20
+        x11 = p01 * e01 + p11 * e11 + p12 * e21
+        x12 = p01 * e02 + p11 * e12 + p12 * e22
+        x20 = p02 * e00 + p12 * e10 + p22 * e20
+        x21 = p02 * e01 + p12 * e11 + p22 * e21
+        x22 = p02 * e02 + p12 * e12 + p22 * e22
+        xmat[i, 0] = x00
+        xmat[i, 1] = x01
+        xmat[i, 2] = x02
+        xmat[i, 3] = x10
+        xmat[i, 4] = x11
+        xmat[i, 5] = x12
+        xmat[i, 6] = x20
+        xmat[i, 7] = x21
+        xmat[i, 8] = x22
+        # L -= E^T X (symmetric)
+        l00 -= e00 * x00 + e10 * x10 + e20 * x20
+        l01 -= e00 * x01 + e10 * x11 + e20 * x21
+        l02 -= e00 * x02 + e10 * x12 + e20 * x22
+        l11 -= e01 * x01 + e11 * x11 + e21 * x21
+        l12 -= e01 * x02 + e11 * x12 + e21 * x22
+        l22 -= e02 * x02 + e12 * x12 + e22 * x22
         if i < n - 2:
-            _mul(dinv, i, omat, i + 1, ymat, i)
-            _sub_tmul(omat, i + 1, ymat, i, dmat, i + 1)
-            _sub_tmul(omat, i + 1, xmat, i, emat, i + 1)
-    _sym_inverse(dmat, last, dinv, last)
+            j = i + 1
+            o00, o01, o02, o10, o11, o12, o20, o21, o22 = (omat[j, 0], omat[j, 1], omat[j, 2], omat[j, 3], omat[j, 4],
+                                                           omat[j, 5], omat[j, 6], omat[j, 7], omat[j, 8])
+            # Y = P O
+            y00 = p00 * o00 + p01 * o10 + p02 * o20
+            y01 = p00 * o01 + p01 * o11 + p02 * o21
+            y02 = p00 * o02 + p01 * o12 + p02 * o22
+            y10 = p01 * o00 + p11 * o10 + p12 * o20
+            y11 = p01 * o01 + p11 * o11 + p12 * o21
+            y12 = p01 * o02 + p11 * o12 + p12 * o22
+            y20 = p02 * o00 + p12 * o10 + p22 * o20
+            y21 = p02 * o01 + p12 * o11 + p22 * o21
+            y22 = p02 * o02 + p12 * o12 + p22 * o22
+            ymat[i, 0] = y00
+            ymat[i, 1] = y01
+            ymat[i, 2] = y02
+            ymat[i, 3] = y10
+            ymat[i, 4] = y11
+            ymat[i, 5] = y12
+            ymat[i, 6] = y20
+            ymat[i, 7] = y21
+            ymat[i, 8] = y22
+            # the next row: D = D_j - O^T Y (symmetric), E = E_j - O^T X (E no longer needed)
+            d00 = dmat[j, 0] - (o00 * y00 + o10 * y10 + o20 * y20)
+            d01 = dmat[j, 1] - (o00 * y01 + o10 * y11 + o20 * y21)
+            d02 = dmat[j, 2] - (o00 * y02 + o10 * y12 + o20 * y22)
+            d11 = dmat[j, 4] - (o01 * y01 + o11 * y11 + o21 * y21)
+            d12 = dmat[j, 5] - (o01 * y02 + o11 * y12 + o21 * y22)
+            d22 = dmat[j, 8] - (o02 * y02 + o12 * y12 + o22 * y22)
+            e00 = emat[j, 0] - (o00 * x00 + o10 * x10 + o20 * x20)
+            e01 = emat[j, 1] - (o00 * x01 + o10 * x11 + o20 * x21)
+            e02 = emat[j, 2] - (o00 * x02 + o10 * x12 + o20 * x22)
+            e10 = emat[j, 3] - (o01 * x00 + o11 * x10 + o21 * x20)
+            e11 = emat[j, 4] - (o01 * x01 + o11 * x11 + o21 * x21)
+            e12 = emat[j, 5] - (o01 * x02 + o11 * x12 + o21 * x22)
+            e20 = emat[j, 6] - (o02 * x00 + o12 * x10 + o22 * x20)
+            e21 = emat[j, 7] - (o02 * x01 + o12 * x11 + o22 * x21)
+            e22 = emat[j, 8] - (o02 * x02 + o12 * x12 + o22 * x22)
+    c00 = l11 * l22 - l12 * l12
+    c01 = l02 * l12 - l01 * l22
+    c02 = l01 * l12 - l02 * l11
+    inv = 1.0 / (l00 * c00 + l01 * c01 + l02 * c02)
+    dinv[last, 0] = c00 * inv
+    dinv[last, 1] = c01 * inv
+    dinv[last, 2] = c02 * inv
+    dinv[last, 3] = c01 * inv
+    dinv[last, 4] = (l00 * l22 - l02 * l02) * inv
+    dinv[last, 5] = (l01 * l02 - l00 * l12) * inv
+    dinv[last, 6] = c02 * inv
+    dinv[last, 7] = (l01 * l02 - l00 * l12) * inv
+    dinv[last, 8] = (l00 * l11 - l01 * l01) * inv
 
 
 @njit(cache=True, inline="always")
