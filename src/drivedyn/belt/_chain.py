@@ -104,8 +104,8 @@ def factor(n, hl, c, s, m, inertia, sig, gam, geo, kap, kat, knx, kny, dmat, oma
 def _eliminate(n, dmat, omat, emat, dinv, ymat, xmat):
     """The block elimination of ``factor``, its running blocks in scalars: row i's reduced diagonal
     D (symmetric), its border block E and the last row's diagonal L (symmetric), so that each row
-    reads its assembled blocks once and writes its three factors once (written with the 3 x 3
-    helpers over the arrays it took 96 ns per segment, measured on 333 segments)."""
+    reads its assembled blocks once and writes its three factors once (the whole factorisation,
+    333 segments: 75 ns per segment, against 96 with 3 x 3 helpers working in the arrays)."""
     last = n - 1
     d00, d01, d02, d11, d12, d22 = dmat[0, 0], dmat[0, 1], dmat[0, 2], dmat[0, 4], dmat[0, 5], dmat[0, 8]
     e00, e01, e02, e10, e11, e12, e20, e21, e22 = (emat[0, 0], emat[0, 1], emat[0, 2], emat[0, 3], emat[0, 4],
