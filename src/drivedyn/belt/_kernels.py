@@ -543,11 +543,48 @@ def _joint_forces(n, eax, eb, hl, turn, linear, x, y, c, s, vx, vy, w, phi, kax,
         Mt = kb[0] * (math.copysign(abs(d0 + turn) ** eb, d0 + turn) - math.copysign(abs(d0) ** eb, d0))
     jmk[0] += Mt
     jmi[0] -= Mt
-    for i in range(1, n):
-        a, b = _joint(i, i - 1, hl, h, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, eax, eb, linear, inv_m, inv_i,
-                      jfk, jdx, jdy, jmk, jmi)
-        pax += a
-        pb += b
+    if linear and eb == 1.0:
+        # linear joints, written out here (``_joint`` less its dampers' power): with the power
+        # summed in this loop, or ``_joint`` inlined into it, it compiled scalar; so it vectorises
+        # (333 joints: 1.5 against 5-6 us in a micro-benchmark, 2-core AMD EPYC)
+        for i in range(1, n):
+            k = i - 1
+            ax = hl * c[k]
+            ay = hl * s[k]
+            bx = hl * c[i]
+            by = hl * s[i]
+            dx = (x[i] - bx) - (x[k] + ax)
+            dy = (y[i] - by) - (y[k] + ay)
+            dvx = (vx[i] + w[i] * by) - (vx[k] - w[k] * ay)
+            dvy = (vy[i] - w[i] * bx) - (vy[k] + w[k] * ax)
+            hb = h * bax[i]
+            cak = ax * dy - ay * dx
+            cbi = bx * dy - by * dx
+            den = ((dx * dx + dy * dy) * (1.0 + hb * (inv_m[k] + inv_m[i]))
+                   + hb * (cak * cak * inv_i[k] + cbi * cbi * inv_i[i]))
+            fk = kax[i] + bax[i] * (dx * dvx + dy * dvy) / max(den, 1e-300)
+            Fx = fk * dx
+            Fy = fk * dy
+            M = kb[i] * (phi[i] - phi[k]) + bb[i] * (w[i] - w[k])
+            jfk[i] = fk
+            jdx[i] = dx
+            jdy[i] = dy
+            jmk[i] = ax * Fy - ay * Fx + M
+            jmi[i] = bx * Fy - by * Fx - M
+        # the dampers' power, b (d|d|/dt)^2 / (implicit factor) and bb (dw)^2, from the stored gaps
+        for i in range(1, n):
+            k = i - 1
+            dvx = (vx[i] + w[i] * hl * s[i]) - (vx[k] - w[k] * hl * s[k])
+            dvy = (vy[i] - w[i] * hl * c[i]) - (vy[k] + w[k] * hl * c[k])
+            pax += (jfk[i] - kax[i]) * (jdx[i] * dvx + jdy[i] * dvy)
+            dw = w[i] - w[k]
+            pb += bb[i] * dw * dw
+    else:
+        for i in range(1, n):
+            a, b = _joint(i, i - 1, hl, h, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, eax, eb, linear, inv_m,
+                          inv_i, jfk, jdx, jdy, jmk, jmi)
+            pax += a
+            pb += b
     for i in range(n - 1):
         fx[i] = jfk[i + 1] * jdx[i + 1] - jfk[i] * jdx[i]
         fy[i] = jfk[i + 1] * jdy[i + 1] - jfk[i] * jdy[i]
