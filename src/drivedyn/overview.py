@@ -46,6 +46,20 @@ def _range(a, b, fmt="{:.0f}"):
     return f"{_f(a, fmt)} .. {_f(b, fmt)}"
 
 
+def _resolution_note(s) -> str:
+    """The discretisation error the slips and span tensions carry, as the summary estimates it."""
+    d = s.get("discretisation") or {}
+    e = d.get("estimate") or {}
+    if "slip_largest" in e:
+        how = (f"the change against {e['coarse_segments']} segments" if "coarse_segments" in e
+               else "the \"auto\" rule's accuracy on examples/fead-runup.toml's drive")
+        return (f"; discretisation ({d.get('segments')} segments): slip within {_f(100 * e['slip_largest'], '{:.3f}')}"
+                f" points, span tensions within {_f(100 * e['tension_relative_largest'], '{:.1f}')} % ({how})")
+    if e.get("unavailable"):
+        return f"; discretisation: {e['unavailable']}"
+    return ""
+
+
 def _belt(result) -> list[dict]:
     from .belt.criteria import _window
 
@@ -100,7 +114,7 @@ def _belt(result) -> list[dict]:
     out.append({"title": f"spans ({where})",
                 "head": ["span", "tension min (N)", "mean (N)", "max (N)", "flap f1 (Hz)"], "rows": rows,
                 "note": "flap f1: first transverse frequency of the moving span at its running tension and belt speed"
-                        + (" (range over the run-up bins)" if ru else "")})
+                        + (" (range over the run-up bins)" if ru else "") + _resolution_note(s)})
     tens = s.get("tensioners", {})
     if tens:
         from .model import loads

@@ -65,6 +65,14 @@ def test_elastic_plastic_friction_converges_at_a_coarser_sag():
             assert v[k] == pytest.approx(b["spans"][sp][k], rel=0.03), (sp, k)
     for p, v in a["pulleys"].items():
         assert v["slip"] == pytest.approx(b["pulleys"][p]["slip"], abs=3e-4), p
+    # the error the run states without a resolution check (the rule's accuracy) covers the change
+    e = a["discretisation"]["estimate"]
+    assert e["auto_segments"] == n and "fead-runup" in e["method"]
+    for sp, v in a["spans"].items():
+        for k in ("tension_min", "tension_max"):
+            assert abs(v[k] / b["spans"][sp][k] - 1) <= e["tension_relative_largest"], (sp, k)
+    for p, v in a["pulleys"].items():
+        assert abs(v["slip"] - b["pulleys"][p]["slip"]) <= e["slip_largest"], p
 
 
 @pytest.mark.slow
@@ -96,6 +104,9 @@ def test_a_wrap_with_too_few_segments_is_reported():
     assert "coarse-discretisation" in codes
     assert "tensioner" in codes["coarse-discretisation"].text
     assert r.summary["discretisation"]["segments_on_shortest_wrap"] < 3
+    # fewer segments than "auto" takes: no error is stated, and the run says why
+    e = r.summary["discretisation"]["estimate"]
+    assert "slip_largest" not in e and "150 segments against the 333" in e["unavailable"]
 
 
 def _five_pk_at_80():

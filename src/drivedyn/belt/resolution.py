@@ -130,7 +130,11 @@ def discretisation(model, sysm) -> dict:
     per_wrap = {model.pulleys[j].name: float(lay.wrap[j] * model.pulleys[j].radius / l) for j in resolved_}
     short = min(per_wrap, key=per_wrap.get) if per_wrap else None
     r_min = min(p.radius for p in model.pulleys)
-    rule = auto_segments(model, lay)[1] if model.belt.segments == "auto" else "given (belt.segments)"
+    try:
+        n_auto, why = auto_segments(model, lay)
+    except ModelError:          # "auto" would take more than MAX_AUTO: no rule to compare with
+        n_auto, why = None, None
+    rule = why if model.belt.segments == "auto" else "given (belt.segments)"
     sag = chord_sag(model, lay, l)
     return {"segments": int(sysm.n), "segment_length": float(l), "rule": rule,
             "shortest_wrap": short, "segments_on_shortest_wrap": per_wrap[short] if short else None,
@@ -138,7 +142,43 @@ def discretisation(model, sysm) -> dict:
                                  if j not in resolved_},
             "chordal_speed_error": float(l * l / (12 * r_min * r_min)),
             "chord_sag_to_depth": sag if math.isfinite(sag) else None,     # None: a slack belt
-            "slip_measured_against": "the chain's rolling radius (polygon effect removed)"}
+            "slip_measured_against": "the chain's rolling radius (polygon effect removed)",
+            "estimate": rule_estimate(model, int(sysm.n), n_auto)}
+
+
+#: the "auto" rule's accuracy per friction law: the largest error of a pulley's mean slip (a
+#: fraction: 1.6e-4 is 0.016 percentage points) and of a span's tension minimum or maximum
+#: (relative), measured on examples/fead-runup.toml's drive held at 1000 / 3000 / 5000 rpm with its
+#: 2nd/4th orders against 2-4 x the "auto" segments (benchmarks/bench_fead_defaults.py,
+#: benchmarks/bench_fead_convergence.py; the figures are in docs/belt-drive.md, Resolution):
+#: elastic-plastic at 333 segments, minima within 2.0 / 2.8 / 3.2 %, maxima 0.5 / 1.3 / 2.4 %,
+#: slips 0.016 / 0.003 / 0.007 points (rotation-scaled: 1.6 / 2.5 / 1.2 %, 0.7 / 0.5 / 1.7 %,
+#: 0.014 / 0.011 / 0.004); Threlfall at 666, minima within 1.5 / 4.5 / 2.5 %, maxima 0.5 / 2.6 /
+#: 1.4 %, slips 0.016 / 0.013 / 0.009 points
+RULE_ACCURACY = {"elastic-plastic": (1.6e-4, 0.032), "threlfall": (1.6e-4, 0.045)}
+
+
+def rule_estimate(model, n: int, n_auto) -> dict:
+    """The discretisation error a run states without a resolution check: at or above the segments
+    "auto" takes, the rule's accuracy as measured on the calibration drive (RULE_ACCURACY), not
+    this drive's (``simulation.resolution_check`` measures that); below them, none."""
+    law = model.friction.law
+    if n_auto is None:
+        return {"method": "none", "unavailable": f"\"auto\" would take more than {MAX_AUTO} segments: the error "
+                                                 "is not known; set simulation.resolution_check = true"}
+    if n < n_auto:
+        return {"method": "none: fewer segments than \"auto\" takes", "auto_segments": n_auto,
+                "unavailable": f"{n} segments against the {n_auto} of \"auto\": the error is not known; set "
+                               "belt.segments = \"auto\" or simulation.resolution_check = true"}
+    slip, tension = RULE_ACCURACY[law]
+    return {"method": f"the \"auto\" rule's accuracy ({law} friction), measured on examples/fead-runup.toml's "
+                      "drive at 1000-5000 rpm against 2-4 x the segments; not this drive's: "
+                      "simulation.resolution_check measures that",
+            "auto_segments": n_auto, "slip_largest": slip, "tension_relative_largest": tension,
+            "power_loss_note": "the losses are not estimated: their excess (the contact damping of the "
+                               "polygon's landing impacts) falls as l^2, so read them and power.efficiency "
+                               "as high and low (examples/fead-runup.toml's drive held at 3000 rpm loses "
+                               "about 155 W at 333 segments against about 106 W converged)"}
 
 
 #: the resolution check's coarser run, as a share of the segments, and its accuracy targets (the
