@@ -229,14 +229,22 @@ def test_elastic_plastic_accessory_drive_at_a_large_step():
     (docs/belt-drive.md); span bands within 2.6 % and slips within 0.001 points of the
     semi-implicit scheme at 1332 segments. Here (0.6 s, window 0.4-0.6 s): slips within 0.0051
     points, span means within 1.2 %, maxima 1.5 %, minima 5.1 % (alternator-tensioner; the
-    others 2.2 %), arm travel range 3 %."""
+    others 2.2 %), arm travel range 3 %.
+    The energy balance: the chain matrix holds a contact only while it pushes; a leaving segment
+    that kept A's contact damping was pulled back by it, losing energy no term counted (measured
+    at 17.9 us, 333 segments: power in 3857 against 3713 W, energy residual 2.3 % of the window's
+    work; with the rule 3716 W and 0.4 %)."""
     from bench_fead_convergence import held
 
     base = drivedyn.replace(held(3000, 330, duration=0.6), {"output.steady_window": [0.4, 0.6],
                                                             "friction.law": "elastic-plastic",
                                                             "simulation.rotation_scaling": False})
-    a = drivedyn.run(drivedyn.replace(base, {"simulation.method": "semi-implicit"})).summary
-    b = drivedyn.run(drivedyn.replace(base, {"simulation.method": "implicit", "simulation.step": 19.2e-6})).summary
+    ra = drivedyn.run(drivedyn.replace(base, {"simulation.method": "semi-implicit"}))
+    rb = drivedyn.run(drivedyn.replace(base, {"simulation.method": "implicit", "simulation.step": 19.2e-6}))
+    a, b = ra.summary, rb.summary
+    assert b["power"]["input"] == pytest.approx(a["power"]["input"], rel=0.01)
+    assert b["power"]["energy_residual_window"] < 0.01
+    assert "energy-residual" not in {x.code for x in rb.diagnostics}
     assert b["solver"]["step"] > 10 * a["solver"]["step"] and b["solver"]["step_reductions"] == 0
     assert b["solver"]["stick_slip_changes"] < 0.5 * b["solver"]["steps"]
     for p in a["pulleys"]:

@@ -1200,7 +1200,8 @@ def _friction(n, h, Ct, om, stk, z, fkap, fx, fy, mz, si, sc):
     contact forces join the step's forces, kept as F_base. The anchor: ``_anchor`` (its explicit
     force in C_T0); an elastic-plastic bristle short of Delta_max is elastic (anchored), one at it
     slides until its slip turns.
-    Returns whether the contact set differs from the one A was factored with."""
+    Returns whether the contact set (segments pressed onto a pulley: explicit normal force N > 0)
+    differs from the one A was factored with."""
     mu, law, dv, dmax = Ct.mu, Ct.law, Ct.dv, Ct.dmax
     cchg = False
     for i in range(n):
@@ -1220,7 +1221,7 @@ def _friction(n, h, Ct, om, stk, z, fkap, fx, fy, mz, si, sc):
             ft = sc[i, C_T] + sc[i, C_T0]
             fx[i] += N * sc[i, C_NX] - ft * sc[i, C_NY]
             fy[i] += N * sc[i, C_NY] + ft * sc[i, C_NX]
-        if (j >= 0) != (fkap[i] > 0.0):
+        if (j >= 0 and sc[i, C_N] > 0.0) != (fkap[i] > 0.0):
             cchg = True
         sc[i, C_F0X] = fx[i]
         sc[i, C_F0Y] = fy[i]
@@ -1232,8 +1233,13 @@ def _friction(n, h, Ct, om, stk, z, fkap, fx, fy, mz, si, sc):
 def _factored_state(n, h, si, sc, fkap, fnx, fny, fca, far, kat, zslot):
     """Stage (implicit scheme): the contact and friction state A is about to be factored with
     (contact coefficients, normals, anchor slopes and arms); empties the cache of columns."""
+    # A holds a segment's contact only while the contact pushes (N > 0). A segment that leaves
+    # faster than the contact pushes (N <= 0: eq. 10 clips the force at zero, no adhesion) kept
+    # A's contact damping h delta b, a damper that pulled it back and dissipated energy no loss term
+    # counted: fead-runup's drive held at 3000 rpm without orders, 333 segments, lost 63 W unseen at
+    # 11.4 us (efficiency 0.959; semi-implicit 0.965) and 13 W with this rule (0.968)
     for i in range(n):
-        fkap[i] = sc[i, C_KAP] if si[i, I_J] >= 0 else 0.0
+        fkap[i] = sc[i, C_KAP] if (si[i, I_J] >= 0 and sc[i, C_N] > 0.0) else 0.0
         fnx[i] = sc[i, C_NX]
         fny[i] = sc[i, C_NY]
         fca[i] = sc[i, C_CA]
