@@ -320,9 +320,11 @@ def test_fast_belt_takes_the_accuracy_rule():
     """At 21.6 m/s (the 5PK driver held at 800 rad/s) the segments turn 0.028 rad per default
     step; the accuracy rule (simulate.TURN_PER_STEP) halves the step as the drive speeds up (three
     times, to 4.3 us) and the run agrees with the reference (measured: 653.3 / 470.3 N against
-    657.4 / 470.7 N, slip 0.193 against 0.177 %). At 34.5 us, which the rule does not overrule
-    when the user sets it, the step control halves it once and the tensions come out 1.7-2.5 %
-    low: the rule is what keeps fast drives right."""
+    657.4 / 470.7 N, slip 0.193 against 0.177 %; 657.7 / 471.9 N and 0.182 % since the chain matrix holds
+    a contact only while it pushes). A step the user sets is kept: at 8.5 / 17 us the span means
+    come out 0.4-1.1 / 3.5-4.9 % high, and at 34.5 us the run is wrong (span means about twice the
+    reference's, efficiency 0.18) and says so: step-too-large, energy-residual. The rule is what
+    keeps fast drives right."""
     d = drivedyn.model.to_dict(drivedyn.load(drivedyn.example_path("belt-5pk")))
     d["pulleys"][0].pop("torque_time")
     d["pulleys"][0]["speed_time"] = [[0, 0], [0.25, -800.0], [1, -800.0]]
