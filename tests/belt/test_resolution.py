@@ -198,3 +198,15 @@ def test_rotation_scaling_where_the_chord_sag_is_resolved():
     assert runs[n, True][1] == pytest.approx(runs[n, False][1], rel=0.005)
     assert runs[n, True][2] == pytest.approx(runs[n, False][2], rel=0.10)
     assert runs[n // 2, True][2] > 1.5 * runs[n // 2, False][2]
+
+
+def test_the_overview_prints_the_stated_error():
+    """The CLI's spans table carries the error the summary states, and says how it was found."""
+    from drivedyn.overview import _resolution_note
+
+    rule = {"segments": 333, "estimate": {"slip_largest": 1.6e-4, "tension_relative_largest": 0.032}}
+    text = _resolution_note({"discretisation": rule})
+    assert "(333 segments): slip within 0.016 points, span tensions within 3.2 %" in text and "rule" in text
+    check = {"segments": 333, "estimate": {"slip_largest": 2e-4, "tension_relative_largest": 0.05, "coarse_segments": 233}}
+    assert "the change against 233 segments" in _resolution_note({"discretisation": check})
+    assert _resolution_note({"discretisation": {"segments": 80}}) == ""
