@@ -1194,6 +1194,13 @@ def _anchor(law, mu, N, dv, dmax, h, z):
 
 
 @njit(cache=True, inline="always")
+def _pressed(j, sc, i):
+    """Whether segment i (on pulley j, -1 for none) is pressed onto its pulley (explicit normal
+    force N > 0): the contact set the chain matrix A holds (``_factored_state``, ``_friction``)."""
+    return j >= 0 and sc[i, C_N] > 0.0
+
+
+@njit(cache=True, inline="always")
 def _friction(n, h, Ct, om, stk, z, fkap, fx, fy, mz, si, sc):
     """Stage (implicit scheme), friction: by its state at the last step, a contact segment is
     anchored to the pulley surface (in A) or slides with mu N against its slip (explicit); the
@@ -1221,7 +1228,7 @@ def _friction(n, h, Ct, om, stk, z, fkap, fx, fy, mz, si, sc):
             ft = sc[i, C_T] + sc[i, C_T0]
             fx[i] += N * sc[i, C_NX] - ft * sc[i, C_NY]
             fy[i] += N * sc[i, C_NY] + ft * sc[i, C_NX]
-        if (j >= 0 and sc[i, C_N] > 0.0) != (fkap[i] > 0.0):
+        if _pressed(j, sc, i) != (fkap[i] > 0.0):
             cchg = True
         sc[i, C_F0X] = fx[i]
         sc[i, C_F0Y] = fy[i]
@@ -1239,7 +1246,7 @@ def _factored_state(n, h, si, sc, fkap, fnx, fny, fca, far, kat, zslot):
     # counted: fead-runup's drive held at 3000 rpm without orders, 333 segments, lost 63 W unseen at
     # 11.4 us (efficiency 0.959; semi-implicit 0.965) and 13 W with this rule (0.968)
     for i in range(n):
-        fkap[i] = sc[i, C_KAP] if (si[i, I_J] >= 0 and sc[i, C_N] > 0.0) else 0.0
+        fkap[i] = sc[i, C_KAP] if _pressed(si[i, I_J], sc, i) else 0.0
         fnx[i] = sc[i, C_NX]
         fny[i] = sc[i, C_NY]
         fca[i] = sc[i, C_CA]
