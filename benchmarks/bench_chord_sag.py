@@ -34,9 +34,10 @@ def drive(segments, omega=600.0, duration=0.2):
     return from_dict(d)
 
 
-def ringing(result, after=0.102, fmin=50.0):
+def ringing(result, after=0.102, fmin=50.0, fmax=2000.0):
     """The driven pulley's ringing frequency (Hz) after the pulse: peak of its speed's spectrum
-    (quadratic trend removed, Hann window, zero-padded 64x)."""
+    between fmin and fmax (quadratic trend removed, Hann window, zero-padded 64x); above fmax lie
+    the segments' landings (v / l, 5 kHz at half the "auto" count), not the torsional mode."""
     t = result.ds["time"].values
     om = result.ds["speed"].values[:, 1]
     sel = t > after
@@ -44,7 +45,7 @@ def ringing(result, after=0.102, fmin=50.0):
     nfft = 64 * len(x)
     X = np.abs(np.fft.rfft(x * np.hanning(len(x)), nfft))
     f = np.fft.rfftfreq(nfft, t[1] - t[0])
-    ok = f > fmin
+    ok = (f > fmin) & (f < fmax)
     return float(f[ok][np.argmax(X[ok])])
 
 

@@ -1,10 +1,10 @@
 """The two belt schemes on an accessory drive: the six-pulley drive of examples/fead-runup.toml
 (tensioner arm, one-way clutch, crank orders 2 and 4) held at 1000, 3000 and 5000 rpm, 0.6 s with
-the window 0.4-0.6 s, at the default resolution ("auto"), under the semi-implicit scheme (what
-"auto" takes for such drives) and the implicit one (simulation.method = "implicit"): step, wall
-time, and every pulley's slip and the crank span's tension band, measured in one run. With
---turn, the implicit scheme also runs at the step that turns the fastest pulley (the 28 mm
-alternator) by that angle per step (0.016 rad: 19.2 us at 3000 rpm), above its accuracy rule's.
+the window 0.4-0.6 s, at the default resolution ("auto"), under the semi-implicit scheme and the
+implicit one (what "auto" takes for such drives under the elastic-plastic law): step, wall time,
+and every pulley's slip and the crank span's tension band, measured in one run. With --turn, the
+implicit scheme also runs at the step that turns the fastest pulley (the 28 mm alternator) by that
+angle per step (0.016 rad: 19.2 us at 3000 rpm) instead of its accuracy rule's.
 
 Run: python benchmarks/bench_fead_schemes.py [--rpm 1000 3000 5000] [--turn 0.016]
 (not a timed test; numbers depend on the machine)

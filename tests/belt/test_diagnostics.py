@@ -98,12 +98,17 @@ def test_sweep_each_diagnostic_fires_where_it_should(model_factory):
     assert "coarse-discretisation" not in codes(r)
 
 
-def test_energy_residual_fires_on_the_bouncing_contact():
-    # the semi-implicit scheme's explicit contact loses the balance here; the implicit scheme's
-    # (the default) flags the same bouncing as contact-chatter with the balance closed
-    r = drivedyn.run(stiff_drive(**{"contact.damping_depth": 1e-3, "simulation.method": "semi-implicit"}))
-    d = {d.code: d for d in r.diagnostics}
-    assert "energy-residual" in d and d["energy-residual"].value > 0.01
+def test_the_bouncing_contact_is_flagged_and_its_energy_balance_closes():
+    """A 1 mm damping depth on a stiff contact: the segments bounce, flagged as contact-chatter and
+    contact-damping-depth under both schemes. The bouncing used to pump the chain's grid-scale
+    rotation mode (neighbouring segments turning against each other), and its energy balance
+    missed 2.0 % (semi-implicit) and 1.4 % (implicit) of the work, with 55 W of friction loss; with
+    that mode damped (system.GRID_ZETA), measured 0.77 % and 0.45 %, 22 W of friction."""
+    for method in ("semi-implicit", "implicit"):
+        r = drivedyn.run(stiff_drive(**{"contact.damping_depth": 1e-3, "simulation.method": method}))
+        assert {"contact-chatter", "contact-damping-depth"} <= codes(r), method
+        assert r.summary["power"]["energy_residual_window"] < 0.01, method
+        assert "energy-residual" not in codes(r)
 
 
 def test_solver_record_and_units(model_factory):
@@ -138,7 +143,8 @@ def test_energy_balance_closes_where_segments_leave_faster_than_the_contact_push
     the contact force is held at zero and the damper takes the contact's elastic energy. Counted
     as contact damping, the balance closes; without it 37.6 W of 3795 W (1.0 %) were missing and
     the run warned energy-residual (measured, Threlfall's law). At the defaults (the elastic-plastic
-    law, 333 segments, rotation scaling) it closes too: 7.6 W of 3656 W unaccounted (measured)."""
+    law, 333 segments, the implicit scheme at 22.7 us) it closes to 16.4 W of 3663 W (0.45 %,
+    measured; 7.6 W of 3656 W with the semi-implicit scheme at its 2.5 us)."""
     from bench_fead_convergence import held
 
     r = drivedyn.run(drivedyn.replace(held(3000, 150, orders=False, duration=0.5), {"friction.law": "threlfall"}))
@@ -147,9 +153,9 @@ def test_energy_balance_closes_where_segments_leave_faster_than_the_contact_push
     assert "energy-residual" not in codes(r)
     r = drivedyn.run(held(3000, "auto", orders=False, duration=0.5))
     p = r.summary["power"]
-    assert r.summary["solver"]["rotation_scaling"]
+    assert r.summary["solver"]["method"] == "implicit"
     # the summary says which friction law the answers rest on
     assert r.summary["belt"]["friction_law"] == "elastic-plastic" and r.summary["belt"]["displacement_limit"] == 1e-4
     assert r.units["belt.displacement_limit"] == "m"
-    assert abs(p["energy_residual_window"]) < 3e-3 and abs(p["unaccounted"]) < 3e-3 * p["input"]
+    assert abs(p["energy_residual_window"]) < 6e-3 and abs(p["unaccounted"]) < 6e-3 * p["input"]
     assert "energy-residual" not in codes(r)

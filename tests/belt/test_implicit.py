@@ -177,11 +177,11 @@ def test_converges_in_the_step():
 def test_tensioner_clutch_and_orders_against_semi_implicit():
     """The implicit scheme on examples/fead-runup.toml's drive (tensioner arm with friction, one-way
     clutch on the alternator, crank orders 2 and 4) held at 3000 rpm with Threlfall's law, against the semi-implicit
-    scheme at its own (stability-limited, 4x smaller) step, at 330 segments (what "auto" took before
-    its chord-sag rule). Measured (0.6 s, window 0.4-0.6 s, 330
-    segments): slips % compressor / idler / pump / alternator / tensioner 0.046 / 0.041 / 0.053 /
-    0.061 / 0.080 against 0.049 / 0.041 / 0.055 / 0.063 / 0.079, crank span 400-773 N against
-    398-775 N, arm travel 0.88 against 0.86 deg."""
+    scheme at its own (stability-limited) step, at 330 segments (what "auto" took before its
+    chord-sag rule). The implicit scheme at its default step, 11.4 us (Threlfall's accuracy rule,
+    0.01 rad per step on the alternator), measured (0.6 s, window 0.4-0.6 s): slips within 0.003
+    points, span minima within 0.5 %, maxima 0.9 %, arm travel range 0.3 %. At 22.7 us (0.019 rad)
+    the alternator-tensioner span's minimum read 3.6 % high: the rule under this law is 0.01."""
     from bench_fead_convergence import held
 
     base = drivedyn.replace(held(3000, 330, duration=0.6), {"output.steady_window": [0.4, 0.6],
@@ -224,12 +224,12 @@ def test_elastic_plastic_accessory_drive_at_a_large_step():
     """fead-runup's drive (tensioner arm, one-way clutch, crank orders 2 and 4) held at 3000 rpm
     with the elastic-plastic law, 330 segments, the implicit scheme at 19.2 us (0.016 rad per step
     on the alternator) against the semi-implicit scheme at its 1.7 us. The bristles take up the
-    landings, so segments rarely change between elastic and sliding: measured (0.8 s) 12.6
-    thousand changes in 43 thousand steps, where Threlfall's law changes about 12 times per step
-    (docs/belt-drive.md); span bands within 2.6 % and slips within 0.001 points of the
-    semi-implicit scheme at 1332 segments. Here (0.6 s, window 0.4-0.6 s): slips within 0.0051
-    points, span means within 1.2 %, maxima 1.5 %, minima 5.1 % (alternator-tensioner; the
-    others 2.2 %), arm travel range 3 %.
+    landings, so segments rarely change between elastic and sliding: measured (0.6 s, window
+    0.4-0.6 s) 9.2 thousand changes in 32 thousand steps, where Threlfall's law changes about 12
+    times per step (docs/belt-drive.md). Measured: slips within 0.0056 points, span means within
+    0.11 %, maxima 0.86 %, minima 1.15 %, arm travel range 1.8 %. Before the chain's grid-scale
+    rotation mode was damped (system.GRID_ZETA) the minima came out up to 5.1 % off
+    (alternator-tensioner) and maxima 1.5 %: the large steps pumped that mode.
     The energy balance: the chain matrix holds a contact only while it pushes; a leaving segment
     that kept A's contact damping was pulled back by it, losing energy no term counted (here, before
     that rule: power in 3791 against 3646 W; at 333 segments and 17.9 us, 0.5 s: 3857 against 3713
@@ -250,10 +250,10 @@ def test_elastic_plastic_accessory_drive_at_a_large_step():
     for p in a["pulleys"]:
         assert abs(b["pulleys"][p]["slip"] - a["pulleys"][p]["slip"]) < 1e-4, p          # 0.01 points
     for sp in a["spans"]:
-        for k, tol in (("tension_mean", 0.015), ("tension_max", 0.03), ("tension_min", 0.07)):
+        for k, tol in (("tension_mean", 0.005), ("tension_max", 0.015), ("tension_min", 0.025)):
             assert b["spans"][sp][k] == pytest.approx(a["spans"][sp][k], rel=tol), (sp, k)
     ta, tb = a["tensioners"]["tensioner"], b["tensioners"]["tensioner"]
-    assert (tb["travel_max"] - tb["travel_min"]) == pytest.approx(ta["travel_max"] - ta["travel_min"], rel=0.1)
+    assert (tb["travel_max"] - tb["travel_min"]) == pytest.approx(ta["travel_max"] - ta["travel_min"], rel=0.05)
 
 
 def test_joint_term_reads_a_rolling_ring_as_rigid():
@@ -317,14 +317,14 @@ def test_gross_slip_halves_the_step_and_warns_like_the_reference():
 
 
 def test_fast_belt_takes_the_accuracy_rule():
-    """At 21.6 m/s (the 5PK driver held at 800 rad/s) the segments turn 0.028 rad per default
-    step; the accuracy rule (simulate.TURN_PER_STEP) halves the step as the drive speeds up (three
-    times, to 4.3 us) and the run agrees with the reference (measured: 653.3 / 470.3 N against
-    657.4 / 470.7 N, slip 0.193 against 0.177 %; 657.7 / 471.9 N and 0.182 % since the chain matrix holds
-    a contact only while it pushes). A step the user sets is kept: at 8.5 / 17 us the span means
-    come out 0.4-1.1 / 3.5-4.9 % high, and at 34.5 us the run is wrong (span means about twice the
-    reference's, efficiency 0.18) and says so: step-too-large, energy-residual. The rule is what
-    keeps fast drives right."""
+    """At 21.6 m/s (the 5PK driver held at 800 rad/s, Threlfall's law) the segments turn 0.028 rad
+    per default step; the accuracy rule (simulate.TURN_PER_STEP, 0.01 rad under this law) shortens
+    the step as the drive speeds up (to 12 us) and the run agrees with the reference (measured:
+    637.3 / 451.6 N against 635.6 / 450.6 N, slip 0.169 against 0.170 %). A step the user sets is
+    kept: at 34.5 us the span means come out 0.9 / 1.2 % high and the energy balance misses 1 % of
+    the power, and the run says so: step-too-large, energy-residual. (Before the chain's grid-scale
+    rotation mode was damped, system.GRID_ZETA, the same run at 34.5 us read about twice the
+    reference's tensions, and 17 us read 3.5-4.9 % high.)"""
     d = drivedyn.model.to_dict(drivedyn.load(drivedyn.example_path("belt-5pk")))
     d["pulleys"][0].pop("torque_time")
     d["pulleys"][0]["speed_time"] = [[0, 0], [0.25, -800.0], [1, -800.0]]
@@ -335,15 +335,18 @@ def test_fast_belt_takes_the_accuracy_rule():
     ref = drivedyn.run(drivedyn.model.from_dict(d)).summary
     d["simulation"]["method"] = "implicit"
     new = drivedyn.run(drivedyn.model.from_dict(d)).summary
-    assert new["solver"]["speed_reductions"] >= 2
+    assert new["solver"]["speed_reductions"] >= 1 and new["solver"]["step"] < 13e-6
     for span in ref["spans"]:
-        assert new["spans"][span]["tension_mean"] == pytest.approx(ref["spans"][span]["tension_mean"], rel=0.01)
+        assert new["spans"][span]["tension_mean"] == pytest.approx(ref["spans"][span]["tension_mean"], rel=0.006)
     assert abs(new["pulleys"]["driven"]["slip"] - ref["pulleys"]["driven"]["slip"]) < 2e-4
     # a step the user sets is kept, and a run that turns its segments too far per step says so
     d["simulation"]["step"] = 34.5e-6
     coarse = drivedyn.run(drivedyn.model.from_dict(d))
-    assert coarse.summary["solver"]["turn_per_step"] > 0.006
+    assert coarse.summary["solver"]["turn_per_step"] > 0.02
     assert coarse.status == "warning" and "step-too-large" in {x.code for x in coarse.diagnostics}
+    for span in ref["spans"]:
+        assert coarse.summary["spans"][span]["tension_mean"] == pytest.approx(ref["spans"][span]["tension_mean"],
+                                                                              rel=0.03)
 
 
 def test_auto_picks_the_implicit_scheme_where_it_integrates_the_drive():
@@ -351,7 +354,11 @@ def test_auto_picks_the_implicit_scheme_where_it_integrates_the_drive():
 
     assert integrator(drivedyn.load(drivedyn.example_path("belt-accessory-loaded"))) == "implicit"
     assert integrator(drivedyn.load(drivedyn.example_path("belt-verification"))) == "implicit"
-    assert integrator(drivedyn.load(drivedyn.example_path("fead-runup"))) == "semi-implicit"   # tensioner, clutch
+    fead = drivedyn.load(drivedyn.example_path("fead-runup"))                      # tensioner, clutch, orders
+    assert integrator(fead) == "implicit"
+    # under Threlfall's law its viscous anchors change state at nearly every step: semi-implicit there
+    assert integrator(drivedyn.replace(fead, {"friction.law": "threlfall"})) == "semi-implicit"
+    assert integrator(drivedyn.replace(fead, {"simulation.rotation_scaling": True})) == "semi-implicit"
     assert integrator(drivedyn.load(drivedyn.example_path("belt-5pk"))) == "semi-implicit"     # set in the file
     m = drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")), {"simulation.method": "auto"})
     assert drivedyn.run(drivedyn.replace(m, {"simulation.duration": 0.01})).summary["solver"]["method"] == "implicit"

@@ -168,7 +168,7 @@ def test_chord_sag_rule_converges_a_running_drives_torsional_mode():
     """A two-pulley drive (benchmarks/bench_chord_sag.py: 40 mm pulleys, 24 m/s, a torque pulse on
     the driven pulley) rings at its first torsional mode: at "auto" (chord sag 0.25 x the contact
     depth) within 1 % of twice the segments, while half of them (sag = depth: the landings shake
-    the contact) ring more than 5 % low (measured: 299.7 / 298.7 Hz, 244.7 Hz at half)."""
+    the contact) ring more than 5 % low (measured: 299.0 / 298.7 Hz, 236.9 Hz at half)."""
     from bench_chord_sag import drive, ringing
 
     n = auto_segments(drive("auto"))[0]
@@ -181,9 +181,10 @@ def test_chord_sag_rule_converges_a_running_drives_torsional_mode():
 def test_rotation_scaling_where_the_chord_sag_is_resolved():
     """simulation.rotation_scaling (the segments' rotational inertia x 3.3, a longer step) where the
     chord sag is resolved leaves the running drive's torsional mode and losses as they were; at half
-    the segments (sag = depth) the landings carry the losses and scaling nearly doubles them. The
-    two-pulley drive of benchmarks/bench_chord_sag.py at 24 m/s, semi-implicit (measured: 298.9
-    against 299.7 Hz, losses 1.46 against 1.36 W at "auto"; 9.1 against 5.0 W at half)."""
+    the segments (sag = depth) the landings carry the losses and scaling raises them by a quarter.
+    The two-pulley drive of benchmarks/bench_chord_sag.py at 24 m/s, semi-implicit (measured: 298.7
+    against 299.0 Hz, losses 1.53 against 1.48 W at "auto"; 6.85 against 5.42 W at half, and 9.1
+    against 5.0 W before the chain's grid-scale rotation mode was damped, system.GRID_ZETA)."""
     from bench_chord_sag import drive, ringing
 
     n = auto_segments(drive("auto"))[0]
@@ -197,7 +198,7 @@ def test_rotation_scaling_where_the_chord_sag_is_resolved():
     assert runs[n, True][0]["step"] > 1.15 * runs[n, False][0]["step"]
     assert runs[n, True][1] == pytest.approx(runs[n, False][1], rel=0.005)
     assert runs[n, True][2] == pytest.approx(runs[n, False][2], rel=0.10)
-    assert runs[n // 2, True][2] > 1.5 * runs[n // 2, False][2]
+    assert runs[n // 2, True][2] > 1.15 * runs[n // 2, False][2]
 
 
 def test_the_overview_prints_the_stated_error():
@@ -210,3 +211,11 @@ def test_the_overview_prints_the_stated_error():
     check = {"segments": 333, "estimate": {"slip_largest": 2e-4, "tension_relative_largest": 0.05, "coarse_segments": 233}}
     assert "the change against 233 segments" in _resolution_note({"discretisation": check})
     assert _resolution_note({"discretisation": {"segments": 80}}) == ""
+    # a run-up states that its bins near a resonance carry more than the held-speed figure
+    from drivedyn.belt.resolution import rule_estimate
+
+    fead = drivedyn.load(drivedyn.example_path("fead-runup"))
+    e = rule_estimate(fead, 333, 333)
+    assert "runup_note" in e and "runup_note" not in rule_estimate(drivedyn.replace(fead, {"output.runup_bin": None}),
+                                                                   333, 333)
+    assert "near a resonance" in _resolution_note({"discretisation": {"segments": 333, "estimate": e}})

@@ -256,6 +256,8 @@ class Belt(Spec):
     axial_stiffness: quantity("N", gt=0)
     axial_damping: quantity("N*s", ge=0) = 0.0
     bending_stiffness: quantity("N*m^2", ge=0) = 0.0
+    # below the damper that damps the segment chain's grid-scale rotation mode (system.GRID_ZETA,
+    # summary.discretisation.grid_damping), that damper is used
     bending_damping: quantity("N*m^2*s", ge=0) = 0.0
     axial_exponent: float = 1.0
     bending_exponent: float = 1.0
@@ -336,7 +338,9 @@ class Simulation(Spec):
     """How the drive is simulated: for how long, which belt model (``model``: "segments", the belt
     as rigid segments, seed 000; "rotational", pulleys, rotors and tensioners with the spans as
     axial springs and creep on the wraps, docs/belt-drive.md), which integration scheme for the
-    segments (``method``, ``step``; ``rotation_scaling``, the segments' rotational inertia x 3.3
+    segments (``method``: "auto" takes the implicit scheme, the semi-implicit one with rotation
+    scaling and for drives with tensioners, clutches or orders under Threlfall's law; ``step``;
+    ``rotation_scaling``, the segments' rotational inertia x 3.3
     for a longer stable step of the semi-implicit scheme, left out (none) means on with the
     elastic-plastic friction law and off with Threlfall's), and a run-up by time integration or as
     periodic solutions per crank-speed bin (``runup``, rotational model)."""
@@ -349,6 +353,8 @@ class Simulation(Spec):
     # a run-up by time integration of the crank's speed table ("time"), or its steady response at
     # each crank-speed bin as a periodic solution ("periodic", rotational model: periodic.py)
     runup: Literal["time", "periodic"] = "time"
+    # "auto": the implicit scheme; the semi-implicit one with rotation_scaling = true, and for an
+    # accessory drive (tensioners, clutches, orders) under Threlfall's law (integrator below)
     method: Literal["auto", "implicit", "semi-implicit", "rkf45"] = "auto"
     step: Optional[quantity("s", gt=0)] = None
     # the segments' rotational inertia x 3.3 (system.ROTATION_SCALE): a 1.3x longer stable step of
@@ -417,7 +423,7 @@ class Model(Spec):
                 raise ValueError(f"output.segments: index {q} is negative (segments count from 0)")
             if self.belt.segments != "auto" and q >= self.belt.segments:     # "auto": checked once resolved
                 raise ValueError(f"output.segments: index {q} outside 0..{self.belt.segments - 1}")
-        if self.simulation.method == "rkf45" and _semi_implicit_only(self.pulleys):
+        if self.simulation.method == "rkf45" and _accessory_parts(self.pulleys):
             raise ValueError("simulation.method: rkf45 does not integrate tensioners, clutches or speed orders; "
                              "use semi-implicit or implicit")
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
@@ -480,21 +486,26 @@ class Model(Spec):
 
 def integrator(model) -> str:
     """The belt integration scheme a run uses: ``simulation.method``, where "auto" (the default)
-    is the implicit scheme (the step set by the dynamics, agreeing with the semi-implicit
-    reference on the seed drives) unless the drive has tensioners, clutches or speed orders or
-    asks for rotation scaling; then the semi-implicit scheme.
-    The implicit scheme integrates tensioners, clutches and speed orders (tests/belt/test_implicit.py
-    against the semi-implicit reference), but on accessory drives at their "auto" resolution its
-    accuracy rule (simulate.TURN_PER_STEP) and the refactorisations at every segment landing make it
-    cost as much as the semi-implicit scheme or more (docs/belt-drive.md)."""
+    is the implicit scheme (its step set by the contact's normal mode and the turn per step,
+    simulate.TURN_PER_STEP, not by the chain's stiff modes), except for a run that asks for
+    rotation scaling (a semi-implicit device) and for a drive with tensioners, clutches or speed
+    orders under Threlfall's law: its viscous anchors change between sticking and sliding at
+    nearly every step, so there the implicit scheme is slower than the semi-implicit one.
+    It integrates tensioners, clutches and speed orders (tests/belt/test_implicit.py against the
+    semi-implicit reference); on examples/fead-runup.toml's drive (elastic-plastic law) held at
+    1000 / 3000 / 5000 rpm at the "auto" resolution it took 1.2 / 2.3 / 3.5 s against 2.9 / 3.1 /
+    3.0 s (benchmarks/bench_fead_schemes.py), its whole run-up 15.8 against 22.0 s, and its cost
+    grows with the segments as n^0.95 against the semi-implicit scheme's n^2.1 (docs/belt-drive.md)."""
     method = model.simulation.method
     if method != "auto":
         return method
-    if _semi_implicit_only(model.pulleys) or model.simulation.rotation_scaling is True:
+    if model.simulation.rotation_scaling is True:
+        return "semi-implicit"
+    if model.friction.law == "threlfall" and _accessory_parts(model.pulleys):
         return "semi-implicit"
     return "implicit"
 
 
-def _semi_implicit_only(pulleys) -> bool:
-    """Pulleys that rkf45 does not integrate and "auto" integrates semi-implicitly: tensioners, clutches, speed orders."""
+def _accessory_parts(pulleys) -> bool:
+    """Whether the drive has tensioners, clutches or speed orders (which rkf45 does not integrate)."""
     return any(p.tensioner is not None or p.clutch is not None or p.speed_orders for p in pulleys)

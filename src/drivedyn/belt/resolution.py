@@ -61,7 +61,7 @@ SAG_RATIO_PRESLIDING = 1.0
 #: wraps shorter than this (deg) are left out of the wrap rule: a 7-degree idler wrap would ask for
 #: 3000 segments and carries almost no torque; discretisation.unresolved_wraps names them
 WRAP_MIN_DEG = 20.0
-#: "auto" never picks more (the semi-implicit scheme's cost grows as n^2)
+#: "auto" never picks more
 MAX_AUTO = 2000
 
 
@@ -143,19 +143,32 @@ def discretisation(model, sysm) -> dict:
             "chordal_speed_error": float(l * l / (12 * r_min * r_min)),
             "chord_sag_to_depth": sag if math.isfinite(sag) else None,     # None: a slack belt
             "slip_measured_against": "the chain's rolling radius (polygon effect removed)",
+            "grid_damping": _grid_damping(model, sysm),
             "estimate": rule_estimate(model, int(sysm.n), n_auto)}
 
 
+def _grid_damping(model, sysm) -> dict:
+    """The bending damper that damps the chain's grid-scale rotation mode (system.GRID_ZETA), and
+    whether it or the belt's own bending damping is in use."""
+    from .system import GRID_ZETA, grid_damping
+
+    c = grid_damping(model.belt, sysm.init)
+    own = model.belt.bending_damping / sysm.init.seg_length
+    return {"bending_damper": float(c), "damping_ratio": GRID_ZETA, "in_use": bool(c > own),
+            "note": "damps neighbouring segments turning against each other (a mode of the segment chain, not "
+                    "of the belt); its loss, counted under bending_damping, falls as the segment length squared"}
+
+
 #: the "auto" rule's accuracy per friction law: the largest error of a pulley's mean slip (a
-#: fraction: 1.6e-4 is 0.016 percentage points) and of a span's tension minimum or maximum
+#: fraction: 1.9e-4 is 0.019 percentage points) and of a span's tension minimum or maximum
 #: (relative), measured on examples/fead-runup.toml's drive held at 1000 / 3000 / 5000 rpm with its
-#: 2nd/4th orders against 2-4 x the "auto" segments (benchmarks/bench_fead_defaults.py,
-#: benchmarks/bench_fead_convergence.py; the figures are in docs/belt-drive.md, Resolution):
-#: elastic-plastic at 333 segments, minima within 2.0 / 2.8 / 3.2 %, maxima 0.5 / 1.3 / 2.4 %,
-#: slips 0.016 / 0.003 / 0.007 points (rotation-scaled: 1.6 / 2.5 / 1.2 %, 0.7 / 0.5 / 1.7 %,
-#: 0.014 / 0.011 / 0.004); Threlfall at 666, minima within 1.5 / 4.5 / 2.5 %, maxima 0.5 / 2.6 /
+#: 2nd/4th orders against 4 x the "auto" segments (semi-implicit, unscaled;
+#: benchmarks/bench_fead_defaults.py; the figures are in docs/belt-drive.md, Resolution):
+#: elastic-plastic at 333 segments, the implicit scheme at its default step (38.5 / 22.7 / 13.5
+#: us), minima within 2.4 / 1.6 / 3.0 %, maxima 2.0 / 0.9 / 2.7 %, slips 0.019 / 0.005 / 0.002
+#: points; Threlfall at 666 (semi-implicit), minima within 1.5 / 4.5 / 2.5 %, maxima 0.5 / 2.6 /
 #: 1.4 %, slips 0.016 / 0.013 / 0.009 points
-RULE_ACCURACY = {"elastic-plastic": (1.6e-4, 0.032), "threlfall": (1.6e-4, 0.045)}
+RULE_ACCURACY = {"elastic-plastic": (1.9e-4, 0.030), "threlfall": (1.6e-4, 0.045)}
 
 
 def rule_estimate(model, n: int, n_auto) -> dict:
@@ -171,14 +184,20 @@ def rule_estimate(model, n: int, n_auto) -> dict:
                 "unavailable": f"{n} segments against the {n_auto} of \"auto\": the error is not known; set "
                                "belt.segments = \"auto\" or simulation.resolution_check = true"}
     slip, tension = RULE_ACCURACY[law]
-    return {"method": f"the \"auto\" rule's accuracy ({law} friction), measured on examples/fead-runup.toml's "
-                      "drive at 1000-5000 rpm against 2-4 x the segments; not this drive's: "
-                      "simulation.resolution_check measures that",
-            "auto_segments": n_auto, "slip_largest": slip, "tension_relative_largest": tension,
-            "power_loss_note": "the losses are not estimated: their excess (the contact damping of the "
-                               "polygon's landing impacts) falls as l^2, so read them and power.efficiency "
-                               "as high and low (examples/fead-runup.toml's drive held at 3000 rpm loses "
-                               "about 155 W at 333 segments against about 106 W converged)"}
+    out = {"method": f"the \"auto\" rule's accuracy ({law} friction), measured on examples/fead-runup.toml's "
+                     "drive at 1000-5000 rpm against 4 x the segments; not this drive's: "
+                     "simulation.resolution_check measures that",
+           "auto_segments": n_auto, "slip_largest": slip, "tension_relative_largest": tension,
+           "power_loss_note": "the losses are not estimated: their excess (the contact damping of the "
+                              "polygon's landing impacts) falls as l^2, so read them and power.efficiency "
+                              "as high and low (examples/fead-runup.toml's drive held at 3000 rpm loses "
+                              "about 132 W at 333 segments against about 105 W at 1332)"}
+    if model.output.runup_bin is not None:
+        # docs/belt-drive.md, Engine accessory drives: the run-up against 666 segments
+        out["runup_note"] = ("measured at held speeds: a run-up's bins near a resonance converge more slowly "
+                             "(examples/fead-runup.toml's run-up at 333 segments: span minima up to 8 % off 666 "
+                             "segments at 3875-4375 rpm, within 4.6 % elsewhere)")
+    return out
 
 
 #: the resolution check's coarser run, as a share of the segments, and its accuracy targets (the

@@ -17,18 +17,19 @@ from .system import BeltSystem, build, clear_accumulators, new_state, new_work, 
 from .model import integrator
 from .resolution import discretisation
 
-# the implicit scheme's accuracy rule: a segment rolling on a pulley turns at most this far per step
-# (rad), measured by the fastest pulley's speed.
-# Measured against the semi-implicit reference: the loaded accessory drive (0.002 rad per step at
-# its 34.5 us default) within 0.13 % in span tension; fead-runup's drive held at 3000 rpm
-# (23.6 m/s, 843 rad/s on the alternator) 0.2-1.7 % at 0.0084 rad, 2.7 % at 0.016, 34 % slip
-# at 0.032 before A's contact term followed the turn (_kernels: can); 2.4 % at 5000 rpm, 0.014.
-# With the joints' centripetal term and the anchors' slip read along the chord (_kernels:
-# _joint_transport, t_m) fead-runup's drive at 0.016 rad per step agrees within 0.008 points of
-# slip and 0.9 % in span means (without them 0.08 points, and 9 % in a span minimum; minima still
-# 7 % high), but the 5PK held at 800 rad/s at 0.014 rad per step runs 3-5 % high in tension (1 % at
-# 0.007): an error not yet found, so the rule stays.
-TURN_PER_STEP = 0.003
+# the implicit scheme's accuracy rule, per friction law: a segment rolling on a pulley turns at
+# most this far per step (rad), measured by the fastest pulley's speed. It was 0.003 while the
+# chain's grid-scale rotation mode ran undamped (system.GRID_ZETA): at larger turns the steps
+# pumped that mode and the 5PK held at 800 rad/s read 1.2-4.9 % high. With the mode damped,
+# against the semi-implicit scheme at the same segments: the 5PK at 800 rad/s (424 segments)
+# within 0.04 % (elastic-plastic) and 0.3 % (Threlfall) at 0.020 rad per step, 0.2 % and 1 % at
+# 0.028 (Threlfall's then misses 4 % of the energy); examples/fead-runup.toml's drive held with
+# its orders (333 segments, elastic-plastic) within 1.5 % at 5000 rpm and 0.012-0.035 rad and
+# within 1 % of the 4x-refined run at 3000 rpm and 0.032 rad, but at 0.056 rad (5000 rpm, 40 us) it
+# ran away and the step control halved the step. Under Threlfall's law the same drive at 3000 rpm
+# (330 segments) read the alternator-tensioner span's minimum 3.6 % high at 0.019 rad per step,
+# 0.4 % at 0.0096 (tests/belt/test_implicit.py).
+TURN_PER_STEP = {"elastic-plastic": 0.02, "threlfall": 0.01}
 # a run has blown up once a segment or pulley surface moves faster than this (m/s) or a segment
 # sinks deeper than this share of the smallest pulley radius (_blow_up, _healthy)
 SPEED_MAX = 1e3
@@ -117,6 +118,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     h_min = min(0.85 * stability_limit(sysm.model, sysm.init, B, C), h / 8) if implicit else h
     rec.step_reductions, rec.speed_reductions, rec.steps_done = 0, 0, 0
     speed_rule = implicit and sysm.model.simulation.step is None     # a step the user gave is kept
+    turn_max = TURN_PER_STEP[sysm.model.friction.law]
     k = 0
     while k < nsamples:
         if implicit and k % every == 0:
@@ -174,14 +176,17 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
         rec.implicit = (int(W.lin_cnt[1]), int(W.lin_cnt[3]), int(W.lin_stat[0] + W.lin_stat[1]))
         rec.h_final = hstep[0]
         k += 1
-        if speed_rule and hstep[0] * W.probe[5] > TURN_PER_STEP and hstep[0] / 2 >= h_min:
+        if speed_rule and hstep[0] * W.probe[5] > turn_max:
             # the implicit scheme's accuracy rule: a segment rolling on a pulley turns at most
-            # TURN_PER_STEP per step (the pulley's speed: the segments' own rates jump where they
-            # land); a faster drive continues at half the step
-            steps_per_sample *= 2
-            hstep[0] = interval / steps_per_sample
-            W.lin_cnt[0] = 0
-            rec.speed_reductions += 1
+            # turn_max per step (the pulley's speed: the segments' own rates jump where they
+            # land); a faster drive continues at the step that keeps it, with 5 % to spare (a
+            # run-up changes it every few percent of speed, not at every sample)
+            steps = max(steps_per_sample + 1, math.ceil(1.05 * interval * W.probe[5] / turn_max))
+            if interval / steps >= h_min:      # (else as small as it goes: the diagnostics say so)
+                steps_per_sample = steps
+                hstep[0] = interval / steps_per_sample
+                W.lin_cnt[0] = 0
+                rec.speed_reductions += 1
     return nsamples, ""
 
 
@@ -464,8 +469,10 @@ UNITS = {
     "discretisation.estimate.coarse_segments": "", "discretisation.estimate.auto_segments": "",
     "discretisation.estimate.method": "", "discretisation.estimate.power_loss_method": "",
     "discretisation.estimate.unavailable": "", "discretisation.estimate.power_loss_note": "",
+    "discretisation.estimate.runup_note": "",
     "discretisation.estimate.coarse_status": "", "discretisation.estimate.power_loss.*": "W",
-    "discretisation.estimate.*": "1", "discretisation.*": "",
+    "discretisation.estimate.*": "1", "discretisation.grid_damping.bending_damper": "N*m*s/rad",
+    "discretisation.grid_damping.damping_ratio": "1", "discretisation.*": "",
     "steady.*": "1", "at_rest.speed_max.*": "rad/s", "at_rest.residual_force": "1",
     "solver.last_step": "s", "solver.step": "s", "solver.stability_limit": "s", "solver.wall_time": "s",
     "solver.simulated_time": "s", "solver.real_time_factor": "1",

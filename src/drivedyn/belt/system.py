@@ -135,7 +135,7 @@ def _build(model, drawn, settle: bool) -> BeltSystem:
         kax=belt.axial_stiffness / l ** e * ones,                     # F = EA (g / l)^e
         bax=belt.axial_damping / l * ones,
         kb=belt.bending_stiffness / l * ones,
-        bb=belt.bending_damping / l * ones,
+        bb=max(belt.bending_damping / l, grid_damping(belt, init)) * ones,   # or the grid mode's (GRID_ZETA)
         eax=float(e), eb=float(belt.bending_exponent), linear=bool(e == 1.0), hl=float(0.5 * l),
         turn=float(init.turn), g=float(model.gravity), iscale=float(ROTATION_SCALE if scaled else 1.0),
         implicit=integrator(model) == "implicit")
@@ -381,6 +381,33 @@ def damping_depth(model, init) -> float:
 # kicks up (rotation_scaled). At a coarse count the landings dominate: the accessory drive at 11 m/s
 # lost 33 against 24 W in contact and friction.
 ROTATION_SCALE = 3.3
+
+
+# The chain's grid-scale rotation mode: neighbouring segments turning against each other strain no
+# joint (their shared ends move together); only the bending springs (4 k_b) and the tension's arms
+# (T l) hold it, omega^2 = (T l + 4 k_b) / I, about 1e5 rad/s for 2.25 mm segments at 400 N. A
+# continuous belt has no such mode, and without bending damping (the default) nothing damps it:
+# the landings on the pulleys pump it to alternating rates of +-300-600 rad/s in every free span
+# (examples/fead-runup.toml's drive held at 3000 rpm), which shortens the chain and reads as
+# tension, and at the implicit scheme's large steps grows until a run blows up (666 segments at
+# 18.5 us) or reads high: the 5PK held at 800 rad/s at 424 segments, span means 1.2-2.8 % high at
+# 8.6-17 us against the semi-implicit scheme, the error the old 0.003 rad-per-step rule kept out.
+# A bending damper per joint of c = zeta sqrt(K I) / 2 gives the mode the damping ratio GRID_ZETA;
+# at 0.05 the same runs agree within 0.06 % at 8.6-17 us (Threlfall's law; 0.3 % at 25 us) and the
+# 666-segment run runs through at 17.9 us (tests/belt/test_grid_mode.py). c scales as l^2 (l^3 per belt length), so a flap mode is not touched (damping ratio
+# ~1e-5 on a 100 mm span) and the loss it adds where the belt bends onto and off a pulley falls as
+# l^2: 8.6 W in the bending dampers at 333 segments on that drive, 1.7 W more in all (the contact
+# damping takes 7 W less). A belt.bending_damping above it replaces it.
+GRID_ZETA = 0.05
+
+
+def grid_damping(belt, init) -> float:
+    """The bending damper per joint (N m s/rad) that gives the chain's grid-scale rotation mode
+    the damping ratio GRID_ZETA: c = zeta sqrt(K I) / 2, K = T0 l + 4 k_b at the pretension."""
+    l = init.seg_length
+    inertia = belt.mass_per_length * l ** 3 / 12.0
+    k = max(init.tension, 0.0) * l + 4.0 * belt.bending_stiffness / l * max(belt.bending_exponent, 1.0)
+    return 0.5 * GRID_ZETA * math.sqrt(k * inertia)
 
 
 def rotation_scaled(model) -> bool:
