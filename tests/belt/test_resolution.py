@@ -73,6 +73,9 @@ def test_elastic_plastic_friction_converges_at_a_coarser_sag():
             assert abs(v[k] / b["spans"][sp][k] - 1) <= e["tension_relative_largest"], (sp, k)
     for p, v in a["pulleys"].items():
         assert abs(v["slip"] - b["pulleys"][p]["slip"]) <= e["slip_largest"], p
+    # and the losses' share that is discretisation: the losses less their l^2 limit from the pair
+    la, lb = sum(a["power"]["losses"].values()), sum(b["power"]["losses"].values())
+    assert lb < la and (la - (lb - (la - lb) / 3)) / la <= e["power_loss_relative"]
 
 
 @pytest.mark.slow

@@ -119,7 +119,7 @@ def test_torque_balance_with_back_idler():
 # average over a window once the speeds have settled (time constants 0.07-0.11 s). Their belts are
 # finer than the examples' (450 segments of 2.7 mm instead of 150 of 8 mm on the 27 mm pulleys):
 # the rigid chords' action lowers the running tension level with the chord length (5PK at 15 N m,
-# tight / slack span: 806.7 / 255.8 N at 150 segments, 825.0 / 271.0 at 300, 834.4 / 280.5 at
+# tight / slack span: 809.2 / 259.8 N at 150 segments, 825.0 / 271.0 at 300, 834.1 / 280.5 at
 # 450, 836.1 / 283.7 at 600; the accessory drive runs 6-8 % below creep theory at its 110
 # segments, within 0.8 % at 330 and 440), and at 110 segments the mid-span speed probes carry the
 # chords' error into the creep (10-50 % off): creep theory is tested against a converged belt.
@@ -150,7 +150,7 @@ def fivepk_loaded():
 def test_5pk_against_dynamic_model():
     """Two pulleys (the seed's 5PK drive at 550 N, 15 N m, load proportional to speed). Measured:
     creep theory 835.8 / 280.2 N, creep 0.3635 / -0.3648 %; dynamic (450 segments, window
-    0.3-0.5 s) 834.2 / 280.6 N, 0.3545 / -0.3557 %."""
+    0.3-0.5 s) 834.1 / 280.5 N, 0.3549 / -0.3561 %."""
     m, s = dynamic(fivepk_loaded(), 450, 0.5, (0.3, 0.5))
     st = steady_state(m)
     assert st.spans["driver-driven"] > st.spans["driven-driver"]      # the driver pulls the lower span
