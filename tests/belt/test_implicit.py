@@ -321,8 +321,8 @@ def test_fast_belt_takes_the_accuracy_rule():
     per default step; the accuracy rule (simulate.TURN_PER_STEP, 0.01 rad under this law) shortens
     the step as the drive speeds up (to 12 us) and the run agrees with the reference (measured:
     637.3 / 451.6 N against 635.6 / 450.6 N, slip 0.169 against 0.170 %). A step the user sets is
-    kept: at 34.5 us the span means come out 0.9 / 1.2 % high and the energy balance misses 1 % of
-    the power, and the run says so: step-too-large, energy-residual. (Before the chain's grid-scale
+    kept: at 34.5 us the span means come out 0.9 / 1.2 % high and the energy balance misses more
+    than 1 % of the work, and the run says so: step-too-large, energy-residual. (Before the chain's grid-scale
     rotation mode was damped, system.GRID_ZETA, the same run at 34.5 us read about twice the
     reference's tensions, and 17 us read 3.5-4.9 % high.)"""
     d = drivedyn.model.to_dict(drivedyn.load(drivedyn.example_path("belt-5pk")))
