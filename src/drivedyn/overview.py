@@ -53,7 +53,9 @@ def _resolution_note(s) -> str:
     if "slip_largest" in e:
         how = (f"the change against {e['coarse_segments']} segments" if "coarse_segments" in e
                else "the \"auto\" rule's accuracy on examples/fead-runup.toml's drive")
-        near = "; near a resonance a run-up's bins carry more (up to 8 % there)" if e.get("runup_note") else ""
+        near = (f"; near a resonance a run-up's bins carry more (up to "
+                f"{_f(100 * e['runup_tension_relative_largest'], '{:.0f}')} % there)"
+                if "runup_tension_relative_largest" in e else "")
         return (f"; discretisation ({d.get('segments')} segments): slip within {_f(100 * e['slip_largest'], '{:.3f}')}"
                 f" points, span tensions within {_f(100 * e['tension_relative_largest'], '{:.1f}')} % ({how}){near}")
     if e.get("unavailable"):
