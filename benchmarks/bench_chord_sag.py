@@ -29,7 +29,7 @@ def drive(segments, omega=600.0, duration=0.2):
     p.update(center=[0.12, 0.0], radius=0.04, inertia=1e-3)
     p.pop("torque_speed", None)
     p["torque_time"] = [[0, 0], [0.05, 3.0], [0.1, 3.0], [0.1005, 6.0], [0.101, 3.0], [duration, 3.0]]
-    d["simulation"].update(duration=duration)
+    d["simulation"].update(duration=duration, method="semi-implicit")
     d["output"].update(interval=2e-5, frames=1, segments=[0], steady_window=[duration - 0.05, duration])
     return from_dict(d)
 

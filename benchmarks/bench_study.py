@@ -25,6 +25,7 @@ base = "{base}"
 [overrides]
 "simulation.duration" = {duration}
 "output.frames" = 2
+"output.segments" = []
 [[parameters]]
 path = "belt.pretension"
 range = ["400 N", "800 N"]

@@ -23,7 +23,9 @@ CODES = {
     "window-not-steady": "the quantities drift inside the steady window (or the slowest mode has not decayed): "
                          "the window means are not steady-state values",
     "energy-residual": "the energy balance (work in - dissipated - energy change) misses a large share of the work",
-    "coarse-discretisation": "the belt segments are long against a pulley radius or a wrap: chordal error in speeds, a wrap too few segments hold",
+    "coarse-discretisation": "fewer belt segments than \"auto\" takes (the discretisation error is not known), or "
+                             "segments long against a pulley radius or a wrap: chordal error in speeds, a wrap too "
+                             "few segments hold",
     "unconverged-resolution": "the resolution check (simulation.resolution_check) estimates a discretisation error "
                               "in slip or span tension above its target: more segments",
     "kv-unstable": "the dynamic factor grows without bound (parametric instability of the linear mesh model) or "

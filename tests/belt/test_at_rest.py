@@ -57,7 +57,8 @@ def test_free_drive_stays_at_rest(model_factory, segments, gravity):
     assert np.all(w < bound), (w, bound)
     # the belt moves by far less than one segment (the old drift swung it by a third of one)
     assert np.all(w * 0.027 * 0.5 < 1e-6 * sysm.init.seg_length)
-    assert r.status == "success", [d.text for d in r.diagnostics]
+    # only the coarse count is flagged: 100 and 150 segments are below the 424 of "auto"
+    assert {d.code for d in r.diagnostics} == {"coarse-discretisation"}, [d.text for d in r.diagnostics]
     assert r.summary["power"]["output"] == 0.0 and str(r.summary["power"]["output"]) == "0.0"
     # nothing flowed: no relative residual (no division by round-off)
     rel = r.summary["power"]["energy_residual_relative"]

@@ -4,7 +4,7 @@ import pytest
 import drivedyn
 from drivedyn.cli import main
 
-GOOD = drivedyn.example_path("belt-5pk").read_text().replace("segments = [107]", "segments = [10]")
+GOOD = drivedyn.example_path("belt-5pk").read_text().replace("segments = [302]", "segments = [10]")
 
 
 def run_cli(tmp_path, text, capsys, cmd="check"):
@@ -19,10 +19,10 @@ def run_cli(tmp_path, text, capsys, cmd="check"):
     (('radius = "27 mm"', 'radius = "-27 mm"', 1), "pulleys[0].radius"),
     (('center = ["515 mm", "0 mm"]', 'center = ["40 mm", "0 mm"]', 1), "overlap"),
     (('pretension = "550 N"', 'length = "1.0 m"', 1), "too short"),
-    (('segments = 150', 'segments = 150\nsegmnets = 3', 1), "did you mean 'segments'"),
+    (('segments = "auto"', 'segments = 150\nsegmnets = 3', 1), "did you mean 'segments'"),
     (('[contact]', '[contact\n', 1), "not valid TOML"),
     (('inertia = "0.02 kg*m^2"', 'inertia = "0.02 kg"', 1), "inertia"),
-    (('segments = 150', 'segments = 30', 1), "too coarse"),
+    (('segments = "auto"', 'segments = 30', 1), "too coarse"),
     (('kind = "belt-drive"', 'kind = "belt_drive"', 1), "did you mean 'belt-drive'"),
     (('kind = "belt-drive"', 'kind = "study"', 1), "study file"),
 ])

@@ -47,7 +47,8 @@ def run(radius, **changes):
                 "belt.segments": 450, "friction.radius": radius, "simulation.duration": 0.5,
                 "output.steady_window": [0.35, 0.5], "output.frames": 16, "output.interval": 5e-3, **changes})
     r = drivedyn.run(m)
-    assert r.status == "success", [d.message for d in r.diagnostics]
+    # no diagnostic, but the count's below "auto"'s 424 when a test sets fewer
+    assert not [d for d in r.diagnostics if d.quantity != "discretisation.segments"], [d.text for d in r.diagnostics]
     return m, r
 
 
@@ -77,7 +78,7 @@ def test_slip_follows_the_stuck_arcs():
 def test_centre_in_the_implicit_scheme():
     """The implicit scheme carries each anchor's own arm (r - p) through its factored pulley
     columns: it agrees with the semi-implicit scheme (measured at 300 segments: slip 0.6622 against
-    0.6611 %, spans within 0.3 %), and both close the energy balance (status success)."""
+    0.6611 %, spans within 0.3 %), and both close the energy balance (no energy-residual)."""
     runs = {method: run("centre", **{"belt.segments": 300, "simulation.duration": 0.4, "simulation.method": method,
                                      "output.steady_window": [0.3, 0.4]})[1].summary
             for method in ("semi-implicit", "implicit")}

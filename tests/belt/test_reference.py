@@ -210,8 +210,13 @@ def test_rkf45_agrees_with_semi_implicit(model_factory):
 def test_seed_5pk_case():
     """Kubas (seed 000) sec. 4: slip just under 1.5 %, slack ~250 N, tight ~780 N, speed ~ -22 rad/s
     (the model as described has too few losses for -22: a lossless drive with this load law settles
-    at -25.1 rad/s, see README)."""
-    r = drivedyn.run(drivedyn.example_path("belt-5pk"))
+    at -25.1 rad/s, see README), at the seed's 150 segments; the example's "auto" count (424) reads
+    279 / 834 N, which steady creep theory confirms (tests/belt/test_steady.py), and the run at 150
+    says its error is not known."""
+    m = drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")),
+                         {"belt.segments": 150, "simulation.method": "semi-implicit", "output.segments": [107]})
+    r = drivedyn.run(m)
+    assert {d.code for d in r.diagnostics} == {"coarse-discretisation"}
     s = r.summary
     assert 0 < s["pulleys"]["driven"]["slip"] < 0.015
     assert s["spans"]["driver-driven"]["tension_mean"] == pytest.approx(780, rel=0.06)

@@ -12,7 +12,9 @@ summary and, past its limit, a diagnostic (codes of :data:`drivedyn.diagnostics.
   normal force against the capstan value T l / r, from the frames inside the window.
 - window-not-steady: drift of pulley speeds and span tensions inside the window (window.drift).
 - energy-residual: |work in - dissipated - energy change| over the window against the work in.
-- coarse-discretisation: chordal speed error l^2 / (12 r^2) of each pulley.
+- coarse-discretisation: fewer segments than "auto" takes (the error is then not known: the
+  summary's discretisation.estimate), a wrap holding fewer than WRAP_LIMIT segments, or a chordal
+  speed error l^2 / (12 r^2) above CHORDAL_LIMIT.
 - at-rest-drift: a drive with no excitation whose pulleys move (it starts at static equilibrium).
 """
 from __future__ import annotations
@@ -360,6 +362,19 @@ def _coarse(result, model, sysm):
     for j, p in enumerate(model.pulleys):
         result.summary["pulleys"][p.name]["chordal_error"] = float(err[j])
     disc = result.summary.get("discretisation", {})
+    est = disc.get("estimate", {})
+    n_auto = est.get("auto_segments")
+    if est.get("below_auto") and not model.simulation.resolution_check:
+        # below the "auto" count the error is not known (resolution.rule_estimate); with the
+        # resolution check on, it is measured and unconverged-resolution judges it instead
+        from .resolution import RULE_ACCURACY
+
+        slip, tension = RULE_ACCURACY[model.friction.law]
+        result.diagnose("coarse-discretisation", f"{sysm.n} segments against the {n_auto} that belt.segments = "
+                        f"\"auto\" takes: the discretisation error of slip and span tension is not known (at "
+                        f"\"auto\" within about {100 * slip:.3f} points and {100 * tension:.1f} %); use \"auto\", or "
+                        "simulation.resolution_check = true to measure it", "discretisation.segments",
+                        sysm.n, n_auto, "")
     if (disc.get("segments_on_shortest_wrap") or math.inf) < WRAP_LIMIT:
         from .resolution import auto_segments
 

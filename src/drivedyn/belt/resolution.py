@@ -190,7 +190,7 @@ def rule_estimate(model, n: int, n_auto) -> dict:
         return {"method": "none", "unavailable": f"\"auto\" would take more than {MAX_AUTO} segments: the error "
                                                  "is not known; set simulation.resolution_check = true"}
     if n < n_auto:
-        return {"method": "none: fewer segments than \"auto\" takes", "auto_segments": n_auto,
+        return {"method": "none: fewer segments than \"auto\" takes", "auto_segments": n_auto, "below_auto": True,
                 "unavailable": f"{n} segments against the {n_auto} of \"auto\": the error is not known; set "
                                "belt.segments = \"auto\" or simulation.resolution_check = true"}
     slip, tension = RULE_ACCURACY[law]
