@@ -47,7 +47,7 @@ def run(radius, **changes):
                 "belt.segments": 450, "friction.radius": radius, "simulation.duration": 0.5,
                 "output.steady_window": [0.35, 0.5], "output.frames": 16, "output.interval": 5e-3, **changes})
     r = drivedyn.run(m)
-    # no diagnostic, but the count's below "auto"'s 424 when a test sets fewer
+    # no diagnostic but, where a test sets fewer segments than the 424 of "auto", the one saying so
     assert not [d for d in r.diagnostics if d.quantity != "discretisation.segments"], [d.text for d in r.diagnostics]
     return m, r
 
