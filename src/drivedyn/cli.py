@@ -107,7 +107,9 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         if painters is not None:
             stack.enter_context(painters)
         with (contextlib.nullcontext() if quiet else _progress_bar(console)) as bar:
-            task = None if quiet else bar.add_task(f"{m.kind}", total=1.0, info="")
+            # until the first report: numba compiles the kernels on their first use only
+            task = None if quiet else bar.add_task(f"{m.kind}", total=1.0,
+                                                   info="preparing (a first run compiles the kernels: 1-3 minutes)")
 
             def progress(frac, info=""):
                 bar.update(task, completed=min(max(frac, 0.0), 1.0), info=info)

@@ -277,8 +277,6 @@ def run(model, progress=None) -> Result:
         from .rotational import run as run_rotational
 
         return (run_periodic if model.simulation.runup == "periodic" else run_rotational)(model, progress)
-    if progress is not None:      # numba compiles the kernels on their first use only
-        progress(0.0, "building (a first run compiles the kernels: 1-3 minutes)")
     sysm = build(model)
     sim = model.simulation
     if sim.step is None:     # the step the model sets (a given one was checked with the model)
