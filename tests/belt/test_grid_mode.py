@@ -12,15 +12,15 @@ import drivedyn
 from drivedyn.belt import _kernels as K
 from drivedyn.belt import system
 
+from .conftest import seed_5pk
+
 
 def _ring(monkeypatch, zeta):
     """The 5PK drive at rest (150 segments, no gravity, semi-implicit, unscaled rotation): the segments of the
     middle of its upper span given alternating rotation rates of +-50 rad/s; their alternating
     component over 12 periods, fitted by A exp(-z w0 t) cos(w t + p). Returns (w0, w, z)."""
     monkeypatch.setattr(system, "GRID_ZETA", zeta)
-    m = drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")),
-                         {"simulation.rotation_scaling": False, "gravity": 0.0, "belt.segments": 150,
-                          "simulation.method": "semi-implicit", "output.segments": [0]})
+    m = seed_5pk(**{"simulation.rotation_scaling": False, "gravity": 0.0})
     sysm = system.build(m)
     B, C, P, A = sysm.groups
     S = system.new_state(sysm)

@@ -9,12 +9,7 @@ import pytest
 import drivedyn
 from drivedyn.belt import _chain, _kernels as K, system
 
-
-def five_pk():
-    """The seed's 5PK drive as the figures measured here were taken: at the seed's 150 segments, the
-    semi-implicit scheme unless a test sets another."""
-    return drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")),
-                            {"belt.segments": 150, "simulation.method": "semi-implicit", "output.segments": [107]})
+from .conftest import seed_5pk
 
 
 def _random_chain(n, seed):
@@ -60,7 +55,7 @@ def test_small_space_active_set_matches_refactoring_at_each_change():
     give the steps that refactoring the chain matrix at every change gives (no column cache). Both
     refactor at each step's start, so that they share the factored directions; 5PK during the
     torque ramp, where the slip arcs grow and segments let go and stick every step."""
-    m = drivedyn.replace(five_pk(), {"simulation.method": "implicit"})
+    m = drivedyn.replace(seed_5pk(), {"simulation.method": "implicit"})
     sysm = system.build(m)
     B, C, P, A = sysm.groups
     h = sysm.step
@@ -90,7 +85,7 @@ def test_small_space_active_set_matches_refactoring_at_each_change():
 def test_at_rest_and_stable_beyond_the_explicit_limit():
     """At 10x the semi-implicit stability limit a kicked drive at rest neither gains energy nor
     drifts: the chain no longer limits the step."""
-    d = drivedyn.model.to_dict(five_pk())
+    d = drivedyn.model.to_dict(seed_5pk())
     d["pulleys"][0]["torque_time"] = [[0, 0], [1, 0]]
     d["pulleys"][1]["torque_speed"] = [[-1, 0], [1, 0]]
     ref = system.build(drivedyn.model.from_dict(d))
@@ -115,7 +110,7 @@ def test_at_rest_and_stable_beyond_the_explicit_limit():
 
 
 def _pair(name, **over):
-    base = drivedyn.replace(five_pk() if name == "belt-5pk" else drivedyn.load(drivedyn.example_path(name)),
+    base = drivedyn.replace(seed_5pk() if name == "belt-5pk" else drivedyn.load(drivedyn.example_path(name)),
                             {"simulation.duration": 1.0, "output.steady_window": [0.7, 1.0], **over})
     ref = drivedyn.run(drivedyn.replace(base, {"simulation.method": "semi-implicit"})).summary
     new = drivedyn.run(drivedyn.replace(base, {"simulation.method": "implicit"})).summary
@@ -171,7 +166,7 @@ def test_elastic_plastic_law_agrees_with_semi_implicit():
 def test_converges_in_the_step():
     """Halving the default step (34.5 us) changes the span tensions by < 0.1 % and the slip by
     < 0.01 points (measured: 806.20 / 255.26 N, 0.4978 % against 806.36 / 255.41 N, 0.4996 %)."""
-    base = drivedyn.replace(five_pk(),
+    base = drivedyn.replace(seed_5pk(),
                             {"simulation.duration": 1.0, "output.steady_window": [0.7, 1.0],
                              "simulation.method": "implicit"})
     a = drivedyn.run(base).summary
@@ -307,7 +302,7 @@ def test_gross_slip_halves_the_step_and_warns_like_the_reference():
     at 0.4 s -82.6 against -77.9 rad/s, at 0.6 s -134 against -120). The runaway is faster
     because the scheme's spin limiter (_kernels.SPIN_LIMIT) damps the free spans' segment spin that
     gross slip excites (without it: -78.8 at 0.4 s); gross slip is outside the model's valid regime."""
-    d = drivedyn.model.to_dict(five_pk())
+    d = drivedyn.model.to_dict(seed_5pk())
     d["belt"]["pretension"] = 200.0
     d["pulleys"][0]["torque_time"] = [[0, 0], [0.3, -20.0]]
     d["pulleys"][1]["torque_speed"] = [["-4 rev/s", "20 N*m"], ["4 rev/s", "-20 N*m"]]
@@ -332,7 +327,7 @@ def test_fast_belt_takes_the_accuracy_rule():
     than 1 % of the work, and the run says so: step-too-large, energy-residual. (Before the chain's grid-scale
     rotation mode was damped, system.GRID_ZETA, the same run at 34.5 us read about twice the
     reference's tensions, and 17 us read 3.5-4.9 % high.)"""
-    d = drivedyn.model.to_dict(five_pk())
+    d = drivedyn.model.to_dict(seed_5pk())
     d["pulleys"][0].pop("torque_time")
     d["pulleys"][0]["speed_time"] = [[0, 0], [0.25, -800.0], [1, -800.0]]
     d["pulleys"][1].pop("torque_speed")
@@ -367,7 +362,7 @@ def test_auto_picks_the_implicit_scheme_where_it_integrates_the_drive():
     assert integrator(drivedyn.replace(fead, {"friction.law": "threlfall"})) == "semi-implicit"
     assert integrator(drivedyn.replace(fead, {"simulation.rotation_scaling": True})) == "semi-implicit"
     assert integrator(drivedyn.load(drivedyn.example_path("belt-5pk"))) == "implicit"
-    m = drivedyn.replace(five_pk(), {"simulation.method": "auto"})
+    m = drivedyn.replace(seed_5pk(), {"simulation.method": "auto"})
     assert drivedyn.run(drivedyn.replace(m, {"simulation.duration": 0.01})).summary["solver"]["method"] == "implicit"
 
 

@@ -17,6 +17,8 @@ from drivedyn.belt import _kernels as K
 from drivedyn.belt.simulate import _Recorder  # noqa: F401  (internal, used for the energy test)
 from drivedyn.belt.system import build, new_state, new_work
 
+from .conftest import seed_5pk
+
 R = 0.027
 
 
@@ -213,9 +215,7 @@ def test_seed_5pk_case():
     at -25.1 rad/s, see README), at the seed's 150 segments; the example's "auto" count (424) reads
     279 / 834 N, which steady creep theory confirms (tests/belt/test_steady.py), and the run at 150
     says its error is not known."""
-    m = drivedyn.replace(drivedyn.load(drivedyn.example_path("belt-5pk")),
-                         {"belt.segments": 150, "simulation.method": "semi-implicit", "output.segments": [107]})
-    r = drivedyn.run(m)
+    r = drivedyn.run(seed_5pk())
     assert {d.code for d in r.diagnostics} == {"coarse-discretisation"}
     s = r.summary
     assert 0 < s["pulleys"]["driven"]["slip"] < 0.015

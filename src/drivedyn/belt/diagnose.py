@@ -364,7 +364,7 @@ def _coarse(result, model, sysm):
     disc = result.summary.get("discretisation", {})
     est = disc.get("estimate", {})
     n_auto = est.get("auto_segments")
-    if est.get("below_auto") and not model.simulation.resolution_check:
+    if n_auto is not None and sysm.n < n_auto and not model.simulation.resolution_check:
         # below the "auto" count the error is not known (resolution.rule_estimate); with the
         # resolution check on, it is measured and unconverged-resolution judges it instead
         from .resolution import RULE_ACCURACY

@@ -152,9 +152,12 @@ def _grid_damping(model, sysm) -> dict:
     whether it or the belt's own bending damping is in use."""
     from .system import GRID_ZETA, grid_damping
 
-    c = grid_damping(model.belt, sysm.init)
-    own = model.belt.bending_damping / sysm.init.seg_length
-    return {"bending_damper": float(c), "damping_ratio": GRID_ZETA, "in_use": bool(c > own),
+    # what the built system uses (system._build: the larger of the two, at the placement's
+    # tension; sysm.init.tension is the settled one)
+    used = float(sysm.belt.bb[0])
+    in_use = used > model.belt.bending_damping / sysm.init.seg_length
+    return {"bending_damper": used if in_use else float(grid_damping(model.belt, sysm.init)),
+            "damping_ratio": GRID_ZETA, "in_use": bool(in_use),
             "note": "damps neighbouring segments turning against each other (a mode of the segment chain, not "
                     "of the belt); its loss, counted under bending_damping, falls as the segment length squared"}
 
@@ -190,7 +193,7 @@ def rule_estimate(model, n: int, n_auto) -> dict:
         return {"method": "none", "unavailable": f"\"auto\" would take more than {MAX_AUTO} segments: the error "
                                                  "is not known; set simulation.resolution_check = true"}
     if n < n_auto:
-        return {"method": "none: fewer segments than \"auto\" takes", "auto_segments": n_auto, "below_auto": True,
+        return {"method": "none: fewer segments than \"auto\" takes", "auto_segments": n_auto,
                 "unavailable": f"{n} segments against the {n_auto} of \"auto\": the error is not known; set "
                                "belt.segments = \"auto\" or simulation.resolution_check = true"}
     slip, tension = RULE_ACCURACY[law]
