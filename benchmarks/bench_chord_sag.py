@@ -13,8 +13,8 @@ import argparse
 import numpy as np
 
 import drivedyn
-from drivedyn.belt.layout import compute_layout
-from drivedyn.belt.resolution import auto_segments, chord_sag
+from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.belt.geometry.segment_count import auto_segments, chord_sag
 from drivedyn.model import from_dict, to_dict
 
 

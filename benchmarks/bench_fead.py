@@ -7,7 +7,7 @@ Run: python benchmarks/bench_fead.py   (not a timed test; numbers depend on the 
 import time
 
 import drivedyn
-from drivedyn.belt.system import build
+from drivedyn.belt.segments.system import build
 from drivedyn.model import from_dict, to_dict
 
 

@@ -62,7 +62,7 @@ def main():
                   f"{'arm deg':>6s} {'cont. W':>7s} {'effic.':>6s} status")
         print(row(r), flush=True)
     if a.no_orders:
-        from drivedyn.belt.steady import steady_state
+        from drivedyn.belt.steady.creep import steady_state
         st = steady_state(held(a.rpm, "auto", orders=False))
         print("steady creep theory, slip %:", " / ".join(f"{100 * (1 - abs(st.pulleys[n].speed_ratio)):.3f}" for n in names))
 

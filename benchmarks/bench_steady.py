@@ -20,9 +20,10 @@ def bench(path, repeat=20):
 def bench_fead(repeat=10):
     """The six-pulley FEAD with its tensioner: the static equilibrium of belt and arm (discrete
     placements), then the steady state with the arm at its running balance + margins + modes."""
-    from drivedyn.belt.modes import modes
-    from drivedyn.belt.steady import steady_state
-    from drivedyn.belt.tensioner import equilibrium, running
+    from drivedyn.belt.steady.modes import modes
+    from drivedyn.belt.steady.creep import steady_state
+    from drivedyn.belt.geometry.tensioner import equilibrium
+    from drivedyn.belt.steady.running import running
 
     m = load("examples/fead-runup.toml")
     t = time.perf_counter()

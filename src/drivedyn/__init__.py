@@ -8,7 +8,7 @@ One way in::
     result.summary["pulleys"]["driven"]["slip"]
     result.save("out")
 """
-__version__ = "0.1.0"
+from ._version import __version__  # noqa: E402
 
 from .api import check, example_path, examples, run  # noqa: E402
 from .errors import DrivedynError, DrivedynWarning, ModelError, SolverError  # noqa: E402

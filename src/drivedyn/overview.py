@@ -148,7 +148,7 @@ def _belt(result) -> list[dict]:
     modes = s.get("modes", {}).get("frequencies_hz") or []
     if modes:
         from .belt.criteria import speed_range
-        from .belt.flap import excited_orders
+        from .belt.steady.flap import excited_orders
 
         orders = []
         if "model_toml" in ds.attrs:
@@ -174,8 +174,8 @@ def _installation(s, ds) -> dict | None:
     """check's installation table: what a tension meter should read on each span at rest."""
     if "model_toml" not in ds.attrs:
         return None
-    from .belt.installation import installation_table
-    from .belt.layout import compute_layout
+    from .belt.geometry.installation import installation_table
+    from .belt.geometry.layout import compute_layout
     from .model import loads
 
     model = loads(ds.attrs["model_toml"])

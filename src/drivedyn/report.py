@@ -9,7 +9,7 @@ import base64
 import datetime as _dt
 from pathlib import Path
 
-from . import __version__
+from ._version import __version__
 from .results import number_text
 
 #: what each standard plot shows (file name -> caption); a plot not listed gets its file name

@@ -10,9 +10,10 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.belt import equilibrium, system
-from drivedyn.belt.diagnose import at_rest_limit
-from drivedyn.belt.equilibrium import FORCE_TOL
+from drivedyn.belt.segments import equilibrium
+from drivedyn.belt.segments import system
+from drivedyn.belt.segments.diagnose import at_rest_limit
+from drivedyn.belt.segments.equilibrium import FORCE_TOL
 
 
 def _kinetic_max(r, model):

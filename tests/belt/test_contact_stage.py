@@ -9,8 +9,9 @@ import pytest
 from numba import njit
 
 import drivedyn
-from drivedyn.belt import _kernels as K
-from drivedyn.belt.system import build, new_state, new_work
+from drivedyn.belt.segments import _kernels as K
+from drivedyn.belt.segments.state import new_state, new_work
+from drivedyn.belt.segments.system import build
 
 
 @njit(error_model="numpy")

@@ -5,7 +5,7 @@ import math
 import pytest
 
 import drivedyn
-from drivedyn.belt.diagnose import CHORDAL_LIMIT, chordal_error
+from drivedyn.belt.segments.diagnose import CHORDAL_LIMIT, chordal_error
 from drivedyn.belt.statics import capstan_torque
 
 # examples/study-pretension.toml: its base overrides, and the load-torque parameter's three paths.

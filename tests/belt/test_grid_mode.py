@@ -9,8 +9,8 @@ import pytest
 from scipy.optimize import curve_fit
 
 import drivedyn
-from drivedyn.belt import _kernels as K
-from drivedyn.belt import system
+from drivedyn.belt.segments import _kernels as K
+from drivedyn.belt.segments import system
 
 from .conftest import seed_5pk
 

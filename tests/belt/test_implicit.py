@@ -7,7 +7,10 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.belt import _chain, _kernels as K, system
+from drivedyn.belt.segments import _chain
+from drivedyn.belt.segments import _kernels as K
+from drivedyn.belt.dynamics import _bodies as BK
+from drivedyn.belt.segments import system
 
 from .conftest import seed_5pk
 
@@ -64,8 +67,8 @@ def test_small_space_active_set_matches_refactoring_at_each_change():
     t0 = K.step_chunk(int(0.2 / h), 0.0, h, B, C, P, A, S0, W0, True)
     runs = []
     for cache in (True, False):
-        S = K.State(*[a.copy() for a in S0])
-        W = K.Work(*[a.copy() for a in W0])
+        S = BK.State(*[a.copy() for a in S0])
+        W = BK.Work(*[a.copy() for a in W0])
         if not cache:
             W = W._replace(lin_zc=np.zeros((0, sysm.n, 3)))
         c0 = (W.lin_cnt.copy(), W.lin_stat.copy())

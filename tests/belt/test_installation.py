@@ -4,8 +4,8 @@ import math
 import pytest
 
 import drivedyn
-from drivedyn.belt.installation import installation_table, table_lines, tension_from_span_frequency
-from drivedyn.belt.layout import compute_layout
+from drivedyn.belt.geometry.installation import installation_table, table_lines, tension_from_span_frequency
+from drivedyn.belt.geometry.layout import compute_layout
 
 
 @pytest.fixture(scope="module")

@@ -4,8 +4,9 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.belt import _kernels as K
-from drivedyn.belt.system import build, new_state, new_work
+from drivedyn.belt.segments import _kernels as K
+from drivedyn.belt.segments.state import new_state, new_work
+from drivedyn.belt.segments.system import build
 
 
 def reference_joint_forces(x, y, phi, vx, vy, w, l, k, b, kb, bb, turn):

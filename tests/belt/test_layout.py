@@ -8,8 +8,8 @@ from hypothesis import strategies as st
 
 import drivedyn
 from drivedyn.errors import ModelError
-from drivedyn.belt.initial import initial_state
-from drivedyn.belt.layout import compute_layout, layout_from
+from drivedyn.belt.geometry.placement import initial_state
+from drivedyn.belt.geometry.layout import compute_layout, layout_from
 from drivedyn.belt.statics import capstan_torque
 
 
@@ -82,7 +82,7 @@ def _off_path(layout, p):
 
 
 def _check_walk(layout, n, l, g, closes):
-    from drivedyn.belt.initial import _Path, _walk
+    from drivedyn.belt.geometry.placement import _Path, _walk
 
     path = _Path(layout)
     S, E, s_end = _walk(path, n, l, g)

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.belt.layout import compute_layout
-from drivedyn.belt.steady import drive_of, tensions
-from drivedyn.belt.system import build, settled_tension
+from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.belt.steady.creep import drive_of, tensions
+from drivedyn.belt.segments.system import build, settled_tension
 
 
 def _5pk(**over):

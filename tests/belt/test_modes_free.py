@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.belt.layout import compute_layout
-from drivedyn.belt.modes import modes
+from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.belt.steady.modes import modes
 
 
 def test_free_response_peaks_at_the_linear_mode():

@@ -20,9 +20,9 @@ from scipy.linalg import eigh
 from scipy.optimize import brentq
 
 import drivedyn
-from drivedyn.belt.layout import compute_layout
-from drivedyn.belt.modes import _stretch_derivatives, drive_linear_model, drive_modes, modes
-from drivedyn.belt.tensioner import equilibrium, with_centres
+from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.belt.steady.modes import _stretch_derivatives, drive_linear_model, drive_modes, modes
+from drivedyn.belt.geometry.tensioner import equilibrium, with_centres
 from drivedyn.model import from_dict, to_dict
 
 

@@ -13,9 +13,10 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.belt import _kernels as K
-from drivedyn.belt.simulate import _Recorder  # noqa: F401  (internal, used for the energy test)
-from drivedyn.belt.system import build, new_state, new_work
+from drivedyn.belt.segments import _kernels as K
+from drivedyn.belt.segments.simulate import _Recorder  # noqa: F401  (internal, used for the energy test)
+from drivedyn.belt.segments.state import new_state, new_work
+from drivedyn.belt.segments.system import build
 
 from .conftest import seed_5pk
 

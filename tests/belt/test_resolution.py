@@ -7,8 +7,8 @@ import math
 import pytest
 
 import drivedyn
-from drivedyn.belt.resolution import SAG_RATIO, SAG_RATIO_PRESLIDING, WRAP_SEGMENTS, auto_segments, sag_ratio
-from drivedyn.belt.steady import steady_state
+from drivedyn.belt.geometry.segment_count import SAG_RATIO, SAG_RATIO_PRESLIDING, WRAP_SEGMENTS, auto_segments, sag_ratio
+from drivedyn.belt.steady.creep import steady_state
 from drivedyn.model import from_dict, to_dict
 
 
@@ -34,7 +34,7 @@ def test_auto_resolves_the_shortest_wrap_and_the_chordal_landing():
     m = drivedyn.replace(held(3000), {"friction.law": "threlfall"})
     n, why = auto_segments(m)
     assert "chord sag" in why and "alternator" in why
-    from drivedyn.belt.layout import compute_layout
+    from drivedyn.belt.geometry.layout import compute_layout
 
     lay = compute_layout(m)
     l = lay.length / n
@@ -125,7 +125,7 @@ def test_resolution_check_reports_the_change_against_a_coarser_run():
     """simulation.resolution_check runs the drive again at 0.7 x its segments: its estimate is that
     change times 1 / (1 / 0.7 - 1), checked here against a second run made by hand; an estimate over
     its target is a warning naming the quantity (the 5PK drive at 80 segments of 15 mm)."""
-    from drivedyn.belt.resolution import CHECK_RATIO, TENSION_TARGET
+    from drivedyn.belt.segments.resolution import CHECK_RATIO, TENSION_TARGET
 
     base = _five_pk_at_80()
     r = drivedyn.run(drivedyn.replace(base, {"simulation.resolution_check": True}))
@@ -217,7 +217,7 @@ def test_the_overview_prints_the_stated_error():
     assert "the change against 233 segments" in _resolution_note({"discretisation": check})
     assert _resolution_note({"discretisation": {"segments": 80}}) == ""
     # a run-up states that its bins near a resonance carry more than the held-speed figure
-    from drivedyn.belt.resolution import rule_estimate
+    from drivedyn.belt.segments.resolution import rule_estimate
 
     fead = drivedyn.load(drivedyn.example_path("fead-runup"))
     e = rule_estimate(fead, 333, 333)

@@ -63,7 +63,7 @@ def test_two_pulley_mode_from_free_response():
     f_ref = math.sqrt(k / _lumped_inertia(2e-3)) / (2 * math.pi)
     assert f_run == pytest.approx(f_ref, rel=5e-3)
     # and check's modes agree (the same linearisation, the belt's mass consistent there)
-    from drivedyn.belt.modes import drive_modes
+    from drivedyn.belt.steady.modes import drive_modes
 
     assert drive_modes(m).frequencies_hz[0] == pytest.approx(f_ref, rel=0.02)
 
@@ -177,7 +177,7 @@ def test_slip_with_the_belts_depth_against_creep_theory(radius):
     slip and tensions against steady creep theory (belt/steady.py) for either friction.radius; with
     "centre" each pulley turns with the belt on r - p(T_in), a larger slip. Measured: slip 0.13271 /
     0.19170 % against 0.13271 / 0.19120 %."""
-    from drivedyn.belt.steady import steady_state
+    from drivedyn.belt.steady.creep import steady_state
 
     m = drivedyn.replace(two_pulley(duration=0.6, rpm=600, torque=-10.0, damping=0.2),
                          {"contact.stiffness_linear": 8.125e7, "contact.stiffness_quadratic": 3.782e11,
@@ -268,7 +268,7 @@ def test_modes_with_a_tensioner_from_a_free_response(law):
                                          m.pulleys[2]],
                              "output": m.output.model_copy(update={"interval": 2e-5})})
     r = drivedyn.run(m)
-    from drivedyn.belt.modes import drive_modes
+    from drivedyn.belt.steady.modes import drive_modes
 
     f_check = drive_modes(m).frequencies_hz
     t = r.ds["time"].values
@@ -312,7 +312,7 @@ def test_periodic_runup_against_long_time_integration():
     assert max(ru["periodic_residual"]) < 1e-4
     for k in (2, 8, 14):
         rpm = ru["speed_rpm"][k]
-        from drivedyn.belt.periodic import SAMPLES_PER_REV
+        from drivedyn.belt.rotational.periodic import SAMPLES_PER_REV
 
         # sampled alike, its window whole revolutions (slip is a mean over the speeds' orders)
         held = drivedyn.run(drivedyn.replace(_held(rpm, 3.0), {**no_harm, "output.interval": 60 / rpm / SAMPLES_PER_REV,

@@ -10,7 +10,7 @@ import pytest
 import xarray as xr
 
 import drivedyn
-from drivedyn.belt.runup import add_runup, mean_angle
+from drivedyn.belt.dynamics.runup import add_runup, mean_angle
 from drivedyn.model import from_dict, to_dict
 
 

@@ -9,10 +9,10 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 import drivedyn
-from drivedyn.belt.layout import compute_layout, layout_from
-from drivedyn.belt.modes import modes
+from drivedyn.belt.geometry.layout import compute_layout, layout_from
+from drivedyn.belt.steady.modes import modes
 from drivedyn.belt.statics import check_data, check_json
-from drivedyn.belt.steady import steady_state
+from drivedyn.belt.steady.creep import steady_state
 from drivedyn.model import load
 
 from .conftest import make

@@ -9,9 +9,11 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.belt import _kernels as K
-from drivedyn.belt.layout import compute_layout
-from drivedyn.belt.system import build, new_state, new_work
+from drivedyn.belt.segments import _kernels as K
+from drivedyn.belt.dynamics import _bodies as B
+from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.belt.segments.state import new_state, new_work
+from drivedyn.belt.segments.system import build
 from drivedyn.errors import ModelError
 from drivedyn.model import from_dict, to_dict
 
@@ -119,7 +121,7 @@ def test_arm_free_oscillation_against_linear_model():
     A = sysm.arms
 
     def path(q):
-        c = K.arm_centre(A, 0, q)[:2]
+        c = B.arm_centre(A, 0, q)[:2]
         pulleys = [p.model_copy(update={"center": c}) if k == j else p for k, p in enumerate(m.pulleys)]
         return compute_layout(m.model_copy(update={"pulleys": pulleys}))
 
@@ -138,7 +140,7 @@ def test_arm_free_oscillation_against_linear_model():
     # free idler turns, the wrap on it does not stretch (L1 + L2 in place of L_s). The run, kicked
     # by 0.02 rad/s, slides at micro-slip speeds inside the friction law's regularisation, so its
     # wrap stretches too: the two bound the mode (5 % apart here)
-    from drivedyn.belt.modes import modes
+    from drivedyn.belt.steady.modes import modes
     md = modes(m)
     f_mode = min(md.frequencies_hz, key=lambda f: abs(f - f_sim))
     k_held = 20.0 + m.belt.axial_stiffness * g * g / (L_s - lay.radii[j] * lay.wrap[j]) + T * Lpp
@@ -219,7 +221,8 @@ def test_running_equilibrium_of_a_fixed_force_slider():
     # pulley's bisector holds the spans beside it at T - m v^2 = F / (2 sin(wrap / 2)), whatever
     # the loads; at rest it holds them at F / (2 sin(wrap / 2)) too (closed form, checked here)
     from drivedyn.belt.statics import check_data
-    from drivedyn.belt.tensioner import equilibrium, running
+    from drivedyn.belt.geometry.tensioner import equilibrium
+    from drivedyn.belt.steady.running import running
 
     d = to_dict(drivedyn.load(drivedyn.example_path("belt-accessory-loaded")))
     lay = compute_layout(from_dict(d))

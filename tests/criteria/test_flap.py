@@ -11,8 +11,8 @@ import pytest
 import xarray as xr
 
 import drivedyn
-from drivedyn.belt import flap as flapmod
-from drivedyn.belt.layout import compute_layout
+from drivedyn.belt.steady import flap as flapmod
+from drivedyn.belt.geometry.layout import compute_layout
 
 
 def _model(EI=1e-12):

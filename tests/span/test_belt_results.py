@@ -3,7 +3,7 @@ import pytest
 import xarray as xr
 
 import drivedyn
-from drivedyn.belt.layout import compute_layout
+from drivedyn.belt.geometry.layout import compute_layout
 from drivedyn.model import from_dict
 
 

@@ -107,7 +107,7 @@ def test_model_round_trip(name):
 
 def test_span_from_belt_drive_model(span_model):
     """The span length comes from the belt-drive layout (5PK seed: 515 mm between equal pulleys)."""
-    pytest.importorskip("drivedyn.belt.layout")
+    pytest.importorskip("drivedyn.belt.geometry.layout")
     m = span_model(span__length=None, span__belt_model="belt-5pk.toml", span__span_name="driver-driven",
                    span__mass_per_length=None, span__bending_stiffness=None, operation__pretension=None)
     r = drivedyn.run(m.model_copy(update={"chart": m.chart.model_copy(update={"floquet": False})}))
@@ -200,7 +200,7 @@ def test_diverged_operating_point_is_reported_not_an_error(span_model):
 
 
 def test_belt_model_path_relative_to_the_model_file(tmp_path):
-    pytest.importorskip("drivedyn.belt.layout")
+    pytest.importorskip("drivedyn.belt.geometry.layout")
     (tmp_path / "sub").mkdir()
     (tmp_path / "sub" / "mybelt.toml").write_text(drivedyn.example_path("belt-5pk").read_text())
     f = tmp_path / "sub" / "span.toml"

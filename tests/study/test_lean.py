@@ -4,7 +4,7 @@ import json
 
 import drivedyn
 from drivedyn.analyses import analysis
-from drivedyn.belt.periodic import lean_keys
+from drivedyn.belt.rotational.periodic import lean_keys
 from drivedyn.study.cases import TOKEN, case_keys, resolve, run_case
 from drivedyn.study.design import Design, overrides_of
 from drivedyn.study.spec import load_study

@@ -17,29 +17,9 @@ import math
 
 import numpy as np
 
-from typing import Annotated
-
-from pydantic import Field
-
 from ..criteria import Criterion
-from ..model import Spec, quantity
 
 RPM = 30 / math.pi
-
-
-class Criteria(Spec):
-    """Limits the verdict judges a belt run against (every field optional)."""
-
-    slip_max: quantity("1", gt=0) = 0.02                          # largest slip of any pulley (fraction)
-    slip_margin_min: quantity("1", ge=0) = 1.3                    # smallest slip margin of a pulley that carries torque
-    span_tension_min: quantity("N", ge=0) | None = None   # smallest T - m v^2; default 0.1 x belt.pretension
-    stop_clearance_min: quantity("1", ge=0, lt=0.5) = 0.1                 # free travel kept at each stop, fraction of stop-to-stop
-    hub_load_max: quantity("N", gt=0) | None = None       # bearing limit on the peak hub load (not judged unless given)
-    flap_crossings_max: Annotated[int, Field(ge=0)] = 0                     # crossings of a span's first flap mode by an excited order
-    flap_speed_margin: quantity("1", ge=0, lt=1) = 0.1                  # the run's speed range widened by this fraction each way
-    flap_orders: list[float] = []                   # orders of the crank to judge besides its declared speed orders
-    flap_amplitude_min: quantity("rad/s", ge=0) = 0.0     # declared speed orders weaker than this are not judged
-    resonance_crossings_max: Annotated[int, Field(ge=0)] | None = None      # crossings of rotational modes (listed; judged only if given)
 
 
 def _window(ds):
@@ -70,8 +50,8 @@ def add_flap_and_modes(model, result) -> None:
     """summary["flap"] (span flap frequencies, belt/flap.py), summary["modes"] (the rotational
     modes, belt/modes.py) and ds["flap_frequency"] for the Campbell diagram."""
     from ..results import variable
-    from . import flap as flapmod
-    from .modes import drive_modes
+    from .steady import flap as flapmod
+    from .steady.modes import drive_modes
 
     s, ds = result.summary, result.ds
     if "flap" not in s:
@@ -105,7 +85,7 @@ def add_flap_and_modes(model, result) -> None:
 
 def evaluate(model, result):
     """([Criterion], {name: why not judged}) for a belt run."""
-    from . import flap as flapmod
+    from .steady import flap as flapmod
 
     c = model.criteria
     add_flap_and_modes(model, result)

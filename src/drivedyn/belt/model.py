@@ -12,16 +12,18 @@ map onto them as documented in ``examples/belt-5pk.toml``:
 """
 from __future__ import annotations
 
-from typing import Literal, Optional, Union
+from typing import Annotated, Literal, Optional, Union
 
-from pydantic import field_validator, model_validator
+from pydantic import Field, field_validator, model_validator
 
 from ..model import Spec, check_name, quantity, table_rows
-from .criteria import Criteria
 
 Length = quantity("m")
 Time = quantity("s")
 
+
+#: "auto" never picks more
+MAX_AUTO = 2000
 
 class Harmonic(Spec):
     """A torque component amplitude * sin(order * theta + phase), theta the pulley's own angle."""
@@ -393,6 +395,21 @@ class Output(Spec):
         return self
 
 
+class Criteria(Spec):
+    """Limits the verdict judges a belt run against (every field optional)."""
+
+    slip_max: quantity("1", gt=0) = 0.02                          # largest slip of any pulley (fraction)
+    slip_margin_min: quantity("1", ge=0) = 1.3                    # smallest slip margin of a pulley that carries torque
+    span_tension_min: quantity("N", ge=0) | None = None   # smallest T - m v^2; default 0.1 x belt.pretension
+    stop_clearance_min: quantity("1", ge=0, lt=0.5) = 0.1                 # free travel kept at each stop, fraction of stop-to-stop
+    hub_load_max: quantity("N", gt=0) | None = None       # bearing limit on the peak hub load (not judged unless given)
+    flap_crossings_max: Annotated[int, Field(ge=0)] = 0                     # crossings of a span's first flap mode by an excited order
+    flap_speed_margin: quantity("1", ge=0, lt=1) = 0.1                  # the run's speed range widened by this fraction each way
+    flap_orders: list[float] = []                   # orders of the crank to judge besides its declared speed orders
+    flap_amplitude_min: quantity("rad/s", ge=0) = 0.0     # declared speed orders weaker than this are not judged
+    resonance_crossings_max: Annotated[int, Field(ge=0)] | None = None      # crossings of rotational modes (listed; judged only if given)
+
+
 class Model(Spec):
     """A belt drive: belt, pulleys in belt order, contact, friction, simulation and output."""
 
@@ -457,7 +474,6 @@ class Model(Spec):
         # Dataset, its derived variables and the netCDF writer hold copies
         per_sample = 8 * (8 * nk + 2 * na + 2 * nk + 3 * len(out.segments) + 9)
         frames = min(out.frames, samples)
-        from .resolution import MAX_AUTO
 
         segments = MAX_AUTO if self.belt.segments == "auto" else self.belt.segments    # "auto": its upper bound
         nbytes = 3 * (samples * per_sample + frames * 5 * 8 * segments)
@@ -487,7 +503,7 @@ class Model(Spec):
 def integrator(model) -> str:
     """The belt integration scheme a run uses: ``simulation.method``, where "auto" (the default)
     is the implicit scheme (its step set by the contact's normal mode and the turn per step,
-    simulate.TURN_PER_STEP, not by the chain's stiff modes), except for a run that asks for
+    system.TURN_PER_STEP, not by the chain's stiff modes), except for a run that asks for
     rotation scaling (a semi-implicit device) and for a drive with tensioners, clutches or speed
     orders under Threlfall's law: its viscous anchors change between sticking and sliding at
     nearly every step, so there the implicit scheme is slower than the semi-implicit one.

@@ -402,7 +402,7 @@ def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), r
         for f in frequencies_hz:   # resonance: order k at the speed where k n / 60 = f
             if 60 * f / k <= top_rpm:
                 ax.plot(60 * f / k, f, "o", color="C3", ms=5)
-    from .flap import crossings
+    from .steady.flap import crossings
 
     for i, (span, (rpm, f)) in enumerate(flap.items()):
         rpm, f = np.asarray(rpm), np.asarray(f)
@@ -466,10 +466,10 @@ def _figures(ds, driver):
 
     def campbell():   # the drive's rotational modes (modes.py) against the driver's orders
         from ..model import loads
-        from .modes import drive_modes
+        from .steady.modes import drive_modes
 
         from .criteria import speed_range
-        from .flap import excited_orders
+        from .steady.flap import excited_orders
 
         model = loads(ds.attrs["model_toml"])
         md = drive_modes(model, tensions=_mean_tensions(ds))
@@ -507,7 +507,7 @@ def _figures(ds, driver):
         tight = str(ds["span"].values[int(np.argmax(ds["runup_tension_mean"].values.mean(axis=0)))])
         try:
             from ..model import loads
-            from .modes import drive_modes
+            from .steady.modes import drive_modes
 
             fm = drive_modes(loads(ds.attrs["model_toml"]), tensions=_mean_tensions(ds)).frequencies_hz
         except Exception:

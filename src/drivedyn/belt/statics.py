@@ -19,14 +19,14 @@ def capstan_torque(tension, radius, wrap, mu):
 def check_data(model, sysm=None) -> dict:
     """What ``check`` knows, as plain data (``drivedyn check --json``): the steady running state of
     creep theory (steady.py), the slip margins and the rotational modes (modes.py)."""
-    from .installation import installation_table
-    from .layout import compute_layout
-    from .modes import modes
-    from .steady import steady_state
+    from .geometry.installation import installation_table
+    from .geometry.layout import compute_layout
+    from .steady.modes import modes
+    from .steady.creep import steady_state
 
     rest = sysm.rest if sysm is not None else None
     if sysm is None:
-        from . import tensioner
+        from .geometry import tensioner
 
         if tensioner.indices(model):
             rest = tensioner.equilibrium(model)
@@ -35,7 +35,7 @@ def check_data(model, sysm=None) -> dict:
         # with tensioners: the drive as they hold it at rest, its tension that of the installed
         # length (the discrete chain's; creep theory's continuum length follows from it); under
         # the running loads the tensioners move to where their springs balance the running tensions
-        from .tensioner import running
+        from .steady.running import running
 
         belt = rest.model.belt.model_copy(update={"pretension": float(rest.tension), "length": None})
         drawn, model = model, rest.model.model_copy(update={"belt": belt})
@@ -47,7 +47,7 @@ def check_data(model, sysm=None) -> dict:
     elif model.belt.pretension is not None:
         t0 = model.belt.pretension
     else:   # installed by length: the tension of that length at rest
-        from .steady import drive_of, tensions
+        from .steady.creep import drive_of, tensions
 
         t0 = float(np.mean(tensions(drive_of(model, lay), np.zeros(len(model.pulleys)), 0.0, True)))
     inst = installation_table(model, t0, lay)
@@ -85,7 +85,8 @@ def check_data(model, sysm=None) -> dict:
 
 
 def _tensioner_data(model, rest, run=None) -> dict:
-    from .tensioner import _spring, arms_record, indices
+    from .dynamics.bodies import arms_record
+    from .geometry.tensioner import spring_load, indices
 
     A = arms_record(model)
     out = {}
@@ -100,7 +101,7 @@ def _tensioner_data(model, rest, run=None) -> dict:
         if run is not None:     # under the running loads (creep theory)
             q = float(run[0][a])
             e["running_travel"] = q
-            e["running_spring"] = float(_spring(p.tensioner, q))
+            e["running_spring"] = float(spring_load(p.tensioner, q))
             if p.arm is not None:
                 e["running_arm_angle"] = float(A.psi0[a] + A.sgn[a] * q)
         out[p.name] = e
@@ -131,9 +132,9 @@ def check_json(model) -> str:
 
 
 def report(model) -> str:
-    from .installation import installation_table, table_lines
-    from .resolution import auto_segments
-    from .system import build
+    from .geometry.installation import installation_table, table_lines
+    from .geometry.segment_count import auto_segments
+    from .segments.system import build
 
     sysm = build(model, settle=False)       # the report needs no settled segment positions
     lay = sysm.layout

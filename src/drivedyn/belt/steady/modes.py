@@ -34,8 +34,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.linalg import eigh
 
-from ._rotkernels import wrap_axial_stiffness
-from .layout import Layout, compute_layout
+from ._wraps import wrap_axial_stiffness
+from ..geometry.layout import Layout, compute_layout
 
 #: points per wrap for its mass (the wrap is an arc carried rigidly by its pulley)
 WRAP_POINTS = 24
@@ -67,13 +67,13 @@ def _tensioner_kinematics(model, j, q0):
     """Centre velocity dc/dq and acceleration d^2c/dq^2 of tensioner pulley j (exact: a circle
     about the pivot, or a straight slide), and the spring's rate -d(load)/dq at travel q0 from
     the drawn position."""
-    from .tensioner import _spring
+    from ..geometry.tensioner import spring_load
 
     p = model.pulleys[j]
     t = p.tensioner
     c = np.asarray(p.center, float)
     h = 1e-5 if p.arm is not None else 1e-6
-    rate = -(_spring(t, q0 + h) - _spring(t, q0 - h)) / (2 * h)
+    rate = -(spring_load(t, q0 + h) - spring_load(t, q0 - h)) / (2 * h)
     if p.arm is not None:
         r = c - np.asarray(p.arm.pivot, float)
         return np.array([-r[1], r[0]]), -r, rate, t.inertia          # d/dq of pivot + R(q) r
@@ -105,7 +105,7 @@ def stretch_of(lay0: Layout, lay: Layout) -> np.ndarray:
 def _stretch_derivatives(model, lay, tens, h=None):
     """Gradient g (spans, tensioners) and Hessians H (spans, tensioners, tensioners) of the span
     stretches in the tensioners' travel, by central differences of exact layouts."""
-    from .tensioner import centre, with_centres
+    from ..geometry.tensioner import centre, with_centres
 
     na = len(tens)
     steps = np.array([1e-4 if model.pulleys[j].arm is not None else 5e-6 for j in tens]) if h is None else h
@@ -315,8 +315,8 @@ def drive_linear_model(model, tensions=None, held_as_dofs=False):
 def _as_built(model):
     """The drive with its tensioners at the rest equilibrium (its pretension the rest tension) and
     their travel; the drawn drive and None without tensioners."""
-    from . import tensioner
-    from .rotational import installed_length, rest_state
+    from ..geometry import tensioner
+    from ..geometry.rest import installed_length, rest_state
 
     idx = tensioner.indices(model)
     if not idx:

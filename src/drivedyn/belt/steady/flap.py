@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from ..span.frequencies import moving_beam_frequencies
+from ...span.frequencies import moving_beam_frequencies
 
 RPM = 30 / math.pi
 MODES = 2
@@ -40,7 +40,7 @@ def flap(model, ds, summary) -> dict:
     """Flap frequencies of every span: ``{"speed_rpm": [...], "spans": {name: {"length",
     "f1": [...], "f2": [...]}}, "crank": name}``; one entry per run-up bin, or one for a steady
     run (the steady window's means)."""
-    from .layout import compute_layout
+    from ..geometry.layout import compute_layout
 
     lay = compute_layout(model)
     m = model.belt.mass_per_length

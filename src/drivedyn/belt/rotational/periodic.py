@@ -21,10 +21,10 @@ import time as _time
 
 import numpy as np
 
-from ..errors import ModelError, Stopped, stop_reason
-from . import _rotkernels as RK
-from . import rotational as RT
-from .runup import RPM, crank_index, period_revolutions
+from ...errors import ModelError, Stopped, stop_reason
+from . import _kernels as RK
+from . import simulate as RT
+from ..dynamics.runup import RPM, crank_index, period_revolutions
 
 #: periodicity tolerance: the largest change over one period of a tension (share of the rest
 #: tension), a speed (share of the crank's) or the arm travel (share of 1 mrad)
@@ -227,7 +227,7 @@ def run(model, progress=None, keys=None):
     :func:`lean_keys`): a lean Result whose summary holds only the ``runup`` entry (without the
     order tracking unless asked for) and no Dataset, no criteria and no diagnostics but the
     solve's own; its numbers are the full run's."""
-    from ..errors import SolverError
+    from ...errors import SolverError
 
     sysm, o, k, speeds, residual, iters, table, steps_total, wall, failure = _sweep(model, progress)
     j = crank_index(model)
@@ -281,9 +281,9 @@ def _lean(model, sysm, o, ns, stair, orders):
     """The lean Result: the run-up tables from the recorded samples, as the full run computes them."""
     import xarray as xr
 
-    from ..results import Result, unit_map
-    from .runup import runup_tables
-    from .simulate import UNITS
+    from ...results import Result, unit_map
+    from ..dynamics.runup import runup_tables
+    from ..dynamics.outputs import UNITS
 
     lay, A = sysm.layout, sysm.A
     arms = [a for a in range(A.na) if A.kind[a] == 0]      # arm_travel: the pivoted arms'

@@ -24,7 +24,7 @@ velocity change, though: the contact term kap n n^T would read a segment's turn 
 (kap / h) h v^2 / r, twice the normal force at 23.6 m/s; the kernel takes that part out (its
 ``can``), and the joints' likewise (``_kernels._joint_transport``: a rolling chain's G dv is
 -h omega^2 times the chord, not 0), reads a stuck segment's slip along the chord of its step, and
-limits the turn per step (simulate.TURN_PER_STEP).
+limits the turn per step (system.TURN_PER_STEP).
 
 A is symmetric positive definite; segment i couples to i-1 and i+1 through joints i and i+1,
 and joint 0 closes the loop (n-1, 0). It is factored by block Gaussian elimination with the last

@@ -18,7 +18,9 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from . import _kernels as K
+
+from ..dynamics import _bodies as B
+from ..steady._wraps import sunk_depth, wrap_axial_stiffness
 
 
 class Rot(NamedTuple):
@@ -59,19 +61,11 @@ GL_W = 0.5 * _WG
 
 
 @njit(cache=True, inline="always")
-def _depth(q, c1, c2):
-    """Depth p (m) at which the contact law carries q (N/m): c1 p^2 + c2 p = q (steady.penetration)."""
-    if q <= 0.0:
-        return 0.0
-    return 2.0 * q / (c2 + math.sqrt(c2 * c2 + 4.0 * c1 * q))
-
-
-@njit(cache=True, inline="always")
 def wrap_content(r, theta, t_in, t_out, c, mu, EA, c1, c2):
     """Unstretched belt on a wrap in steady running (steady._wrap_length): an adhesion arc at the
     entry tension, then a slip arc where T - c ~ exp(+-mu phi), the belt at the depth of its
     contact pressure (T - c) / r."""
-    p_in = _depth((t_in - c) / r, c1, c2)
+    p_in = sunk_depth((t_in - c) / r, c1, c2)
     lo = min(t_in, t_out)
     if t_in == t_out or mu <= 0.0 or lo <= c:
         return (r - p_in) * theta / (1.0 + t_in / EA)
@@ -85,7 +79,7 @@ def wrap_content(r, theta, t_in, t_out, c, mu, EA, c1, c2):
     sink = 0.0
     for g in range(GL_N):
         T = c + (t_in - c) * math.exp(k * phi * GL_X[g])
-        sink += GL_W[g] * _depth((T - c) / r, c1, c2) / (1.0 + T / EA)
+        sink += GL_W[g] * sunk_depth((T - c) / r, c1, c2) / (1.0 + T / EA)
     return adh + r * (phi - math.log((1.0 + t_end / EA) / (1.0 + t_in / EA)) / k) / B - sink * phi
 
 
@@ -200,21 +194,6 @@ class RotWork(NamedTuple):
 
 
 @njit(cache=True, inline="always")
-def wrap_axial_stiffness(EA, c1, c2, q, r):
-    """Axial stiffness (N) of the belt on a wrap of radius r that it presses at q = N / length
-    (N/m): its EA in series with its sinking into the rim. A tension change dT changes the pressure
-    by dT / r and the depth p by dT / (r k_n), k_n = c2 + 2 c1 p the contact law's tangent stiffness
-    per unit length at c1 p^2 + c2 p = q; the belt's centre line then runs on a circle shorter by dp
-    / r, which lets belt out of the wrap as a strain would: 1 / EA_w = 1 / EA + 1 / (r^2 k_n)
-    (the segment model's wraps, measured: a static torque turns the tensioned drive of
-    tests/belt/test_modes_tensioner.py within 0.4 % of belt/modes.py with it, 6 % more without)."""
-    kn = c2 + 2.0 * c1 * _depth(q, c1, c2)
-    if kn <= 0.0:
-        return EA
-    return 1.0 / (1.0 / EA + 1.0 / (r * r * kn))
-
-
-@njit(cache=True, inline="always")
 def _lag(EA, c1, c2, mu, q, r, dmax):
     """1 / the shear lag's length (1/m) at the wrap's tension less the belt's momentum flux q, and
     the wrap's axial stiffness EA_w (N); a wrap without grip lets the belt through (a shear lag of
@@ -275,7 +254,7 @@ def _bristles(nk, EA, L, u, T, Tb, cc, cs, bm, bv, off):
         bm[j, jm] -= sj * cs[j]
         bm[j, k1] -= sj * cs[k1]
         bv[j] = T[j] + sj * ((cc[j] - cs[j]) * Tb[j] + (cc[k1] - cs[k1]) * Tb[k1])
-    K._small_solve(nk, bm, bv)
+    B._small_solve(nk, bm, bv)
     for j in range(nk):
         k1 = (j + 1) % nk
         jm = (j - 1) % nk
@@ -351,7 +330,7 @@ def energy(R, P, A, S, RS, RW):
             if P.cl_kind[k] == 2:
                 E += 0.5 * P.cl_k[k] * S.dcp[k] ** 2
     for a in range(A.na):
-        E += 0.5 * A.inertia[a] * S.qd[a] ** 2 + K.spring_energy(A, a, S.q[a])
+        E += 0.5 * A.inertia[a] * S.qd[a] ** 2 + B.spring_energy(A, a, S.q[a])
     geometry(R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap)
     for j in range(R.nk):
         uj = RS.u[j] + RS.off[j]
@@ -445,8 +424,8 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 # flux) on the friction's radius at each end (friction.radius: r, or r - p(T))
                 if centre:
                     r = abs(rho[k])
-                    ro = r - _depth((T[k] - c) / r, c1, c2)
-                    ri = r - _depth((T[ji] - c) / r, c1, c2)
+                    ro = r - sunk_depth((T[k] - c) / r, c1, c2)
+                    ri = r - sunk_depth((T[ji] - c) / r, c1, c2)
                     tq[k] = (ro * (T[k] - c) - ri * (T[ji] - c)) * (1.0 if rho[k] >= 0.0 else -1.0)
                 else:
                     tq[k] = rho[k] * (T[k] - T[ji])
@@ -455,8 +434,8 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 hubx[k] = (T[k] - c) * dx[k] - (T[ji] - c) * dx[ji]
                 huby[k] = (T[k] - c) * dy[k] - (T[ji] - c) * dy[ji]
             # --- tensioners and pulleys: the segment model's stages
-            P_arm = K._step_arms(na, apul, akind, apar, atoff, atx, aty, q, qd, scx, scy, scvx, scvy, hubx, huby, h)
-            diss_cl = K._step_pulleys(t, h, tq, hubx, huby, P, S, W)
+            P_arm = B._step_arms(na, apul, akind, apar, atoff, atx, aty, q, qd, scx, scy, scvx, scvy, hubx, huby, h)
+            diss_cl = B._step_pulleys(t, h, tq, hubx, huby, P, S, W)
             for k in range(nk):
                 wm[k] = wrap[k]
             # --- the belt: fluxes through the wraps at the new speeds, contents updated
@@ -475,7 +454,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 # (r, or r - p(T_in)) at the strain of the span it comes from; the wrap's content
                 # relaxes to its steady value over one passage
                 r = abs(rho[k])
-                ve = vw * (1.0 - _depth(((Ti if vw >= 0.0 else To) - c) / r, c1, c2) / r) if centre else vw
+                ve = vw * (1.0 - sunk_depth(((Ti if vw >= 0.0 else To) - c) / r, c1, c2) / r) if centre else vw
                 if vw >= 0.0:
                     Weq = wrap_content(r, wm[k], Ti, To, c, mu[k], EA, c1, c2)
                 else:

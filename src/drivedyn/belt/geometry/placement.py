@@ -19,7 +19,7 @@ import numpy as np
 from numba import njit
 from scipy.optimize import brentq
 
-from ..errors import ModelError
+from ...errors import ModelError
 from .layout import Layout, layout_from
 
 
@@ -54,6 +54,14 @@ class _Path:
             s0 += L
         self.pieces = np.array(rows, dtype=float)
         self.length = float(s0)
+
+
+def penetration(q, c1, c2):
+    """Depth p (m) at which the contact law's elastic part carries the pressure q (N/m, per unit
+    length of belt): c1 p^2 + c2 p = q (seed eq. 9, per unit length as in the model's contact
+    data); the root in the form 2 q / (c2 + sqrt(c2^2 + 4 c1 q)), exact also as c1 -> 0."""
+    q = np.maximum(q, 0.0)
+    return 2.0 * q / (c2 + np.sqrt(c2 * c2 + 4.0 * c1 * q))   # c2 = inf: 0 (rigid)
 
 
 def static_penetration(tension, radius, contact):

@@ -46,15 +46,16 @@ from dataclasses import dataclass
 from types import SimpleNamespace
 
 import numpy as np
-from scipy.optimize import brentq, root
 
-from ..errors import ModelError, SolverError, Stopped, stop_reason
-from . import _kernels as K
-from . import _rotkernels as RK
-from . import tensioner as TN
-from .layout import Layout, compute_layout
-from .modes import rolled_on
-from .steady import penetration
+from ...errors import ModelError, SolverError, Stopped, stop_reason
+from ..dynamics import _bodies as B
+from ..dynamics.bodies import arms_record, pulleys_record, running_senses
+from . import _kernels as RK
+from ..geometry import tensioner as TN
+from ..geometry.layout import Layout, compute_layout
+from ..steady.modes import rolled_on
+from ..geometry.rest import installed_length, rest_state
+from ..geometry.placement import penetration
 
 #: grid of a tensioner's geometry table (travel steps over its stop-to-stop range, plus margins)
 TABLE_POINTS = 61
@@ -71,8 +72,8 @@ class RotSystem:
     model: object          # the drawn model
     layout: Layout         # at the tensioners' rest travel
     R: RK.Rot
-    P: K.Pulleys           # belt mass lumped on the inertias
-    A: K.Arms
+    P: B.Pulleys           # belt mass lumped on the inertias
+    A: B.Arms
     rest_travel: np.ndarray
     rest_tension: float
     L0: float              # unstretched belt length (m)
@@ -88,68 +89,6 @@ def rolling_radii(model, lay: Layout, tension: float) -> np.ndarray:
     if model.friction.radius != "centre":
         return r
     return r - penetration(tension / r, model.contact.stiffness_quadratic, model.contact.stiffness_linear)
-
-
-def installed_length(model, lay: Layout) -> float:
-    """Unstretched belt length: ``belt.length``, or what the drawn path holds at the pretension with
-    the belt sunk into each wrap by its static depth (as steady.drive_of)."""
-    b = model.belt
-    return float(b.length) if b.length is not None else _content(model, lay, b.pretension)
-
-
-def _content(model, lay: Layout, T: float) -> float:
-    """Unstretched belt the path of ``lay`` holds at a uniform tension T at rest."""
-    EA = model.belt.axial_stiffness
-    sunk = float(np.sum(lay.wrap * penetration(T / np.abs(lay.rho), model.contact.stiffness_quadratic,
-                                                model.contact.stiffness_linear)))
-    return (lay.length - sunk) / (1 + T / EA)
-
-
-def _tension_at(model, lay: Layout, L0: float) -> float:
-    """Uniform tension at rest at which the path of ``lay`` holds L0 (0 when it is slack)."""
-    f = lambda T: _content(model, lay, T) - L0
-    if f(0.0) <= 0:
-        return 0.0
-    hi = 1.0
-    while f(hi) > 0:
-        hi *= 2
-        if hi > 1e3 * model.belt.axial_stiffness:
-            raise ModelError("no belt tension holds this installation (belt length?)", field="belt")
-    return brentq(f, 0.0, hi, xtol=1e-10, rtol=1e-13)
-
-
-def rest_state(model, L0: float):
-    """Tensioners' travel and the belt's uniform tension at rest (virtual work: spring load plus
-    the hub force's component along the pulley's travel vanish), and the layout there."""
-    idx = TN.indices(model)
-    if not idx:
-        lay = compute_layout(model)
-        return np.zeros(0), _tension_at(model, lay, L0), lay
-    sense = TN.senses(model)
-
-    def at(qv):
-        m = TN.with_centres(model, {j: TN.centre(model, j, q, s) for j, q, s in zip(idx, qv, sense)})
-        return compute_layout(m)
-
-    def loads(qv):
-        lay = at(qv)
-        return TN.generalised_loads(model, idx, sense, qv, lay.hub_load_static(_tension_at(model, lay, L0)))
-
-    ts = [model.pulleys[j].tensioner for j in idx]
-    if len(idx) == 1:
-        lo, hi = ts[0].stops
-        f = lambda q: float(loads([q])[0])
-        if f(lo) < 0 or f(hi) > 0:
-            raise ModelError(f"pulley {model.pulleys[idx[0]].name!r}: no static equilibrium of the tensioner between "
-                             "its stops (spring against belt tension)", field=f"pulleys.{idx[0]}.tensioner")
-        qv = np.array([brentq(f, lo, hi, xtol=1e-13)])
-    else:
-        sol = root(loads, np.zeros(len(idx)), method="hybr")
-        if not sol.success:
-            raise ModelError(f"no static equilibrium of the tensioners found ({sol.message})", field="pulleys")
-        qv = sol.x
-    lay = at(qv)
-    return qv, _tension_at(model, lay, L0), lay
 
 
 def _tables(model, rest_lay: Layout, idx, sense, rest_q):
@@ -197,7 +136,6 @@ def _tables(model, rest_lay: Layout, idx, sense, rest_q):
 
 
 def build(model) -> RotSystem:
-    from .system import _pulleys, running_senses
 
     belt = model.belt
     drawn = compute_layout(model)
@@ -218,8 +156,8 @@ def build(model) -> RotSystem:
                L=np.array([sp.length for sp in lay.spans]),
                dx=np.array([math.cos(sp.angle) for sp in lay.spans]), dy=np.array([math.sin(sp.angle) for sp in lay.spans]),
                wrap=lay.wrap.astype(float), q0=q0, dq=dq, tL=tL, t0=t0, t1=t1, tdx=tdx, tdy=tdy, tw=tw)
-    P = _pulleys(model.pulleys, running_senses(model, drawn))
-    A = TN.arms_record(model)
+    P = pulleys_record(model.pulleys, running_senses(model, drawn))
+    A = arms_record(model)
     # the belt's mass, lumped: each wrap's belt and a third of each adjoining span's
     nk = R.nk
     m = belt.mass_per_length
@@ -230,9 +168,9 @@ def build(model) -> RotSystem:
         par = A.par.copy()
         add = np.zeros(A.na)
         for a in range(A.na):
-            _, _, jx, jy = K.arm_centre(A, a, float(rest_q[a]))
+            _, _, jx, jy = B.arm_centre(A, a, float(rest_q[a]))
             add[a] = carried[A.pulley[a]] * (jx * jx + jy * jy)
-        par[:, K.ARM_IN] += add
+        par[:, B.ARM_IN] += add
         A = A._replace(par=par, inertia=A.inertia + add)
     w_max = _omega_bound(R, P, A, rest_q, T_rest)
     h = STEP_OMEGA / w_max
@@ -255,10 +193,10 @@ def _omega_bound(R, P, A, rest_q, T) -> float:
             w2 = max(w2, P.cl_k[j] / ired)
     for a in range(A.na):
         j = A.pulley[a]
-        _, _, jx, jy = K.arm_centre(A, a, float(rest_q[a]))
+        _, _, jx, jy = B.arm_centre(A, a, float(rest_q[a]))
         g2 = jx * jx + jy * jy
-        ka = (kspan[j] + kspan[(j - 1) % nk]) * g2 * 2 + A.par[a, K.ARM_RATE] + A.par[a, K.ARM_KSTOP]
-        w2 = max(w2, 2 * ka / A.par[a, K.ARM_IN])
+        ka = (kspan[j] + kspan[(j - 1) % nk]) * g2 * 2 + A.par[a, B.ARM_RATE] + A.par[a, B.ARM_KSTOP]
+        w2 = max(w2, 2 * ka / A.par[a, B.ARM_IN])
     return math.sqrt(w2)
 
 
@@ -272,7 +210,7 @@ class _Rest:
         self.travel = q
         self.tension = sysm.rest_tension
         self.angle = np.array([A.psi0[a] + A.sgn[a] * q[a] if A.kind[a] == 0 else np.nan for a in range(A.na)])
-        self.spring = np.array([TN._spring(sysm.model.pulleys[A.pulley[a]].tensioner, q[a]) for a in range(A.na)])
+        self.spring = np.array([TN.spring_load(sysm.model.pulleys[A.pulley[a]].tensioner, q[a]) for a in range(A.na)])
 
 
 class _Init:
@@ -286,7 +224,7 @@ class _Init:
 
 
 class _View:
-    """The rotational system seen through the segment model's system interface (simulate._summary,
+    """The rotational system seen through the segment model's system interface (dynamics/outputs.run_summary,
     diagnose): layout, pulleys, arms, rest state; the continuum rolls on ``rolling_radii``."""
 
     def __init__(self, sysm: RotSystem):
@@ -302,12 +240,12 @@ def new_states(sysm: RotSystem):
     their rest travel, every span and wrap holding the belt of the rest tension."""
     P, R, A = sysm.P, sysm.R, sysm.A
     nk, z = R.nk, np.zeros
-    om = np.array([K.prescribed_speed(P, j, 0.0) if P.mode[j] == 1 else 0.0 for j in range(nk)])
+    om = np.array([B.prescribed_speed(P, j, 0.0) if P.mode[j] == 1 else 0.0 for j in range(nk)])
     e = z(0)
-    S = K.State(x=e, y=e, phi=e, c=e, s=e, vx=e, vy=e, w=e, th=z(nk), om=om, z=e, cx=P.cx.copy(), cy=P.cy.copy(),
+    S = B.State(x=e, y=e, phi=e, c=e, s=e, vx=e, vy=e, w=e, th=z(nk), om=om, z=e, cx=P.cx.copy(), cy=P.cy.copy(),
                 cvx=z(nk), cvy=z(nk), q=sysm.rest_travel.astype(float).copy(), qd=z(A.na), thm=z(nk), thr=z(nk),
                 omr=z(nk), dcp=z(nk))
-    W = K.Work(fx=e, fy=e, mz=e, jfk=e, jdx=e, jdy=e, jmk=e, jmi=e, seg_n=e, seg_t=e, seg_p=e,
+    W = B.Work(fx=e, fy=e, mz=e, jfk=e, jdx=e, jdy=e, jmk=e, jmi=e, seg_n=e, seg_t=e, seg_p=e,
                tq_ext=z(nk), tq_belt=z(nk), hubx=z(nk), huby=z(nk), pin=z(nk), diss=z(4),
                acc_tq_ext=z(nk), acc_tq_belt=z(nk), acc_hubx=z(nk), acc_huby=z(nk), acc_pin=z(nk),
                acc_span=z((0, 2)), acc_track=z((0, 3)), acc_diss=z(6), energy=z(1), probe=z(6),
@@ -330,7 +268,7 @@ def new_states(sysm: RotSystem):
 
 
 def run(model, progress=None):
-    from ..limits import steps_problem
+    from ...limits import steps_problem
 
     sysm = build(model)
     sim, out = model.simulation, model.output
@@ -380,10 +318,10 @@ def run(model, progress=None):
 def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_model=None, window=None):
     import xarray as xr
 
-    from ..model import dumps
-    from ..results import Result, unit_map, variable
-    from ..window import in_window, steady_window
-    from .simulate import UNITS, _clutch_variables, _summary, _tensioner_variables, friction_law
+    from ...model import dumps
+    from ...results import Result, unit_map, variable
+    from ...window import in_window, steady_window
+    from ..dynamics.outputs import UNITS, clutch_variables, friction_law, run_summary, tensioner_variables
 
     lay = sysm.layout
     names, spans = list(lay.names), [sp.name for sp in lay.spans]
@@ -421,8 +359,8 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_mod
     )
     view = _View(sysm)
     rec = SimpleNamespace(q=o["q"], qd=o["qd"], omr=o["omr"], tq_ext=o["tq"])     # the recorder fields they read
-    _tensioner_variables(ds, model, view, rec, ns)
-    _clutch_variables(ds, model, view, rec, ns, float(ds["time"].values[0]) if ns else 1.0)
+    tensioner_variables(ds, model, view, rec, ns)
+    clutch_variables(ds, model, view, rec, ns, float(ds["time"].values[0]) if ns else 1.0)
     ds["time"].attrs["units"] = "s"
     t = ds["time"].values
     t_end = float(t[-1]) if ns else 0.0
@@ -439,7 +377,7 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_mod
     disc = {"model": "rotational", "step": float(h), "fastest_mode_bound_hz": sysm.omega_max / (2 * math.pi),
             # symplectic Euler's frequency error (h omega)^2 / 24 at the bound of the fastest mode
             "step_frequency_error": float((h * sysm.omega_max) ** 2 / 24)}
-    summary = _summary(model, view, ds, solver, sel, window, disc)
+    summary = run_summary(model, view, ds, solver, sel, window, disc)
     summary["belt"] = {"pretension": float(sysm.rest_tension), "path_length": float(lay.length),
                        "unstretched_length": float(sysm.L0), "model": "rotational", **friction_law(model)}
     gross = ds["gross_slip_share"].values[sel] if np.any(sel) else np.zeros((0, len(names)))
@@ -449,7 +387,7 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_mod
     ds.attrs["steady_window"] = [float(window[0]), float(window[1])]
     ds.attrs["animation"] = 0
     if ns:
-        from .runup import add_runup
+        from ..dynamics.runup import add_runup
 
         summary.update(add_runup(ds, runup_model or model, model.output.runup_bin, up_only=runup_model is not None))
     result = Result("belt-drive", ds, summary, success=not failure, message=failure)
@@ -467,19 +405,19 @@ GROSS_SHARE = 0.02
 def _checks(result, model, view, sel):
     """The rotational model's diagnostics: gross slip from the wraps' return map, and the segment
     model's window, energy, slip-margin, run-up-slip and load checks."""
-    from . import diagnose as D
-    from .loadcheck import check_loads
+    from ..dynamics import checks as D
+    from ..dynamics.loadcheck import check_loads
 
     if not np.any(sel) or result.ds.sizes.get("time", 0) < 3:
         return
     for nm, p in result.summary["pulleys"].items():
         share = p.get("sliding_share", 0.0)
-        if share > GROSS_SHARE and D._excited(model):
+        if share > GROSS_SHARE and D.excited(model):
             result.diagnose("gross-slip", f"pulley {nm}'s belt slides over its whole wrap {100 * share:.0f} % of the "
                             "steady window (tension ratio at e^(mu theta)); more pretension or less load",
                             f"pulleys.{nm}.sliding_share", share, GROSS_SHARE, "1")
-    D._steady(result, model, view, sel)
-    D._energy(result, model, sel)
-    D._slip_margin(result, model, view, sel)
-    D._runup_slip(result)
+    D.steady_drift(result, model, view, sel)
+    D.energy_balance(result, model, sel)
+    D.slip_margin(result, model, view, sel)
+    D.runup_slip(result)
     check_loads(result, model, sel)

@@ -11,8 +11,8 @@ the smallest share of the bending correction): the longest span is the one to me
 """
 from __future__ import annotations
 
-from ..errors import ModelError
-from ..span.frequencies import beam_frequency, string_frequency, tension_from_frequency
+from ...errors import ModelError
+from ...span.frequencies import beam_frequency, string_frequency, tension_from_frequency
 
 #: default tension tolerance of an installation (+-10 %: a common belt-maker specification)
 TOLERANCE = 0.10

@@ -7,15 +7,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ModelError
+from ...errors import ModelError
 from . import _kernels as K
+from ..dynamics import _bodies as B
+from ..dynamics.bodies import arms_record, pulleys_record, running_senses
 from .equilibrium import relax
-from .initial import InitialState, check_length, initial_state
-from ..tables import flatten
-from .layout import Layout, compute_layout
-from . import tensioner
-from .model import integrator
-from .resolution import resolved
+from .state import new_state, new_work
+from ..geometry.placement import InitialState, check_length, initial_state
+from ..geometry.layout import Layout, compute_layout
+from ..geometry import tensioner
+from ..model import integrator
+from ..geometry.segment_count import resolved
 
 
 @dataclass
@@ -25,8 +27,8 @@ class BeltSystem:
     init: InitialState
     belt: K.Belt
     contact: K.Contact
-    pulleys: K.Pulleys
-    arms: K.Arms       # tensioners (na = 0 without)
+    pulleys: B.Pulleys
+    arms: B.Arms       # tensioners (na = 0 without)
     span_mid: np.ndarray
     span_geo: np.ndarray  # per span: midpoint x, y and unit direction x, y (belt order)
     track: np.ndarray
@@ -84,7 +86,7 @@ def build(model, settle: bool = True) -> BeltSystem:
     target = model.belt.pretension
     placed = model
     if target is None:
-        from .steady import drive_of, tensions
+        from ..steady.creep import drive_of, tensions
 
         check_length(model, compute_layout(model))
         T = tensions(drive_of(model), np.zeros(len(model.pulleys)), 0.0, True)
@@ -151,8 +153,8 @@ def _build(model, drawn, settle: bool) -> BeltSystem:
         mu=mu, pmax=damping_depth(model, init), law=int(K.LAWS[model.friction.law]),
         dv=float(model.friction.velocity_threshold), dmax=float(model.friction.displacement_limit),
         centre=model.friction.radius == "centre")
-    P = _pulleys(model.pulleys, running_senses(model, layout))
-    A = tensioner.arms_record(drawn)   # travel measured from the drawn centres
+    P = pulleys_record(model.pulleys, running_senses(model, layout))
+    A = arms_record(drawn)   # travel measured from the drawn centres
     span_mid = np.array([sp.midpoint for sp in layout.spans])
     span_geo = np.array([[*sp.midpoint, math.cos(sp.angle), math.sin(sp.angle)] for sp in layout.spans])
     track = np.array(model.output.segments, dtype=np.int64)
@@ -162,7 +164,7 @@ def _build(model, drawn, settle: bool) -> BeltSystem:
         step = model.simulation.step if model.simulation.step is not None else limit
     else:
         step = model.simulation.step if model.simulation.step is not None else 0.85 * limit
-    from ..limits import max_steps
+    from ...limits import max_steps
 
     steps = model.simulation.duration / min(step, model.output.interval)
     if integrator(model) == "rkf45":
@@ -228,14 +230,14 @@ def _settle_tensioners(sysm, x, y, phi):
     rest, A = sysm.rest, sysm.arms
     scale = max(float(np.max(np.abs(rest.spring))), 1e-9)
     for _ in range(6):
-        R = tensioner.loads_at_rest(sysm, x, y, rest.travel)
+        R = loads_at_rest(sysm, x, y, rest.travel)
         rest.residual = float(np.max(np.abs(R))) / scale
         if rest.residual < 1e-8:
             break
         rest.travel = rest.travel - np.linalg.solve(rest.stiffness, R)
         cx, cy = sysm.pulleys.cx.copy(), sysm.pulleys.cy.copy()
         for a in range(A.na):
-            cx[A.pulley[a]], cy[A.pulley[a]] = K.arm_centre(A, a, rest.travel[a])[:2]
+            cx[A.pulley[a]], cy[A.pulley[a]] = B.arm_centre(A, a, rest.travel[a])[:2]
         sysm.pulleys = sysm.pulleys._replace(cx=cx, cy=cy)
         eq = relax(sysm, x, y, phi)
         if eq is None:
@@ -244,117 +246,13 @@ def _settle_tensioners(sysm, x, y, phi):
     # what check and the summary report: the discrete belt's equilibrium
     A = sysm.arms
     cx, cy = sysm.pulleys.cx, sysm.pulleys.cy
-    hub = tensioner.hub_at_rest(sysm, x, y, cx, cy)
+    hub = hub_at_rest(sysm, x, y, cx, cy)
     rest.hub = np.array([float(np.hypot(*hub[A.pulley[a]])) for a in range(A.na)])
-    rest.spring = np.array([tensioner._spring(sysm.model.pulleys[A.pulley[a]].tensioner, rest.travel[a]) for a in range(A.na)])
+    rest.spring = np.array([tensioner.spring_load(sysm.model.pulleys[A.pulley[a]].tensioner, rest.travel[a]) for a in range(A.na)])
     rest.angle = np.array([A.psi0[a] + A.sgn[a] * rest.travel[a] if A.kind[a] == 0 else np.nan for a in range(A.na)])
     sysm.init = dataclasses.replace(sysm.init, x=x, y=y, phi=phi)
     rest.tension = settled_tension(sysm)
     return x, y, phi
-
-
-def _pulleys(P, senses=None) -> K.Pulleys:
-    """The Pulleys record; ``senses``: +-1 per pulley, its running sense (clutches need it)."""
-    f = lambda vals: np.array(vals, dtype=float)
-    tt_off, tt_x, tt_y = flatten([p.torque_time for p in P])
-    ts_off, ts_x, ts_y = flatten([p.torque_speed for p in P])
-    sp_off, sp_x, sp_y = flatten([p.speed_time for p in P])
-    hm_off = np.zeros(len(P) + 1, dtype=np.int64)
-    so_off = np.zeros(len(P) + 1, dtype=np.int64)
-    for j, p in enumerate(P):
-        hm_off[j + 1] = hm_off[j] + len(p.harmonics)
-        so_off[j + 1] = so_off[j] + len(p.speed_orders)
-    hs = [hh for p in P for hh in p.harmonics]
-    so = [o for p in P for o in p.speed_orders]
-    senses = np.ones(len(P)) if senses is None else senses
-    cl = [p.clutch for p in P]
-    return K.Pulleys(
-        nk=len(P), cx=f([p.center[0] for p in P]), cy=f([p.center[1] for p in P]),
-        r=f([p.radius for p in P]),
-        inertia=f([p.inertia for p in P]), inv_i=f([1.0 / p.inertia for p in P]),
-        mode=np.array([1 if p.speed_time is not None else 0 for p in P], dtype=np.int64),
-        tq_const=f([p.torque for p in P]), tq_visc=f([p.viscous_torque for p in P]),
-        tt_off=tt_off, tt_x=tt_x, tt_y=tt_y, ts_off=ts_off, ts_x=ts_x, ts_y=ts_y,
-        hm_off=hm_off, hm_order=f([hh.order for hh in hs]),
-        hm_amp=f([hh.amplitude for hh in hs]), hm_phase=f([hh.phase for hh in hs]),
-        sp_off=sp_off, sp_x=sp_x, sp_y=sp_y,
-        tq_drag=f([p.drag for p in P]), w_drag=f([p.drag_speed for p in P]),
-        tq_quad=f([p.quadratic_torque for p in P]), tq_pow=f([p.power / p.efficiency for p in P]),
-        w_cut=f([p.cut_in_speed for p in P]),
-        so_off=so_off, so_order=f([o.order for o in so]), so_amp=f([o.amplitude for o in so]),
-        so_ang=f([o.angle for o in so]), so_phase=f([o.phase for o in so]),
-        cl_kind=np.array([0 if c is None else (1 if c.type == "one-way" else 2) for c in cl], dtype=np.int64),
-        cl_ir=f([1.0 if c is None else c.inertia for c in cl]), cl_k=f([0.0 if c is None else c.rate for c in cl]),
-        cl_c=f([0.0 if c is None else c.damping for c in cl]),
-        cl_s=f([1.0 if c is None else ({"ccw": 1.0, "cw": -1.0}[c.sense] if c.sense else senses[j])
-                for j, c in enumerate(cl)]))
-
-
-def running_senses(model, layout) -> np.ndarray:
-    """+-1 per pulley: the sense it turns in when the drive runs as its driver turns it (the
-    prescribed-speed pulley by its mean speed, else the pulley with the largest applied torque).
-    Pulleys whose signed radius has the driver's sign turn with it."""
-    P = model.pulleys
-    drv, sd = None, 1.0
-    for j, p in enumerate(P):
-        if p.speed_time is not None:
-            w = max((r[1] for r in p.speed_time), key=abs)
-            drv, sd = j, math.copysign(1.0, w) if w else 1.0
-            break
-    if drv is None:
-        peak = [max([abs(p.torque)] + [abs(r[1]) for r in (p.torque_time or [])]) for p in P]
-        drv = int(np.argmax(peak))
-        p = P[drv]
-        tq = p.torque if abs(p.torque) == peak[drv] else max((r[1] for r in (p.torque_time or [[0, 1.0]])), key=abs)
-        sd = math.copysign(1.0, tq) if tq else 1.0
-    rho = np.sign(layout.rho)
-    return sd * rho * rho[drv]
-
-
-def new_state(sysm, x=None, y=None, phi=None) -> K.State:
-    """A kernel State: the placement (or x, y, phi) at rest, prescribed pulleys at their t = 0
-    speed. Arrays are fresh copies (the kernels advance them in place)."""
-    n, P = sysm.n, sysm.pulleys
-    x = np.array(sysm.init.x if x is None else x, dtype=float)
-    y = np.array(sysm.init.y if y is None else y, dtype=float)
-    phi = np.array(sysm.init.phi if phi is None else phi, dtype=float)
-    om = np.array([K.prescribed_speed(P, j, 0.0) if P.mode[j] == 1 else 0.0 for j in range(P.nk)], dtype=float)
-    q = np.array(sysm.rest.travel if sysm.rest is not None else [], dtype=float)
-    return K.State(x=x, y=y, phi=phi, c=np.cos(phi), s=np.sin(phi), vx=np.zeros(n), vy=np.zeros(n),
-                   w=np.zeros(n), th=np.zeros(P.nk), om=om, z=np.zeros(n), cx=P.cx.copy(), cy=P.cy.copy(),
-                   cvx=np.zeros(P.nk), cvy=np.zeros(P.nk), q=q, qd=np.zeros(len(q)),
-                   thm=np.zeros(P.nk), thr=np.zeros(P.nk), omr=np.zeros(P.nk), dcp=np.zeros(P.nk))
-
-
-def new_work(sysm, state=None) -> K.Work:
-    """A kernel Work record (zeroed); with a state, each span probe starts at the joint nearest
-    its midpoint."""
-    n, nk = sysm.n, sysm.pulleys.nk
-    nspan, ntrack = len(sysm.span_mid), len(sysm.track)
-    span_joint = np.zeros(nspan, dtype=np.int64)
-    if state is not None:
-        hl = sysm.belt.hl
-        jx = 0.5 * (state.x - hl * state.c + np.roll(state.x + hl * state.c, 1))
-        jy = 0.5 * (state.y - hl * state.s + np.roll(state.y + hl * state.s, 1))
-        for q in range(nspan):
-            span_joint[q] = int(np.argmin((jx - sysm.span_mid[q, 0]) ** 2 + (jy - sysm.span_mid[q, 1]) ** 2))
-    z = np.zeros
-    nl = n if sysm.belt.implicit else 0
-    return K.Work(fx=z(n), fy=z(n), mz=z(n), jfk=z(n), jdx=z(n), jdy=z(n), jmk=z(n), jmi=z(n),
-                  seg_n=z(n), seg_t=z(n), seg_p=z(n),
-                  tq_ext=z(nk), tq_belt=z(nk), hubx=z(nk), huby=z(nk), pin=z(nk), diss=z(4),
-                  acc_tq_ext=z(nk), acc_tq_belt=z(nk), acc_hubx=z(nk), acc_huby=z(nk), acc_pin=z(nk),
-                  acc_span=z((nspan, 2)), acc_track=z((ntrack, 3)), acc_diss=z(6), energy=z(1), probe=z(6),
-                  span_geo=np.ascontiguousarray(sysm.span_geo, dtype=float).reshape(nspan, 4),
-                  span_joint=span_joint, track=np.ascontiguousarray(sysm.track, dtype=np.int64),
-                  lin_d=z((nl, 9)), lin_o=z((nl, 9)), lin_e=z((nl, 9)), lin_dinv=z((nl, 9)), lin_y=z((nl, 9)),
-                  lin_x=z((nl, 9)), lin_r=z((nl, 3)), lin_sig=z(nl), lin_gam=z(nl), lin_fk=z(nl), lin_fa=z(nl), lin_far=z(nl), lin_fnx=z(nl), lin_fny=z(nl), lin_geo=z(nl), lin_u=z((nk if nl else 0, nl, 3)), lin_zslot=np.full(nl, -1, dtype=np.int64), lin_zc=z((2 * K.ZMAX if nl else 0, nl, 3)), lin_g=z((nk, nk + 1)), lin_stat=z(4), cand_j=np.full(n, -1, dtype=np.int64), cand_skip=np.zeros(n, dtype=np.int64), lin_st=z(nl), lin_cnt=np.zeros(4, dtype=np.int64), pul_dw=z(nk))
-
-
-def clear_accumulators(W: K.Work):
-    for a in (W.acc_tq_ext, W.acc_tq_belt, W.acc_hubx, W.acc_huby, W.acc_pin, W.acc_span, W.acc_track, W.acc_diss):
-        a[...] = 0.0
-
 
 
 def damping_depth(model, init) -> float:
@@ -492,3 +390,47 @@ def stability_limit(model, init, B, C, scaled=False) -> float:
     elif float(B.bb[0]) > 0:   # explicit bending dampers, on the unscaled (conservative) inertia
         limits.append(inertia / (2 * float(B.bb[0])))
     return min(limits)
+
+
+def hub_at_rest(sysm, x, y, cx, cy) -> np.ndarray:
+    """Force (nk, 2) of the belt at rest (x, y segment centres) on each pulley: minus the contact
+    normal forces of eq. 9 (no velocity, no friction at rest)."""
+    C, P = sysm.contact, sysm.pulleys
+    out = np.zeros((P.nk, 2))
+    for j in range(P.nk):
+        rx, ry = x - cx[j], y - cy[j]
+        d = np.hypot(rx, ry)
+        p = P.r[j] - d
+        on = p > 0
+        N = C.c1[on] * p[on] ** 2 + C.c2[on] * p[on]
+        out[j] = -np.array([np.sum(N * rx[on] / d[on]), np.sum(N * ry[on] / d[on])])
+    return out
+
+
+def loads_at_rest(sysm, x, y, q) -> np.ndarray:
+    """Generalised load (spring + belt) on each tensioner with the discrete belt at rest."""
+    A = sysm.arms
+    cx, cy = sysm.pulleys.cx.copy(), sysm.pulleys.cy.copy()
+    jac = []
+    for a in range(A.na):
+        c = B.arm_centre(A, a, q[a])
+        cx[A.pulley[a]], cy[A.pulley[a]] = c[0], c[1]
+        jac.append(c[2:])
+    hub = hub_at_rest(sysm, x, y, cx, cy)
+    spring = [tensioner.spring_load(sysm.model.pulleys[A.pulley[a]].tensioner, q[a]) for a in range(A.na)]
+    return np.array([spring[a] + hub[A.pulley[a]] @ jac[a] for a in range(A.na)])
+
+
+# the implicit scheme's accuracy rule, per friction law: a segment rolling on a pulley turns at
+# most this far per step (rad), measured by the fastest pulley's speed. It was 0.003 while the
+# chain's grid-scale rotation mode ran undamped (system.GRID_ZETA): at larger turns the steps
+# pumped that mode and the 5PK held at 800 rad/s read 1.2-4.9 % high. With the mode damped,
+# against the semi-implicit scheme at the same segments: the 5PK at 800 rad/s (424 segments)
+# within 0.04 % (elastic-plastic) and 0.3 % (Threlfall) at 0.020 rad per step, 0.2 % and 1 % at
+# 0.028 (Threlfall's then misses 4 % of the energy); examples/fead-runup.toml's drive held with
+# its orders (333 segments, elastic-plastic) within 1.5 % at 5000 rpm and 0.012-0.035 rad and
+# within 1 % of the 4x-refined run at 3000 rpm and 0.032 rad, but at 0.056 rad (5000 rpm, 40 us) it
+# ran away and the step control halved the step. Under Threlfall's law the same drive at 3000 rpm
+# (330 segments) read the alternator-tensioner span's minimum 3.6 % high at 0.019 rad per step,
+# 0.4 % at 0.0096 (tests/belt/test_implicit.py).
+TURN_PER_STEP = {"elastic-plastic": 0.02, "threlfall": 0.01}

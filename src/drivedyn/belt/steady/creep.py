@@ -32,9 +32,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import brentq
 
-from ..errors import ModelError
-from ..tables import table
-from .layout import Layout, compute_layout
+from ...errors import ModelError
+from ...tables import table
+from ..geometry.layout import Layout, compute_layout
+from ..geometry.placement import penetration
 
 
 @dataclass
@@ -78,14 +79,6 @@ def _arc(t_in, t_out, c, mu):
     if min(t_in, t_out) <= c or mu <= 0:
         return math.inf
     return abs(math.log((t_out - c) / (t_in - c))) / mu
-
-
-def penetration(q, c1, c2):
-    """Depth p (m) at which the contact law's elastic part carries the pressure q (N/m, per unit
-    length of belt): c1 p^2 + c2 p = q (seed eq. 9, per unit length as in the model's contact
-    data); the root in the form 2 q / (c2 + sqrt(c2^2 + 4 c1 q)), exact also as c1 -> 0."""
-    q = np.maximum(q, 0.0)
-    return 2.0 * q / (c2 + np.sqrt(c2 * c2 + 4.0 * c1 * q))   # c2 = inf: 0 (rigid)
 
 
 #: Gauss-Legendre nodes and weights on [0, 1] for the depth along a slip arc: its integrand

@@ -21,6 +21,7 @@ from scipy import sparse
 from scipy.sparse.linalg import spsolve
 
 from . import _kernels as K
+from .state import new_state, new_work
 
 #: converged when every residual force is below this share of the pretension (and moments below
 #: it times the segment length)
@@ -33,14 +34,12 @@ MAX_ITER = 400
 
 def _state(sysm, q):
     """Kernel State at rest in configuration q (n, 3: x, y, phi)."""
-    from .system import new_state
 
     return new_state(sysm, *(np.ascontiguousarray(q[:, k]) for k in range(3)))
 
 
 def forces(sysm, q: np.ndarray) -> np.ndarray:
     """Static generalised forces -dE/dq (n, 3: fx, fy, moment) at zero velocity, q = (x, y, phi)."""
-    from .system import new_work
 
     S = _state(sysm, q)
     W = new_work(sysm)
