@@ -4,18 +4,22 @@ from __future__ import annotations
 
 
 def run(model, progress=None):
-    """Run a belt-drive model (drivedyn.run calls it through drivedyn.analyses)."""
+    """Run a belt-drive model (drivedyn.run calls it through drivedyn.analyses): the drive is
+    resolved once (geometry/drive.py) and handed to the model that integrates it."""
+    from .geometry.drive import resolve
+
+    drive = resolve(model)
     if model.simulation.model == "rotational":
         if model.simulation.runup == "periodic":
             from .rotational.periodic import run as run_periodic
 
-            return run_periodic(model, progress)
+            return run_periodic(drive, progress)
         from .rotational.simulate import run as run_rotational
 
-        return run_rotational(model, progress)
+        return run_rotational(drive, progress)
     from .segments.simulate import run as run_segments
 
-    return run_segments(model, progress)
+    return run_segments(drive, progress)
 
 
 def lean_possible(model, keys) -> bool:
@@ -35,7 +39,9 @@ def run_lean(model, keys, progress=None):
         return None
     from .rotational.periodic import run as run_periodic
 
-    return run_periodic(model, progress, keys=keys)
+    from .geometry.drive import resolve
+
+    return run_periodic(resolve(model), progress, keys=keys)
 
 
 def warm():

@@ -18,18 +18,17 @@ def capstan_torque(tension, radius, wrap, mu):
 
 def check_data(model, sysm=None) -> dict:
     """What ``check`` knows, as plain data (``drivedyn check --json``): the steady running state of
-    creep theory (steady.py), the slip margins and the rotational modes (modes.py)."""
+    creep theory (steady.py), the slip margins and the rotational modes (modes.py). ``model``: a
+    model or its geometry.drive.Drive; ``sysm``: the segment model's system, when built."""
+    from .geometry.drive import resolve
     from .geometry.installation import installation_table
     from .geometry.layout import compute_layout
     from .steady.modes import modes
     from .steady.creep import steady_state
 
-    rest = sysm.rest if sysm is not None else None
-    if sysm is None:
-        from .geometry import tensioner
-
-        if tensioner.indices(model):
-            rest = tensioner.equilibrium(model)
+    drive = resolve(model)
+    model = drive.model
+    rest = sysm.rest if sysm is not None else drive.equilibrium
     run = None
     if rest is not None:
         # with tensioners: the drive as they hold it at rest, its tension that of the installed
@@ -40,7 +39,10 @@ def check_data(model, sysm=None) -> dict:
         belt = rest.model.belt.model_copy(update={"pretension": float(rest.tension), "length": None})
         drawn, model = model, rest.model.model_copy(update={"belt": belt})
         run = running(drawn, rest)
-    lay = sysm.layout if sysm is not None else compute_layout(model)
+    if sysm is not None:
+        lay = sysm.layout
+    else:    # as drawn, or with the tensioners where they hold the belt at rest
+        lay = drive.layout if rest is None else compute_layout(model)
     st = steady_state(model, lay) if run is None else run[3]
     if sysm is not None:
         t0 = sysm.init.tension
@@ -134,9 +136,11 @@ def check_json(model) -> str:
 def report(model) -> str:
     from .geometry.installation import installation_table, table_lines
     from .geometry.segment_count import auto_segments
+    from .geometry.drive import resolve
     from .segments.system import build
 
-    sysm = build(model, settle=False)       # the report needs no settled segment positions
+    drive = resolve(model)
+    sysm = build(drive, settle=False)       # the report needs no settled segment positions
     lay = sysm.layout
     T0 = sysm.init.tension
     belt, fr = model.belt, model.friction
@@ -158,7 +162,7 @@ def report(model) -> str:
                      f"{math.degrees(lay.wrap[j]):9.2f} {np.hypot(*H):11.1f} {math.degrees(math.atan2(H[1], H[0])):11.1f} "
                      f"{sysm.init.penetration[j] * 1e3:10.4f}")
     lines += [""] + table_lines(installation_table(model, T0, lay))
-    data = check_data(model, sysm)
+    data = check_data(drive, sysm)
     for name, t in data.get("tensioners", {}).items():
         if t["type"] == "arm":
             lines.append(f"tensioner {name} (arm) at rest: travel {math.degrees(t['travel']):.3f} deg into the belt "

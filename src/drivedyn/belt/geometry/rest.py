@@ -41,14 +41,15 @@ def _tension_at(model, lay: Layout, L0: float) -> float:
     return brentq(f, 0.0, hi, xtol=1e-10, rtol=1e-13)
 
 
-def rest_state(model, L0: float):
+def rest_state(model, L0: float, drawn: Layout | None = None, sense=None):
     """Tensioners' travel and the belt's uniform tension at rest (virtual work: spring load plus
-    the hub force's component along the pulley's travel vanish), and the layout there."""
+    the hub force's component along the pulley's travel vanish), and the layout there. ``drawn``
+    and ``sense`` (tensioner.senses), when the caller has them, are not derived again."""
     idx = TN.indices(model)
     if not idx:
-        lay = compute_layout(model)
+        lay = drawn or compute_layout(model)
         return np.zeros(0), _tension_at(model, lay, L0), lay
-    sense = TN.senses(model)
+    sense = TN.senses(model) if sense is None else sense
 
     def at(qv):
         m = TN.with_centres(model, {j: TN.centre(model, j, q, s) for j, q, s in zip(idx, qv, sense)})

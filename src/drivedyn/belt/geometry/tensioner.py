@@ -117,24 +117,26 @@ def generalised_loads(model, idx, sense, qv, hub) -> np.ndarray:
     return np.array(out)
 
 
-def equilibrium(model) -> Equilibrium:
+def equilibrium(model, drawn=None, sense=None) -> Equilibrium:
     """Static equilibrium of the belt and the model's tensioners (ModelError when none exists
-    within the stops, naming the tensioner and why)."""
+    within the stops, naming the tensioner and why). ``drawn`` (the drawn layout) and ``sense``
+    (``senses``), when the caller has them (drive.Drive), are not derived again."""
     from .segment_count import resolved
 
     model = resolved(model)
     idx = indices(model)
-    sense = senses(model)
+    sense = senses(model) if sense is None else sense
+    drawn = drawn or compute_layout(model)
     belt = model.belt
     EA, e, n = belt.axial_stiffness, belt.axial_exponent, belt.segments
     if belt.length is not None:       # installed by length: the drawn layout may leave it slack
         L0_chain = L_eff = belt.length
-        T_drawn = EA * max(compute_layout(model).length / L_eff - 1, 0.0) ** e
+        T_drawn = EA * max(drawn.length / L_eff - 1, 0.0) ** e
     else:
-        init0 = initial_state(model, compute_layout(model))
+        init0 = initial_state(model, drawn)
         L0_chain = init0.seg_length * n                  # the installed (unstretched) chain length
         # continuum calibration: the discrete chain at the drawn layout has init0.tension on path L(0)
-        L_eff = compute_layout(model).length / (1 + (init0.tension / EA) ** (1 / e))
+        L_eff = drawn.length / (1 + (init0.tension / EA) ** (1 / e))
         T_drawn = init0.tension
 
     def centres(qv):

@@ -23,6 +23,7 @@ import numpy as np
 
 from ...errors import ModelError, Stopped, stop_reason
 from . import _kernels as RK
+from ..geometry.drive import resolve
 from . import simulate as RT
 from ..dynamics.runup import RPM, crank_index, period_revolutions
 
@@ -135,14 +136,15 @@ def _anderson(phi, x0, scale, tol, memory=MEMORY, max_iter=MAX_ITER):
     return gx, res, max_iter
 
 
-def _sweep(model, progress):
+def _sweep(drive, progress):
     """The periodic solution at each speed of the sweep, recorded: (system, samples, samples kept,
     speeds, residual and periods per speed, the held speeds' table, steps, wall time, failure)."""
+    model = drive.model
     j = crank_index(model)
     if j is None:
         raise ModelError("\"periodic\" sweeps a run-up: one pulley's speed_time must change its "
                          "speed by more than 10 % (the crank)", field="simulation.runup")
-    sysm = RT.build(model)
+    sysm = RT.build(drive)
     speeds = speeds_of(model, j)
     revs = period_revolutions(model, j, sysm.R.rho)
     d = _Drive(sysm, j)
@@ -219,9 +221,10 @@ def _sweep(model, progress):
     return sysm, o, k, speeds, residual, iters, table, steps_total, wall, failure
 
 
-def run(model, progress=None, keys=None):
-    """The periodic run-up of ``model`` (rotational model): a Result with the run-up tables of a
-    time-integrated run-up, each speed's periodic solution as its samples.
+def run(drive, progress=None, keys=None):
+    """The periodic run-up of ``drive`` (geometry.drive.Drive, or a model; rotational model): a
+    Result with the run-up tables of a time-integrated run-up, each speed's periodic solution as
+    its samples.
 
     ``keys`` (summary key patterns, e.g. a design loop's objective and constraints; see
     :func:`lean_keys`): a lean Result whose summary holds only the ``runup`` entry (without the
@@ -229,7 +232,9 @@ def run(model, progress=None, keys=None):
     solve's own; its numbers are the full run's."""
     from ...errors import SolverError
 
-    sysm, o, k, speeds, residual, iters, table, steps_total, wall, failure = _sweep(model, progress)
+    drive = resolve(drive)
+    model = drive.model
+    sysm, o, k, speeds, residual, iters, table, steps_total, wall, failure = _sweep(drive, progress)
     j = crank_index(model)
     # the energy balance restarts at each speed: not one run
     o["E"][:], o["work"][:], o["diss"][:] = np.nan, np.nan, np.nan

@@ -54,7 +54,7 @@ from . import _kernels as RK
 from ..geometry import tensioner as TN
 from ..geometry.layout import Layout, compute_layout
 from ..steady.modes import rolled_on
-from ..geometry.rest import installed_length, rest_state
+from ..geometry.drive import resolve
 from ..geometry.placement import penetration
 
 #: grid of a tensioner's geometry table (travel steps over its stop-to-stop range, plus margins)
@@ -135,14 +135,14 @@ def _tables(model, rest_lay: Layout, idx, sense, rest_q):
     return q0, dq, tL, t0, t1, tdx, tdy, tw
 
 
-def build(model) -> RotSystem:
-
+def build(drive) -> RotSystem:
+    """The rotational model's system of ``drive`` (geometry.drive.Drive; a model is resolved first):
+    about the continuum's rest state (``drive.rest``)."""
+    drive = resolve(drive)
+    model, drawn, L0 = drive.model, drive.layout, drive.installed_length
+    idx, sense = list(drive.tensioners), list(drive.senses)
     belt = model.belt
-    drawn = compute_layout(model)
-    L0 = installed_length(model, drawn)
-    idx = TN.indices(model)
-    sense = TN.senses(model) if idx else []
-    rest_q, T_rest, lay = rest_state(model, L0)
+    rest_q, T_rest, lay = drive.rest
     if not T_rest > 0:
         raise ModelError("the belt is slack at rest: belt.length too long or no pretension", field="belt")
     q0, dq, tL, t0, t1, tdx, tdy, tw = _tables(model, lay, idx, sense, rest_q) if idx else (
@@ -157,7 +157,7 @@ def build(model) -> RotSystem:
                dx=np.array([math.cos(sp.angle) for sp in lay.spans]), dy=np.array([math.sin(sp.angle) for sp in lay.spans]),
                wrap=lay.wrap.astype(float), q0=q0, dq=dq, tL=tL, t0=t0, t1=t1, tdx=tdx, tdy=tdy, tw=tw)
     P = pulleys_record(model.pulleys, running_senses(model, drawn))
-    A = arms_record(model)
+    A = arms_record(model, sense)
     # the belt's mass, lumped: each wrap's belt and a third of each adjoining span's
     nk = R.nk
     m = belt.mass_per_length
@@ -267,10 +267,13 @@ def new_states(sysm: RotSystem):
     return S, W, RS, RW
 
 
-def run(model, progress=None):
+def run(drive, progress=None):
+    """Integrate ``drive`` (geometry.drive.Drive, or a model) with the rotational model."""
     from ...limits import steps_problem
 
-    sysm = build(model)
+    drive = resolve(drive)
+    model = drive.model
+    sysm = build(drive)
     sim, out = model.simulation, model.output
     nsamples = max(1, int(round(sim.duration / out.interval)))
     interval = sim.duration / nsamples

@@ -15,6 +15,7 @@ from ...window import in_window, steady_window
 from . import _kernels as K
 from .state import clear_accumulators, new_state, new_work
 from .system import TURN_PER_STEP, BeltSystem, build, stability_limit
+from ..geometry.drive import resolve
 from ..model import integrator
 from .resolution import discretisation
 from ..dynamics.outputs import UNITS, clutch_variables, run_summary, tensioner_variables
@@ -240,9 +241,11 @@ def _blow_up(x, y, vx, vy, om, pen, sysm):
     return ""
 
 
-def run(model, progress=None) -> Result:
-    """Integrate ``model`` with the segment model (the dispatcher, belt.simulate, chose it)."""
-    sysm = build(model)
+def run(drive, progress=None) -> Result:
+    """Integrate ``drive`` (geometry.drive.Drive, or a model) with the segment model."""
+    drive = resolve(drive)
+    model = drive.model
+    sysm = build(drive)
     sim = model.simulation
     if sim.step is None:     # the step the model sets (a given one was checked with the model)
         from ...limits import steps_problem

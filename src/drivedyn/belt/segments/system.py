@@ -17,7 +17,7 @@ from ..geometry.placement import InitialState, check_length, initial_state
 from ..geometry.layout import Layout, compute_layout
 from ..geometry import tensioner
 from ..model import integrator
-from ..geometry.segment_count import resolved
+from ..geometry.drive import resolve
 
 
 @dataclass
@@ -69,35 +69,37 @@ class BeltSystem:
 SETTLE_TOL = 1e-3
 
 
-def build(model, settle: bool = True) -> BeltSystem:
-    """The kernels' arrays for ``model``. ``settle``: start the belt from its static equilibrium
-    (equilibrium.relax, 0.2-1.5 s); ``check`` needs only the placement's tension and penetration.
-    With tensioners, the belt is placed on the path of their static equilibrium (tensioner.py).
+def build(drive, settle: bool = True) -> BeltSystem:
+    """The kernels' arrays for ``drive`` (geometry.drive.Drive; a model is resolved first).
+    ``settle``: start the belt from its static equilibrium (equilibrium.relax, 0.2-1.5 s);
+    ``check`` needs only the placement's tension and penetration. With tensioners, the belt is
+    placed on the path of their static equilibrium (``drive.equilibrium``, tensioner.py).
 
     Without tensioners, the belt's tension means the continuum's, at any segment count: a
     ``belt.length`` gives the tension creep theory gives that installed length at rest (steady.py,
     the belt's depth in the grooves included), and the chain is placed so that it settles to the
     pretension (the settled chain carries up to a few percent less than its placement: chord sag
     and the segments' seating; one corrected placement takes that out). ``belt.segments = "auto"``
-    is resolved first (resolution.py)."""
-    model = resolved(model)
-    if tensioner.indices(model):
-        return _build(model, model, settle)
+    is resolved first (geometry/segment_count.py)."""
+    drive = resolve(drive)
+    model = drive.resolved
+    if drive.tensioners:
+        return _build(model, drive, settle)
     target = model.belt.pretension
     placed = model
     if target is None:
         from ..steady.creep import drive_of, tensions
 
-        check_length(model, compute_layout(model))
-        T = tensions(drive_of(model), np.zeros(len(model.pulleys)), 0.0, True)
+        check_length(model, drive.layout)
+        T = tensions(drive_of(model, drive.layout), np.zeros(len(model.pulleys)), 0.0, True)
         if T is None:
             raise ModelError(f"belt too long to be tensioned: unstretched length {model.belt.length:.4f} m",
                              field="belt.length")
         target = float(np.mean(T))
         placed = _with_pretension(model, target)
-    sysm = _build(placed, model, settle)
+    sysm = _build(placed, drive, settle)
     if settle and abs(settled_tension(sysm) / target - 1) > SETTLE_TOL:
-        sysm = _build(_with_pretension(model, target * target / settled_tension(sysm)), model, settle)
+        sysm = _build(_with_pretension(model, target * target / settled_tension(sysm)), drive, settle)
     if settle:
         sysm.init = dataclasses.replace(sysm.init, tension=settled_tension(sysm))
     return sysm
@@ -115,14 +117,16 @@ def settled_tension(sysm) -> float:
     return float(np.mean(W.jfk * np.hypot(W.jdx, W.jdy)))
 
 
-def _build(model, drawn, settle: bool) -> BeltSystem:
-    """The system of ``model`` (the belt placed by its pretension or length); ``drawn``, the user's
-    model, is what the system reports."""
-    rest = None
-    if tensioner.indices(model):
-        rest = tensioner.equilibrium(model)
+def _build(model, drive, settle: bool) -> BeltSystem:
+    """The system of ``model`` (the belt placed by its pretension or length; the pulleys as
+    drawn); ``drive.resolved``, the user's model, is what the system reports."""
+    drawn = drive.resolved
+    rest = drive.equilibrium
+    layout = drive.layout
+    if rest is not None:
+        rest = dataclasses.replace(rest)     # the settling below refines this system's copy
         model = rest.model            # centres at the equilibrium, belt.length installed
-    layout = compute_layout(model)
+        layout = compute_layout(model)
     _one_belt_speed(model, layout)
     init = initial_state(model, layout)
     belt, n = model.belt, model.belt.segments
@@ -154,7 +158,7 @@ def _build(model, drawn, settle: bool) -> BeltSystem:
         dv=float(model.friction.velocity_threshold), dmax=float(model.friction.displacement_limit),
         centre=model.friction.radius == "centre")
     P = pulleys_record(model.pulleys, running_senses(model, layout))
-    A = arms_record(drawn)   # travel measured from the drawn centres
+    A = arms_record(drawn, drive.senses)   # travel measured from the drawn centres
     span_mid = np.array([sp.midpoint for sp in layout.spans])
     span_geo = np.array([[*sp.midpoint, math.cos(sp.angle), math.sin(sp.angle)] for sp in layout.spans])
     track = np.array(model.output.segments, dtype=np.int64)

@@ -50,7 +50,7 @@ class PulleySteady:
     slip_arc: float        # rad (inf: gross slip)
     adhesion_arc: float    # rad
     creep: float           # 1 - v_exit / v_entry = (T_in - T_out) / (EA + T_in)
-    speed_ratio: float     # omega r0 / (omega r0) of the driver, r0 the rolling radius at rest (Drive.running_radius)
+    speed_ratio: float     # omega r0 / (omega r0) of the driver, r0 the rolling radius at rest (CreepData.running_radius)
     slip_margin: float = math.inf   # load multiplier at which this pulley's slip arc fills its wrap
 
 
@@ -120,8 +120,8 @@ def _wrap_length(r, theta, t_in, t_out, c, mu, EA, c1=0.0, c2=math.inf):
 # --- the core: tensions from the loads and the length ------------------------------------------
 
 @dataclass
-class Drive:
-    """What the solver needs, in the listed belt order."""
+class CreepData:
+    """What the creep solver needs of a drive (drive_of), in the listed belt order."""
     names: tuple
     rho: np.ndarray       # signed radii (layout.rho)
     wrap: np.ndarray
@@ -145,7 +145,7 @@ class Drive:
         return math.copysign(r - float(penetration((t_in - c) / r, self.c1, self.c2)), self.rho[j])
 
 
-def drive_of(model, layout: Layout | None = None) -> Drive:
+def drive_of(model, layout: Layout | None = None) -> CreepData:
     lay = layout or compute_layout(model)
     b = model.belt
     EA = b.axial_stiffness
@@ -161,7 +161,7 @@ def drive_of(model, layout: Layout | None = None) -> Drive:
         sunk = float(np.sum(lay.wrap * penetration(b.pretension / radii, c1, c2)))
         L0 = (lay.length - sunk) / (1 + b.pretension / EA)
     mu = np.full(len(lay.names), model.friction.coefficient)
-    d = Drive(lay.names, lay.rho.copy(), lay.wrap.copy(), np.array([sp.length for sp in lay.spans]),
+    d = CreepData(lay.names, lay.rho.copy(), lay.wrap.copy(), np.array([sp.length for sp in lay.spans]),
               tuple(sp.name for sp in lay.spans), mu, EA, b.mass_per_length, L0, float(c1), float(c2),
               centre=model.friction.radius == "centre")
     if b.pretension is not None:
@@ -177,7 +177,7 @@ def _entry_exit(nk, forward):
     return [((j - 1) % nk, j) if forward else (j, (j - 1) % nk) for j in range(nk)]
 
 
-def _offsets(d: Drive, M, forward):
+def _offsets(d: CreepData, M, forward):
     """Span tensions relative to span 0 from the torque balances, walking in the travel sense."""
     nk = len(d.names)
     s = 1.0 if forward else -1.0
@@ -192,7 +192,7 @@ def _offsets(d: Drive, M, forward):
     return off
 
 
-def length_of(d: Drive, T, c, forward):
+def length_of(d: CreepData, T, c, forward):
     """Unstretched length of the belt carrying span tensions T (listed order)."""
     L = float(np.sum(d.span_length / (1 + T / d.EA)))
     for j, (a, b) in enumerate(_entry_exit(len(d.names), forward)):
@@ -200,7 +200,7 @@ def length_of(d: Drive, T, c, forward):
     return L
 
 
-def tensions(d: Drive, M, c, forward):
+def tensions(d: CreepData, M, c, forward):
     """Span tensions (listed order) under pulley loads M (balanced: sum M_j / rho_j = 0) at
     centrifugal tension c, with L0 conserved. None when the belt would go slack (T <= c)."""
     off = _offsets(d, M, forward)
@@ -217,11 +217,11 @@ def tensions(d: Drive, M, c, forward):
     return t0 + off
 
 
-def slip_arcs(d: Drive, T, c, forward):
+def slip_arcs(d: CreepData, T, c, forward):
     return np.array([_arc(T[a], T[b], c, d.mu[j]) for j, (a, b) in enumerate(_entry_exit(len(d.names), forward))])
 
 
-def _fill(d: Drive, M, c, forward, lam):
+def _fill(d: CreepData, M, c, forward, lam):
     """Largest slip-arc share of the wrap per pulley at loads lam * M (inf when slack)."""
     T = tensions(d, lam * M, c, forward)
     if T is None:
@@ -229,7 +229,7 @@ def _fill(d: Drive, M, c, forward, lam):
     return slip_arcs(d, T, c, forward) / d.wrap
 
 
-def margins(d: Drive, M, c, forward, max_factor=1e3):
+def margins(d: CreepData, M, c, forward, max_factor=1e3):
     """Load multiplier per pulley at which its slip arc reaches its wrap (inf: never, e.g. an
     unloaded idler), by bisection on the factor (the driver keeps balancing the scaled loads)."""
     nk = len(d.names)
@@ -271,14 +271,14 @@ def applied_torque(p, omega):
     return M
 
 
-def _speeds(d: Drive, v0, T, forward, c=0.0):
+def _speeds(d: CreepData, v0, T, forward, c=0.0):
     """Pulley speeds (rad/s): each turns with the belt arriving at it, v0 (1 + T_in/EA), on its
-    running radius (``Drive.running_radius``)."""
+    running radius (``CreepData.running_radius``)."""
     ee = _entry_exit(len(d.names), forward)
     return np.array([v0 * (1 + T[a] / d.EA) / d.running_radius(j, T[a], c) for j, (a, _) in enumerate(ee)])
 
 
-def _steady_speed(model, d: Drive, T, prescribed):
+def _steady_speed(model, d: CreepData, T, prescribed):
     """Belt speed v0 (unstretched, signed along the listed order) where the loads balance
     (sum M_j / rho_j = 0), or None when they never do."""
     pulleys = model.pulleys
@@ -386,7 +386,7 @@ def _table_notes(pulleys, w, M, drv) -> list:
     return out
 
 
-def _solve(d: Drive, M, v, accel, state, presc, notes, with_margins=True) -> Steady:
+def _solve(d: CreepData, M, v, accel, state, presc, notes, with_margins=True) -> Steady:
     """Tensions, arcs, creep, speeds and margins for loads M at belt speed v (at the driver's entry)."""
     nk = len(d.names)
     forward = (accel >= 0) if state == "accelerating" else (v >= 0)
@@ -434,7 +434,7 @@ def _driver(M, w, presc):
     return int(np.argmax(M * w)) if np.any(M * w > 0) else int(np.argmax(np.abs(M)))
 
 
-def _balanced(d: Drive, M, w, presc):
+def _balanced(d: CreepData, M, w, presc):
     """Loads with the driver's torque set to balance the others (sum M_j / rho_j = 0)."""
     M = np.array(M, float)
     j = _driver(M, w, presc)

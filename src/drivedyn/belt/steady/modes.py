@@ -314,15 +314,17 @@ def drive_linear_model(model, tensions=None, held_as_dofs=False):
 
 def _as_built(model):
     """The drive with its tensioners at the rest equilibrium (its pretension the rest tension) and
-    their travel; the drawn drive and None without tensioners."""
+    their travel; the drawn drive and None without tensioners. ``model``: a model or its
+    geometry.drive.Drive."""
     from ..geometry import tensioner
-    from ..geometry.rest import installed_length, rest_state
+    from ..geometry.drive import resolve
 
-    idx = tensioner.indices(model)
-    if not idx:
+    drive = resolve(model)
+    model = drive.model
+    if not drive.tensioners:
         return model, None
-    travel, T, _ = rest_state(model, installed_length(model, compute_layout(model)))
-    sense = tensioner.senses(model)
-    moved = tensioner.with_centres(model, {j: tensioner.centre(model, j, q, s) for j, q, s in zip(idx, travel, sense)})
+    travel, T, _ = drive.rest
+    moved = tensioner.with_centres(model, {j: tensioner.centre(model, j, q, s)
+                                           for j, q, s in zip(drive.tensioners, travel, drive.senses)})
     belt = moved.belt.model_copy(update={"pretension": float(T), "length": None})
     return moved.model_copy(update={"belt": belt}), travel
