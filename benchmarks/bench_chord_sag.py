@@ -1,4 +1,4 @@
-"""The chord-sag rule of belt.segments = "auto" (belt/resolution.py) on a running drive: a two-pulley
+"""The chord-sag rule of belt.segments = "auto" (belt/segments/resolution.py) on a running drive: a two-pulley
 drive (40 mm pulleys 120 mm apart, the 5PK belt of examples/belt-5pk.toml at 300 N), the driver held
 at a constant speed, the driven pulley (1e-3 kg m^2, 3 N m load) given a 1 ms torque pulse; its
 torsional ringing frequency, read from the driven pulley's speed after the pulse, at segment counts

@@ -7,7 +7,7 @@ its tension at each order (the phase of Y in Re(Y e^(i W t)): negative lags), fr
 
 - the segment model (belt.segments, default "auto"),
 - the rotational model (simulation.model = "rotational"),
-- the linear model (belt/modes.py ``drive_linear_model``: the modes' K and M with the crankshaft a
+- the linear model (belt/steady/modes.py ``drive_linear_model``: the modes' K and M with the crankshaft a
   DOF, driven at each order's frequency; the spans' and the arm's dampers; no creep, no slip, the
   one-way clutch locked), unless --no-linear.
 

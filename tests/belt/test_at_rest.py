@@ -1,6 +1,6 @@
 """A drive that nothing drives stays at rest (issue 10).
 
-Cause of the old drift: the placement of the rigid-segment chain on the path (initial.py) is not a
+Cause of the old drift: the placement of the rigid-segment chain on the path (geometry/placement.py) is not a
 static equilibrium; its potential energy lies above the nearest minimum (the chain's cogging well,
 period one segment), and the free drive converted that energy into motion. The fix starts from the
 minimum (equilibrium.relax). Checked against two things nobody tuned: energy conservation (what the

@@ -71,7 +71,7 @@ def _raising_after(real, calls):
 
 
 def test_a_division_by_zero_in_the_step_keeps_results(model_factory, monkeypatch, tmp_path):
-    from drivedyn.belt import _kernels as K
+    from drivedyn.belt.segments import _kernels as K
 
     monkeypatch.setattr(K, "step_chunk", _raising_after(K.step_chunk, 20))
     m = model_factory(simulation__duration=0.05, simulation__method="semi-implicit")
@@ -85,7 +85,7 @@ def test_a_division_by_zero_in_the_step_keeps_results(model_factory, monkeypatch
 
 @pytest.mark.parametrize("runup", ["time", "periodic"])
 def test_a_division_by_zero_in_the_rotational_step_keeps_results(monkeypatch, runup):
-    from drivedyn.belt import _rotkernels as RK
+    from drivedyn.belt.rotational import _kernels as RK
 
     monkeypatch.setattr(RK, "run_samples", _raising_after(RK.run_samples, 20))
     m = drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-runup")),

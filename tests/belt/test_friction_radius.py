@@ -5,7 +5,7 @@ tension and their depth measured from the segments' positions, not from the cont
 
 - "contact" (the default): the belt's centre line runs at the pulley surface's speed om r, so a
   pulley turns at v_st / r, v_st = v0 (1 + T_st / EA) the belt's speed on its stuck arc, and the
-  stuck arc carries the entering span's tension (classical creep theory, belt/steady.py);
+  stuck arc carries the entering span's tension (classical creep theory, belt/steady/creep.py);
 - "centre": stuck belt turns with its pulley on its centre line's radius r - p_st, so a pulley turns
   at v_st / (r - p_st); and a belt landing on a wrap must shorten by p / r as it sinks, so it slides
   there and its stuck arc carries less than the span it came from (on the driver, which takes the

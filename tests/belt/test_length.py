@@ -1,5 +1,5 @@
 """The belt's installed length and pretension mean the continuum's quantities, at any resolution:
-a catalogue length gives creep theory's tension at rest (steady.tensions: the length balance with
+a catalogue length gives creep theory's tension at rest (creep.tensions: the length balance with
 the belt's depth in the grooves) whatever the segment count; a pretension is what the discrete
 belt settles to at rest (its mean element force after the static equilibrium)."""
 import numpy as np

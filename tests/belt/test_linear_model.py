@@ -1,4 +1,4 @@
-"""The drive's linear model (belt/modes.py ``linear_model``) with the crank as a DOF: a two-pulley
+"""The drive's linear model (belt/steady/modes.py ``linear_model``) with the crank as a DOF: a two-pulley
 drive driven by its crank's motion is a base-excited oscillator, written here from the belt's
 energies (belt stuck to both wraps, equal radii R, centres L apart):
 

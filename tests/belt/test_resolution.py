@@ -1,6 +1,6 @@
 """The belt's resolution at the defaults (belt.segments = "auto"), against references written here:
 the slip of every pulley of a six-pulley accessory drive running steady against creep theory
-(steady.py: each pulley's speed ratio (EA + T_in) / (EA + T_in,driver) of its span tensions), and
+(steady/creep.py: each pulley's speed ratio (EA + T_in) / (EA + T_in,driver) of its span tensions), and
 the rule's pick and what the summary reports of it."""
 import math
 

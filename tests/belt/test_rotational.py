@@ -174,7 +174,7 @@ def test_creep_and_the_capstan_limit():
 @pytest.mark.parametrize("radius", ["contact", "centre"])
 def test_slip_with_the_belts_depth_against_creep_theory(radius):
     """The belt sunk into its grooves (the 5PK contact law, depth about 0.1 mm): the rotational model's
-    slip and tensions against steady creep theory (belt/steady.py) for either friction.radius; with
+    slip and tensions against steady creep theory (belt/steady/creep.py) for either friction.radius; with
     "centre" each pulley turns with the belt on r - p(T_in), a larger slip. Measured: slip 0.13271 /
     0.19170 % against 0.13271 / 0.19120 %."""
     from drivedyn.belt.steady.creep import steady_state
@@ -260,7 +260,7 @@ def test_arm_rest_balance_by_virtual_work():
 def test_modes_with_a_tensioner_from_a_free_response(law):
     """check's modes of the tensioned drive against the rotational model's free response after a
     torque pulse on the alternator (the spectrum's peaks). With the elastic-plastic law both carry
-    the wraps' bristles as shear lags (modes.py, _rotkernels._compliances): 126.6 / 263.6 / 493.2
+    the wraps' bristles as shear lags (modes.py, rotational/_kernels._compliances): 126.6 / 263.6 / 493.2
     Hz against adhesion's 144.3 / 319.7 / 643.4."""
     m = drivedyn.replace(tensioned(duration=0.5), {"friction.law": law})
     pulse = [[0, 0], [1e-4, 1.0], [5e-4, 1.0], [6e-4, 0.0]]

@@ -1,4 +1,4 @@
-"""Steady creep-theory state, slip margins and rotational modes (belt/steady.py, belt/modes.py)
+"""Steady creep-theory state, slip margins and rotational modes (belt/steady/creep.py, belt/steady/modes.py)
 against closed forms, conservation and the dynamic model's measured numbers."""
 import json
 import math

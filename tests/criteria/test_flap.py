@@ -1,4 +1,4 @@
-"""Span flap (belt/flap.py) against closed forms: the axially moving string (Mote 1965; Wickert &
+"""Span flap (belt/steady/flap.py) against closed forms: the axially moving string (Mote 1965; Wickert &
 Mote 1990) f_1 = c (1 - V^2/c^2) / 2L, c = sqrt(T/m), and the pinned tensioned beam at rest
 f_1 = sqrt((T + pi^2 EI / L^2) / m) / 2L; and a crossing placed on purpose (a span whose first flap
 mode meets order 2 at 3000 rpm) is found and listed."""

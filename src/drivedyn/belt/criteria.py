@@ -47,8 +47,8 @@ def speed_range(ds, summary, driver) -> tuple[float, float]:
 
 
 def add_flap_and_modes(model, result) -> None:
-    """summary["flap"] (span flap frequencies, belt/flap.py), summary["modes"] (the rotational
-    modes, belt/modes.py) and ds["flap_frequency"] for the Campbell diagram."""
+    """summary["flap"] (span flap frequencies, belt/steady/flap.py), summary["modes"] (the rotational
+    modes, belt/steady/modes.py) and ds["flap_frequency"] for the Campbell diagram."""
     from ..results import variable
     from .steady import flap as flapmod
     from .steady.modes import drive_modes

@@ -349,7 +349,7 @@ class Simulation(Spec):
 
     duration: quantity("s", gt=0) = 1.0
     # "segments": the belt as a chain of rigid segments (seed 000); "rotational": pulleys, arms and
-    # rotors with the spans as axial springs and creep on the wraps (rotational.py), milliseconds
+    # rotors with the spans as axial springs and creep on the wraps (rotational/simulate.py), milliseconds
     # per simulated second
     model: Literal["segments", "rotational"] = "segments"
     # a run-up by time integration of the crank's speed table ("time"), or its steady response at

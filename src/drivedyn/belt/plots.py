@@ -367,7 +367,7 @@ def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), r
                   speed_range=None, own_orders=None, free_rotor_hz=()):
     """Campbell diagram: the drive's rotational modes (horizontal; one-way clutches locked, and
     dotted with their rotors free) and the spans' first flap frequencies (``flap``: {span: (rpm,
-    Hz)}, belt/flap.py) against the orders of the driver's rotation (k x driver speed); crossings
+    Hz)}, belt/steady/flap.py) against the orders of the driver's rotation (k x driver speed); crossings
     inside ``speed_range`` (rpm, shaded) are resonances the run passes through. ``own_orders``:
     {label: order in driver orders} of accessories' own excitations (an A/C compressor's pistons)."""
     ax = plotting.ax_or_new(ax)

@@ -1,6 +1,6 @@
 """What is known without simulating: layout, belt length, wraps, static tensions, hub loads, the
 installation table (installation.py), the steady running state of creep theory with the slip
-margins (steady.py), the rotational modes (modes.py) and the step the integrator will use."""
+margins (steady/creep.py), the rotational modes (modes.py) and the step the integrator will use."""
 from __future__ import annotations
 
 import math
@@ -18,7 +18,7 @@ def capstan_torque(tension, radius, wrap, mu):
 
 def check_data(model, sysm=None) -> dict:
     """What ``check`` knows, as plain data (``drivedyn check --json``): the steady running state of
-    creep theory (steady.py), the slip margins and the rotational modes (modes.py). ``model``: a
+    creep theory (steady/creep.py), the slip margins and the rotational modes (modes.py). ``model``: a
     model or its geometry.drive.Drive; ``sysm``: the segment model's system, when built."""
     from .geometry.drive import resolve
     from .geometry.installation import installation_table

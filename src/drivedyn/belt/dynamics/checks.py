@@ -40,7 +40,7 @@ def runup_slip(result):
 
 def slip_margin(result, model, sysm, sel):
     """pulleys.<name>.slip_margin: the load multiplier at gross-slip onset by creep theory
-    (steady.py) for the run's mean loads in the window (inertia torques J dw/dt included, so that
+    (steady/creep.py) for the run's mean loads in the window (inertia torques J dw/dt included, so that
     an accelerating drive counts what its belt transmits)."""
     from ..steady.creep import steady_state
 

@@ -15,7 +15,7 @@ from .placement import penetration
 
 def installed_length(model, lay: Layout) -> float:
     """Unstretched belt length: ``belt.length``, or what the drawn path holds at the pretension with
-    the belt sunk into each wrap by its static depth (as steady.drive_of)."""
+    the belt sunk into each wrap by its static depth (as creep.drive_of)."""
     b = model.belt
     return float(b.length) if b.length is not None else _content(model, lay, b.pretension)
 

@@ -17,7 +17,7 @@ slip and span tension (tests/belt/test_resolution.py measures both against refin
 - chordal landing: a segment wrapped on a pulley of radius r stands off the circle by its chord
   sag l^2 / (8 r) at its ends, and each landing segment drops that far into the contact at the
   polygon frequency v / l. Where the sag is not small against the depth p to which the belt's
-  tension presses it into the groove (contact pressure T / r, steady.penetration), landings shake
+  tension presses it into the groove (contact pressure T / r, placement.penetration), landings shake
   the contact, the wraps carry their load in bursts and the drive's response at the engine orders
   is off by several per cent, converging only once the sag is a fraction of p. Measured on
   examples/fead-runup.toml's drive held at 3000 rpm with its orders (benchmarks/

@@ -11,7 +11,7 @@ each tensioner balances its spring against the belt's hub force projected on d c
     Q_spring(q) + F_hub(T(q), q) . dc/dq = 0      (one equation per tensioner)
 
 solved first with the continuum tension (EA strain^e of the path), then corrected with the
-discrete placement's tension (initial.initial_state), which the dynamic model starts from.
+discrete placement's tension (placement.initial_state), which the dynamic model starts from.
 References: Beikmann, Perkins & Ulsoy, J. Vib. Acoust. 118 (1996) 406-413 (static equilibrium of
 a belt drive with a dynamic tensioner); design note fead.md.
 """

@@ -1,4 +1,4 @@
-"""Compiled step of the rotational belt-drive model (rotational.py states the formulation).
+"""Compiled step of the rotational belt-drive model (rotational/simulate.py states the formulation).
 
 One unknown per pulley (angle, speed; a clutch rotor behind it), per tensioner (travel, rate) and
 per span and wrap (their unstretched belt contents u and W). The pulleys, clutches and tensioners
@@ -51,7 +51,7 @@ class Rot(NamedTuple):
     tw: np.ndarray           # (na, ng, nk) wrap angle
 
 
-#: Gauss-Legendre nodes and weights on [0, 1] for the belt's depth along a slip arc (steady.py uses
+#: Gauss-Legendre nodes and weights on [0, 1] for the belt's depth along a slip arc (steady/creep.py uses
 #: 8; the integrand is smooth: 4 left the wrap's content within 1e-9 m on fead-runup's drive, 2 move
 #: its periodic run-up tables by 1e-5 relative at most and save 6 % per step)
 GL_N = 2
@@ -204,7 +204,7 @@ def _lag(EA, c1, c2, mu, q, r, dmax):
 
 @njit(cache=True, inline="always")
 def _compliances(nk, EA, c1, c2, m, mu, dmax, rho, om, wrap, Tb, cc, cs):
-    """Per wrap, the compliances of its bristles' shear lag (belt/modes.py, ``_wrap_compliance``):
+    """Per wrap, the compliances of its bristles' shear lag (belt/steady/modes.py, ``_wrap_compliance``):
     each stuck bit of belt is held to the rim by mu N / Delta_max, per unit length k' = mu (T - m
     v^2) / (r Delta_max), and the belt's displacement u against the rim obeys EA_w u'' = k' u over the
     wrap's length L = r theta (a shear lag of length 1 / beta, beta^2 = k' / EA_w, EA_w the wrap's

@@ -8,7 +8,7 @@ crank: four; their phase is set back in step with the crank at each period, so c
 them drift). The periodic solution is found by shooting on the period map Phi: the state (pulley
 and rotor speeds, decoupler wind-up, tensioner travel and rate, the belt in each span and wrap, the
 span dampers' rates) at the start of a period -> the state one period later, integrated by the
-rotational model (rotational.py); x = Phi(x) is solved by Anderson-accelerated fixed-point
+rotational model (rotational/simulate.py); x = Phi(x) is solved by Anderson-accelerated fixed-point
 iteration (Walker & Ni, SIAM J. Numer. Anal. 49 (2011) 1715-1735), with continuation in speed:
 each speed starts from the last one's solution. Creep damps the drive's transients within a few
 periods; the acceleration guards against lightly damped ones. A speed whose change per period

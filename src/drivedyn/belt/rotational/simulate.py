@@ -13,13 +13,13 @@ and slip prediction of serpentine belt drives; creep as Kong & Parker, J. Appl. 
 - Wrap j holds W_j. The belt arrives in adhesion: it moves with the pulley surface (rho_j omega_j)
   at the strain of the span it comes from, so the flux into the wrap is rho_j omega_j / (1 + e_in);
   the wrap's content relaxes to its steady value (creep theory: adhesion arc, then a slip arc with
-  T - m v^2 ~ exp(mu phi), the belt sunk into the groove by its contact pressure; steady.py) over
+  T - m v^2 ~ exp(mu phi), the belt sunk into the groove by its contact pressure; steady/creep.py) over
   one passage time r theta / |v|, and the flux out is the flux in less the content's change.
   Belt is conserved: sum u + sum W = L0 at every step.
 - With the elastic-plastic friction law (the default) the wraps' bristles give: a shear lag at each
   wrap end lets belt out into the span that pulls (its tension less the tension the belt carries
   on the wrap, which follows the arriving span's as fresh belt enters), the same compliance as
-  ``check``'s modes (modes._wrap_compliance; _rotkernels._compliances, _bristles).
+  ``check``'s modes (modes._wrap_compliance; rotational/_kernels._compliances, _bristles).
 - A tensioner moving the tangent points rolls belt from a span onto its pulleys (adhesion): the
   stretch of a span per unit travel is then the projection of the pulley centre's motion on the
   span (modes.py), the same gradient as ``check``'s modes.
@@ -34,7 +34,7 @@ and slip prediction of serpentine belt drives; creep as Kong & Parker, J. Appl. 
   wrap's belt on its pulley and a third of each adjoining span's (the diagonal of a span's
   consistent mass), on the pulley's rotation and on a tensioner's travel.
 
-Not in it: the spans' transverse motion (flap: belt/flap.py), the belt's own axial waves (the
+Not in it: the spans' transverse motion (flap: belt/steady/flap.py), the belt's own axial waves (the
 spans are massless springs), polygon effects (none: it is the continuum) and a slip arc's history
 beyond one passage.
 """
@@ -84,7 +84,7 @@ class RotSystem:
 def rolling_radii(model, lay: Layout, tension: float) -> np.ndarray:
     """Per pulley: belt speed over pulley speed at rest, the radius slip is read against: the
     contact radius, or with friction.radius = "centre" the belt's centre line's, less the depth of
-    the pressure tension / r (steady.penetration)."""
+    the pressure tension / r (placement.penetration)."""
     r = np.abs(lay.rho)
     if model.friction.radius != "centre":
         return r

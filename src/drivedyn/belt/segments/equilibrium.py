@@ -1,6 +1,6 @@
 """Static equilibrium of the discrete belt: the state a drive at rest keeps.
 
-The placement (initial.py) puts chord ends on the path; it is not an equilibrium of the rigid-
+The placement (geometry/placement.py) puts chord ends on the path; it is not an equilibrium of the rigid-
 segment chain (point contacts at the segment centres, joints at the chord ends): up to tens of
 newtons of residual force per segment, and the chain's potential energy depends on its phase
 along the path (period one segment, the chain's cogging). Started there, a free drive falls into

@@ -47,7 +47,7 @@ class BeltSystem:
         at the pulley's speed at the friction's radius a (``friction.radius``: a = r, "contact";
         a = r_c, "centre", turning with the pulley); one pitch l + g passes per angle
         2 asin(l / 2 R_e) + 2 asin(g / 2 R_e), its chord ends on R_e = sqrt(r_c^2 + l^2 / 4)
-        (initial.py): a (1 + l^2 / (12 r_c^2)) to first order. Speed ratios against it are free of
+        (geometry/placement.py): a (1 + l^2 / (12 r_c^2)) to first order. Speed ratios against it are free of
         the polygon effect, which is no slip."""
         init = self.init
         l, g = init.seg_length, init.gap
@@ -76,7 +76,7 @@ def build(drive, settle: bool = True) -> BeltSystem:
     placed on the path of their static equilibrium (``drive.equilibrium``, tensioner.py).
 
     Without tensioners, the belt's tension means the continuum's, at any segment count: a
-    ``belt.length`` gives the tension creep theory gives that installed length at rest (steady.py,
+    ``belt.length`` gives the tension creep theory gives that installed length at rest (steady/creep.py,
     the belt's depth in the grooves included), and the chain is placed so that it settles to the
     pretension (the settled chain carries up to a few percent less than its placement: chord sag
     and the segments' seating; one corrected placement takes that out). ``belt.segments = "auto"``

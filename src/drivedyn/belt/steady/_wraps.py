@@ -7,7 +7,7 @@ from numba import njit
 
 @njit(cache=True, inline="always")
 def sunk_depth(q, c1, c2):
-    """Depth p (m) at which the contact law carries q (N/m): c1 p^2 + c2 p = q (steady.penetration)."""
+    """Depth p (m) at which the contact law carries q (N/m): c1 p^2 + c2 p = q (placement.penetration)."""
     if q <= 0.0:
         return 0.0
     return 2.0 * q / (c2 + math.sqrt(c2 * c2 + 4.0 * c1 * q))
@@ -21,7 +21,7 @@ def wrap_axial_stiffness(EA, c1, c2, q, r):
     per unit length at c1 p^2 + c2 p = q; the belt's centre line then runs on a circle shorter by dp
     / r, which lets belt out of the wrap as a strain would: 1 / EA_w = 1 / EA + 1 / (r^2 k_n)
     (the segment model's wraps, measured: a static torque turns the tensioned drive of
-    tests/belt/test_modes_tensioner.py within 0.4 % of belt/modes.py with it, 6 % more without)."""
+    tests/belt/test_modes_tensioner.py within 0.4 % of belt/steady/modes.py with it, 6 % more without)."""
     kn = c2 + 2.0 * c1 * sunk_depth(q, c1, c2)
     if kn <= 0.0:
         return EA

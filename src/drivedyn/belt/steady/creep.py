@@ -371,7 +371,7 @@ def steady_state(model, layout: Layout | None = None, loads=None, speed=None, wi
 
 def _table_notes(pulleys, w, M, drv) -> list:
     """A torque_speed table read outside its speed range at the steady speed, or a load pulley
-    that would deliver power (the run reports both as diagnostics: belt/loadcheck.py)."""
+    that would deliver power (the run reports both as diagnostics: belt/dynamics/loadcheck.py)."""
     out = []
     for j, p in enumerate(pulleys):
         if not p.torque_speed or j == drv or p.clutch is not None:

@@ -247,7 +247,7 @@ def _wrap_compliance(model, lay, T, G):
     Delta_max) at tension T, so the belt on a wrap moves against the rim where the spans pull it.
     Along the wrap its displacement u relative to the rim obeys EA_w u'' = k' u (a shear lag of length
     1 / beta, beta^2 = k' / EA_w; EA_w the wrap's axial stiffness with the belt's sinking into the
-    rim, ``_rotkernels.wrap_axial_stiffness``), whose two ends, u_in where the belt arrives and
+    rim, ``rotational/_kernels.wrap_axial_stiffness``), whose two ends, u_in where the belt arrives and
     u_out where it leaves, then carry the energy EA_w beta / 2 [(u_in^2 + u_out^2) coth(beta L) - 2
     u_in u_out csch(beta L)] (L = r x wrap). A span's stretch gains u_in of its end pulley less
     u_out of its start pulley. These massless displacements are condensed out. Linearised at rest:
@@ -300,7 +300,7 @@ def _eigen(K, M, names) -> Modes:
 
 def drive_modes(model, tensions=None) -> Modes:
     """Modes of a drive as built: a tensioned drive about the static equilibrium of the continuous
-    belt and its tensioners (rotational.rest_state, the rotational model's rest state), at that rest
+    belt and its tensioners (rest.rest_state, the rotational model's rest state), at that rest
     tension unless span ``tensions`` are given."""
     built, travel = _as_built(model)
     return modes(built, tensions=tensions, travel=travel)

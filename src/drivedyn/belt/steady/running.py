@@ -13,7 +13,7 @@ from ..geometry.tensioner import moved_to, spring_load, centre, indices, senses
 
 
 def running(model, rest):
-    """The tensioners' equilibrium under the running loads (creep theory, steady.py): travel q per
+    """The tensioners' equilibrium under the running loads (creep theory, steady/creep.py): travel q per
     tensioner such that the spring balances the hub force of the running span tensions (less the
     centrifugal tension, which the wrapped belt carries itself), the belt's unstretched length
     that of the installation. Returns (travel, model with the pulleys there and belt.length set,
