@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.belt.dynamics import _bodies as B
+from drivedyn.belt.dynamics import _bodies as BK
 from drivedyn.belt.segments.system import build
 
 
@@ -18,13 +18,13 @@ def kinematic(model_factory, **kw):
 
 def test_threlfall_law_shape():
     dv = 1e-3
-    assert B.threlfall(0.0, dv) == 0.0
-    assert B.threlfall(dv, dv) == 1.0 and B.threlfall(-2 * dv, dv) == -1.0
-    assert B.threlfall(0.5 * dv, dv) == pytest.approx(0.5 * 0.5 * (3 - 0.25))
+    assert BK.threlfall(0.0, dv) == 0.0
+    assert BK.threlfall(dv, dv) == 1.0 and BK.threlfall(-2 * dv, dv) == -1.0
+    assert BK.threlfall(0.5 * dv, dv) == pytest.approx(0.5 * 0.5 * (3 - 0.25))
     # the implicit update solves s + a mu(s) = w exactly, in and out of the band
     for w in (-1.0, -1.5e-3, -1e-4, 0.0, 3e-4, 2e-3, 0.7):
-        sl = B.solve_threlfall(w, 0.4, dv)
-        assert sl + 0.4 * B.threlfall(sl, dv) == pytest.approx(w, abs=1e-12)
+        sl = BK.solve_threlfall(w, 0.4, dv)
+        assert sl + 0.4 * BK.threlfall(sl, dv) == pytest.approx(w, abs=1e-12)
 
 
 def test_friction_zone_over_the_whole_belt_equals_the_global_coefficient(model_factory):
@@ -70,19 +70,19 @@ def test_load_laws_closed_form():
     off = np.array([0, 0], dtype=np.int64)
     e = np.zeros(0)
     one = np.ones(1)
-    P = B.Pulleys(nk=1, cx=0 * one, cy=0 * one, r=one, inertia=one, inv_i=one, mode=np.zeros(1, dtype=np.int64),
+    P = BK.Pulleys(nk=1, cx=0 * one, cy=0 * one, r=one, inertia=one, inv_i=one, mode=np.zeros(1, dtype=np.int64),
                   tq_const=np.array([2.0]), tq_visc=np.array([0.1]), tt_off=off, tt_x=e, tt_y=e, ts_off=off,
                   ts_x=e, ts_y=e, hm_off=np.array([0, 2], dtype=np.int64), hm_order=np.array([2.0, 4.0]),
                   hm_amp=np.array([3.0, 1.0]), hm_phase=np.array([0.0, 0.5]), sp_off=off, sp_x=e, sp_y=e,
                   tq_drag=np.array([0.3]), w_drag=one, tq_quad=np.array([0.01]), tq_pow=np.array([100.0]),
                   w_cut=np.array([2.0]), so_off=off, so_order=e, so_amp=e, so_ang=e, so_phase=e,
                   cl_kind=np.zeros(1, dtype=np.int64), cl_ir=one, cl_k=0 * one, cl_c=0 * one, cl_s=one)
-    M = B.external_torque(P, 0, 0.3, 1.2, 5.0)
+    M = BK.external_torque(P, 0, 0.3, 1.2, 5.0)
     assert M == pytest.approx(2.0 - 0.1 * 5.0 + 3 * math.sin(2 * 1.2) + math.sin(4 * 1.2 + 0.5)
                               - 0.3 - 0.01 * 25 - 100 / 5.0)
-    M = B.external_torque(P, 0, 0.3, 0.0, -0.5)
+    M = BK.external_torque(P, 0, 0.3, 0.0, -0.5)
     assert M == pytest.approx(2.0 + 0.05 + 0.3 * 0.5 + 0.01 * 0.25 + math.sin(0.5))
-    M = B.external_torque(P, 0, 0.3, 0.0, 3.0)      # half the power at 1.5 x cut-in
+    M = BK.external_torque(P, 0, 0.3, 0.0, 3.0)      # half the power at 1.5 x cut-in
     assert M == pytest.approx(2.0 - 0.3 + 3 * 0.0 - 0.3 - 0.09 - 50 / 3.0 + math.sin(0.5))
 
 

@@ -10,7 +10,7 @@ import pytest
 
 import drivedyn
 from drivedyn.belt.segments import _kernels as K
-from drivedyn.belt.dynamics import _bodies as B
+from drivedyn.belt.dynamics import _bodies as BK
 from drivedyn.belt.geometry.layout import compute_layout
 from drivedyn.belt.segments.state import new_state, new_work
 from drivedyn.belt.segments.system import build
@@ -121,7 +121,7 @@ def test_arm_free_oscillation_against_linear_model():
     A = sysm.arms
 
     def path(q):
-        c = B.arm_centre(A, 0, q)[:2]
+        c = BK.arm_centre(A, 0, q)[:2]
         pulleys = [p.model_copy(update={"center": c}) if k == j else p for k, p in enumerate(m.pulleys)]
         return compute_layout(m.model_copy(update={"pulleys": pulleys}))
 

@@ -9,10 +9,10 @@ import numpy as np
 
 from ...tables import flatten
 from ..geometry.tensioner import indices, senses
-from . import _bodies as B
+from . import _bodies as BK
 
 
-def arms_record(model, sense=None) -> B.Arms:
+def arms_record(model, sense=None) -> BK.Arms:
     """The kernel record of the model's tensioners (an empty record without). ``sense``: the
     +-1 per tensioner that points into the belt (``senses``)."""
     idx = indices(model)
@@ -51,12 +51,12 @@ def arms_record(model, sense=None) -> B.Arms:
                   asym=f([t.friction_asymmetry for t in T]), fv=f([t.friction_speed for t in T]),
                   qmin=f([t.stops[0] for t in T]), qmax=f([t.stops[1] for t in T]),
                   kstop=f([t.stop_stiffness for t in T]), cstop=f([t.stop_damping for t in T]))
-    par = np.ascontiguousarray(np.column_stack([fields[k] for k in B.ARM_FIELDS]).reshape(len(idx), B.ARM_NPAR))
-    return B.Arms(na=len(idx), pulley=np.array(idx, dtype=np.int64), kind=np.array(kind, dtype=np.int64),
+    par = np.ascontiguousarray(np.column_stack([fields[k] for k in BK.ARM_FIELDS]).reshape(len(idx), BK.ARM_NPAR))
+    return BK.Arms(na=len(idx), pulley=np.array(idx, dtype=np.int64), kind=np.array(kind, dtype=np.int64),
                   tab_off=off, tab_x=tx, tab_y=ty, par=par, **fields)
 
 
-def pulleys_record(P, senses=None) -> B.Pulleys:
+def pulleys_record(P, senses=None) -> BK.Pulleys:
     """The Pulleys record; ``senses``: +-1 per pulley, its running sense (clutches need it)."""
     f = lambda vals: np.array(vals, dtype=float)
     tt_off, tt_x, tt_y = flatten([p.torque_time for p in P])
@@ -71,7 +71,7 @@ def pulleys_record(P, senses=None) -> B.Pulleys:
     so = [o for p in P for o in p.speed_orders]
     senses = np.ones(len(P)) if senses is None else senses
     cl = [p.clutch for p in P]
-    return B.Pulleys(
+    return BK.Pulleys(
         nk=len(P), cx=f([p.center[0] for p in P]), cy=f([p.center[1] for p in P]),
         r=f([p.radius for p in P]),
         inertia=f([p.inertia for p in P]), inv_i=f([1.0 / p.inertia for p in P]),

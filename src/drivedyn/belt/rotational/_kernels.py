@@ -19,7 +19,7 @@ import numpy as np
 from numba import njit
 
 
-from ..dynamics import _bodies as B
+from ..dynamics import _bodies as BK
 from ..steady._wraps import sunk_depth, wrap_axial_stiffness
 
 
@@ -254,7 +254,7 @@ def _bristles(nk, EA, L, u, T, Tb, cc, cs, bm, bv, off):
         bm[j, jm] -= sj * cs[j]
         bm[j, k1] -= sj * cs[k1]
         bv[j] = T[j] + sj * ((cc[j] - cs[j]) * Tb[j] + (cc[k1] - cs[k1]) * Tb[k1])
-    B._small_solve(nk, bm, bv)
+    BK._small_solve(nk, bm, bv)
     for j in range(nk):
         k1 = (j + 1) % nk
         jm = (j - 1) % nk
@@ -330,7 +330,7 @@ def energy(R, P, A, S, RS, RW):
             if P.cl_kind[k] == 2:
                 E += 0.5 * P.cl_k[k] * S.dcp[k] ** 2
     for a in range(A.na):
-        E += 0.5 * A.inertia[a] * S.qd[a] ** 2 + B.spring_energy(A, a, S.q[a])
+        E += 0.5 * A.inertia[a] * S.qd[a] ** 2 + BK.spring_energy(A, a, S.q[a])
     geometry(R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap)
     for j in range(R.nk):
         uj = RS.u[j] + RS.off[j]
@@ -434,8 +434,8 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 hubx[k] = (T[k] - c) * dx[k] - (T[ji] - c) * dx[ji]
                 huby[k] = (T[k] - c) * dy[k] - (T[ji] - c) * dy[ji]
             # --- tensioners and pulleys: the segment model's stages
-            P_arm = B._step_arms(na, apul, akind, apar, atoff, atx, aty, q, qd, scx, scy, scvx, scvy, hubx, huby, h)
-            diss_cl = B._step_pulleys(t, h, tq, hubx, huby, P, S, W)
+            P_arm = BK._step_arms(na, apul, akind, apar, atoff, atx, aty, q, qd, scx, scy, scvx, scvy, hubx, huby, h)
+            diss_cl = BK._step_pulleys(t, h, tq, hubx, huby, P, S, W)
             for k in range(nk):
                 wm[k] = wrap[k]
             # --- the belt: fluxes through the wraps at the new speeds, contents updated

@@ -48,7 +48,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from ...errors import ModelError, SolverError, Stopped, stop_reason
-from ..dynamics import _bodies as B
+from ..dynamics import _bodies as BK
 from ..dynamics.bodies import arms_record, pulleys_record, running_senses
 from . import _kernels as RK
 from ..geometry import tensioner as TN
@@ -72,8 +72,8 @@ class RotSystem:
     model: object          # the drawn model
     layout: Layout         # at the tensioners' rest travel
     R: RK.Rot
-    P: B.Pulleys           # belt mass lumped on the inertias
-    A: B.Arms
+    P: BK.Pulleys           # belt mass lumped on the inertias
+    A: BK.Arms
     rest_travel: np.ndarray
     rest_tension: float
     L0: float              # unstretched belt length (m)
@@ -168,9 +168,9 @@ def build(drive) -> RotSystem:
         par = A.par.copy()
         add = np.zeros(A.na)
         for a in range(A.na):
-            _, _, jx, jy = B.arm_centre(A, a, float(rest_q[a]))
+            _, _, jx, jy = BK.arm_centre(A, a, float(rest_q[a]))
             add[a] = carried[A.pulley[a]] * (jx * jx + jy * jy)
-        par[:, B.ARM_IN] += add
+        par[:, BK.ARM_IN] += add
         A = A._replace(par=par, inertia=A.inertia + add)
     w_max = _omega_bound(R, P, A, rest_q, T_rest)
     h = STEP_OMEGA / w_max
@@ -193,10 +193,10 @@ def _omega_bound(R, P, A, rest_q, T) -> float:
             w2 = max(w2, P.cl_k[j] / ired)
     for a in range(A.na):
         j = A.pulley[a]
-        _, _, jx, jy = B.arm_centre(A, a, float(rest_q[a]))
+        _, _, jx, jy = BK.arm_centre(A, a, float(rest_q[a]))
         g2 = jx * jx + jy * jy
-        ka = (kspan[j] + kspan[(j - 1) % nk]) * g2 * 2 + A.par[a, B.ARM_RATE] + A.par[a, B.ARM_KSTOP]
-        w2 = max(w2, 2 * ka / A.par[a, B.ARM_IN])
+        ka = (kspan[j] + kspan[(j - 1) % nk]) * g2 * 2 + A.par[a, BK.ARM_RATE] + A.par[a, BK.ARM_KSTOP]
+        w2 = max(w2, 2 * ka / A.par[a, BK.ARM_IN])
     return math.sqrt(w2)
 
 
@@ -240,12 +240,12 @@ def new_states(sysm: RotSystem):
     their rest travel, every span and wrap holding the belt of the rest tension."""
     P, R, A = sysm.P, sysm.R, sysm.A
     nk, z = R.nk, np.zeros
-    om = np.array([B.prescribed_speed(P, j, 0.0) if P.mode[j] == 1 else 0.0 for j in range(nk)])
+    om = np.array([BK.prescribed_speed(P, j, 0.0) if P.mode[j] == 1 else 0.0 for j in range(nk)])
     e = z(0)
-    S = B.State(x=e, y=e, phi=e, c=e, s=e, vx=e, vy=e, w=e, th=z(nk), om=om, z=e, cx=P.cx.copy(), cy=P.cy.copy(),
+    S = BK.State(x=e, y=e, phi=e, c=e, s=e, vx=e, vy=e, w=e, th=z(nk), om=om, z=e, cx=P.cx.copy(), cy=P.cy.copy(),
                 cvx=z(nk), cvy=z(nk), q=sysm.rest_travel.astype(float).copy(), qd=z(A.na), thm=z(nk), thr=z(nk),
                 omr=z(nk), dcp=z(nk))
-    W = B.Work(fx=e, fy=e, mz=e, jfk=e, jdx=e, jdy=e, jmk=e, jmi=e, seg_n=e, seg_t=e, seg_p=e,
+    W = BK.Work(fx=e, fy=e, mz=e, jfk=e, jdx=e, jdy=e, jmk=e, jmi=e, seg_n=e, seg_t=e, seg_p=e,
                tq_ext=z(nk), tq_belt=z(nk), hubx=z(nk), huby=z(nk), pin=z(nk), diss=z(4),
                acc_tq_ext=z(nk), acc_tq_belt=z(nk), acc_hubx=z(nk), acc_huby=z(nk), acc_pin=z(nk),
                acc_span=z((0, 2)), acc_track=z((0, 3)), acc_diss=z(6), energy=z(1), probe=z(6),

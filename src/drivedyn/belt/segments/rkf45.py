@@ -7,6 +7,7 @@ import numpy as np
 
 from ...errors import ModelError
 from . import _kernels as K
+from ..dynamics import _bodies as BK
 from .state import clear_accumulators, new_work
 
 
@@ -28,7 +29,7 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
     def state():
         """Kernel State view of y (pulley speeds as integrated, c and s from phi)."""
         phi = y[2 * n:3 * n]
-        return B.State(y[0:n], y[n:2 * n], phi, np.cos(phi), np.sin(phi), y[o:o + n], y[o + n:o + 2 * n],
+        return BK.State(y[0:n], y[n:2 * n], phi, np.cos(phi), np.sin(phi), y[o:o + n], y[o + n:o + 2 * n],
                        y[o + 2 * n:o + 3 * n], y[3 * n:3 * n + nk], y[o + 3 * n:], z, P.cx, P.cy,
                        np.zeros(nk), np.zeros(nk), np.zeros(0), np.zeros(0),   # fixed centres (no tensioners)
                        np.zeros(nk), np.zeros(nk), np.zeros(nk), np.zeros(nk))  # no orders, no clutches
@@ -71,7 +72,7 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
         rec.theta[k], rec.omega[k] = y[3 * n:3 * n + nk], y[o + 3 * n:]
         for j in range(nk):
             if P.mode[j] == 1:
-                rec.omega[k, j] = B.prescribed_speed(P, j, t)
+                rec.omega[k, j] = BK.prescribed_speed(P, j, t)
         rec.tq_ext[k], rec.tq_belt[k] = W.acc_tq_ext / interval, W.acc_tq_belt / interval
         rec.hubx[k], rec.huby[k] = W.acc_hubx / interval, W.acc_huby / interval
         rec.pin[k] = W.acc_pin / interval

@@ -9,7 +9,7 @@ import numpy as np
 
 from ...errors import ModelError
 from . import _kernels as K
-from ..dynamics import _bodies as B
+from ..dynamics import _bodies as BK
 from ..dynamics.bodies import arms_record, pulleys_record, running_senses
 from .equilibrium import relax
 from .state import new_state, new_work
@@ -27,8 +27,8 @@ class BeltSystem:
     init: InitialState
     belt: K.Belt
     contact: K.Contact
-    pulleys: B.Pulleys
-    arms: B.Arms       # tensioners (na = 0 without)
+    pulleys: BK.Pulleys
+    arms: BK.Arms       # tensioners (na = 0 without)
     span_mid: np.ndarray
     span_geo: np.ndarray  # per span: midpoint x, y and unit direction x, y (belt order)
     track: np.ndarray
@@ -241,7 +241,7 @@ def _settle_tensioners(sysm, x, y, phi):
         rest.travel = rest.travel - np.linalg.solve(rest.stiffness, R)
         cx, cy = sysm.pulleys.cx.copy(), sysm.pulleys.cy.copy()
         for a in range(A.na):
-            cx[A.pulley[a]], cy[A.pulley[a]] = B.arm_centre(A, a, rest.travel[a])[:2]
+            cx[A.pulley[a]], cy[A.pulley[a]] = BK.arm_centre(A, a, rest.travel[a])[:2]
         sysm.pulleys = sysm.pulleys._replace(cx=cx, cy=cy)
         eq = relax(sysm, x, y, phi)
         if eq is None:
@@ -417,7 +417,7 @@ def loads_at_rest(sysm, x, y, q) -> np.ndarray:
     cx, cy = sysm.pulleys.cx.copy(), sysm.pulleys.cy.copy()
     jac = []
     for a in range(A.na):
-        c = B.arm_centre(A, a, q[a])
+        c = BK.arm_centre(A, a, q[a])
         cx[A.pulley[a]], cy[A.pulley[a]] = c[0], c[1]
         jac.append(c[2:])
     hub = hub_at_rest(sysm, x, y, cx, cy)
