@@ -12,6 +12,8 @@ map onto them as documented in ``examples/belt-5pk.toml``:
 """
 from __future__ import annotations
 
+import math
+
 from typing import Annotated, Literal, Optional, Union
 
 from pydantic import Field, field_validator, model_validator
@@ -124,11 +126,27 @@ class Arm(_Tensioner):
     stops: tuple[quantity("rad"), quantity("rad")] = (-0.5, 0.5)
     stop_stiffness: quantity("N*m/rad", gt=0) = 1e4
     stop_damping: quantity("N*m*s/rad", ge=0) = 1.0
+    # the tensioner as its supplier gives it (the position table, geometry/positions.py): the arm's
+    # absolute angle with no belt (pivot to pulley centre, from +x counter-clockwise), the spring
+    # torque there, and the load stop as an angle from the free arm. With free_torque, preload
+    # follows (free_torque + rate x the angle from the free arm to the drawn arm); with load_stop,
+    # stops are [drawn-to-load-stop, drawn-to-free-arm] (the free arm is the other stop)
+    free_angle: Optional[quantity("rad")] = None
+    free_torque: Optional[quantity("N*m", ge=0)] = None
+    load_stop: Optional[quantity("rad", gt=0)] = None
 
     @field_validator("spring_table")
     @classmethod
     def _table(cls, v):
         return None if v is None else table_rows(v, ("rad", "N*m"), "spring_table (travel, torque)", min_rows=2)
+
+    @model_validator(mode="after")
+    def _supplier(self):
+        if (self.free_torque is not None or self.load_stop is not None) and self.free_angle is None:
+            raise ValueError("free_torque and load_stop are measured from the free arm: give free_angle too")
+        if self.free_torque is not None and self.spring_table is not None:
+            raise ValueError("give spring_table or free_torque and rate, not both")
+        return self
 
 
 class Slider(_Tensioner):
@@ -159,6 +177,38 @@ class Slider(_Tensioner):
         return v
 
 
+def free_arm_angle(center, arm) -> float:
+    """Angle (rad, > 0 on the belt's side) from the drawn arm to the free arm, in the sense that
+    moves the pulley into the belt (the free arm is where the spring would put it with no belt)."""
+    drawn = math.atan2(center[1] - arm.pivot[1], center[0] - arm.pivot[0])
+    return math.remainder(arm.free_angle - drawn, 2 * math.pi)
+
+
+def _supplier_arm(name, center, arm):
+    """The arm with preload and stops from its supplier data (free_angle, free_torque, load_stop)."""
+    rel = abs(free_arm_angle(center, arm))         # the drawn arm's angle from the free arm
+    if not rel > 1e-9:
+        raise ValueError(f"pulley {name!r}: arm.free_angle {math.degrees(arm.free_angle):.6g} deg is the drawn arm's "
+                         "angle: the free arm lies where the spring puts the pulley with no belt, away from the drawn "
+                         "position")
+    upd = {}
+    if arm.free_torque is not None:
+        preload = arm.free_torque + arm.rate * rel
+        if arm.preload and abs(arm.preload - preload) > 1e-9 * max(preload, 1.0):
+            raise ValueError(f"pulley {name!r}: arm.preload {arm.preload:.6g} N m at the drawn position disagrees with "
+                             f"free_torque + rate x {math.degrees(rel):.4g} deg = {preload:.6g} N m: give one of them")
+        upd["preload"] = preload
+    if arm.load_stop is not None:
+        if not arm.load_stop > rel:
+            raise ValueError(f"pulley {name!r}: arm.load_stop {math.degrees(arm.load_stop):.4g} deg from the free arm "
+                             f"lies before the drawn arm ({math.degrees(rel):.4g} deg from it)")
+        stops = (rel - arm.load_stop, rel)
+        if arm.stops != (-0.5, 0.5) and any(abs(a - b) > 1e-9 for a, b in zip(arm.stops, stops)):
+            raise ValueError(f"pulley {name!r}: arm.stops disagree with load_stop and the free arm: give one of them")
+        upd["stops"] = stops
+    return arm.model_copy(update=upd)
+
+
 class Pulley(Spec):
     """A pulley or idler, in belt order. Counter-clockwise is positive for angles and torques."""
 
@@ -183,6 +233,9 @@ class Pulley(Spec):
     clutch: Optional[Clutch] = None
     arm: Optional[Arm] = None          # a pivoted tensioner carries this pulley
     slider: Optional[Slider] = None    # a linear tensioner carries this pulley
+    # the effective diameter of a ribbed pulley (belt length is measured on it); None: from the
+    # belt's profile, 2 x radius -+ 2 hb (grooved, back side; geometry/catalogue.py)
+    effective_diameter: Optional[quantity("m", gt=0)] = None
 
     @field_validator("name")
     @classmethod
@@ -230,6 +283,8 @@ class Pulley(Spec):
             if not d > self.radius:
                 raise ValueError(f"pulley {self.name!r}: arm.pivot lies inside the pulley ({d * 1e3:.3g} mm from "
                                  f"its centre, radius {self.radius * 1e3:.3g} mm)")
+            if self.arm.free_angle is not None:
+                object.__setattr__(self, "arm", _supplier_arm(self.name, self.center, self.arm))
         return self
 
     @property
@@ -266,6 +321,17 @@ class Belt(Spec):
     segments: Union[int, Literal["auto"]] = "auto"     # "auto": chosen by accuracy (resolution.py)
     pretension: Optional[quantity("N", gt=0)] = None
     length: Optional[quantity("m", gt=0)] = None
+    # the belt as its catalogue names it (the supplier's report, geometry/catalogue.py): the ribbed
+    # profile (ISO 9982) and ribs, the nominal effective length (8PK1020: 1020 mm), its tolerance
+    # +- and the allowance for wear and growth (a share of the length)
+    profile: Optional[Literal["PH", "PJ", "PK", "PL", "PM"]] = None
+    ribs: Optional[Annotated[int, Field(ge=1, le=100)]] = None
+    effective_length: Optional[quantity("m", gt=0)] = None
+    length_tolerance: quantity("m", ge=0) = 0.0
+    wear_allowance: quantity("1", ge=0, lt=0.1) = 0.0
+    # required belt length = effective drive length - length_offset; None: the drawn layout's
+    # effective drive length less the nominal length (the drawn tensioner is at the nominal length)
+    length_offset: Optional[quantity("m")] = None
 
     @field_validator("segments")
     @classmethod
@@ -395,6 +461,69 @@ class Output(Spec):
         return self
 
 
+class DutyRow(Spec):
+    """One row of a duty cycle: the crank's speed, the row's share of the running time, the
+    accessories' loads as powers or torques (by pulley name), and the temperature."""
+
+    crank_speed: quantity("rad/s", gt=0)
+    share: quantity("1", gt=0, le=1)
+    power: dict[str, quantity("W", ge=0)] = {}
+    torque: dict[str, quantity("N*m", ge=0)] = {}
+    temperature: Optional[float] = None          # deg C; None: the duty cycle's
+
+    @field_validator("temperature")
+    @classmethod
+    def _t(cls, v):
+        if v is not None and not -60 <= v <= 250:
+            raise ValueError(f"must lie in [-60, 250] deg C, got {v}")
+        return v
+
+
+class Life(Spec):
+    """Belt life by rib fatigue (steady/life.py): a published fit to Gates accessory-drive reports
+    (MFSim, kaydgn/MFSim js/fead-core.js, "FATIGUE", MIT licence; a fit, not the supplier's model).
+    Damage rate D = [sum of w_i d_e,i^-exponent] x [sum of share x v / L] x (T_design / ribs)^
+    tension_exponent x 2^((temperature - reference_temperature) / halving); B10 = constant / D
+    hours, d_e in mm, v in m/s, L in m, T in N."""
+
+    exponent: float = 5.6
+    back_side_weight: float = 0.31
+    tension_exponent: float = 0.96
+    constant: float = 1.475304e-4
+    reference_temperature: float = 80.0         # deg C
+    halving: float = 23.0                       # deg C per halving of the life
+    target: Optional[quantity("s", gt=0)] = None    # B10 the verdict asks for
+
+    @model_validator(mode="after")
+    def _positive(self):
+        for k in ("exponent", "constant", "halving"):
+            if not getattr(self, k) > 0:
+                raise ValueError(f"{k} must be > 0, got {getattr(self, k)}")
+        if not 0 <= self.back_side_weight <= 10:
+            raise ValueError(f"back_side_weight must lie in [0, 10], got {self.back_side_weight}")
+        return self
+
+
+class DutyCycle(Spec):
+    """The duty cycle a supplier's report evaluates: rows of crank speed, share of time and
+    accessory loads (steady/duty.py), the drag the supplier puts on every idler and tensioner
+    pulley, the temperature and the belt-life fit."""
+
+    rows: list[DutyRow]
+    idler_drag: quantity("W", ge=0) = 10.0      # on each pulley without a declared load (Gates: 0.01 kW)
+    temperature: float = 80.0                    # deg C
+    life: Life = Life()
+
+    @model_validator(mode="after")
+    def _rows(self):
+        if not self.rows:
+            raise ValueError("rows: a duty cycle needs at least one row")
+        total = sum(r.share for r in self.rows)
+        if not 0.98 <= total <= 1.02:
+            raise ValueError(f"rows: the shares add up to {100 * total:.4g} %, not 100 %")
+        return self
+
+
 class Criteria(Spec):
     """Limits the verdict judges a belt run against (every field optional)."""
 
@@ -424,6 +553,7 @@ class Model(Spec):
     simulation: Simulation = Simulation()
     output: Output = Output()
     criteria: Criteria = Criteria()               # design limits of the verdict (criteria.py, docs/criteria.md)
+    duty_cycle: Optional[DutyCycle] = None        # the supplier report's duty cycle (steady/duty.py)
 
     @model_validator(mode="after")
     def _pulleys(self):
@@ -447,7 +577,20 @@ class Model(Spec):
             raise ValueError("output.steady_window ends after simulation.duration")
         self._clutch_on_driver()
         self._cost()
+        self._duty_names(names)
         return self
+
+    def _duty_names(self, names):
+        if self.duty_cycle is None:
+            return
+        for k, row in enumerate(self.duty_cycle.rows):
+            for what in ("power", "torque"):
+                for n in getattr(row, what):
+                    if n not in names:
+                        raise ValueError(f"duty_cycle.rows[{k}].{what}: no pulley named {n!r} (have: {', '.join(names)})")
+            both = set(row.power) & set(row.torque)
+            if both:
+                raise ValueError(f"duty_cycle.rows[{k}]: give power or torque for {sorted(both)}, not both")
 
     def _clutch_on_driver(self):
         """An overrunning clutch or decoupler carries drive from the belt into an accessory; on the

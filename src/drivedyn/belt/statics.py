@@ -20,6 +20,7 @@ def check_data(model, sysm=None) -> dict:
     """What ``check`` knows, as plain data (``drivedyn check --json``): the steady running state of
     creep theory (steady/creep.py), the slip margins and the rotational modes (modes.py). ``model``: a
     model or its geometry.drive.Drive; ``sysm``: the segment model's system, when built."""
+    from . import supplier
     from .geometry.drive import resolve
     from .geometry.installation import installation_table
     from .geometry.layout import compute_layout
@@ -83,6 +84,7 @@ def check_data(model, sysm=None) -> dict:
         "modes": {"dofs": list(md.dofs), "rigid_modes": md.rigid_modes, "frequencies_hz": md.frequencies_hz,
                   **({"free_rotor_hz": md.free_rotor_hz} if md.free_rotor_hz else {}),
                   "shapes": md.shapes, "participation": md.participation},
+        **({"supplier": supplier.report_data(drive)} if supplier.wanted(model) else {}),
     }
 
 
@@ -122,7 +124,23 @@ CHECK_UNITS = {"steady.spans.*.tension": "N", "steady.pulleys.*.torque": "N*m", 
                "tensioners.*.hub_load": "N", "tensioners.*.tension": "N", "tensioners.*.arm_angle": "rad",
                "tensioners.*.travel": "rad", "tensioners.*.spring_torque": "N*m", "tensioners.*.slide": "m",
                "tensioners.*.spring_force": "N", "tensioners.*.type": "", "tensioners.*.running_travel": "rad",
-               "tensioners.*.running_spring": "N*m", "tensioners.*.running_arm_angle": "rad"}
+               "tensioners.*.running_spring": "N*m", "tensioners.*.running_arm_angle": "rad",
+               "supplier.belt.profile": "", "supplier.belt.ribs": "", "supplier.belt.wear_allowance": "1",
+               "supplier.belt.*": "m", "supplier.pulleys.*.contact": "", "supplier.pulleys.*.speed_ratio": "1",
+               "supplier.pulleys.*": "m", "supplier.positions.*.rows.*.centre": "m",
+               "supplier.positions.*.rows.*.edl": "m", "supplier.positions.*.rows.*.required_length": "m",
+               "supplier.positions.*.rows.*.spring_torque": "N*m", "supplier.positions.*.rows.*.tension": "N",
+               "supplier.positions.*.rows.*.hub_load": "N", "supplier.positions.*.rows.*": "rad",
+               "supplier.positions.*.take_up": "m/rad", "supplier.positions.*.design_tension": "N",
+               "supplier.positions.*.length_offset": "m", "supplier.positions.*.unreached*": "",
+               "supplier.duty.design_tension": "N", "supplier.duty.idler_drag": "W",
+               "supplier.duty.rows.crank_speed": "rad/s", "supplier.duty.rows.share": "1",
+               "supplier.duty.rows.belt_speed": "m/s", "supplier.duty.rows.torques*": "N*m",
+               "supplier.duty.rows.*.spans*": "N", "supplier.duty.rows.*.hub_load*": "N",
+               "supplier.duty.rows.*.hub_direction*": "rad", "supplier.duty.rows.*.slip_factor*": "1",
+               "supplier.duty.rows.arm_*": "rad", "supplier.duty.rows.slip_margin*": "1",
+               "supplier.duty.rows.note": "", "supplier.life.b10_hours": "h", "supplier.life.target_hours": "h",
+               "supplier.life.*_share*": "1", "supplier.life.*": ""}
 
 
 def check_json(model) -> str:
@@ -172,6 +190,10 @@ def report(model) -> str:
             lines.append(f"tensioner {name} (slider) at rest: travel {t['slide'] * 1e3:.3f} mm into the belt, spring "
                          f"force {t['spring_force']:.2f} N, hub load {t['hub_load']:.1f} N, belt tension {t['tension']:.1f} N")
     lines += [""] + _steady_lines(data, model)
+    if "supplier" in data:
+        from .supplier import report_lines
+
+        lines += report_lines(data["supplier"])
     lines += ["", "static: no load, no gravity sag; span frequencies of the belt at rest (taut beam, pinned ends).",
               f"integration: {integrator(model)}, step {sysm.step * 1e6:.3f} us (stability limit "
               f"{sysm.step_limit * 1e6:.3f} us), {model.simulation.duration / sysm.step:.3g} steps for "

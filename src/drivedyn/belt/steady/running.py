@@ -12,8 +12,10 @@ from ..geometry.layout import compute_layout
 from ..geometry.tensioner import moved_to, spring_load, centre, indices, senses
 
 
-def running(model, rest):
-    """The tensioners' equilibrium under the running loads (creep theory, steady/creep.py): travel q per
+def running(model, rest, torques=None, speed=None):
+    """The tensioners' equilibrium under the running loads (creep theory, steady/creep.py; ``torques``
+    (N m per pulley) and ``speed`` (belt m/s, signed along the listed order) instead of the model's,
+    as creep.steady_state's loads and speed): travel q per
     tensioner such that the spring balances the hub force of the running span tensions (less the
     centrifugal tension, which the wrapped belt carries itself), the belt's unstretched length
     that of the installation. Returns (travel, model with the pulleys there and belt.length set,
@@ -30,7 +32,7 @@ def running(model, rest):
     def state(qv, with_margins=False):
         m = moved_to(model, {j: centre(model, j, q, s) for j, q, s in zip(idx, qv, sense)}, L0)
         lay = compute_layout(m)
-        return m, lay, steady_state(m, lay, with_margins=with_margins)
+        return m, lay, steady_state(m, lay, loads=torques, speed=speed, with_margins=with_margins)
 
     def loads(qv):
         try:

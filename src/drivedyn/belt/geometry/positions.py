@@ -1,0 +1,137 @@
+"""The tensioner's position table as a belt supplier prints it: the arm at the free arm, at the
+belt lengths of a replaced (worn) belt, the longest, the nominal and the shortest belt, and at the
+load stop; at each, the arm angle, the pulley centre, the effective drive length and the required
+belt length (catalogue.py), the tensioner wrap, the angle between hub load and arm, and the belt
+tension, hub load and its direction that the spring holds.
+
+Angles are the supplier's: ``rel`` from the free arm (no belt, spring torque ``free_torque``) away
+from the belt, the absolute angle from +x counter-clockwise (pivot to pulley centre). The tension
+is the spring's torque over the belt's lever, by virtual work without friction:
+T = M / (a sin(beta) 2 sin(phi / 2)), a the arm length, beta the angle between hub load and arm
+(pulley centre to pivot), phi the tensioner wrap; hub load 2 T sin(phi / 2). The belt take-up
+ratio is d(EDL)/d(arm angle) at the nominal length. Rows: Gates "Accessory Belt Drive System"
+reports' "Tensioner Geometry" table (tests/belt/test_supplier_report.py).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ...errors import ModelError
+from . import tensioner as TN
+from .catalogue import effective_diameters, effective_drive_length, length_offset
+from .layout import compute_layout
+from ..model import free_arm_angle
+
+ROWS = ("free arm", "replace", "max belt", "mean", "min belt", "load stop")
+
+
+@dataclass(frozen=True)
+class Position:
+    name: str
+    rel: float                 # arm angle from the free arm, away from the belt (rad)
+    angle: float               # absolute arm angle, pivot to pulley centre, from +x CCW (rad)
+    travel: float              # drivedyn's travel from the drawn position, into the belt (rad)
+    centre: tuple              # pulley centre (m)
+    edl: float                 # effective drive length (m)
+    rebl: float                # required effective belt length (m)
+    wrap: float                # wrap on the tensioner pulley (rad)
+    beta: float                # angle between hub load and arm (rad)
+    spring_torque: float       # N m
+    tension: float             # belt tension the spring holds (N)
+    hub_load: float            # N
+    hub_direction: float       # direction of the belt's force on the pulley, from +x CCW (rad)
+
+
+@dataclass(frozen=True)
+class PositionTable:
+    pulley: str
+    rows: tuple                # Position per ROWS entry (None where the arm cannot reach it)
+    unreached: dict            # row name -> why it is not in the table
+    take_up: float             # d(EDL)/d(arm angle) at the mean position (m/rad)
+    design_tension: float      # the tension at the mean position (N)
+    offset: float              # belt.length_offset in use (m)
+
+
+def position_tables(drive) -> list[PositionTable]:
+    """One table per arm tensioner with supplier data (arm.free_angle); the belt's nominal length
+    (belt.effective_length) sets the rows. Empty without such tensioners."""
+    model = drive.model
+    arms = [(j, s) for j, s in zip(drive.tensioners, drive.senses)
+            if model.pulleys[j].arm is not None and model.pulleys[j].arm.free_angle is not None]
+    if not arms:
+        return []
+    if model.belt.effective_length is None:
+        raise ModelError("the tensioner's position table needs the belt's nominal length: belt.effective_length "
+                         "(e.g. \"1020 mm\" for an 8PK1020)", field="belt.effective_length")
+    d_eff = effective_diameters(model)
+    offset = length_offset(model, drive.layout, d_eff)
+    return [_table(model, j, s, d_eff, offset) for j, s in arms]
+
+
+def _table(model, j, s, d_eff, offset) -> PositionTable:
+    p = model.pulleys[j]
+    arm, belt = p.arm, model.belt
+    field = f"pulleys.{j}.arm"
+    signed = free_arm_angle(p.center, arm)
+    rel_drawn = abs(signed)
+    if math.copysign(1.0, signed) != s:
+        raise ModelError(f"pulley {p.name!r}: arm.free_angle {math.degrees(arm.free_angle):.4g} deg lies on the side "
+                         "that slackens the belt: the free arm is where the spring would swing the pulley with no "
+                         "belt on, into the belt's side", field=field + ".free_angle")
+    load_stop = arm.load_stop if arm.load_stop is not None else rel_drawn - arm.stops[0]
+
+    def at(rel):
+        q = rel_drawn - rel
+        c = TN.centre(model, j, q, s)
+        lay = compute_layout(TN.with_centres(model, {j: c}))
+        return q, c, lay
+
+    def rebl(rel):
+        return effective_drive_length(at(rel)[2], d_eff) - offset
+
+    def row(name, rel):
+        q, c, lay = at(rel)
+        f = lay.hub_load_static(1.0)[j]                      # the belt's force per unit tension
+        r = np.array(c) - np.array(arm.pivot)
+        lever = abs(r[0] * f[1] - r[1] * f[0])               # a |f| sin(beta)
+        M = TN.spring_load(arm, q)
+        T = M / lever if lever > 0 else math.inf
+        to_pivot = -r
+        cosb = float(np.dot(f, to_pivot) / (np.linalg.norm(f) * np.linalg.norm(to_pivot)))
+        edl = effective_drive_length(lay, d_eff)
+        return Position(name, rel, math.atan2(r[1], r[0]), q, (float(c[0]), float(c[1])), edl, edl - offset,
+                        float(lay.wrap[j]), math.acos(max(-1.0, min(1.0, cosb))), M, T, T * float(np.linalg.norm(f)),
+                        math.atan2(f[1], f[0]))
+
+    L, tol, wear = belt.effective_length, belt.length_tolerance, belt.wear_allowance * belt.effective_length
+    targets = {"replace": L + tol + wear, "max belt": L + tol, "mean": L, "min belt": L - tol}
+    lo_len, hi_len = rebl(load_stop), rebl(0.0)          # the arm's reach in required belt length
+    rows, unreached = [], {}
+    for name in ROWS:
+        if name == "free arm":
+            rows.append(row(name, 0.0))
+            continue
+        if name == "load stop":
+            rows.append(row(name, load_stop))
+            continue
+        target = targets[name]
+        if not lo_len <= target <= hi_len:
+            where = "beyond the free arm" if target > hi_len else "beyond the load stop"
+            why = (f"a required belt length of {target * 1e3:.2f} mm lies {where} (the arm reaches "
+                   f"{lo_len * 1e3:.2f}-{hi_len * 1e3:.2f} mm)")
+            if name == "replace":
+                unreached[name] = why
+                rows.append(None)
+                continue
+            raise ModelError(f"pulley {p.name!r}: the tensioner cannot hold the {name} belt: {why}; belt.effective_length "
+                             f"{L * 1e3:.1f} mm +- {tol * 1e3:.1f} mm", field=field)
+        rel = brentq(lambda x: rebl(x) - target, 0.0, load_stop, xtol=1e-12)
+        rows.append(row(name, rel))
+    mean = rows[ROWS.index("mean")]
+    h = 1e-5
+    take_up = -(rebl(mean.rel + h) - rebl(mean.rel - h)) / (2 * h)
+    return PositionTable(p.name, tuple(rows), unreached, take_up, mean.tension, offset)

@@ -1,0 +1,154 @@
+"""The duty cycle a supplier's report evaluates (``[duty_cycle]`` of the model): per row, every
+span's tension, every pulley's hub load (magnitude and direction) and slip safety factor, in two
+conventions side by side:
+
+- the supplier's ("fixed arm"): the tensioner's arm stays where the belt length puts it, so the
+  span between the tensioner and the pulley before it in the belt's travel (in the usual layout,
+  the slack span from the crank) keeps the design tension whatever the loads, and every other span
+  follows from the pulleys' torques (Gates "Pulley Hubload Analysis", which lists the pulleys
+  against the belt's travel); hub loads are the vector sum of the two span tensions, as the supplier
+  prints them;
+- the running balance ("running arm", creep theory, running.py and creep.py): the belt's installed
+  length kept, the arm where its spring balances the running span tensions less m v^2 (a slack span
+  falls 3-25 % under load on the public reports), the hub loads from T - m v^2 (the wrapped belt
+  carries its centrifugal tension itself), the arm's running position against its stops.
+
+Loads: each row's powers or torques by pulley; every other pulley but the crank (the prescribed-speed
+pulley) carries the idler drag ``duty_cycle.idler_drag`` (Gates adds 0.01 kW on each idler and
+the tensioner). Slip safety factor: the torque at which the pulley slips over its whole wrap with the
+slack span's tension held, (T_slack - m v^2)(e^(mu phi) - 1) r, over the torque it carries; the
+running balance's also as creep theory's load multiplier at gross slip (slip_margin).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...errors import ModelError
+from .creep import _entry_exit, _offsets, drive_of
+
+
+@dataclass(frozen=True)
+class DutyColumns:
+    """One convention's numbers for one duty row (listed order; span k leaves pulley k)."""
+    spans: dict                # span name -> tension (N)
+    hub_load: dict             # pulley -> magnitude (N)
+    hub_direction: dict        # pulley -> direction of the belt's force, from +x CCW (rad)
+    slip_factor: dict          # pulley -> slip safety factor (inf: no torque)
+
+
+@dataclass(frozen=True)
+class DutyRowResult:
+    crank_speed: float         # rad/s
+    share: float
+    belt_speed: float          # m/s
+    torques: dict              # pulley -> load torque magnitude it carries (N m; the crank: what it delivers)
+    fixed_arm: DutyColumns
+    running_arm: DutyColumns | None     # None: no running balance (why in ``note``)
+    arm_travel: dict           # tensioner pulley -> running travel from the drawn position (rad or m)
+    arm_stops: dict            # tensioner pulley -> (stop away from the belt, stop into it)
+    slip_margin: dict          # pulley -> creep theory's load multiplier at gross slip (running balance)
+    note: str = ""
+
+
+def crank_of(model) -> int:
+    """The crank: the prescribed-speed pulley the duty rows set the speed of."""
+    presc = [j for j, p in enumerate(model.pulleys) if p.speed_time is not None]
+    if len(presc) != 1:
+        raise ModelError("a duty cycle needs one crank: the pulley with a prescribed speed (speed_time)",
+                         field="duty_cycle")
+    return presc[0]
+
+
+def duty_cycle(drive, design_tension: float) -> list[DutyRowResult]:
+    """Every row of the model's duty cycle in both conventions; ``design_tension``: the tension the
+    supplier holds in the span leaving the tensioner (the position table's mean row)."""
+    model = drive.model
+    dc = model.duty_cycle
+    c = crank_of(model)
+    lay = drive.layout
+    d = drive_of(model, lay)
+    nk = len(lay.names)
+    sign_c = math.copysign(1.0, model.pulleys[c].speed_time[-1][1] or 1.0)
+    out = []
+    for k, row in enumerate(dc.rows):
+        v = sign_c * row.crank_speed * lay.rho[c]               # belt speed, signed along the listed order
+        forward = v > 0
+        w = v / lay.rho                                         # pulley speeds (rad/s, CCW positive)
+        M = np.zeros(nk)
+        for j, p in enumerate(model.pulleys):
+            if j == c:
+                continue
+            if p.name in row.torque:
+                P = row.torque[p.name] * abs(w[j])
+            else:
+                P = row.power.get(p.name, dc.idler_drag)
+            M[j] = -math.copysign(P / abs(w[j]), w[j])          # a load opposes the pulley's turning
+        M[c] = -lay.rho[c] * float(np.sum(np.delete(M / lay.rho, c)))
+        torques = {p.name: abs(float(M[j])) for j, p in enumerate(model.pulleys)}
+        fixed = _fixed_arm(model, drive, d, M, forward, design_tension, v)
+        run, travel, margin, note = _running_arm(model, drive, M, v)
+        out.append(DutyRowResult(row.crank_speed, row.share, abs(v), torques, fixed, run, travel,
+                                 {model.pulleys[j].name: tuple(model.pulleys[j].tensioner.stops)
+                                  for j in drive.tensioners}, margin, note))
+    return out
+
+
+def _fixed_arm(model, drive, d, M, forward, design_tension, v) -> DutyColumns:
+    lay = drive.layout
+    nk = len(lay.names)
+    off = _offsets(d, M, forward)
+    ee = _entry_exit(nk, forward)
+    anchor = ee[drive.tensioners[0]][0] if drive.tensioners else None
+    if anchor is None:
+        raise ModelError("the supplier's duty table holds the span leaving the tensioner at the design tension: "
+                         "this drive has no tensioner", field="duty_cycle")
+    T = design_tension - off[anchor] + off
+    return _columns(model, lay, T, T, forward, model.belt.mass_per_length * v * v, M)
+
+
+def _running_arm(model, drive, M, v):
+    from .creep import steady_state
+    from .running import running
+
+    try:
+        if drive.tensioners:
+            run = running(model, drive.equilibrium, torques=M, speed=v)
+            if run is None:
+                return None, {}, {}, "no running balance of the arm within its stops (gross slip or a slack span)"
+            qv, m, lay, st = run
+            travel = {model.pulleys[j].name: float(q) for j, q in zip(drive.tensioners, qv)}
+        else:
+            lay, travel = drive.layout, {}
+            st = steady_state(model, lay, loads=M, speed=v)
+    except ModelError as exc:
+        return None, {}, {}, f"no running balance: {exc}"
+    if st.gross_slip or not all(math.isfinite(t) for t in st.spans.values()):
+        return None, travel, {}, f"no steady state: pulley {st.gross_slip or '?'} slips over its whole wrap"
+    T = np.array([st.spans[sp.name] for sp in lay.spans])
+    cols = _columns(model, lay, T, T - st.centrifugal, v > 0, st.centrifugal, M)
+    margin = {n: float(p.slip_margin) for n, p in st.pulleys.items()}
+    return cols, travel, margin, ""
+
+
+def _columns(model, lay, T, T_hub, forward, c, M) -> DutyColumns:
+    """Span tensions, hub loads from ``T_hub`` and slip factors for span tensions T."""
+    nk = len(lay.names)
+    hub = np.zeros((nk, 2))
+    for k, sp in enumerate(lay.spans):
+        u = np.array([math.cos(sp.angle), math.sin(sp.angle)])
+        hub[sp.start] += T_hub[k] * u
+        hub[sp.end] -= T_hub[k] * u
+    ee = _entry_exit(nk, forward)
+    mu = model.friction.coefficient
+    sf = {}
+    for j, p in enumerate(model.pulleys):
+        a, b = ee[j]
+        slack = min(T[a], T[b]) - c
+        cap = max(slack, 0.0) * math.expm1(mu * lay.wrap[j]) * abs(lay.rho[j])
+        sf[p.name] = cap / abs(M[j]) if M[j] else math.inf
+    return DutyColumns({sp.name: float(t) for sp, t in zip(lay.spans, T)},
+                       {p.name: float(np.hypot(*hub[j])) for j, p in enumerate(model.pulleys)},
+                       {p.name: math.atan2(hub[j][1], hub[j][0]) for j, p in enumerate(model.pulleys)}, sf)

@@ -1,0 +1,170 @@
+"""The accessory-drive report a belt supplier prints, from the model: the belt and pulleys as the
+catalogue gives them (geometry/catalogue.py), the tensioner's position table and take-up ratio
+(geometry/positions.py), the duty cycle's span tensions, hub loads and slip safety factors in the
+supplier's convention and with the arm's running balance (steady/duty.py), and the belt's B10 life
+by rib fatigue (steady/life.py). ``report_data`` gives them as plain data (``check --json`` and the
+run's summary), ``report_lines`` as the text tables of ``drivedyn check``. docs/supplier-report.md
+defines every column.
+"""
+from __future__ import annotations
+
+import math
+
+DEG = 180 / math.pi
+
+
+def wanted(model) -> bool:
+    """Whether the model asks for the supplier's report (catalogue data, supplier tensioner data or a
+    duty cycle)."""
+    return (model.duty_cycle is not None or model.belt.effective_length is not None
+            or any(p.arm is not None and p.arm.free_angle is not None for p in model.pulleys))
+
+
+def report_data(drive) -> dict:
+    """The report's tables as plain data (SI units; angles in rad)."""
+    from .geometry.catalogue import effective_diameters, effective_drive_length, length_offset
+    from .geometry.positions import ROWS, position_tables
+
+    model = drive.model
+    belt = model.belt
+    out = {}
+    d_eff = effective_diameters(model) if (belt.profile or all(p.effective_diameter for p in model.pulleys)) else None
+    if d_eff is not None:
+        edl = effective_drive_length(drive.layout, d_eff)
+        b = {"profile": belt.profile, "ribs": belt.ribs, "effective_drive_length": edl}
+        if belt.effective_length is not None or belt.length_offset is not None:
+            off = length_offset(model, drive.layout, d_eff)
+            b.update(effective_length=belt.effective_length, length_tolerance=belt.length_tolerance,
+                     wear_allowance=belt.wear_allowance, length_offset=off, required_length=edl - off)
+        out["belt"] = b
+        out["pulleys"] = {p.name: {"pitch_diameter": 2 * p.radius, "effective_diameter": float(d),
+                                   "contact": "back" if p.side == "back" else "grooved",
+                                   "speed_ratio": _ratio(drive, j)}
+                          for j, (p, d) in enumerate(zip(model.pulleys, d_eff))}
+    tables = position_tables(drive)
+    if tables:
+        out["positions"] = {t.pulley: {
+            "rows": {name: _position(r) for name, r in zip(ROWS, t.rows) if r is not None},
+            "unreached": t.unreached, "take_up": t.take_up, "design_tension": t.design_tension,
+            "length_offset": t.offset} for t in tables}
+    if model.duty_cycle is not None:
+        from .steady.duty import duty_cycle
+        from .steady.life import belt_life
+
+        design = tables[0].design_tension if tables else _installation_tension(drive)
+        rows = duty_cycle(drive, design)
+        out["duty"] = {"design_tension": design, "idler_drag": model.duty_cycle.idler_drag,
+                       "rows": [_duty_row(r) for r in rows]}
+        if belt.ribs and belt.effective_length and d_eff is not None:
+            life = belt_life(model, design, [r.belt_speed for r in rows])
+            out["life"] = {"b10_hours": life.b10_hours, "pulley_share": life.pulley_share,
+                           "row_share": life.row_share, "in_range": life.in_range,
+                           "out_of_range": life.out_of_range,
+                           "target_hours": (model.duty_cycle.life.target / 3600
+                                            if model.duty_cycle.life.target is not None else None)}
+        else:
+            out["life_skipped"] = "belt life needs belt.ribs, belt.effective_length and effective diameters"
+    return out
+
+
+def _ratio(drive, j) -> float:
+    """Speed ratio to the crank (crank pitch radius over the pulley's), where a crank is set."""
+    presc = [k for k, p in enumerate(drive.model.pulleys) if p.speed_time is not None]
+    return drive.model.pulleys[presc[0]].radius / drive.model.pulleys[j].radius if presc else float("nan")
+
+
+def _installation_tension(drive) -> float:
+    eq = drive.equilibrium
+    if eq is not None:
+        return float(eq.tension)
+    if drive.model.belt.pretension is not None:
+        return float(drive.model.belt.pretension)
+    from .steady.creep import steady_state
+
+    st = steady_state(drive.model, drive.layout, with_margins=False)
+    return float(max(st.spans.values()))
+
+
+def _position(r) -> dict:
+    return {"rel": r.rel, "angle": r.angle, "travel": r.travel, "centre": list(r.centre), "edl": r.edl,
+            "required_length": r.rebl, "wrap": r.wrap, "beta": r.beta, "spring_torque": r.spring_torque,
+            "tension": r.tension, "hub_load": r.hub_load, "hub_direction": r.hub_direction}
+
+
+def _cols(c) -> dict | None:
+    if c is None:
+        return None
+    fin = lambda x: float(x) if math.isfinite(x) else None
+    return {"spans": c.spans, "hub_load": c.hub_load, "hub_direction": c.hub_direction,
+            "slip_factor": {k: fin(v) for k, v in c.slip_factor.items()}}
+
+
+def _duty_row(r) -> dict:
+    fin = lambda x: float(x) if math.isfinite(x) else None
+    return {"crank_speed": r.crank_speed, "share": r.share, "belt_speed": r.belt_speed, "torques": r.torques,
+            "fixed_arm": _cols(r.fixed_arm), "running_arm": _cols(r.running_arm), "arm_travel": r.arm_travel,
+            "arm_stops": {k: list(v) for k, v in r.arm_stops.items()},
+            "slip_margin": {k: fin(v) for k, v in r.slip_margin.items()}, "note": r.note}
+
+
+def report_lines(data) -> list[str]:
+    """The report's tables as the text of ``drivedyn check``, in the supplier's units (mm, deg, N, kW)."""
+    lines = []
+    if "belt" in data:
+        b = data["belt"]
+        head = f"belt: {b['ribs'] or ''}{b['profile'] or ''}"
+        if b.get("effective_length"):
+            head += (f"{b['effective_length'] * 1e3:.0f}, nominal effective length {b['effective_length'] * 1e3:.1f} mm "
+                     f"+- {b['length_tolerance'] * 1e3:.1f} mm, wear allowance {100 * b['wear_allowance']:.2f} %")
+        lines += ["", "supplier report (geometry/catalogue.py, positions.py; steady/duty.py, life.py)", head,
+                  f"effective drive length {b['effective_drive_length'] * 1e3:.2f} mm"
+                  + (f", required belt length {b['required_length'] * 1e3:.2f} mm (offset "
+                     f"{b['length_offset'] * 1e3:.2f} mm)" if "required_length" in b else "")]
+        lines.append(f"{'pulley':12s} {'pitch d mm':>10s} {'eff. d mm':>10s} {'contact':>8s} {'ratio':>7s}")
+        for n, p in data["pulleys"].items():
+            lines.append(f"{n:12s} {p['pitch_diameter'] * 1e3:10.2f} {p['effective_diameter'] * 1e3:10.2f} "
+                         f"{p['contact']:>8s} {p['speed_ratio']:7.3f}")
+    for name, t in data.get("positions", {}).items():
+        lines += ["", f"tensioner {name}: position table (arm angle from the free arm, away from the belt)",
+                  f"{'position':10s} {'rel deg':>8s} {'abs deg':>8s} {'X mm':>8s} {'Y mm':>8s} {'EDL mm':>8s} "
+                  f"{'REBL mm':>8s} {'wrap deg':>8s} {'beta deg':>8s} {'T N':>7s} {'hub N':>7s} {'dir deg':>7s}"]
+        for row, r in t["rows"].items():
+            lines.append(f"{row:10s} {r['rel'] * DEG:8.2f} {r['angle'] * DEG % 360:8.2f} {r['centre'][0] * 1e3:8.2f} "
+                         f"{r['centre'][1] * 1e3:8.2f} {r['edl'] * 1e3:8.2f} {r['required_length'] * 1e3:8.2f} "
+                         f"{r['wrap'] * DEG:8.2f} {r['beta'] * DEG:8.2f} {r['tension']:7.1f} {r['hub_load']:7.1f} "
+                         f"{r['hub_direction'] * DEG % 360:7.1f}")
+        for row, why in t["unreached"].items():
+            lines.append(f"{row:10s} not reached: {why}")
+        lines.append(f"design tension {t['design_tension']:.1f} N; belt take-up {t['take_up'] * 1e3 / DEG:.3f} mm/deg")
+    if "duty" in data:
+        du = data["duty"]
+        names = list(data.get("pulleys") or du["rows"][0]["fixed_arm"]["hub_load"])
+        lines += ["", f"duty cycle: hub loads N (fixed arm: the span into the tensioner held at "
+                      f"{du['design_tension']:.1f} N, hub = vector sum of T | running arm: belt length kept, "
+                      "T - m v^2), smallest slip safety factor"]
+        lines.append(f"{'rpm':>6s} {'share':>6s} " + " ".join(f"{n[:11]:>11s}" for n in names) + f" {'min SF':>14s}")
+        for r in du["rows"]:
+            fa, ra = r["fixed_arm"], r["running_arm"]
+            cells = []
+            for n in names:
+                cells.append(f"{fa['hub_load'][n]:5.0f}|" + (f"{ra['hub_load'][n]:<5.0f}" if ra else "  -  "))
+            sf = [v for v in fa["slip_factor"].values() if v is not None]
+            sfr = [v for v in (ra or {"slip_factor": {}})["slip_factor"].values() if v is not None]
+            lines.append(f"{r['crank_speed'] * 30 / math.pi:6.0f} {100 * r['share']:5.1f}% " + " ".join(f"{c:>11s}" for c in cells)
+                         + f" {min(sf, default=math.inf):6.2f}|{min(sfr, default=math.inf):<6.2f}"
+                         + (f"  {r['note']}" if r["note"] else ""))
+        for n in (du["rows"][0]["arm_stops"] if du["rows"] else {}):
+            lo, hi = du["rows"][0]["arm_stops"][n]
+            tr = [r["arm_travel"].get(n) for r in du["rows"] if r["arm_travel"].get(n) is not None]
+            if tr:
+                lines.append(f"tensioner {n} running travel {min(tr) * DEG:.2f} to {max(tr) * DEG:.2f} deg into the belt "
+                             f"(stops {lo * DEG:.2f} / {hi * DEG:.2f} deg)")
+    if "life" in data:
+        li = data["life"]
+        lines += ["", f"belt life B10 {li['b10_hours']:.0f} h (rib fatigue, steady/life.py: a fit to supplier reports"
+                      + ("" if li["in_range"] else f"; {', '.join(li['out_of_range'])} outside its 79.6-175 mm range:"
+                                                   " expect about 0.55 x") + ")"
+                  + (f", target {li['target_hours']:.0f} h" if li["target_hours"] else ""),
+                  "  pulley shares " + ", ".join(f"{n} {100 * v:.1f} %" for n, v in li["pulley_share"].items()),
+                  "  duty row shares " + ", ".join(f"{100 * v:.0f} %" for v in li["row_share"])]
+    return lines
