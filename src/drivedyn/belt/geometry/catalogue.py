@@ -8,7 +8,8 @@ back-side (flat) pulleys carry the belt's back: d_e = d_p + 2 hb.
 
 - effective drive length EDL = the tangent spans between pitch circles + sum of wrap x effective radius;
 - required effective belt length REBL = EDL - ``belt.length_offset`` (by default the drawn layout's
-  EDL less the nominal length: the drawn tensioner is at the nominal length).
+  EDL less the nominal length: the drawn tensioner is at the nominal length). Suppliers' reports
+  print an offset of 0 to 3.5 mm whose rule they do not publish: give theirs to compare.
 
 Both reproduce the position tables of Gates accessory-drive reports (tests/belt/test_supplier_report.py).
 """

@@ -1,6 +1,7 @@
 """The tensioner's position table as a belt supplier prints it: the arm at the free arm, at the
-belt lengths of a replaced (worn) belt, the longest, the nominal and the shortest belt, and at the
-load stop; at each, the arm angle, the pulley centre, the effective drive length and the required
+belt lengths of a replaced (worn) belt, the longest, the nominal and the shortest belt (the drawn
+position is the nominal belt's; the others lie ``belt.length_tolerance``, plus the wear allowance,
+either side of it in belt length), and at the load stop; at each, the arm angle, the pulley centre, the effective drive length and the required
 belt length (catalogue.py), the tensioner wrap, the angle between hub load and arm, and the belt
 tension, hub load and its direction that the spring holds.
 
@@ -107,8 +108,11 @@ def _table(model, j, s, d_eff, offset) -> PositionTable:
                         float(lay.wrap[j]), math.acos(max(-1.0, min(1.0, cosb))), M, T, T * float(np.linalg.norm(f)),
                         math.atan2(f[1], f[0]))
 
+    # the rows' belt lengths from the drawn (mean) position's: the reports' rows lie tol, tol + wear
+    # and -tol from it whatever their printed offset between drive length and belt length
     L, tol, wear = belt.effective_length, belt.length_tolerance, belt.wear_allowance * belt.effective_length
-    targets = {"replace": L + tol + wear, "max belt": L + tol, "mean": L, "min belt": L - tol}
+    mean = rebl(rel_drawn)
+    targets = {"replace": mean + tol + wear, "max belt": mean + tol, "mean": mean, "min belt": mean - tol}
     lo_len, hi_len = rebl(load_stop), rebl(0.0)          # the arm's reach in required belt length
     rows, unreached = [], {}
     for name in ROWS:
@@ -119,6 +123,9 @@ def _table(model, j, s, d_eff, offset) -> PositionTable:
             rows.append(row(name, load_stop))
             continue
         target = targets[name]
+        if name == "mean":
+            rows.append(row(name, rel_drawn))
+            continue
         if not lo_len <= target <= hi_len:
             where = "beyond the free arm" if target > hi_len else "beyond the load stop"
             why = (f"a required belt length of {target * 1e3:.2f} mm lies {where} (the arm reaches "
