@@ -125,4 +125,4 @@ def rows(summary: dict) -> list[dict]:
 
 
 #: fraction-valued criteria shown in % (slip); other "1" values (margins, ratios) as numbers
-PERCENT = {"slip_mean", "slip_runup", "stop_clearance"}
+PERCENT = {"slip_mean", "slip_runup", "stop_clearance", "duty_stop_clearance"}

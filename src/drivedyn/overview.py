@@ -167,6 +167,49 @@ def _belt(result) -> list[dict]:
         out.append(inst)
     if ru:
         out.append(runup_table(s))
+    out += supplier_tables(s.get("supplier") or {})
+    return out
+
+
+def supplier_tables(sup: dict) -> list[dict]:
+    """The supplier report's position and duty tables (belt/supplier.py), as the supplier prints them."""
+    out = []
+    for name, t in sup.get("positions", {}).items():
+        rows = [[row, f"{r['rel'] * DEG:.2f}", f"{r['angle'] * DEG % 360:.2f}", f"{r['centre'][0] * 1e3:.1f}",
+                 f"{r['centre'][1] * 1e3:.1f}", f"{r['edl'] * 1e3:.1f}", f"{r['required_length'] * 1e3:.1f}",
+                 f"{r['wrap'] * DEG:.1f}", f"{r['beta'] * DEG:.1f}", f"{r['tension']:.1f}", f"{r['hub_load']:.1f}",
+                 f"{r['hub_direction'] * DEG % 360:.1f}"] for row, r in t["rows"].items()]
+        note = (f"design tension {t['design_tension']:.1f} N, belt take-up {t['take_up'] * 1e3 / DEG:.3f} mm/deg; "
+                "arm angle from the free arm, away from the belt"
+                + "".join(f"; {k}: {v}" for k, v in t["unreached"].items()))
+        out.append({"title": f"tensioner {name}: position table", "head": [
+            "position", "arm (deg)", "abs (deg)", "X (mm)", "Y (mm)", "EDL (mm)", "belt (mm)", "wrap (deg)",
+            "hub-arm (deg)", "tension (N)", "hub load (N)", "hub dir (deg)"], "rows": rows, "note": note})
+    duty = sup.get("duty")
+    if duty and duty["rows"]:
+        names = list(duty["rows"][0]["fixed_arm"]["hub_load"])
+        rows = []
+        for r in duty["rows"]:
+            fa, ra = r["fixed_arm"], r["running_arm"]
+            sf = min((v for v in fa["slip_factor"].values() if v is not None), default=None)
+            sfr = min((v for v in (ra or {"slip_factor": {}})["slip_factor"].values() if v is not None), default=None)
+            rows.append([f"{r['crank_speed'] * RPM:.0f}", f"{100 * r['share']:.1f}"]
+                        + [f"{fa['hub_load'][n]:.0f} | " + (f"{ra['hub_load'][n]:.0f}" if ra else "-") for n in names]
+                        + [f"{_f(sf, '{:.2f}')} | {_f(sfr, '{:.2f}')}", r["note"] or "-"])
+        out.append({"title": "duty cycle: hub loads, fixed arm | running arm", "head": [
+            "crank (rpm)", "share (%)"] + [f"{n} (N)" for n in names] + ["min slip factor", "note"], "rows": rows,
+            "note": f"fixed arm (the supplier's convention): the span into the tensioner held at "
+                    f"{duty['design_tension']:.1f} N, hub loads the vector sum of T; running arm: the installed "
+                    "belt length kept, hub loads from T - m v^2 (docs/supplier-report.md)"})
+    life = sup.get("life")
+    if life:
+        out.append({"title": "belt life (rib fatigue)", "head": ["B10 (h)", "target (h)", "pulley shares", "row shares"],
+                    "rows": [[f"{life['b10_hours']:.0f}", _f(life["target_hours"], "{:.0f}"),
+                              ", ".join(f"{n} {100 * v:.1f} %" for n, v in life["pulley_share"].items()),
+                              ", ".join(f"{100 * v:.0f} %" for v in life["row_share"])]],
+                    "note": "a fit to supplier reports (belt/steady/life.py): within 2.4 % RMS where every pulley's "
+                            "effective diameter lies in 79.6-175 mm" + ("" if life["in_range"] else
+                            f"; outside it here ({', '.join(life['out_of_range'])}): expect about 0.55 x")})
     return out
 
 

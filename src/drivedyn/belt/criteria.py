@@ -83,12 +83,67 @@ def add_flap_and_modes(model, result) -> None:
             pass
 
 
+def add_supplier(model, result) -> None:
+    """summary.supplier: the supplier's report tables (supplier.py), for a model that asks for them."""
+    from . import supplier
+    from ..errors import ModelError
+    from .geometry.drive import resolve
+
+    if "supplier" in result.summary or not supplier.wanted(model):
+        return
+    try:
+        result.summary["supplier"] = supplier.report_data(resolve(model))
+    except ModelError as exc:
+        result.summary["supplier_skipped"] = str(exc)
+
+
+def _supplier_criteria(model, s, out, skipped):
+    """The duty cycle's slip safety factors, the arm's running travel against its stops, rows the
+    drive cannot carry, and B10 against the target life."""
+    c = model.criteria
+    sup = s.get("supplier") or {}
+    if "supplier_skipped" in s:
+        skipped["supplier"] = s["supplier_skipped"]
+    duty = sup.get("duty")
+    if duty:
+        sfs = [(v, n, r["crank_speed"] * RPM, conv) for r in duty["rows"] for conv in ("fixed_arm", "running_arm")
+               if r[conv] for n, v in r[conv]["slip_factor"].items() if v is not None and r["torques"].get(n)]
+        if sfs:
+            v, n, rpm, conv = min(sfs)
+            out.append(Criterion("duty_slip_factor", v, c.slip_margin_min, "1", "min",
+                                 "smallest slip safety factor of the duty cycle (the torque that slips the pulley "
+                                 "over its whole wrap over the torque it carries)",
+                                 f"{n} at {rpm:.0f} rpm ({conv.replace('_', ' ')})"))
+        lost = [f"{r['crank_speed'] * RPM:.0f} rpm" for r in duty["rows"] if r["running_arm"] is None]
+        out.append(Criterion("duty_rows_carried", len(lost), 0, "", "max",
+                             "duty rows with no running balance (gross slip, a slack span, the arm on a stop)",
+                             ", ".join(lost)))
+        clear = []
+        for r in duty["rows"]:
+            for n, q in r["arm_travel"].items():
+                lo, hi = r["arm_stops"][n]
+                clear.append((min(q - lo, hi - q) / (hi - lo), n, r["crank_speed"] * RPM))
+        if clear:
+            v, n, rpm = min(clear)
+            out.append(Criterion("duty_stop_clearance", v, c.stop_clearance_min, "1", "min",
+                                 "free travel of the tensioner to its nearer stop at its running balance over the duty "
+                                 "cycle, as a share of the stop-to-stop travel", f"{n} at {rpm:.0f} rpm"))
+    life = sup.get("life")
+    if life and life.get("target_hours"):
+        out.append(Criterion("belt_life", life["b10_hours"], life["target_hours"], "h", "min",
+                             "B10 belt life by rib fatigue over the duty cycle (a fit to supplier reports)"
+                             + ("" if life["in_range"] else ": outside the fit's pulley range"), ""))
+    elif life:
+        skipped["belt_life"] = "no target life given (duty_cycle.life.target)"
+
+
 def evaluate(model, result):
     """([Criterion], {name: why not judged}) for a belt run."""
     from .steady import flap as flapmod
 
     c = model.criteria
     add_flap_and_modes(model, result)
+    add_supplier(model, result)
     s, ds = result.summary, result.ds
     out, skipped = [], {}
     ru = s.get("runup")
@@ -205,6 +260,7 @@ def evaluate(model, result):
         else:
             skipped["resonance_crossings"] = (f"listed, not judged ({len(xs)} inside the speed range; "
                                               "criteria.resonance_crossings_max judges them)")
+    _supplier_criteria(model, s, out, skipped)
     return out, skipped
 
 

@@ -15,9 +15,10 @@ conventions side by side:
 
 Loads: each row's powers or torques by pulley; every other pulley but the crank (the prescribed-speed
 pulley) carries the idler drag ``duty_cycle.idler_drag`` (Gates adds 0.01 kW on each idler and
-the tensioner). Slip safety factor: the torque at which the pulley slips over its whole wrap with the
-slack span's tension held, (T_slack - m v^2)(e^(mu phi) - 1) r, over the torque it carries; the
-running balance's also as creep theory's load multiplier at gross slip (slip_margin).
+the tensioner). Slip safety factor, the torque at which the pulley slips over its whole wrap over
+the torque it carries: with the arm fixed, the slack span's tension held (the tensioner holds it),
+(T_slack - m v^2)(e^(mu phi) - 1) r / M; with the belt length kept, creep theory's load multiplier
+at gross slip (creep.margins: the extra torque also slackens the spans the pulley shares).
 """
 from __future__ import annotations
 
@@ -128,13 +129,16 @@ def _running_arm(model, drive, M, v):
     if st.gross_slip or not all(math.isfinite(t) for t in st.spans.values()):
         return None, travel, {}, f"no steady state: pulley {st.gross_slip or '?'} slips over its whole wrap"
     T = np.array([st.spans[sp.name] for sp in lay.spans])
-    cols = _columns(model, lay, T, T - st.centrifugal, v > 0, st.centrifugal, M)
     margin = {n: float(p.slip_margin) for n, p in st.pulleys.items()}
+    # with the belt length kept, a pulley's extra torque also slackens the spans it shares: its
+    # slip factor is creep theory's load multiplier at gross slip (creep.margins), the arm held
+    cols = _columns(model, lay, T, T - st.centrifugal, v > 0, st.centrifugal, M, margin)
     return cols, travel, margin, ""
 
 
-def _columns(model, lay, T, T_hub, forward, c, M) -> DutyColumns:
-    """Span tensions, hub loads from ``T_hub`` and slip factors for span tensions T."""
+def _columns(model, lay, T, T_hub, forward, c, M, margin=None) -> DutyColumns:
+    """Span tensions, hub loads from ``T_hub`` and slip factors for span tensions T (``margin``:
+    the slip factors given, per pulley)."""
     nk = len(lay.names)
     hub = np.zeros((nk, 2))
     for k, sp in enumerate(lay.spans):
@@ -148,7 +152,7 @@ def _columns(model, lay, T, T_hub, forward, c, M) -> DutyColumns:
         a, b = ee[j]
         slack = min(T[a], T[b]) - c
         cap = max(slack, 0.0) * math.expm1(mu * lay.wrap[j]) * abs(lay.rho[j])
-        sf[p.name] = cap / abs(M[j]) if M[j] else math.inf
+        sf[p.name] = (margin[p.name] if margin is not None else cap / abs(M[j])) if M[j] else math.inf
     return DutyColumns({sp.name: float(t) for sp, t in zip(lay.spans, T)},
                        {p.name: float(np.hypot(*hub[j])) for j, p in enumerate(model.pulleys)},
                        {p.name: math.atan2(hub[j][1], hub[j][0]) for j, p in enumerate(model.pulleys)}, sf)
