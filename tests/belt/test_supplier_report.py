@@ -256,3 +256,37 @@ def test_running_balance_against_the_segment_model_at_the_first_duty_row():
     assert s["verdict"] == "pass"
     names = {c for c in s["criteria"]}
     assert {"duty_slip_factor", "duty_rows_carried", "duty_stop_clearance", "belt_life"} <= names
+
+
+def test_slip_factor_under_the_cranks_acceleration():
+    """The A/C's slip safety factor under +-1000 rpm/s of the crank, written out: its torque is the
+    load (10 % of its largest duty power, at its speed) plus its inertia's J alpha, alpha the crank's
+    times the speed ratio; with the arm fixed the span leaving it into the tensioner holds the design
+    tension plus the tensioner's drag, so its capacity is (T_slack - m v^2)(e^(mu phi) - 1) r."""
+    from drivedyn.belt.steady.duty import acceleration_envelope
+
+    model = drivedyn.load(drivedyn.example_path("fead-ag0868"))
+    drive = resolve(model)
+    design = position_tables(drive)[0].design_tension
+    env = acceleration_envelope(drive, design)
+    lay = drive.layout
+    r_c, r_a = PITCH["CRK"] / 2e3, PITCH["A_C"] / 2e3
+    j = [p.name for p in model.pulleys].index("A_C")
+    dc = model.duty_cycle
+    for e in env:
+        v = e["crank_speed"] * r_c
+        w_a = v / r_a
+        alpha = dc.acceleration * r_c / r_a
+        # the span from the tensioner into the A/C: the design tension, the tensioner's drag and its
+        # pulley's inertia torque J alpha over its radius (speeding up pulls it, slowing down pushes)
+        r_t, J_t = PITCH["TEN"] / 2e3, model.pulleys[2].inertia
+        a_t = dc.acceleration * r_c / r_t
+        slack_acc = design + dc.idler_drag / v + J_t * a_t / r_t - model.belt.mass_per_length * v * v
+        slack_dec = design + dc.idler_drag / v - J_t * a_t / r_t - model.belt.mass_per_length * v * v
+        grip = math.expm1(model.friction.coefficient * lay.wrap[j]) * r_a
+        load = 0.1 * 4.7e3 / w_a
+        J = model.pulleys[j].inertia
+        acc, dec = e["part_load_accelerating"], e["part_load_decelerating"]
+        assert acc["factors"]["A_C"] == pytest.approx(slack_acc * grip / (load + J * alpha), rel=1e-3)
+        assert dec["factors"]["A_C"] == pytest.approx(slack_dec * grip / abs(load - J * alpha), rel=1e-3)
+        assert acc["slip_factor"] == min(acc["factors"].values())

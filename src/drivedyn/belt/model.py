@@ -511,6 +511,10 @@ class DutyCycle(Spec):
 
     rows: list[DutyRow]
     idler_drag: quantity("W", ge=0) = 10.0      # on each pulley without a declared load (Gates: 0.01 kW)
+    # the crank's acceleration and deceleration the slip factors are checked under, with each
+    # pulley's inertia, at part_load and full accessory load (the rows' largest); None: not checked
+    acceleration: Optional[quantity("rad/s^2", gt=0)] = None
+    part_load: quantity("1", gt=0, le=1) = 0.1
     temperature: float = 80.0                    # deg C
     life: Life = Life()
 

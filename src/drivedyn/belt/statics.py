@@ -140,7 +140,8 @@ CHECK_UNITS = {"steady.spans.*.tension": "N", "steady.pulleys.*.torque": "N*m", 
                "supplier.duty.rows.*.hub_direction*": "rad", "supplier.duty.rows.*.slip_factor*": "1",
                "supplier.duty.rows.arm_*": "rad", "supplier.duty.rows.slip_margin*": "1",
                "supplier.duty.rows.note": "", "supplier.life.b10_hours": "h", "supplier.life.target_hours": "h",
-               "supplier.life.*_share*": "1", "supplier.life.*": ""}
+               "supplier.life.*_share*": "1", "supplier.life.*": "", "supplier.resonance.*_hz": "Hz",
+               "supplier.resonance.participation*": "1"}
 
 
 def check_json(model) -> str:

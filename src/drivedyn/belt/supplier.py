@@ -47,6 +47,13 @@ def report_data(drive) -> dict:
             "rows": {name: _position(r) for name, r in zip(ROWS, t.rows) if r is not None},
             "unreached": t.unreached, "take_up": t.take_up, "design_tension": t.design_tension,
             "length_offset": t.offset} for t in tables}
+    if any(p.speed_time is not None for p in model.pulleys):
+        from .steady.modes import crank_free_modes, drive_modes
+
+        free, held = crank_free_modes(drive), drive_modes(drive)
+        out["resonance"] = {"frequency_hz": free.frequencies_hz[0] if free.frequencies_hz else None,
+                            "crank_held_hz": held.frequencies_hz[0] if held.frequencies_hz else None,
+                            "participation": free.participation[0] if free.participation else {}}
     if model.duty_cycle is not None:
         from .steady.duty import duty_cycle
         from .steady.life import belt_life
@@ -55,6 +62,12 @@ def report_data(drive) -> dict:
         rows = duty_cycle(drive, design)
         out["duty"] = {"design_tension": design, "idler_drag": model.duty_cycle.idler_drag,
                        "rows": [_duty_row(r) for r in rows]}
+        if model.duty_cycle.acceleration is not None:
+            from .steady.duty import acceleration_envelope
+
+            out["acceleration"] = {"acceleration": model.duty_cycle.acceleration,
+                                   "part_load": model.duty_cycle.part_load,
+                                   "speeds": acceleration_envelope(drive, design)}
         if belt.ribs and belt.effective_length and d_eff is not None:
             life = belt_life(model, design, [r.belt_speed for r in rows])
             out["life"] = {"b10_hours": life.b10_hours, "pulley_share": life.pulley_share,
@@ -159,6 +172,21 @@ def report_lines(data) -> list[str]:
             if tr:
                 lines.append(f"tensioner {n} running travel {min(tr) * DEG:.2f} to {max(tr) * DEG:.2f} deg into the belt "
                              f"(stops {lo * DEG:.2f} / {hi * DEG:.2f} deg)")
+    if "acceleration" in data:
+        ac = data["acceleration"]
+        lines += ["", f"slip safety factor under +-{ac['acceleration'] * 30 / math.pi:.0f} rpm/s of the crank (fixed arm; "
+                      f"accessories at {100 * ac['part_load']:.0f} % and 100 % load, their inertias)",
+                  f"{'rpm':>6s} {'part acc':>10s} {'part dec':>10s} {'full acc':>10s} {'full dec':>10s}  limiting"]
+        for e in ac["speeds"]:
+            keys = ("part_load_accelerating", "part_load_decelerating", "full_load_accelerating", "full_load_decelerating")
+            worst = min(keys, key=lambda k: e[k]["slip_factor"])
+            lines.append(f"{e['crank_speed'] * 30 / math.pi:6.0f} " + " ".join(f"{e[k]['slip_factor']:10.2f}" for k in keys)
+                         + f"  {e[worst]['pulley']}")
+    if data.get("resonance", {}).get("frequency_hz"):
+        r = data["resonance"]
+        lines += ["", f"system resonance (first rotational mode, the crank free on its inertia): {r['frequency_hz']:.2f} Hz "
+                      f"(crank held: {r['crank_held_hz']:.2f} Hz); "
+                      + ", ".join(f"{n} {100 * v:.0f} %" for n, v in r["participation"].items() if v > 0.05)]
     if "life" in data:
         li = data["life"]
         lines += ["", f"belt life B10 {li['b10_hours']:.0f} h (rib fatigue, steady/life.py: a fit to supplier reports"

@@ -97,6 +97,51 @@ def duty_cycle(drive, design_tension: float) -> list[DutyRowResult]:
     return out
 
 
+def acceleration_envelope(drive, design_tension: float) -> list[dict]:
+    """The slip safety factors (fixed arm) at each duty row's crank speed while the crank speeds up
+    and slows down at ``duty_cycle.acceleration``: each pulley's inertia torque J alpha (alpha its
+    angular acceleration, the crank's times its speed ratio) on top of the accessory loads at
+    ``part_load`` and at full load (each accessory's largest over the rows). Per speed and load:
+    the smallest factor and the pulley, accelerating and decelerating (Gates' slip page uses
+    +-1000 rpm/s at 10 % and 100 % load)."""
+    model = drive.model
+    dc = model.duty_cycle
+    c = crank_of(model)
+    lay = drive.layout
+    d = drive_of(model, lay)
+    nk = len(lay.names)
+    sign_c = math.copysign(1.0, model.pulleys[c].speed_time[-1][1] or 1.0)
+    full = {}
+    for row in dc.rows:                   # each accessory's largest power over the rows, at its speed
+        for j, p in enumerate(model.pulleys):
+            w = abs(row.crank_speed * lay.rho[c] / lay.rho[j])
+            P = row.torque[p.name] * w if p.name in row.torque else row.power.get(p.name)
+            if P is not None:
+                full[p.name] = max(full.get(p.name, 0.0), P)
+    out = []
+    for row in dc.rows:
+        v = sign_c * row.crank_speed * lay.rho[c]
+        w = v / lay.rho
+        entry = {"crank_speed": row.crank_speed}
+        for label, share in (("part_load", dc.part_load), ("full_load", 1.0)):
+            for sense, sgn in (("accelerating", 1.0), ("decelerating", -1.0)):
+                a = sgn * v / abs(v) * dc.acceleration * abs(lay.rho[c])       # belt acceleration along the list
+                M = np.zeros(nk)
+                for j, p in enumerate(model.pulleys):
+                    if j == c:
+                        continue
+                    P = share * full[p.name] if p.name in full else dc.idler_drag
+                    M[j] = -math.copysign(P / abs(w[j]), w[j]) - p.inertia * a / lay.rho[j]
+                M[c] = -lay.rho[c] * float(np.sum(np.delete(M / lay.rho, c)))
+                cols = _fixed_arm(model, drive, d, M, v > 0, design_tension, v)
+                sf = [(f, n) for n, f in cols.slip_factor.items() if math.isfinite(f)]
+                f, n = min(sf) if sf else (math.inf, "")
+                entry[f"{label}_{sense}"] = {"slip_factor": f, "pulley": n,
+                                             "factors": {k: x for k, x in cols.slip_factor.items() if math.isfinite(x)}}
+        out.append(entry)
+    return out
+
+
 def _fixed_arm(model, drive, d, M, forward, design_tension, v) -> DutyColumns:
     lay = drive.layout
     nk = len(lay.names)

@@ -306,6 +306,14 @@ def drive_modes(model, tensions=None) -> Modes:
     return modes(built, tensions=tensions, travel=travel)
 
 
+def crank_free_modes(model, tensions=None) -> Modes:
+    """Modes of a drive as built with its prescribed-speed pulleys (the crank) free on their
+    inertias: the supplier's "system resonance" is the first (the rigid turning of the whole drive
+    is left out). The crank's ``inertia`` must be the engine's, as the supplier takes it."""
+    lin = drive_linear_model(model, tensions, held_as_dofs=True)
+    return _eigen(lin.K, lin.M_locked, lin.dofs) if lin is not None else Modes((), [], [], [], 0)
+
+
 def drive_linear_model(model, tensions=None, held_as_dofs=False):
     """``linear_model`` of a drive as built (as ``drive_modes``)."""
     built, travel = _as_built(model)
