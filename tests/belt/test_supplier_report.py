@@ -290,3 +290,41 @@ def test_slip_factor_under_the_cranks_acceleration():
         assert acc["factors"]["A_C"] == pytest.approx(slack_acc * grip / (load + J * alpha), rel=1e-3)
         assert dec["factors"]["A_C"] == pytest.approx(slack_dec * grip / abs(load - J * alpha), rel=1e-3)
         assert acc["slip_factor"] == min(acc["factors"].values())
+
+
+def test_entry_angles_from_offset_and_misalignment():
+    """A 500 mm span between two pulleys: an axial offset of 2 mm enters at atan(2 / L_span); a pulley
+    turned by 0.5 deg about the direction across the span tilts its groove against it by the whole
+    0.5 deg, about the span's own direction by nothing (first order)."""
+    from drivedyn.belt.geometry.alignment import entry_angles
+    from drivedyn.belt.geometry.layout import compute_layout
+
+    base = '''
+kind = "belt-drive"
+[belt]
+mass_per_length = 0.1
+axial_stiffness = 1e5
+pretension = 300
+[contact]
+stiffness_linear = 1e9
+[[pulleys]]
+name = "a"
+center = [0, 0]
+radius = 0.05
+[[pulleys]]
+name = "b"
+center = [0.5, 0]
+radius = 0.05
+'''
+    m = drivedyn.loads(base.replace('radius = 0.05\n[[pulleys]]', 'radius = 0.05\naxial_offset = "2 mm"\n[[pulleys]]', 1))
+    lay = compute_layout(m)
+    a = entry_angles(m, lay)
+    L = lay.spans[0].length
+    assert a["b"]["arriving"] == pytest.approx(math.atan(2e-3 / L), rel=1e-9)
+    assert a["a"]["leaving"] == pytest.approx(math.atan(2e-3 / L), rel=1e-9)
+    across = drivedyn.loads(base + 'misalignment = "0.5 deg"\nmisalignment_axis = "90 deg"\n')
+    along = drivedyn.loads(base + 'misalignment = "0.5 deg"\nmisalignment_axis = "0 deg"\n')
+    assert math.degrees(entry_angles(across, compute_layout(across))["b"]["arriving"]) == pytest.approx(0.5, rel=1e-9)
+    assert math.degrees(entry_angles(along, compute_layout(along))["b"]["arriving"]) == pytest.approx(0.0, abs=1e-12)
+    data = drivedyn.analyses.analysis("belt-drive").check_data(across)["supplier"]
+    assert data["alignment"]["entry_angles"]["b"]["arriving"] == pytest.approx(math.radians(0.5))

@@ -128,6 +128,11 @@ def _supplier_criteria(model, s, out, skipped):
             out.append(Criterion("duty_stop_clearance", v, c.stop_clearance_min, "1", "min",
                                  "free travel of the tensioner to its nearer stop at its running balance over the duty "
                                  "cycle, as a share of the stop-to-stop travel", f"{n} at {rpm:.0f} rpm"))
+    al = sup.get("alignment")
+    if al:
+        v, n = max((max(a.values()), n) for n, a in al["entry_angles"].items())
+        out.append(Criterion("entry_angle", v, c.entry_angle_max, "rad", "max",
+                             "largest belt entry angle on a pulley from offsets and misalignment", n))
     life = sup.get("life")
     if life and life.get("target_hours"):
         out.append(Criterion("belt_life", life["b10_hours"], life["target_hours"], "h", "min",

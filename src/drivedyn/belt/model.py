@@ -236,6 +236,12 @@ class Pulley(Spec):
     # the effective diameter of a ribbed pulley (belt length is measured on it); None: from the
     # belt's profile, 2 x radius -+ 2 hb (grooved, back side; geometry/catalogue.py)
     effective_diameter: Optional[quantity("m", gt=0)] = None
+    # alignment (geometry/alignment.py): the groove's centre plane along the axis, from the drive's
+    # plane, and the pulley's plane turned by ``misalignment`` about the in-plane direction
+    # ``misalignment_axis`` (from +x counter-clockwise)
+    axial_offset: quantity("m") = 0.0
+    misalignment: quantity("rad") = 0.0
+    misalignment_axis: quantity("rad") = 0.0
 
     @field_validator("name")
     @classmethod
@@ -541,6 +547,10 @@ class Criteria(Spec):
     flap_orders: list[float] = []                   # orders of the crank to judge besides its declared speed orders
     flap_amplitude_min: quantity("rad/s", ge=0) = 0.0     # declared speed orders weaker than this are not judged
     resonance_crossings_max: Annotated[int, Field(ge=0)] | None = None      # crossings of rotational modes (listed; judged only if given)
+    # the belt's entry angle on a pulley from offsets and misalignment (judged when any is given):
+    # Gates' limit for PK belts on grooved pulleys (chirp begins near 0.33 deg: Meckstroth et al.,
+    # SAE 1999-01-1709)
+    entry_angle_max: quantity("rad", gt=0) = 0.9 * math.pi / 180
 
 
 class Model(Spec):

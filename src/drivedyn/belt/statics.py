@@ -141,7 +141,10 @@ CHECK_UNITS = {"steady.spans.*.tension": "N", "steady.pulleys.*.torque": "N*m", 
                "supplier.duty.rows.arm_*": "rad", "supplier.duty.rows.slip_margin*": "1",
                "supplier.duty.rows.note": "", "supplier.life.b10_hours": "h", "supplier.life.target_hours": "h",
                "supplier.life.*_share*": "1", "supplier.life.*": "", "supplier.resonance.*_hz": "Hz",
-               "supplier.resonance.participation*": "1"}
+               "supplier.resonance.participation*": "1",
+               "supplier.alignment.*": "rad", "supplier.acceleration.acceleration": "rad/s^2",
+               "supplier.acceleration.part_load": "1", "supplier.acceleration.speeds.crank_speed": "rad/s",
+               "supplier.acceleration.speeds.*.pulley": "", "supplier.acceleration.speeds.*": "1"}
 
 
 def check_json(model) -> str:

@@ -14,10 +14,13 @@ DEG = 180 / math.pi
 
 
 def wanted(model) -> bool:
-    """Whether the model asks for the supplier's report (catalogue data, supplier tensioner data or a
-    duty cycle)."""
+    """Whether the model asks for the supplier's report (catalogue data, supplier tensioner data, a
+    duty cycle or pulley alignment)."""
+    from .geometry.alignment import has_alignment
+
     return (model.duty_cycle is not None or model.belt.effective_length is not None
-            or any(p.arm is not None and p.arm.free_angle is not None for p in model.pulleys))
+            or any(p.arm is not None and p.arm.free_angle is not None for p in model.pulleys)
+            or has_alignment(model))
 
 
 def report_data(drive) -> dict:
@@ -41,6 +44,11 @@ def report_data(drive) -> dict:
                                    "contact": "back" if p.side == "back" else "grooved",
                                    "speed_ratio": _ratio(drive, j)}
                           for j, (p, d) in enumerate(zip(model.pulleys, d_eff))}
+    from .geometry.alignment import entry_angles, has_alignment
+
+    if has_alignment(model):
+        out["alignment"] = {"entry_angles": entry_angles(model, drive.layout),
+                            "limit": model.criteria.entry_angle_max}
     tables = position_tables(drive)
     if tables:
         out["positions"] = {t.pulley: {
@@ -172,6 +180,11 @@ def report_lines(data) -> list[str]:
             if tr:
                 lines.append(f"tensioner {n} running travel {min(tr) * DEG:.2f} to {max(tr) * DEG:.2f} deg into the belt "
                              f"(stops {lo * DEG:.2f} / {hi * DEG:.2f} deg)")
+    if "alignment" in data:
+        al = data["alignment"]
+        lines += ["", f"belt entry angles (geometry/alignment.py), limit {al['limit'] * DEG:.2f} deg: "
+                      + ", ".join(f"{n} {a.get('arriving', 0) * DEG:.2f} / {a.get('leaving', 0) * DEG:.2f} deg"
+                                  for n, a in al["entry_angles"].items()) + " (arriving / leaving span, listed order)"]
     if "acceleration" in data:
         ac = data["acceleration"]
         lines += ["", f"slip safety factor under +-{ac['acceleration'] * 30 / math.pi:.0f} rpm/s of the crank (fixed arm; "
