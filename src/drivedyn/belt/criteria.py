@@ -128,6 +128,17 @@ def _supplier_criteria(model, s, out, skipped):
             out.append(Criterion("duty_stop_clearance", v, c.stop_clearance_min, "1", "min",
                                  "free travel of the tensioner to its nearer stop at its running balance over the duty "
                                  "cycle, as a share of the stop-to-stop travel", f"{n} at {rpm:.0f} rpm"))
+    dyn = sup.get("duty_dynamic")
+    if dyn:
+        bad = [f"{e['crank_speed'] * RPM:.0f} rpm ({e['status']})" for e in dyn if e["status"] != "success"]
+        out.append(Criterion("duty_dynamic_rows", len(bad), 0, "", "max",
+                             "duty rows whose held run (rotational model) did not end success", ", ".join(bad)))
+        sm = [(v, n, e["crank_speed"] * RPM) for e in dyn if e["status"] != "failed"
+              for n, v in e["slip_margin"].items()]
+        if sm:
+            v, n, rpm = min(sm)
+            out.append(Criterion("duty_dynamic_slip_margin", v, c.slip_margin_min, "1", "min",
+                                 "smallest slip margin of the duty rows held in the rotational model", f"{n} at {rpm:.0f} rpm"))
     al = sup.get("alignment")
     if al:
         v, n = max((max(a.values()), n) for n, a in al["entry_angles"].items())

@@ -521,6 +521,10 @@ class DutyCycle(Spec):
     # pulley's inertia, at part_load and full accessory load (the rows' largest); None: not checked
     acceleration: Optional[quantity("rad/s^2", gt=0)] = None
     part_load: quantity("1", gt=0, le=1) = 0.1
+    # each row also from the dynamics: the rotational model held at the row (supplier.py), the
+    # crank's declared speed orders included: mean and peak hub loads, span tension bands, the arm's
+    # travel against its stops, slip margins (about a second per row)
+    dynamic: bool = False
     temperature: float = 80.0                    # deg C
     life: Life = Life()
 

@@ -144,7 +144,10 @@ CHECK_UNITS = {"steady.spans.*.tension": "N", "steady.pulleys.*.torque": "N*m", 
                "supplier.resonance.participation*": "1",
                "supplier.alignment.*": "rad", "supplier.acceleration.acceleration": "rad/s^2",
                "supplier.acceleration.part_load": "1", "supplier.acceleration.speeds.crank_speed": "rad/s",
-               "supplier.acceleration.speeds.*.pulley": "", "supplier.acceleration.speeds.*": "1"}
+               "supplier.acceleration.speeds.*.pulley": "", "supplier.acceleration.speeds.*": "1",
+               "supplier.duty_dynamic.crank_speed": "rad/s", "supplier.duty_dynamic.hub_load*": "N",
+               "supplier.duty_dynamic.span_tension*": "N", "supplier.duty_dynamic.slip_margin*": "1",
+               "supplier.duty_dynamic.arm_travel*": "rad", "supplier.duty_dynamic.*": ""}
 
 
 def check_json(model) -> str:

@@ -70,6 +70,8 @@ def report_data(drive) -> dict:
         rows = duty_cycle(drive, design)
         out["duty"] = {"design_tension": design, "idler_drag": model.duty_cycle.idler_drag,
                        "rows": [_duty_row(r) for r in rows]}
+        if model.duty_cycle.dynamic:
+            out["duty_dynamic"] = dynamic_duty(drive)
         if model.duty_cycle.acceleration is not None:
             from .steady.duty import acceleration_envelope
 
@@ -85,6 +87,71 @@ def report_data(drive) -> dict:
                                             if model.duty_cycle.life.target is not None else None)}
         else:
             out["life_skipped"] = "belt life needs belt.ribs, belt.effective_length and effective diameters"
+    return out
+
+
+#: a duty row held in the rotational model: the crank ramps to the row's speed over RAMP, is held,
+#: and the last WINDOW is read (the drive's slowest mode, the arm's at ~50 Hz, settles in it)
+RAMP, HOLD, WINDOW = 0.2, 0.4, 0.2
+
+
+def dynamic_duty(drive) -> list[dict]:
+    """Each duty row from the dynamics: the rotational model (rotational/simulate.py) with the crank
+    held at the row's speed (its declared speed orders on it) and the row's loads as viscous
+    torques P / omega^2 (the row's power at its speed, opposing the motion as it ramps up): mean and
+    peak hub loads, span tension bands, the arm's travel band and its stops, slip margins, the run's
+    status and diagnostics."""
+    import numpy as np
+
+    from ..errors import SolverError
+    from ..window import in_window
+    from .rotational.simulate import run
+    from .steady.duty import crank_of
+
+    model = drive.model
+    dc = model.duty_cycle
+    c = crank_of(model)
+    lay = drive.layout
+    sign_c = math.copysign(1.0, model.pulleys[c].speed_time[-1][1] or 1.0)
+    out = []
+    for row in dc.rows:
+        w_c = sign_c * row.crank_speed
+        pulleys = []
+        for j, p in enumerate(model.pulleys):
+            if j == c:
+                pulleys.append(p.model_copy(update={"speed_time": [[0.0, 0.0], [RAMP, w_c], [RAMP + HOLD, w_c]]}))
+                continue
+            w = abs(row.crank_speed * lay.rho[c] / lay.rho[j])
+            P = row.torque[p.name] * w if p.name in row.torque else row.power.get(p.name, dc.idler_drag)
+            pulleys.append(p.model_copy(update={
+                "torque": 0.0, "torque_time": None, "torque_speed": None, "power": 0.0, "quadratic_torque": 0.0,
+                "harmonics": [], "viscous_torque": P / w ** 2}))
+        held = model.model_copy(update={
+            "pulleys": pulleys,
+            "simulation": model.simulation.model_copy(update={"model": "rotational", "runup": "time",
+                                                              "duration": RAMP + HOLD, "step": None}),
+            "output": model.output.model_copy(update={"steady_window": (RAMP + HOLD - WINDOW, RAMP + HOLD)})})
+        try:
+            r = run(held)
+        except SolverError as exc:
+            out.append({"crank_speed": row.crank_speed, "status": "failed", "note": str(exc)})
+            continue
+        s, ds = r.summary, r.ds
+        sel = in_window(ds["time"].values, ds.attrs.get("steady_window"))
+        hub = ds["hub_load"].values[sel]
+        names = [p.name for p in model.pulleys]
+        e = {"crank_speed": row.crank_speed, "status": r.status,
+             "diagnostics": [d.code for d in r.diagnostics],
+             "hub_load_mean": {n: float(x) for n, x in zip(names, hub.mean(axis=0))},
+             "hub_load_peak": {n: float(x) for n, x in zip(names, hub.max(axis=0))},
+             "span_tension_min": {n: v["tension_min"] for n, v in s["spans"].items()},
+             "span_tension_max": {n: v["tension_max"] for n, v in s["spans"].items()},
+             "slip_margin": {n: v.get("slip_margin") for n, v in s["pulleys"].items()
+                             if v.get("slip_margin") is not None and np.isfinite(v["slip_margin"])},
+             "arm_travel": {n: [v["travel_min"], v["travel_max"]] for n, v in (s.get("tensioners") or {}).items()
+                            if "travel_min" in v},
+             "note": ""}
+        out.append(e)
     return out
 
 
@@ -180,6 +247,21 @@ def report_lines(data) -> list[str]:
             if tr:
                 lines.append(f"tensioner {n} running travel {min(tr) * DEG:.2f} to {max(tr) * DEG:.2f} deg into the belt "
                              f"(stops {lo * DEG:.2f} / {hi * DEG:.2f} deg)")
+    if "duty_dynamic" in data:
+        dd = data["duty_dynamic"]
+        names = list(data["duty"]["rows"][0]["fixed_arm"]["hub_load"]) if data.get("duty") else []
+        lines += ["", "duty cycle from the dynamics (the rotational model held at each row, its speed orders on the "
+                      "crank): hub loads mean / peak N, smallest slip margin, arm travel band deg, status"]
+        for e in dd:
+            if e["status"] == "failed":
+                lines.append(f"{e['crank_speed'] * 30 / math.pi:6.0f}  failed: {e['note']}")
+                continue
+            arm = "; ".join(f"{n} {lo * DEG:.2f}..{hi * DEG:.2f}" for n, (lo, hi) in e["arm_travel"].items())
+            sm = min(e["slip_margin"].values(), default=math.inf)
+            lines.append(f"{e['crank_speed'] * 30 / math.pi:6.0f}  "
+                         + "  ".join(f"{n} {e['hub_load_mean'][n]:.0f}/{e['hub_load_peak'][n]:.0f}" for n in names)
+                         + f"  margin {sm:.2f}  {arm}  {e['status']}"
+                         + (f" ({', '.join(e['diagnostics'])})" if e["diagnostics"] else ""))
     if "alignment" in data:
         al = data["alignment"]
         lines += ["", f"belt entry angles (geometry/alignment.py), limit {al['limit'] * DEG:.2f} deg: "
