@@ -201,6 +201,23 @@ def supplier_tables(sup: dict) -> list[dict]:
             "note": f"fixed arm (the supplier's convention): the span into the tensioner held at "
                     f"{duty['design_tension']:.1f} N, hub loads the vector sum of T; running arm: the installed "
                     "belt length kept, hub loads from T - m v^2 (docs/supplier-report.md)"})
+    dyn = sup.get("duty_dynamic")
+    if dyn and duty and duty["rows"]:
+        names = list(duty["rows"][0]["fixed_arm"]["hub_load"])
+        rows = []
+        for e in dyn:
+            if e["status"] == "failed":
+                rows.append([f"{e['crank_speed'] * RPM:.0f}"] + ["-"] * (len(names) + 2) + [f"failed: {e['note']}"])
+                continue
+            arm = "; ".join(f"{n} {lo * DEG:.2f} .. {hi * DEG:.2f}" for n, (lo, hi) in e["arm_travel"].items())
+            rows.append([f"{e['crank_speed'] * RPM:.0f}"]
+                        + [f"{e['hub_load_mean'][n]:.0f} / {e['hub_load_peak'][n]:.0f}" for n in names]
+                        + [_f(min(e["slip_margin"].values(), default=None), "{:.2f}"), arm or "-",
+                           e["status"] + (f" ({', '.join(e['diagnostics'])})" if e["diagnostics"] else "")])
+        out.append({"title": "duty cycle from the dynamics: hub loads mean / peak", "head": [
+            "crank (rpm)"] + [f"{n} (N)" for n in names] + ["min slip margin", "arm travel (deg)", "status"],
+            "rows": rows, "note": "the rotational model held at each row's speed with its loads and the crank's "
+                                  "declared orders (docs/supplier-report.md)"})
     life = sup.get("life")
     if life:
         out.append({"title": "belt life (rib fatigue)", "head": ["B10 (h)", "target (h)", "pulley shares", "row shares"],
