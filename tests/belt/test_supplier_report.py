@@ -242,17 +242,19 @@ def test_running_balance_against_an_independent_length_kept_calculation():
 def test_running_balance_against_the_segment_model_at_the_first_duty_row():
     """examples/fead-ag0868.toml runs its first duty row (800 rpm, 1.3 kW on the A/C) with the segment
     model, the arm free: its mean span tensions and hub loads agree with the running-arm columns of
-    the duty cycle (creep theory, belt length kept) within 1 %; the supplier's fixed arm differs from
-    both by more on the slack side only where the running balance moves the arm (here within 2 %)."""
-    r = drivedyn.run(drivedyn.load(drivedyn.example_path("fead-ag0868")))
+    the duty cycle (creep theory, belt length kept, the arm without friction) within 0.8 % once the
+    arm's Coulomb friction is taken out (with the example's 1 N m against a 22.6 N m spring the arm
+    may rest anywhere in a band of about +-4 % of the tension, and did 1.0 % off)."""
+    model = drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-ag0868")), {"pulleys.2.arm.friction": 0.0})
+    r = drivedyn.run(model)
     assert r.status == "success", [d.line() for d in r.diagnostics]
     s = r.summary
     row = s["supplier"]["duty"]["rows"][0]
     assert row["running_arm"] is not None
     for sp, t in row["running_arm"]["spans"].items():
-        assert s["spans"][sp]["tension_mean"] == pytest.approx(t, rel=0.01), sp
+        assert s["spans"][sp]["tension_mean"] == pytest.approx(t, rel=0.008), sp
     for n, h in row["running_arm"]["hub_load"].items():
-        assert s["pulleys"][n]["hub_load"] == pytest.approx(h, rel=0.01), n
+        assert s["pulleys"][n]["hub_load"] == pytest.approx(h, rel=0.008), n
     assert s["verdict"] == "pass"
     names = {c for c in s["criteria"]}
     assert {"duty_slip_factor", "duty_rows_carried", "duty_stop_clearance", "belt_life"} <= names
