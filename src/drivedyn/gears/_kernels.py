@@ -4,7 +4,7 @@
   import (``@njit(cache=True)`` without signatures). Index base 0.
 - State y (2n): angles theta_i (rad) then speeds omega_i (rad/s), each positive in gear i's own
   nominal direction of rotation.
-- Parameters ``p`` is the tuple built by ``simulate.params`` (order fixed by ``unpack`` below):
+- Parameters ``p`` is the tuple built by ``kernel_inputs.params`` (order fixed by ``unpack`` below):
   J (n), Tc (n) constant torques, ramp (float, s; 0 = none), ts_off/ts_x/ts_y and tt_off/tt_x/tt_y
   (torque-speed and torque-time tables of all gears, flattened, offsets n+1), mesh arrays
   ma, mb (int), rba, rbb, za, phase, cm, sep (int), bl (m), tables kt, fa, fb (m x N) over one

@@ -318,7 +318,7 @@ def floquet_growth(sys_, omegas, h_max: float) -> np.ndarray:
     multipliers (a Jordan block at 1) is left out. Monodromy by RK4 at <= h_max and <= 1/20 of the
     fastest period, >= 64 steps per mesh period."""
     from . import _kernels
-    from .simulate import params
+    from .kernel_inputs import params
 
     omegas = np.atleast_1d(np.asarray(omegas, dtype=float))
     T = np.array([common_period(sys_, w) or np.nan for w in omegas])

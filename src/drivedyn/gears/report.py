@@ -5,13 +5,11 @@ import math
 
 import numpy as np
 
-from .train import assemble, reduced_mass_per_mesh
+from .train import assemble, method_b, reduced_mass_per_mesh
 
 
 def report(model) -> str:
     """Text report of what is known without integrating: per gear, per mesh, and the train's modes."""
-    from .simulate import _method_b
-
     if model.planetary is not None and not model.meshes:
         from .planetary import report_lines
 
@@ -30,7 +28,7 @@ def report(model) -> str:
         p, iso, tab = s.pairs[j], s.iso[j], s.tables[j]
         b = min(p.g1.b, p.g2.b)
         c1, cg = iso.si(b)
-        mb = _method_b(model, s, j, mred[j])
+        mb = method_b(model, s, j, mred[j])
         kv, N, region = mb.kv(s.ratio[s.mesh_a[j]] * s.omega_in / (2 * math.pi))
         out += ["", f"mesh {ms.name}: {ms.gears[0]} drives {ms.gears[1]}",
                 f"  working pressure angle {math.degrees(p.alpha_w):.4f} deg, centre distance {p.a_w * 1e3:.4f} mm "

@@ -11,42 +11,8 @@ from ..errors import SolverError, Stopped, stop_reason
 from ..results import Result, unit_map, variable
 from ..window import in_window, steady_window
 from . import _kernels
-from .train import System, assemble
-
-
-def params(sys_: System, ramp: float = 0.0, tables: bool = True) -> tuple:
-    """The kernel parameter tuple (order: see the contract of ``_kernels``)."""
-    fa, fb = sys_.friction_tables()
-    empty_i, empty_f = np.zeros(sys_.n + 1, dtype=np.int64), np.zeros(0)
-    ts = (sys_.ts_off, sys_.ts_x, sys_.ts_y) if tables else (empty_i, empty_f, empty_f)
-    tt = (sys_.tt_off, sys_.tt_x, sys_.tt_y) if tables else (empty_i, empty_f, empty_f)
-    return (sys_.inertia.astype(float), sys_.torque_const.astype(float), float(ramp), *ts, *tt,
-            sys_.mesh_a, sys_.mesh_b, sys_.rb_a, sys_.rb_b, sys_.z_a, sys_.phase, sys_.damping, sys_.separation,
-            sys_.backlash, sys_.ktab(), fa, fb, sys_.shaft_a, sys_.shaft_b, sys_.shaft_k, sys_.shaft_c)
-
-
-def stiffness_at(sys_: System, theta_a) -> np.ndarray:
-    """Mesh stiffness (N/m) of every mesh at driving-gear angles ``theta_a`` (..., m) by the tables;
-    NaN where an angle is not finite (a diverged run)."""
-    kt = sys_.ktab()
-    N = kt.shape[1]
-    theta_a = np.asarray(theta_a, dtype=float)
-    ok = np.isfinite(theta_a)
-    u = (sys_.z_a * np.where(ok, theta_a, 0.0) / (2 * math.pi) + sys_.phase) % 1.0
-    x = u * N
-    i0 = np.minimum(x.astype(int), N - 1)
-    w = x - i0
-    i1 = (i0 + 1) % N
-    cols = np.arange(sys_.m)
-    return np.where(ok, kt[cols, i0] * (1 - w) + kt[cols, i1] * w, np.nan)
-
-
-def static_start(sys_: System) -> np.ndarray:
-    """Deflections (rad) in static equilibrium with the stiffness at the start position (theta = 0)."""
-    q = np.zeros(sys_.n)
-    for _ in range(3):      # the stiffness depends (weakly) on the deflected angle: a few fixed-point passes
-        q, _, _ = sys_.static(k_mesh=stiffness_at(sys_, q[sys_.mesh_a]))
-    return q
+from .kernel_inputs import params, stiffness_at, static_start
+from .train import assemble, method_b
 
 
 #: wall time aimed at per compiled chunk: progress, Ctrl-C and a study's time limit act between chunks
@@ -241,7 +207,7 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
     for j, name in enumerate(sys_.mesh_names):
         p_ = sys_.pairs[j]
         iso = sys_.iso[j]
-        mb = _method_b(model, sys_, j, mred[j])
+        mb = method_b(model, sys_, j, mred[j])
         iso_b.append(mb)
         kv_iso, n_ratio, region = mb.kv(sys_.ratio[sys_.mesh_a[j]] * sys_.omega_in / (2 * math.pi))
         c1, cg = iso.si(min(p_.g1.b, p_.g2.b))
@@ -342,19 +308,6 @@ def _rating(model, sys_, kv_dyn, kv_iso) -> dict:
         r_iso = rate_mesh(model, sys_, j, float(kv_iso[j]))
         out[name] = summary_of(r_dyn, r_iso, (model.iso.min_safety_pitting, model.iso.min_safety_bending))
     return out
-
-
-def _method_b(model, sys_, j, m_red):
-    from .iso6336 import MethodB
-
-    p_ = sys_.pairs[j]
-    iso = sys_.iso[j]
-    b_mm = min(p_.g1.b, p_.g2.b) * 1e3
-    return MethodB(z1=p_.g1.z, c_single=iso.c_single, c_gamma=iso.c_gamma, m_red=m_red / b_mm,
-                   eps_gamma=p_.total_contact_ratio, load_per_width=iso.load_per_width,
-                   f_pb=model.iso.pitch_deviation * 1e6, f_falpha=model.iso.profile_deviation * 1e6,
-                   material=model.iso.material, sigma_hlim=model.iso.sigma_hlim / 1e6,
-                   c_a=None if model.iso.tip_relief is None else model.iso.tip_relief * 1e6, pitch_radius=p_.g1.r)
 
 
 #: units of the summary keys (fnmatch patterns, first match wins; "1" for ratios)

@@ -13,8 +13,8 @@ import time
 import numpy as np
 
 from . import _kernels
-from .simulate import params, static_start
-from .train import reduced_mass_per_mesh
+from .kernel_inputs import params, static_start
+from .train import method_b, reduced_mass_per_mesh
 
 
 def speed_range(sys_, model) -> tuple[float, float]:
@@ -29,8 +29,6 @@ def speed_range(sys_, model) -> tuple[float, float]:
 
 def run_sweep(sys_, model, progress=None) -> dict:
     """Simulated and ISO 6336-1 method B K_v of every mesh over the speed range."""
-    from .simulate import _method_b
-
     t0 = time.perf_counter()
     sw = model.sweep
     lo, hi = speed_range(sys_, model)
@@ -61,7 +59,7 @@ def run_sweep(sys_, model, progress=None) -> dict:
     mred = reduced_mass_per_mesh(sys_)
     kv_iso = np.zeros((ns, m))
     for j in range(m):
-        mb = _method_b(model, sys_, j, mred[j])
+        mb = method_b(model, sys_, j, mred[j])
         for k, om in enumerate(speeds):
             kv_iso[k, j] = mb.kv(sys_.ratio[sys_.mesh_a[j]] * om / (2 * math.pi))[0]
     # force amplitude in the second half of the window over the first: 1 when steady, > 1 growing

@@ -282,6 +282,18 @@ def reduced_mass_per_mesh(sys_: System) -> np.ndarray:
     return out
 
 
+def method_b(model, sys_: System, j: int, m_red: float) -> "iso6336.MethodB":
+    """ISO 6336-1 method B inputs of mesh ``j`` with the reduced mass ``m_red`` (kg)."""
+    p_ = sys_.pairs[j]
+    iso = sys_.iso[j]
+    b_mm = min(p_.g1.b, p_.g2.b) * 1e3
+    return iso6336.MethodB(z1=p_.g1.z, c_single=iso.c_single, c_gamma=iso.c_gamma, m_red=m_red / b_mm,
+                           eps_gamma=p_.total_contact_ratio, load_per_width=iso.load_per_width,
+                           f_pb=model.iso.pitch_deviation * 1e6, f_falpha=model.iso.profile_deviation * 1e6,
+                           material=model.iso.material, sigma_hlim=model.iso.sigma_hlim / 1e6,
+                           c_a=None if model.iso.tip_relief is None else model.iso.tip_relief * 1e6, pitch_radius=p_.g1.r)
+
+
 def _absorb_friction_loss(sys_: System, model, f) -> None:
     """Lower the power-fraction loads by the mean tooth-friction loss, so the train keeps its speed.
 
