@@ -20,6 +20,7 @@ V_MAX = 300.0
 
 Length = quantity("m")
 Time = quantity("s")
+Stress = quantity("Pa", gt=0)
 
 
 def _name(v):
@@ -354,9 +355,78 @@ class Iso(Spec):
         return self
 
 
+class PlanetaryLateral(Spec):
+    """The lateral-torsional model of the stage (Lin & Parker, J. Vib. Acoust. 121 (1999) 316-321):
+    masses and radial bearings of sun, ring and carrier, the planets' pin bearings, and the torsional
+    support of the held member."""
+
+    sun_mass: quantity("kg", gt=0)
+    ring_mass: quantity("kg", gt=0)
+    carrier_mass: quantity("kg", gt=0)
+    planet_bearing_stiffness: quantity("N/m", gt=0)              # each pin, radial and tangential
+    sun_bearing_stiffness: quantity("N/m", ge=0) = 0.0           # 0: a floating sun, centred by its meshes
+    ring_bearing_stiffness: Optional[quantity("N/m", gt=0)] = None     # none: held rigidly in translation
+    carrier_bearing_stiffness: Optional[quantity("N/m", gt=0)] = None
+    support_stiffness: Optional[quantity("N*m/rad", gt=0)] = None      # torsional support of the held member; none: rigid
+
+
+class PlanetaryRating(Spec):
+    """ISO 6336-2/-3 rating of the sun-planet and ring-planet meshes (the rest of the data from [iso])."""
+
+    face_width: quantity("m", gt=0)
+    speed: quantity("rad/s", gt=0)                               # of the input member
+    load_sharing_factor: Optional[float] = None                  # K_gamma; none: from the computed load sharing
+    dynamic_factors: Optional[tuple[float, float]] = None        # K_v of sun-planet, ring-planet; none: ISO method B
+    steels: tuple[Optional[Literal["case-carburized", "through-hardened"]], ...] = (None, None, None)  # sun, planet, ring
+    ring_hardness: Optional[float] = None                        # HB, for Z_W of a through-hardened ring
+    sigma_hlim: Optional[tuple[Stress, Stress, Stress]] = None   # sun, planet, ring; none: the steels' (or iso's)
+    sigma_flim: Optional[tuple[Stress, Stress, Stress]] = None
+    tip_diameters: Optional[tuple[Length, Length, Length]] = None   # sun, planet, ring (inner); none: ISO 21771
+    bore_diameters: tuple[Length, Length, Length] = (0.0, 0.0, 0.0)  # sun, planet inner; ring outer (reduced mass)
+    flank_roughness: Optional[tuple[Length, Length, Length]] = None  # R_z of sun, planet, ring; none: iso's
+    root_roughness: Optional[tuple[Length, Length, Length]] = None
+    root_radius: tuple[float, float, float] = (0.25, 0.25, 0.25)     # rho_fP / m of the racks
+
+    @field_validator("load_sharing_factor")
+    @classmethod
+    def _kg(cls, v):
+        if v is not None and not 1.0 <= v <= 3.0:
+            raise ValueError(f"must lie in [1, 3], got {v}")
+        return v
+
+    @field_validator("dynamic_factors")
+    @classmethod
+    def _kv(cls, v):
+        if v is not None and not all(1.0 <= k <= 10.0 for k in v):
+            raise ValueError(f"must lie in [1, 10], got {list(v)}")
+        return v
+
+    @field_validator("steels")
+    @classmethod
+    def _st(cls, v):
+        if len(v) != 3:
+            raise ValueError(f"must give 3 values (sun, planet, ring), got {len(v)}")
+        return v
+
+    @field_validator("ring_hardness")
+    @classmethod
+    def _hb(cls, v):
+        if v is not None and not 100.0 <= v <= 700.0:
+            raise ValueError(f"must lie in 100..700 HB, got {v}")
+        return v
+
+    @field_validator("root_radius")
+    @classmethod
+    def _rho(cls, v):
+        if not all(0.0 < r <= 0.6 for r in v):
+            raise ValueError(f"must lie in (0, 0.6] modules, got {list(v)}")
+        return v
+
+
 class Planetary(Spec):
-    """A simple planetary stage (sun, N planets on a carrier, ring; standard spur gears, no profile
-    shift): mesh phasing, lumped torsional modes and static load sharing with pin position errors."""
+    """A simple planetary stage (sun, N planets on a carrier, ring; spur gears, profile shifts
+    allowed): mesh phasing, torsional (and, with ``lateral``, lateral-torsional) modes, static load
+    sharing with pin position errors, and (with ``rating``) the ISO rating of every mesh."""
 
     sun_teeth: int
     planet_teeth: int
@@ -375,12 +445,26 @@ class Planetary(Spec):
     fixed: Literal["sun", "ring", "carrier"] = "ring"
     input: Literal["sun", "ring", "carrier"] = "sun"
     torque: quantity("N*m", gt=0)
+    ring_teeth: Optional[int] = None              # none: sun + 2 planet teeth
+    profile_shifts: tuple[float, float, float] = (0.0, 0.0, 0.0)   # sun, planet, ring (ISO 21771: ring d_a = d - 2 m (1 + x))
+    centre_distance: Optional[quantity("m", gt=0)] = None          # none: the sun-planet zero-backlash one
+    lateral: Optional[PlanetaryLateral] = None
+    rating: Optional[PlanetaryRating] = None
+    output_gear: Optional[str] = None             # a gear of the train on the stage's output shaft (a gearbox)
+    output_shaft_stiffness: Optional[quantity("N*m/rad", gt=0)] = None
 
-    @field_validator("sun_teeth", "planet_teeth")
+    @field_validator("sun_teeth", "planet_teeth", "ring_teeth")
     @classmethod
     def _z(cls, v):
-        if not 5 <= v <= 2000:
+        if v is not None and not 5 <= v <= 2000:
             raise ValueError(f"must lie in 5..2000, got {v}")
+        return v
+
+    @field_validator("profile_shifts")
+    @classmethod
+    def _x3(cls, v):
+        if not all(-3.0 < x < 3.0 for x in v):
+            raise ValueError(f"must lie in (-3, 3) modules, got {list(v)}")
         return v
 
     @field_validator("planets")
@@ -396,7 +480,9 @@ class Planetary(Spec):
         import math
 
         n, zs, zp = self.planets, self.sun_teeth, self.planet_teeth
-        zr = zs + 2 * zp
+        zr = self.ring_teeth or zs + 2 * zp
+        if zr - zp <= zs - 2:
+            raise ValueError(f"ring_teeth: a ring of {zr} teeth cannot hold planets of {zp} around a sun of {zs}")
         if self.planet_angles is None:
             if (zs + zr) % n:
                 raise ValueError(f"{n} planets cannot be equally spaced: (sun + ring teeth) / planets = "
@@ -407,8 +493,8 @@ class Planetary(Spec):
                 raise ValueError(f"planet_angles: {len(self.planet_angles)} angles for {n} planets")
             psi = sorted(a % (2 * math.pi) for a in self.planet_angles)
         # neighbouring planets must clear each other: centre chord above the planet's tip diameter
-        R = 0.5 * (zs + zp) * self.module
-        d_tip = (zp + 2) * self.module
+        R = self.centre_distance or 0.5 * (zs + zp) * self.module
+        d_tip = (zp + 2 + 2 * self.profile_shifts[1]) * self.module
         gaps = [b - a for a, b in zip(psi, psi[1:])] + [2 * math.pi - psi[-1] + psi[0]] if n > 1 else []
         if gaps and 2 * R * math.sin(min(gaps) / 2) <= d_tip:
             raise ValueError(f"neighbouring planets overlap: centre distance {2e3 * R * math.sin(min(gaps) / 2):.4g} mm "
@@ -419,6 +505,9 @@ class Planetary(Spec):
             raise ValueError("position_errors: a pin error above one module is not a position error")
         if self.fixed == self.input:
             raise ValueError(f"input and fixed are both {self.fixed!r}: the torque would go to ground")
+        if (self.output_gear is None) != (self.output_shaft_stiffness is None):
+            raise ValueError("give output_gear and output_shaft_stiffness together (the train gear on the stage's "
+                             "output shaft, and that shaft's stiffness)")
         return self
 
 

@@ -197,6 +197,8 @@ def load_sharing(st: LateralStage, torque: float, member: str = "sun") -> dict:
         forces.setdefault(kind, []).append((who, k * (g @ q + off)))
     F_s = np.array([v for _, v in forces["sun-planet"]])
     F_r = np.array([v for _, v in forces["ring-planet"]])
+    flank = -1.0 if F_s.sum() < 0 else 1.0            # the loaded flanks' forces positive (see planetary.py)
+    F_s, F_r = flank * F_s, flank * F_r
     mean = F_s.mean()
     return {"sun_planet_force": F_s, "ring_planet_force": F_r,
             "pin_force_radial": np.array([v for _, v in forces["pin-radial"]]),

@@ -24,7 +24,7 @@ The internal gear's tooth root is not rated (rating.py says why). Units as ratin
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..errors import ModelError
 from . import iso6336
@@ -193,3 +193,90 @@ def _run_in_class(a: Material, b: Material) -> str:
     order = ("GG", "St", "V", "NT", "Eh")
     cls = min((a.cls, b.cls), key=order.index)
     return "St" if cls == "V" else cls
+
+
+def _material(name, iso, hardness=None) -> Material:
+    from .rating import STEELS
+
+    if name is None:
+        name = iso.steel
+    if name is not None:
+        s = STEELS[name]
+        return Material(s["class"], s["sigma_hlim"], s["sigma_flim"], s["yield_strength"], hardness_hb=hardness)
+    return Material(iso.material, iso.sigma_hlim / 1e6, iso.sigma_flim / 1e6,
+                    None if iso.yield_strength is None else iso.yield_strength / 1e6, hardness_hb=hardness)
+
+
+def _si(v):
+    return None if v is None or (isinstance(v, float) and math.isnan(v)) else float(v)
+
+
+def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict) -> dict:
+    """The summary entry (SI) of the rating of a model's planetary stage: K_gamma given or ``k_gamma``
+    (the computed load sharing), the sun's torque ``torque_sun`` (N m), member ``speeds`` (rad/s)."""
+    from .model import Iso
+
+    iso = iso or Iso()
+    r = spec.rating
+    st = gears_of_spec(spec)
+    mats = [_material(s, iso, r.ring_hardness if k == 2 else None) for k, s in enumerate(r.steels)]
+    for k in range(3):
+        if r.sigma_hlim is not None:
+            mats[k] = replace(mats[k], sigma_hlim=r.sigma_hlim[k] / 1e6)
+        if r.sigma_flim is not None:
+            mats[k] = replace(mats[k], sigma_flim=r.sigma_flim[k] / 1e6)
+    mats = tuple(mats)
+    rpm = 30.0 / math.pi
+    rz_f = tuple(x * 1e6 for x in r.flank_roughness) if r.flank_roughness else (iso.flank_roughness * 1e6,) * 3
+    rz_r = tuple(x * 1e6 for x in r.root_roughness) if r.root_roughness else (iso.root_roughness * 1e6,) * 3
+    kg = r.load_sharing_factor if r.load_sharing_factor is not None else max(k_gamma, 1.0)
+    both = lambda v: None if v is None else (v, v)      # noqa: E731
+    out = rate_stage(st, mats, planets=spec.planets, torque_sun=abs(torque_sun),
+                     speed_sun_rel=abs(speeds["sun"] - speeds["carrier"]) * rpm, k_gamma=kg, kv=r.dynamic_factors,
+                     ka=iso.application_factor, life_hours=iso.life / 3600.0, nu40=iso.lubricant_viscosity * 1e6,
+                     rz_flank=rz_f, rz_root=rz_r, k_hbeta=both(iso.face_load_factor),
+                     k_halpha=both(iso.transverse_load_factor), f_ma=iso.mesh_misalignment * 1e6,
+                     f_pb=iso.pitch_deviation * 1e6, f_falpha=iso.profile_deviation * 1e6,
+                     tip_relief=None if iso.tip_relief is None else iso.tip_relief * 1e6, blank_factor=iso.blank_factor,
+                     s_hmin=iso.min_safety_pitting, s_fmin=iso.min_safety_bending, field="planetary")
+    summary = {"K_gamma": kg, "K_gamma_source": "given" if r.load_sharing_factor is not None else "load sharing",
+               "load_cycles": {k: float(v) for k, v in out["cycles"].items()}, "meshes": {}}
+    for name in ("sun-planet", "ring-planet"):
+        rt = out[name]
+        f = rt.factors
+        e = {"pinion": rt.geometry["pinion"], "wheel": rt.geometry["wheel"],
+             "working_pressure_angle": rt.geometry["alpha_wt"], "contact_ratio": rt.geometry["eps_alpha"],
+             "K_v": f["K_v"], "K_v_method_b": f["K_v_method_b"], "K_v_source": "given" if r.dynamic_factors else "ISO 6336-1 method B",
+             "reduced_mass": f["m_red"] * 1e3, "resonance_speed_rpm": f["n_E1"],
+             "iso_c_single": f["c_single"] * 1e9, "iso_c_gamma": f["c_gamma_alpha"] * 1e9}
+        for key in ("K_A", "K_gamma", "K_Hbeta", "K_Fbeta", "K_Halpha", "K_Falpha", "Z_H", "Z_eps", "Z_L", "Z_v", "Z_R"):
+            e[key] = f[key]
+        worst = []
+        for who, g in (("pinion", rt.pinion), ("wheel", rt.wheel)):
+            gear = rt.geometry[who]
+            e[gear] = {"sigma_H": g["sigma_H"] * 1e6, "sigma_HP": g["sigma_HP"] * 1e6, "S_H": g["S_H"],
+                       "sigma_F": _si(g["sigma_F"] * 1e6), "sigma_FP": _si(g["sigma_FP"] * 1e6), "S_F": _si(g["S_F"]),
+                       "Y_F": _si(g["Y_F"]), "Y_S": _si(g["Y_S"]), "Y_M": g["Y_M"], "Z_NT": g["Z_NT"],
+                       "Y_NT": _si(g["Y_NT"]), "Z_W": g["Z_W"], "Z_B_or_Z_D": g["Z_B_or_Z_D"], "load_cycles": g["N_L"],
+                       "material_class": g["material_class"]}
+            if g["S_H"] < iso.min_safety_pitting:
+                worst.append(f"{gear} pitting S_H {g['S_H']:.3f} < {iso.min_safety_pitting:g}")
+            if not math.isnan(g["S_F"]) and g["S_F"] < iso.min_safety_bending:
+                worst.append(f"{gear} root S_F {g['S_F']:.3f} < {iso.min_safety_bending:g}")
+        e["verdict"] = ("fails: " + "; ".join(worst)) if worst else "passes (S_H and S_F at or above the minimums)"
+        e["notes"] = list(dict.fromkeys(rt.notes))
+        summary["meshes"][name] = e
+    summary["S_H_min_required"], summary["S_F_min_required"] = iso.min_safety_pitting, iso.min_safety_bending
+    return summary
+
+
+def gears_of_spec(spec) -> StageGears:
+    """StageGears (mm) of a model's ``planetary`` section with its ``rating`` data."""
+    r = spec.rating
+    zr = spec.ring_teeth or spec.sun_teeth + 2 * spec.planet_teeth
+    return StageGears(z=(spec.sun_teeth, spec.planet_teeth, zr), module=spec.module * 1e3, alpha_n=spec.pressure_angle,
+                      x=tuple(spec.profile_shifts), b=(r.face_width * 1e3,) * 3 if r else (1.0, 1.0, 1.0),
+                      centre_distance=None if spec.centre_distance is None else spec.centre_distance * 1e3,
+                      tip_diameter=None if r is None or r.tip_diameters is None else tuple(d * 1e3 for d in r.tip_diameters),
+                      rho_fp=tuple(r.root_radius) if r else (0.25, 0.25, 0.25),
+                      bore=tuple(d * 1e3 for d in r.bore_diameters) if r else (0.0, 0.0, 0.0))

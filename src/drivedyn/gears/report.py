@@ -13,7 +13,7 @@ def report(model) -> str:
     if model.planetary is not None and not model.meshes:
         from .planetary import report_lines
 
-        return "\n".join([f"planetary stage: {model.name or '(unnamed)'}", *report_lines(model.planetary)])
+        return "\n".join([f"planetary stage: {model.name or '(unnamed)'}", *report_lines(model.planetary, model.iso)])
     s = assemble(model)
     out = [f"gear train: {model.name or '(unnamed)'}", ""]
     out.append(f"{'gear':10s} {'z':>4s} {'m mm':>6s} {'x':>6s} {'b mm':>6s} {'d mm':>8s} {'d_b mm':>8s} "
@@ -61,7 +61,7 @@ def report(model) -> str:
     if model.planetary is not None:
         from .planetary import report_lines
 
-        out += report_lines(model.planetary)
+        out += report_lines(model.planetary, model.iso)
     return "\n".join(out)
 
 

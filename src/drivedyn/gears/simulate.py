@@ -12,6 +12,7 @@ from ..results import Result, unit_map, variable
 from ..window import in_window, steady_window
 from . import _kernels
 from .kernel_inputs import params, stiffness_at, static_start
+from .planetary import PLANETARY_UNITS
 from .train import assemble, method_b
 
 
@@ -176,7 +177,7 @@ def run(model, progress=None) -> Result:
     if model.planetary is not None:
         from .planetary import analyse
 
-        result.summary["planetary"] = analyse(model.planetary)[0]
+        result.summary["planetary"] = analyse(model.planetary, model.iso)[0]
     _units(result)
     if progress:
         progress(1.0, "done")
@@ -325,10 +326,8 @@ UNITS = {
     "sweep.meshes.*.separation_speeds": "rad/s", "floquet_growth_rate": "1/s",
     "rating.*.*_rating.sigma_*": "Pa", "rating.*.*_rating.load_cycles": "1", "rating.*.*_rating.*": "1",
     "rating.*.Z_E": "Pa^0.5", "rating.*.*": "1",
-    "planetary.planet_angles": "rad", "planetary.centre_distance": "m", "planetary.natural_frequencies_hz": "Hz",
-    "planetary.planet_mode_frequency_closed_form_hz": "Hz", "planetary.torque_sun": "N*m", "planetary.*_force": "N",
-    "planetary.position_errors": "m", "planetary.*": "1",
 }
+UNITS.update(PLANETARY_UNITS)
 
 
 def _units(result) -> None:
