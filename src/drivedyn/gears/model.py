@@ -556,6 +556,8 @@ class Model(Spec):
             if g.face_width > b_max:
                 raise ValueError(f"gears[{k}].face_width: {g.face_width:.4g} m is more than {b_max:.4g} m "
                                  f"(100 modules or 2 pitch diameters, whichever is larger)")
+        if self.planetary is not None and self.planetary.output_gear is not None:
+            self._gearbox(names)
         gear = self.gears[names.index(self.drive.input)]
         top = max(self.drive.speed, self.sweep.speed_max or 0.0)
         v = top * 0.5 * gear.module * gear.teeth
@@ -563,3 +565,29 @@ class Model(Spec):
             raise ValueError(f"drive.speed: a pitch-line speed of {v:.4g} m/s at the input gear is above "
                              f"{V_MAX:g} m/s (the fastest turbo gears run below 200 m/s)")
         return self
+
+    def _gearbox(self, names):
+        """A planetary stage driving the train: the train starts at the stage's output gear, with the
+        torque (and, when the rating gives the stage's speed, the speed) the stage delivers."""
+        from .gearbox import output_torque
+        from .planetary import MEMBERS, _speed_ratio, stage_of
+
+        pl = self.planetary
+        if pl.output_gear not in names:
+            raise ValueError(f"planetary.output_gear: no gear named {pl.output_gear!r} (gears: {', '.join(names)})")
+        if self.drive.input != pl.output_gear:
+            raise ValueError(f"drive.input: the train of a gearbox starts at the stage's output gear "
+                             f"{pl.output_gear!r}, got {self.drive.input!r}")
+        t_out = output_torque(pl)
+        if self.drive.torque is None or abs(self.drive.torque - t_out) > 1e-6 * t_out:
+            got = "power" if self.drive.torque is None else f"{self.drive.torque:.9g} N m"
+            raise ValueError(f"drive.torque: the stage delivers {t_out:.9g} N m to {pl.output_gear!r} "
+                             f"(planetary.torque x speed ratio), got {got}")
+        if pl.rating is not None:
+            st = stage_of(pl)
+            out = next(m for m in MEMBERS if m not in (pl.fixed, pl.input))
+            w_out = pl.rating.speed / abs(_speed_ratio(st, pl.input, out))
+            if abs(self.drive.speed - w_out) > 1e-6 * w_out:
+                raise ValueError(f"drive.speed: the stage turns {pl.output_gear!r} at {w_out:.9g} rad/s "
+                                 f"(planetary.rating.speed / speed ratio), got {self.drive.speed:.9g} rad/s")
+

@@ -264,7 +264,7 @@ def analyse(spec, iso=None) -> tuple[dict, dict]:
         summary["lateral"] = lsum
         arrays["lateral"] = larr
         k_gamma = lsum["load_sharing_factor"]
-    if spec.rating is not None:
+    if spec.rating is not None and iso is not None:
         from .planetary_rating import rate_spec
 
         summary["rating"] = rate_spec(spec, iso, k_gamma, t_sun, member_speeds(st, spec.fixed, spec.input,

@@ -212,11 +212,9 @@ def _si(v):
 
 
 def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict) -> dict:
-    """The summary entry (SI) of the rating of a model's planetary stage: K_gamma given or ``k_gamma``
+    """The summary entry (SI) of the rating of a model's planetary stage with the model's [iso] data
+    ``iso``: K_gamma given or ``k_gamma``
     (the computed load sharing), the sun's torque ``torque_sun`` (N m), member ``speeds`` (rad/s)."""
-    from .model import Iso
-
-    iso = iso or Iso()
     r = spec.rating
     st = gears_of_spec(spec)
     mats = [_material(s, iso, r.ring_hardness if k == 2 else None) for k, s in enumerate(r.steels)]

@@ -62,6 +62,13 @@ def report(model) -> str:
         from .planetary import report_lines
 
         out += report_lines(model.planetary, model.iso)
+        if model.planetary.output_gear is not None:
+            from .gearbox import modes as gearbox_modes
+
+            gb = gearbox_modes(model, s)
+            out += ["", f"gearbox: the stage's output drives {gb['output_gear']!r} through the output shaft; modes of "
+                        f"the whole train ({gb['model']} stage model, rigid-body mode removed; share of kinetic energy in the stage):",
+                    *(f"  {f:10.2f} Hz  stage {e:5.3f}" for f, e in zip(gb["natural_frequencies_hz"], gb["stage_energy_share"]))]
     return "\n".join(out)
 
 

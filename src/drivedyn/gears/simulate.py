@@ -178,6 +178,10 @@ def run(model, progress=None) -> Result:
         from .planetary import analyse
 
         result.summary["planetary"] = analyse(model.planetary, model.iso)[0]
+        if model.planetary.output_gear is not None:
+            from .gearbox import modes as gearbox_modes
+
+            result.summary["gearbox"] = gearbox_modes(model, sys_)
     _units(result)
     if progress:
         progress(1.0, "done")
@@ -328,6 +332,7 @@ UNITS = {
     "rating.*.Z_E": "Pa^0.5", "rating.*.*": "1",
 }
 UNITS.update(PLANETARY_UNITS)
+UNITS.update({"gearbox.natural_frequencies_hz": "Hz", "gearbox.*": "1"})
 
 
 def _units(result) -> None:

@@ -1,0 +1,130 @@
+"""A gearbox of stages in series (drivedyn.gears.gearbox, examples/gears-gearbox.toml): the planetary
+stage's rating, lateral-torsional load sharing and modes through the model file, the whole train's
+modes against the stage's and the train's own ones, the verdict over every mesh, and bad input."""
+import math
+
+import numpy as np
+import pytest
+
+import drivedyn
+from drivedyn.gears import planetary_lateral as pl
+from drivedyn.gears.gearbox import modes as gearbox_modes
+from drivedyn.gears.gearbox import stage_matrices
+from drivedyn.gears.train import assemble
+
+from .test_planetary_rating import CASE, RING, nrel_stage
+
+
+@pytest.fixture(scope="module")
+def gearbox():
+    m = drivedyn.load(drivedyn.example_path("gears-gearbox"))
+    return m, drivedyn.run(m)
+
+
+def test_gearbox_example_runs_and_judges_every_mesh(gearbox):
+    m, r = gearbox
+    assert drivedyn.loads(drivedyn.dumps(m)) == m
+    assert r.status == "success" and r.summary["verdict"] == "fail"
+    s = r.summary
+    names = list(s["criteria"])
+    for mesh in ("sun-planet", "ring-planet"):
+        assert f"S_H_planetary_{mesh}" in names and f"S_F_planetary_{mesh}" in names
+    assert "S_H_parallel" in names and "S_F_parallel" in names
+    failed = [n for n, c in s["criteria"].items() if not c["pass"]]
+    # the report's own finding: the through-hardened ring's flank, S_H 0.96 < 1.25
+    assert failed == ["S_H_planetary_ring-planet"]
+    ring = s["planetary"]["rating"]["meshes"]["ring-planet"]["ring"]
+    assert ring["S_H"] == pytest.approx(0.96, abs=0.005) and ring["S_F"] is None
+
+
+def test_gearbox_rating_is_the_stage_rating(gearbox):
+    # the model file's [planetary.rating] gives the same numbers as planetary_rating.rate_stage with
+    # the report's data (test_planetary_rating.py checks those against the report)
+    from drivedyn.gears import planetary_rating as prt
+
+    m, r = gearbox
+    direct = prt.rate_stage(nrel_stage(), (CASE, CASE, RING), planets=3, torque_sun=3945990.316 * 19 / 75,
+                            speed_sun_rel=12.1 * 75 / 19 - 12.1, k_gamma=1.10, kv=(1.01, 1.05), ka=1.25,
+                            life_hours=175200.0, nu40=220.0, rz_flank=(4.8, 4.8, 8.0), rz_root=(20.0, 20.0, 20.0),
+                            k_hbeta=(1.15, 1.15), k_halpha=(1.0, 1.0), blank_factor=0.862, s_hmin=1.25, s_fmin=1.56)
+    got = r.summary["planetary"]["rating"]["meshes"]
+    for mesh, gears in (("sun-planet", ("sun", "planet")), ("ring-planet", ("planet", "ring"))):
+        d = direct[mesh]
+        for who, g in zip(("pinion", "wheel"), gears):
+            assert got[mesh][g]["S_H"] == pytest.approx(getattr(d, who)["S_H"], rel=1e-12)
+            assert got[mesh][g]["sigma_H"] == pytest.approx(getattr(d, who)["sigma_H"] * 1e6, rel=1e-12)
+    assert r.units["planetary.rating.meshes.sun-planet.sun.sigma_H"] == "Pa"
+
+
+def test_gearbox_floating_sun_evens_out_the_pin_error(gearbox):
+    # three planets and a floating sun: the sun's equilibrium alone makes the planets' forces equal
+    # (test_planetary_lateral.py); the sun held on its axis, the 50 um pin error loads planet 1 more
+    m, r = gearbox
+    p = r.summary["planetary"]
+    la = p["lateral"]
+    assert la["floating_sun"] and la["load_sharing_factor"] == pytest.approx(1.0, abs=1e-9)
+    assert la["mode_counts"]["translational"] % 2 == 0 and la["mode_counts"]["planet"] == 0
+    assert p["load_sharing_factor"] > 1.2
+    # the carrier's torque over the sun's base circle and three planets (the carrier drives: the
+    # sun's torque is the carrier's times z_s / (z_s + z_r))
+    rbs = 19 * 45e-3 / 2 * math.cos(math.radians(20))
+    assert la["sun_planet_force"] == pytest.approx([3945990.316 * 19 / 75 / (3 * rbs)] * 3, rel=1e-9)
+
+
+def test_gearbox_modes_join_the_stage_and_the_train(gearbox):
+    # a weak output shaft decouples them: the whole train's modes are then the stage's (its output
+    # member free) and the train's own, each computed on its own
+    m, _ = gearbox
+    weak = drivedyn.replace(m, {"planetary.output_shaft_stiffness": 1e-3})
+    sys_ = assemble(weak)
+    gb = gearbox_modes(weak, sys_)
+    M, K, names, g, kind = stage_matrices(weak.planetary)
+    from scipy.linalg import eigh
+
+    fs = np.sqrt(np.clip(eigh(K, M, eigvals_only=True), 0, None)) / (2 * math.pi)
+    ft, _, _ = sys_.modes()
+    want = sorted([*fs[fs > 1.0], *ft])
+    got = [f for f in gb["natural_frequencies_hz"] if f > 1.0]
+    assert kind == "lateral-torsional"
+    assert got == pytest.approx(want, rel=1e-6)
+    # the stage's own elastic modes are those of planetary_lateral with the same data
+    assert all(min(abs(f - x) for x in pl.modes(_lateral(weak))[0]) < 1e-6 * f for f in fs[fs > 1.0])
+    # coupled through the real shaft: one mode more than the stage's elastic ones plus the train's
+    # (the stage's free output rotation becomes elastic), and every mode attributed
+    strong = gearbox_modes(m, assemble(m))
+    assert len(strong["natural_frequencies_hz"]) == len(want) + 1
+    assert all(0.0 <= e <= 1.0 + 1e-9 for e in strong["stage_energy_share"])
+
+
+def _lateral(model):
+    from drivedyn.gears import planetary as tors
+
+    spec = model.planetary
+    st = tors.stage_of(spec, support={spec.fixed: spec.lateral.support_stiffness})
+    return tors.lateral_stage(spec, st, {spec.fixed: spec.lateral.support_stiffness})
+
+
+@pytest.mark.parametrize("edit, expect", [
+    (('torque = "999650.8801 N*m"', 'torque = "999000 N*m"'), "drive.torque: the stage delivers 999650.88 N m"),
+    (('speed = "47.76315789 rpm"', 'speed = "50 rpm"'), "drive.speed: the stage turns 'wheel' at"),
+    (('output_gear = "wheel"', 'output_gear = "hub"'), "planetary.output_gear: no gear named 'hub'"),
+    (('output_shaft_stiffness = "2e9 N*m/rad"\n', ''), "give output_gear and output_shaft_stiffness together"),
+    (('ring_teeth = 56', 'ring_teeth = 30'), "ring_teeth: a ring of 30 teeth cannot hold"),
+    (('centre_distance = "863 mm"', 'centre_distance = "863.01 mm"'),
+     "planetary.centre_distance: 863.010000 mm is 8.679 um above the ring-planet zero-backlash centre distance"),
+    (('dynamic_factors = [1.01, 1.05]', 'dynamic_factors = [0.9, 1.05]'), "planetary.rating.dynamic_factors: must lie in [1, 10]"),
+    (('ring_hardness = 240', 'ring_hardness = 24'), "planetary.rating.ring_hardness: must lie in 100..700 HB"),
+    (('planet_bearing_stiffness = "5e9 N/m"', 'planet_bearing_stiffness = "-5e9 N/m"'),
+     "planetary.lateral.planet_bearing_stiffness"),
+])
+def test_gearbox_bad_input_one_line_exit_2(tmp_path, capsys, edit, expect):
+    from drivedyn.cli import main
+
+    good = drivedyn.example_path("gears-gearbox").read_text()
+    old, new = edit
+    assert old in good
+    f = tmp_path / "m.toml"
+    f.write_text(good.replace(old, new, 1))
+    assert main(["check", str(f)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and expect in err, err
