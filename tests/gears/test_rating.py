@@ -200,3 +200,28 @@ def test_load_point_is_the_outer_point_of_single_contact():
     assert r.pinion["d_en"] / 2 == pytest.approx(math.hypot(p_.g1.rb * 1e3, rho_d), rel=1e-12)
     rho_b = (p_.tangent_length - p_.rho_end + p_.base_pitch) * 1e3          # the wheel's, from T2
     assert r.wheel["d_en"] / 2 == pytest.approx(math.hypot(p_.g2.rb * 1e3, rho_b), rel=1e-12)
+
+
+def test_given_kv_and_per_gear_roughness_reach_the_rating():
+    # [iso] dynamic_factor replaces the run's K_v in the rating; a gear's own R_z replaces iso's:
+    # sigma_H ~ sqrt(K_v) (K_Hbeta, K_Halpha given), Z_R from the mean R_z of the pair (ISO 6336-2)
+    import drivedyn
+    from drivedyn.gears.rating import rate_mesh
+    from drivedyn.gears.simulate import _rating
+    from drivedyn.gears.train import assemble
+
+    m = seed_model(**{"iso.face_load_factor": 1.2, "iso.transverse_load_factor": 1.0})
+    sys_ = assemble(m)
+    name = sys_.mesh_names[0]
+    a = _rating(m, sys_, [1.1] * sys_.m, [1.05] * sys_.m)[name]
+    g = drivedyn.replace(m, {"iso.dynamic_factor": 1.44})
+    b = _rating(g, assemble(g), [1.1] * sys_.m, [1.05] * sys_.m)[name]
+    assert b["kv_dynamic"] == 1.44 and b["kv_source"] == "given (iso.dynamic_factor)"
+    assert b["pinion_rating"]["sigma_H"] / a["pinion_rating"]["sigma_H"] == pytest.approx(math.sqrt(1.44 / 1.1), rel=1e-12)
+    r0 = rate_mesh(m, sys_, 0, 1.1)
+    rough = drivedyn.replace(m, {"gears.0.flank_roughness": 2 * m.iso.flank_roughness,
+                                 "gears.1.flank_roughness": 0.5 * m.iso.flank_roughness})
+    r1 = rate_mesh(rough, assemble(rough), 0, 1.1)
+    # mean R_z 1.25 x iso's: Z_R = (3 / R_z10)^C_ZR scales by 1.25^-C_ZR
+    c_zr = 0.08                      # sigma_Hlim 1500 N/mm^2 (ISO 6336-2: above 1200)
+    assert r1.factors["Z_R"] / r0.factors["Z_R"] == pytest.approx(1.25 ** -c_zr, rel=1e-12)

@@ -56,6 +56,8 @@ class Gear(Spec):
     load_fraction: float = 0.0
     root_radius: float = 0.25  # rho_fP / m of the basic rack (tool tip radius), for the ISO 6336-3 root
     steel: Optional[Literal["case-carburized", "through-hardened"]] = None   # this gear's material, else iso's
+    flank_roughness: Optional[quantity("m", gt=0)] = None   # this gear's R_z (ISO 6336-2 Z_R), else iso's
+    root_roughness: Optional[quantity("m", gt=0)] = None    # this gear's root R_z (ISO 6336-3 Y_RrelT), else iso's
 
     @field_validator("name")
     @classmethod
@@ -311,6 +313,7 @@ class Iso(Spec):
     mesh_misalignment: quantity("m", ge=0) = 10e-6
     face_load_factor: Optional[float] = None
     transverse_load_factor: Optional[float] = None
+    dynamic_factor: Optional[float] = None       # K_v given for the rating, instead of the run's (and method B's)
     min_safety_pitting: float = 1.0
     min_safety_bending: float = 1.0
 
@@ -321,7 +324,7 @@ class Iso(Spec):
             raise ValueError(f"must be > 0, got {v}")
         return v
 
-    @field_validator("face_load_factor", "transverse_load_factor")
+    @field_validator("face_load_factor", "transverse_load_factor", "dynamic_factor")
     @classmethod
     def _factor(cls, v):
         # ISO 6336-1 load factors are >= 1; above 10 the load distribution model has no meaning

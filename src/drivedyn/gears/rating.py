@@ -444,7 +444,8 @@ def rate_mesh(model, sys_, j: int, kv: float) -> Rating:
                 b_each=(g1.b * 1e3, g2.b * 1e3))
     load = Load(torque1=abs(sys_.force_nominal[j]) * g1.rb, n1=abs(sys_.ratio[i1] * sys_.omega_in) * 30 / math.pi,
                 kv=kv, ka=iso.application_factor, life_hours=iso.life / 3600.0, nu40=iso.lubricant_viscosity * 1e6,
-                rz_flank=(iso.flank_roughness * 1e6,) * 2, rz_root=(iso.root_roughness * 1e6,) * 2,
+                rz_flank=tuple((g.flank_roughness or iso.flank_roughness) * 1e6 for g in (ga, gb)),
+                rz_root=tuple((g.root_roughness or iso.root_roughness) * 1e6 for g in (ga, gb)),
                 f_ma=iso.mesh_misalignment * 1e6, f_pb=iso.pitch_deviation * 1e6,
                 c_gamma_alpha=sys_.iso[j].c_gamma, k_hbeta=iso.face_load_factor, k_halpha=iso.transverse_load_factor,
                 s_hmin=iso.min_safety_pitting, s_fmin=iso.min_safety_bending)

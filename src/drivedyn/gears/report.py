@@ -51,7 +51,7 @@ def report(model) -> str:
                 f"friction mu {s.mu[j]:g}",
                 f"  ISO method B: n_E1 {mb.resonance_speed * 60:.0f} rpm, N {N:.4f} ({region}), K_v {kv:.4f}"]
         if model.iso.rating:
-            out += _rating_lines(model, s, j, kv)
+            out += _rating_lines(model, s, j, kv if model.iso.dynamic_factor is None else model.iso.dynamic_factor)
     freqs, shapes, zeta = s.modes()
     out += ["", "natural frequencies (mean mesh stiffness, rigid-body mode removed):"]
     for r, (f, z) in enumerate(zip(freqs, zeta)):
@@ -78,7 +78,8 @@ def _rating_lines(model, s, j, kv) -> list[str]:
 
     r = rate_mesh(model, s, j, kv)
     f = r.factors
-    out = [f"  ISO 6336-2/-3 rating with ISO's K_v {kv:.4f} ({r.geometry['pinion']} = pinion): K_Hbeta {f['K_Hbeta']:.4f}, "
+    src = "ISO's" if model.iso.dynamic_factor is None else "the given"
+    out = [f"  ISO 6336-2/-3 rating with {src} K_v {kv:.4f} ({r.geometry['pinion']} = pinion): K_Hbeta {f['K_Hbeta']:.4f}, "
            f"K_Fbeta {f['K_Fbeta']:.4f}, K_Halpha {f['K_Halpha']:.4f}, Z_H {f['Z_H']:.4f}, Z_E {f['Z_E']:.2f} sqrt(N)/mm, "
            f"Z_eps {f['Z_eps']:.4f}, Z_L {f['Z_L']:.4f}, Z_v {f['Z_v']:.4f}, Z_R {f['Z_R']:.4f}"]
     for who, g in (("pinion", r.pinion), ("wheel", r.wheel)):

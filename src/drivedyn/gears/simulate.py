@@ -306,12 +306,15 @@ def _rating(model, sys_, kv_dyn, kv_iso) -> dict:
     if not model.iso.rating:
         return {}
     out = {}
+    given = model.iso.dynamic_factor
     for j, name in enumerate(sys_.mesh_names):
-        if not (np.isfinite(kv_dyn[j]) and kv_dyn[j] > 0):
+        if given is None and not (np.isfinite(kv_dyn[j]) and kv_dyn[j] > 0):
             continue
-        r_dyn = rate_mesh(model, sys_, j, float(kv_dyn[j]))
+        # a K_v given in [iso] replaces the run's (the rating of a report with a prescribed K_v)
+        r_dyn = rate_mesh(model, sys_, j, float(kv_dyn[j] if given is None else given))
         r_iso = rate_mesh(model, sys_, j, float(kv_iso[j]))
         out[name] = summary_of(r_dyn, r_iso, (model.iso.min_safety_pitting, model.iso.min_safety_bending))
+        out[name]["kv_source"] = "time integration" if given is None else "given (iso.dynamic_factor)"
     return out
 
 
