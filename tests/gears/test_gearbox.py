@@ -128,3 +128,20 @@ def test_gearbox_bad_input_one_line_exit_2(tmp_path, capsys, edit, expect):
     assert main(["check", str(f)]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and expect in err, err
+
+
+def test_lateral_contact_loss_is_a_diagnostic(tmp_path):
+    # a large pin error with the sun held on its axis unloads the other planets below zero in the
+    # lateral-torsional load sharing: tooth-separation (warning), named; the floating sun keeps
+    # three planets in contact (the example's load sharing)
+    good = drivedyn.load(drivedyn.example_path("gears-gearbox"))
+    stage = good.planetary.model_copy(update={"output_gear": None, "output_shaft_stiffness": None})
+    alone = good.model_copy(update={"gears": [], "meshes": [], "drive": None, "planetary": stage})
+    ok = drivedyn.run(alone)
+    assert ok.status == "success"
+    bad = drivedyn.replace(alone, {"planetary.position_errors": [-2e-3, 0.0, 0.0],
+                                   "planetary.lateral.sun_bearing_stiffness": 1e10})
+    r = drivedyn.run(bad)
+    assert r.status == "warning"
+    where = {d.quantity for d in r.diagnostics if d.code == "tooth-separation"}
+    assert "planetary.lateral.sun_planet_force" in where

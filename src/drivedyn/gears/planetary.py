@@ -359,16 +359,35 @@ def run_stage(model, progress=None):
          "phase_ring_planet": variable(np.array(summary["phase_ring_planet"]), ("planet",), "1", "ring-planet mesh phase (periods)")},
         coords={"mode": np.arange(len(a["f"])), "coordinate": a["names"], "planet": np.arange(1, len(summary["load_share"]) + 1)},
         attrs={"model_toml": dumps(model), "title": model.name or "planetary stage", "planetary_only": 1})
+    if "lateral" in a:
+        la = a["lateral"]
+        ds["lateral_natural_frequency"] = variable(la["f"], ("lateral_mode",), "Hz",
+                                                   "natural frequency of the lateral-torsional model")
+        ds["lateral_sun_planet_force"] = variable(la["forces"]["sun_planet_force"], ("planet",), "N",
+                                                  "static sun-planet mesh force, lateral-torsional model")
     r = Result(kind="gear-train", ds=ds, summary={"planetary": summary})
-    if summary["load_sharing_factor"] == math.inf or min(summary["sun_planet_force"] + summary["ring_planet_force"]) < 0:
-        fmin = min(summary["sun_planet_force"] + summary["ring_planet_force"])
-        r.diagnose("tooth-separation", f"planetary stage: a planet's mesh force is negative ({fmin:.4g} N) at the "
-                   "given torque and pin position errors: that planet's teeth would lose contact (the linear "
-                   "load sharing does not hold)", "planetary.sun_planet_force", fmin, 0.0, "N")
+    diagnose_stage(r, summary)
     r.units = unit_map(r.summary, PLANETARY_UNITS)
     if progress:
         progress(1.0, "done")
     return r
+
+
+def diagnose_stage(result, summary: dict) -> None:
+    """tooth-separation when a planet's static mesh force is negative, in the torsional or the
+    lateral-torsional load sharing: that planet's teeth would lose contact (the linear load sharing
+    does not hold)."""
+    for key, what in (("", "torsional"), ("lateral", "lateral-torsional")):
+        s = summary.get(key) if key else summary
+        if not s:
+            continue
+        forces = s["sun_planet_force"] + s["ring_planet_force"]
+        fmin = min(forces)
+        if fmin < 0 or s["load_sharing_factor"] == math.inf:
+            where = "planetary." + (key + "." if key else "") + "sun_planet_force"
+            result.diagnose("tooth-separation", f"planetary stage ({what} model): a planet's mesh force is negative "
+                            f"({fmin:.4g} N) at the given torque and pin position errors: that planet's teeth would "
+                            "lose contact (the linear load sharing does not hold)", where, fmin, 0.0, "N")
 
 
 PLANETARY_UNITS = {"planetary.lateral.natural_frequencies_hz": "Hz", "planetary.lateral.*_force": "N",

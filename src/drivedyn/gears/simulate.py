@@ -177,7 +177,10 @@ def run(model, progress=None) -> Result:
     if model.planetary is not None:
         from .planetary import analyse
 
+        from .planetary import diagnose_stage
+
         result.summary["planetary"] = analyse(model.planetary, model.iso)[0]
+        diagnose_stage(result, result.summary["planetary"])
         if model.planetary.output_gear is not None:
             from .gearbox import modes as gearbox_modes
 
