@@ -448,10 +448,31 @@ def rate_mesh(model, sys_, j: int, kv: float) -> Rating:
                 rz_root=tuple((g.root_roughness or iso.root_roughness) * 1e6 for g in (ga, gb)),
                 f_ma=iso.mesh_misalignment * 1e6, f_pb=iso.pitch_deviation * 1e6,
                 c_gamma_alpha=sys_.iso[j].c_gamma, k_hbeta=iso.face_load_factor, k_halpha=iso.transverse_load_factor,
-                s_hmin=iso.min_safety_pitting, s_fmin=iso.min_safety_bending)
+                s_hmin=iso.min_safety_pitting, s_fmin=iso.min_safety_bending,
+                cycles=tuple(cycles_of(sys_, i, j, iso.life) for i in (i1, i2)),
+                y_m=tuple(0.7 if _both_flanks(sys_, i) else 1.0 for i in (i1, i2)))
     r = rate(pair, (material_of(model, ga), material_of(model, gb)), load)
     r.geometry.update({"pinion": model.gears[i1].name, "wheel": model.gears[i2].name})
     return r
+
+
+def _role(sys_, i: int, j: int) -> str:
+    """Which flank of gear ``i`` mesh ``j`` loads: the driving or the driven one."""
+    return "driving" if int(sys_.mesh_a[j]) == i else "driven"
+
+
+def _both_flanks(sys_, i: int) -> bool:
+    """An idler: gear ``i`` drives one mesh and is driven in another, its teeth bent both ways
+    (ISO 6336-3: mean stress factor Y_M = 0.7)."""
+    return {_role(sys_, i, j) for j in range(sys_.m) if i in (int(sys_.mesh_a[j]), int(sys_.mesh_b[j]))} == {"driving", "driven"}
+
+
+def cycles_of(sys_, i: int, j: int, life: float) -> float:
+    """Load cycles of gear ``i``'s loaded flank in mesh ``j`` over ``life`` (s): a tooth meets every
+    mesh that loads the same flank once a turn (a pinion driving two wheels: twice a turn)."""
+    same = sum(1 for k in range(sys_.m) if i in (int(sys_.mesh_a[k]), int(sys_.mesh_b[k]))
+               and _role(sys_, i, k) == _role(sys_, i, j))
+    return abs(sys_.ratio[i] * sys_.omega_in) / (2 * math.pi) * life * same
 
 
 def summary_of(r_dyn: Rating, r_iso: Rating, load_min: tuple) -> dict:
