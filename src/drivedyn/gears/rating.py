@@ -18,11 +18,10 @@ those units. Equation sources, by clause of ISO 6336-1/-2/-3:2006:
   rho'), Y_RrelT (root roughness), Y_X (module).
 
 The contact chain is checked digit by digit against ISO/TR 6336-30:2017 example 1
-(tests/gears/test_rating.py). No published worked example with tooth-root values was found for
-the root chain: its geometry (s_Fn, rho_F at the 30 deg tangent) is checked against the fillet
-that the basic rack generates (to 2e-5 m_n), and the load point d_en against the contact geometry
-of a spur pair; the root factors themselves (Y_F, Y_S, Y_NT, Y_deltarelT, Y_RrelT, Y_X) are not
-checked against published values.
+(tests/gears/test_rating.py); the root geometry (s_Fn, rho_F at the 30 deg tangent) against the
+fillet that the basic rack generates (to 2e-5 m_n); and both chains, external and internal contact
+and the external gears' root factors, against a KISSsoft report of a planetary stage to its printed
+digits (tests/gears/test_planetary_rating.py). An internal gear's tooth root is not rated.
 """
 from __future__ import annotations
 
