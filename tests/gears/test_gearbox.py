@@ -145,3 +145,19 @@ def test_lateral_contact_loss_is_a_diagnostic(tmp_path):
     assert r.status == "warning"
     where = {d.quantity for d in r.diagnostics if d.code == "tooth-separation"}
     assert "planetary.lateral.sun_planet_force" in where
+
+
+def test_stage_alone_kgamma_and_kv_computed_when_not_given():
+    # without load_sharing_factor and dynamic_factors the rating takes K_gamma from the load sharing
+    # (the lateral model's) and K_v from ISO 6336-1 method B with the planetary reduced masses
+    good = drivedyn.load(drivedyn.example_path("gears-gearbox"))
+    rating = good.planetary.rating.model_copy(update={"load_sharing_factor": None, "dynamic_factors": None,
+                                                       "steels": None})
+    stage = good.planetary.model_copy(update={"output_gear": None, "output_shaft_stiffness": None, "rating": rating})
+    alone = good.model_copy(update={"gears": [], "meshes": [], "drive": None, "planetary": stage})
+    assert drivedyn.loads(drivedyn.dumps(alone)) == alone
+    s = drivedyn.run(alone).summary["planetary"]
+    r = s["rating"]
+    assert r["K_gamma_source"] == "load sharing" and r["K_gamma"] == pytest.approx(s["lateral"]["load_sharing_factor"])
+    for e in r["meshes"].values():
+        assert e["K_v_source"] == "ISO 6336-1 method B" and e["K_v"] == e["K_v_method_b"] > 1.0

@@ -21,6 +21,7 @@ V_MAX = 300.0
 Length = quantity("m")
 Time = quantity("s")
 Stress = quantity("Pa", gt=0)
+Steel = Literal["case-carburized", "through-hardened"]
 
 
 def _name(v):
@@ -380,7 +381,7 @@ class PlanetaryRating(Spec):
     speed: quantity("rad/s", gt=0)                               # of the input member
     load_sharing_factor: Optional[float] = None                  # K_gamma; none: from the computed load sharing
     dynamic_factors: Optional[tuple[float, float]] = None        # K_v of sun-planet, ring-planet; none: ISO method B
-    steels: tuple[Optional[Literal["case-carburized", "through-hardened"]], ...] = (None, None, None)  # sun, planet, ring
+    steels: Optional[tuple[Steel, Steel, Steel]] = None           # sun, planet, ring; none: iso's for all
     ring_hardness: Optional[float] = None                        # HB, for Z_W of a through-hardened ring
     sigma_hlim: Optional[tuple[Stress, Stress, Stress]] = None   # sun, planet, ring; none: the steels' (or iso's)
     sigma_flim: Optional[tuple[Stress, Stress, Stress]] = None
@@ -402,13 +403,6 @@ class PlanetaryRating(Spec):
     def _kv(cls, v):
         if v is not None and not all(1.0 <= k <= 10.0 for k in v):
             raise ValueError(f"must lie in [1, 10], got {list(v)}")
-        return v
-
-    @field_validator("steels")
-    @classmethod
-    def _st(cls, v):
-        if len(v) != 3:
-            raise ValueError(f"must give 3 values (sun, planet, ring), got {len(v)}")
         return v
 
     @field_validator("ring_hardness")

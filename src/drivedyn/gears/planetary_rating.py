@@ -217,7 +217,7 @@ def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict) -> dic
     (the computed load sharing), the sun's torque ``torque_sun`` (N m), member ``speeds`` (rad/s)."""
     r = spec.rating
     st = gears_of_spec(spec)
-    mats = [_material(s, iso, r.ring_hardness if k == 2 else None) for k, s in enumerate(r.steels)]
+    mats = [_material(s, iso, r.ring_hardness if k == 2 else None) for k, s in enumerate(r.steels or (None,) * 3)]
     for k in range(3):
         if r.sigma_hlim is not None:
             mats[k] = replace(mats[k], sigma_hlim=r.sigma_hlim[k] / 1e6)
