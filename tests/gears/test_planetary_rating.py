@@ -168,3 +168,63 @@ def test_interfering_centre_distance_is_refused_with_digits():
     with pytest.raises(ModelError) as err:
         pr.working_geometry(nrel_stage(centre_distance=862.99))
     assert "below the sun-planet zero-backlash centre distance 862.998875 mm" in str(err.value)
+
+
+# Stage 2 of the same gearbox, the same tool and repository (file @NREL_5MW/stage_02.rtf): sun 18,
+# planets 3 x 36, ring -93 teeth, m_n 21 mm, b 550 mm, x 0.3890 / 0.5039 / 0.1171, a 584 mm, tips
+# 432.838 / 815.663 / 1906.081 mm, inner diameters 194.32 / 576.96 mm, ring outer 2148.82 mm; the
+# carrier driven by stage 1's sun (999650.881 N m, 5 MW); K_Hbeta given 2.06 (sun-planet) and 1.15;
+# materials, roughness, K_A, K_gamma, life, C_R as stage 1. The report computes K_v by method B
+# (1.02 and 1.06) and uses the larger for both meshes: its sigma_Hw / sigma_H0 (994.13 / 573.40 and
+# 404.76 / 312.44) imply K_v = 1.0613 in both, used here.
+def rated_stage_2(**kw):
+    st = pr.StageGears(z=(18, 36, 93), module=21.0, alpha_n=math.radians(20.0), x=(0.3890, 0.5039, 0.1171),
+                       b=(550.0,) * 3, centre_distance=584.0, tip_diameter=(432.838, 815.663, 1906.081),
+                       rho_fp=(0.38, 0.38, 0.30), bore=(194.32, 576.96, 2148.82))
+    rpm = 60 / (2 * math.pi)
+    n_carrier = 5e6 / 999650.881 * rpm
+    args = dict(planets=3, torque_sun=999650.881 * 18 / 111, speed_sun_rel=n_carrier * 93 / 18, k_gamma=1.10,
+                kv=(1.0613, 1.0613), ka=1.25, life_hours=175200.0, nu40=220.0, rz_flank=(4.8, 4.8, 8.0),
+                rz_root=(20.0, 20.0, 20.0), k_hbeta=(2.06, 1.15), k_halpha=(1.0, 1.0), blank_factor=0.862,
+                s_hmin=1.25, s_fmin=1.56)
+    args.update(kw)
+    return pr.rate_stage(st, (CASE, CASE, RING), **args)
+
+
+def test_stage_2_value_by_value():
+    out = rated_stage_2()
+    assert {k: v / 1e6 for k, v in out["cycles"].items()} == {"sun": near(7782.3, 1), "planet": near(1297.1, 1),
+                                                               "ring": near(1506.3, 1)}
+    assert out["F_t"] == pytest.approx(285900.438, rel=1e-7)
+    assert out["reduced_mass"] == {"sun-planet": near(0.1534, 4), "ring-planet": near(1.4684, 4)}
+    s, r = out["sun-planet"], out["ring-planet"]
+    # eps_alpha 1.370 and 1.618: no 10 % reduction of c_gamma_alpha here; c' with the printed C_R 0.862
+    assert s.geometry["eps_alpha"] == near(1.370, 3) and r.geometry["eps_alpha"] == near(1.618, 3)
+    assert s.factors["c_single"] == pytest.approx(12.240, rel=5e-4) and r.factors["c_single"] == pytest.approx(14.053, rel=5e-4)
+    assert s.factors["c_gamma_alpha"] == pytest.approx(15.640, rel=5e-4)
+    assert r.factors["c_gamma_alpha"] == pytest.approx(20.563, rel=5e-4)
+    # n_E1 ~ sqrt(c_gamma_alpha), printed to the rpm: the C_R rounding and the last digit, within 1e-3
+    assert s.factors["n_E1"] == pytest.approx(5357, rel=1e-3) and r.factors["n_E1"] == pytest.approx(993, rel=1e-3)
+    assert s.factors["N"] == near(0.046, 3) and r.factors["N"] == near(0.124, 3)
+    for f, (zh, zeps, sh0, zl, zv, zr) in ((s.factors, (2.25, 0.936, 573.40, 1.020, 0.982, 1.007)),
+                                           (r.factors, (2.85, 0.891, 312.44, 1.038, 0.961, 1.026))):
+        assert f["Z_H"] == near(zh, 2) and f["Z_eps"] == near(zeps, 3) and f["sigma_H0"] == near(sh0, 2)
+        assert f["Z_L"] == near(zl, 3) and f["Z_v"] == near(zv, 3) and f["Z_R"] == near(zr, 3)
+    contact = ((s.pinion, (1.08, 1071.17, 0.857, 1295.42, 1.21)), (s.wheel, (1.00, 994.13, 0.905, 1368.61, 1.38)),
+               (r.pinion, (1.00, 404.76, 0.905, 1388.39, 3.43)), (r.wheel, (1.00, 404.76, 0.901, 732.21, 1.81)))
+    for g, (zb, sh, znt, shg, safety) in contact:
+        assert g["Z_B_or_Z_D"] == near(zb, 2) and g["sigma_H"] == near(sh, 2) and g["Z_NT"] == near(znt, 3)
+        assert g["sigma_HG"] == near(shg, 2) and g["S_H"] == near(safety, 2)
+    assert r.wheel["Z_W"] == near(1.135, 3)
+    root = ((s.pinion, (1.47, 2.04, 24.33, 25.74, 44.78, 9.52, 73.95, 0.999, 0.854, 1.0, 589.60)),
+            (s.wheel, (1.38, 2.18, 25.73, 24.68, 47.70, 8.69, 74.21, 1.002, 0.886, 0.7, 429.38)),
+            (r.pinion, (1.01, 2.48, 18.48, 22.21, 47.70, 8.69, 61.98, 1.002, 0.886, 0.7, 429.38)))
+    for g, (yf, ys, hf, afen, sfn, rhof, s0, yd, ynt, ym, sfg) in root:
+        assert g["Y_F"] == near(yf, 2) and g["Y_S"] == near(ys, 2) and g["h_Fe"] == near(hf, 2)
+        assert math.degrees(g["alpha_Fen"]) == near(afen, 2) and g["s_Fn"] == near(sfn, 2) and g["rho_F"] == near(rhof, 2)
+        assert g["sigma_F0"] == near(s0, 2) and g["Y_deltarelT"] == near(yd, 3) and g["Y_NT"] == near(ynt, 3)
+        assert g["Y_M"] == ym and g["Y_X"] == near(0.840, 3) and g["sigma_FG"] == near(sfg, 2)
+    # sigma_F with K_Fbeta = K_Hbeta^N_F (the report prints 1.94 and 1.14): within 5e-4 of its 209.38,
+    # 210.14 and 102.77; the safety factors within that too
+    for g, (sf, safety) in ((s.pinion, (209.38, 2.82)), (s.wheel, (210.14, 2.04)), (r.pinion, (102.77, 4.18))):
+        assert g["sigma_F"] == pytest.approx(sf, rel=5e-4) and g["S_F"] == pytest.approx(safety, abs=0.005 + 5e-4 * safety)
