@@ -78,7 +78,7 @@ def test_gearbox_modes_join_the_stage_and_the_train(gearbox):
     weak = drivedyn.replace(m, {"planetary.output_shaft_stiffness": 1e-3})
     sys_ = assemble(weak)
     gb = gearbox_modes(weak, sys_)
-    M, K, names, g, kind = stage_matrices(weak.planetary)
+    M, K, names, g_in, g, kind = stage_matrices(weak.planetary)
     from scipy.linalg import eigh
 
     fs = np.sqrt(np.clip(eigh(K, M, eigvals_only=True), 0, None)) / (2 * math.pi)

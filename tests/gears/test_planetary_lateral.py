@@ -142,7 +142,7 @@ def _torsional_freqs(st):
 
     n = st.n
     c = math.cos(st.alpha_sun)
-    rbs, rbp, rbr, R = st.base_radius_sun, st.base_radius_planet, st.base_radius_ring, st.centre_distance
+    rbs, rbp, R = st.base_radius_sun, st.base_radius_planet, st.centre_distance
     size = 2 + n
     K = np.zeros((size, size))
     for i in range(n):

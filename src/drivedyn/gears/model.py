@@ -502,7 +502,7 @@ class Planetary(Spec):
             raise ValueError("position_errors: a pin error above one module is not a position error")
         if self.fixed == self.input:
             raise ValueError(f"input and fixed are both {self.fixed!r}: the torque would go to ground")
-        if (self.output_gear is None) != (self.output_shaft_stiffness is None):
+        if self.output_gear is not None and self.output_shaft_stiffness is None:
             raise ValueError("give output_gear and output_shaft_stiffness together (the train gear on the stage's "
                              "output shaft, and that shaft's stiffness)")
         return self
@@ -523,12 +523,21 @@ class Model(Spec):
     sweep: Sweep = Sweep()
     iso: Iso = Iso()
     planetary: Optional[Planetary] = None
+    stages: list[Planetary] = []                  # further planetary stages in series after [planetary] (a gearbox)
     criteria: Criteria = Criteria()               # design limits of the verdict (criteria.py, docs/criteria.md)
 
     @model_validator(mode="after")
     def _topology(self):
+        if self.stages and self.planetary is None:
+            raise ValueError("stages: give [planetary] first, the gearbox's first stage")
+        chain = [self.planetary, *self.stages] if self.planetary is not None else []
+        if len(chain) > 1:
+            self._chain(chain)
+        if chain and chain[-1].output_gear is None and chain[-1].output_shaft_stiffness is not None:
+            raise ValueError(f"{_where(len(chain) - 1)}.output_shaft_stiffness: the last stage drives no train "
+                             "(give output_gear, or remove the stiffness)")
         if self.planetary is not None and not self.gears and not self.meshes and not self.shafts:
-            return self           # a planetary stage alone: no train to check
+            return self           # planetary stages alone: no train to check
         if self.drive is None:
             raise ValueError("drive: a gear train needs [drive] (input, speed, power or torque)")
         names = [g.name for g in self.gears]
@@ -553,7 +562,7 @@ class Model(Spec):
             if g.face_width > b_max:
                 raise ValueError(f"gears[{k}].face_width: {g.face_width:.4g} m is more than {b_max:.4g} m "
                                  f"(100 modules or 2 pitch diameters, whichever is larger)")
-        if self.planetary is not None and self.planetary.output_gear is not None:
+        if self.planetary is not None and [self.planetary, *self.stages][-1].output_gear is not None:
             self._gearbox(names)
         gear = self.gears[names.index(self.drive.input)]
         top = max(self.drive.speed, self.sweep.speed_max or 0.0)
@@ -569,9 +578,10 @@ class Model(Spec):
         from .gearbox import output_torque
         from .planetary import MEMBERS, _speed_ratio, stage_of
 
-        pl = self.planetary
+        chain = [self.planetary, *self.stages]
+        pl, where = chain[-1], _where(len(chain) - 1)
         if pl.output_gear not in names:
-            raise ValueError(f"planetary.output_gear: no gear named {pl.output_gear!r} (gears: {', '.join(names)})")
+            raise ValueError(f"{where}.output_gear: no gear named {pl.output_gear!r} (gears: {', '.join(names)})")
         if self.drive.input != pl.output_gear:
             raise ValueError(f"drive.input: the train of a gearbox starts at the stage's output gear "
                              f"{pl.output_gear!r}, got {self.drive.input!r}")
@@ -579,12 +589,39 @@ class Model(Spec):
         if self.drive.torque is None or abs(self.drive.torque - t_out) > 1e-6 * t_out:
             got = "power" if self.drive.torque is None else f"{self.drive.torque:.9g} N m"
             raise ValueError(f"drive.torque: the stage delivers {t_out:.9g} N m to {pl.output_gear!r} "
-                             f"(planetary.torque x speed ratio), got {got}")
+                             f"({where}.torque x speed ratio), got {got}")
         if pl.rating is not None:
             st = stage_of(pl)
             out = next(m for m in MEMBERS if m not in (pl.fixed, pl.input))
             w_out = pl.rating.speed / abs(_speed_ratio(st, pl.input, out))
             if abs(self.drive.speed - w_out) > 1e-6 * w_out:
                 raise ValueError(f"drive.speed: the stage turns {pl.output_gear!r} at {w_out:.9g} rad/s "
-                                 f"(planetary.rating.speed / speed ratio), got {self.drive.speed:.9g} rad/s")
+                                 f"({where}.rating.speed / speed ratio), got {self.drive.speed:.9g} rad/s")
+
+    def _chain(self, chain):
+        """Planetary stages in series: each but the last drives the next one's input member through its
+        output shaft, with the torque (and, with ratings, the speed) it delivers."""
+        from .gearbox import output_speed, output_torque
+
+        for k, (a, b) in enumerate(zip(chain, chain[1:])):
+            wa, wb = _where(k), _where(k + 1)
+            if a.output_gear is not None:
+                raise ValueError(f"{wa}.output_gear: only the last stage drives the train; this one drives {wb}")
+            if a.output_shaft_stiffness is None:
+                raise ValueError(f"{wa}.output_shaft_stiffness: this stage drives {wb} through its output shaft: "
+                                 "give the shaft's torsional stiffness")
+            t = output_torque(a)
+            if abs(b.torque - t) > 1e-6 * t:
+                raise ValueError(f"{wb}.torque: the stage before delivers {t:.9g} N m ({wa}.torque x speed ratio), "
+                                 f"got {b.torque:.9g} N m")
+            if a.rating is not None and b.rating is not None:
+                w = output_speed(a)
+                if abs(b.rating.speed - w) > 1e-6 * w:
+                    raise ValueError(f"{wb}.rating.speed: the stage before turns it at {w:.9g} rad/s "
+                                     f"({wa}.rating.speed / speed ratio), got {b.rating.speed:.9g} rad/s")
+
+
+def _where(k: int) -> str:
+    """The model-file path of stage ``k`` of a gearbox (0: [planetary], then [[stages]])."""
+    return "planetary" if k == 0 else f"stages[{k - 1}]"
 

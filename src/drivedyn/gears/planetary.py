@@ -340,40 +340,7 @@ def _speed_ratio(st: Stage, inp: str, out: str) -> float:
     return w[inp] / w[out]
 
 
-def run_stage(model, progress=None):
-    """The Result of a model that is a planetary stage alone."""
-    import xarray as xr
-
-    from .. import dumps
-    from ..results import Result, unit_map, variable
-
-    if progress:
-        progress(0.0, "planetary stage")
-    summary, a = analyse(model.planetary, model.iso)
-    ds = xr.Dataset(
-        {"natural_frequency": variable(a["f"], ("mode",), "Hz", "natural frequency of the stage (fixed member held)"),
-         "mode_shape": variable(a["V"], ("coordinate", "mode"), "1", "mass-normalised mode shape (rotations)"),
-         "sun_planet_force": variable(a["forces"]["sun_planet_force"], ("planet",), "N", "static sun-planet mesh force"),
-         "ring_planet_force": variable(a["forces"]["ring_planet_force"], ("planet",), "N", "static ring-planet mesh force"),
-         "phase_sun_planet": variable(np.array(summary["phase_sun_planet"]), ("planet",), "1", "sun-planet mesh phase (periods)"),
-         "phase_ring_planet": variable(np.array(summary["phase_ring_planet"]), ("planet",), "1", "ring-planet mesh phase (periods)")},
-        coords={"mode": np.arange(len(a["f"])), "coordinate": a["names"], "planet": np.arange(1, len(summary["load_share"]) + 1)},
-        attrs={"model_toml": dumps(model), "title": model.name or "planetary stage", "planetary_only": 1})
-    if "lateral" in a:
-        la = a["lateral"]
-        ds["lateral_natural_frequency"] = variable(la["f"], ("lateral_mode",), "Hz",
-                                                   "natural frequency of the lateral-torsional model")
-        ds["lateral_sun_planet_force"] = variable(la["forces"]["sun_planet_force"], ("planet",), "N",
-                                                  "static sun-planet mesh force, lateral-torsional model")
-    r = Result(kind="gear-train", ds=ds, summary={"planetary": summary})
-    diagnose_stage(r, summary)
-    r.units = unit_map(r.summary, PLANETARY_UNITS)
-    if progress:
-        progress(1.0, "done")
-    return r
-
-
-def diagnose_stage(result, summary: dict) -> None:
+def diagnose_stage(result, summary: dict, prefix: str = "planetary") -> None:
     """tooth-separation when a planet's static mesh force is negative, in the torsional or the
     lateral-torsional load sharing: that planet's teeth would lose contact (the linear load sharing
     does not hold)."""
@@ -384,8 +351,8 @@ def diagnose_stage(result, summary: dict) -> None:
         forces = s["sun_planet_force"] + s["ring_planet_force"]
         fmin = min(forces)
         if fmin < 0 or s["load_sharing_factor"] == math.inf:
-            where = "planetary." + (key + "." if key else "") + "sun_planet_force"
-            result.diagnose("tooth-separation", f"planetary stage ({what} model): a planet's mesh force is negative "
+            where = prefix + "." + (key + "." if key else "") + "sun_planet_force"
+            result.diagnose("tooth-separation", f"{prefix} ({what} model): a planet's mesh force is negative "
                             f"({fmin:.4g} N) at the given torque and pin position errors: that planet's teeth would "
                             "lose contact (the linear load sharing does not hold)", where, fmin, 0.0, "N")
 
@@ -399,6 +366,9 @@ PLANETARY_UNITS = {"planetary.lateral.natural_frequencies_hz": "Hz", "planetary.
                    "planetary.natural_frequencies_hz": "Hz", "planetary.planet_mode_frequency_closed_form_hz": "Hz",
                    "planetary.torque_sun": "N*m", "planetary.*_force": "N", "planetary.position_errors": "m",
                    "planetary.*": "1"}
+# further stages of a gearbox ("stages.stage2.", ...) have the first one's units; the gearbox's modes
+PLANETARY_UNITS.update({k.replace("planetary.", "stages.*.", 1): v for k, v in list(PLANETARY_UNITS.items())})
+PLANETARY_UNITS.update({"gearbox.natural_frequencies_hz": "Hz", "gearbox.*": "1"})
 
 
 def report_lines(spec, iso=None) -> list[str]:

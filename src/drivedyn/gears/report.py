@@ -11,9 +11,7 @@ from .train import assemble, method_b, reduced_mass_per_mesh
 def report(model) -> str:
     """Text report of what is known without integrating: per gear, per mesh, and the train's modes."""
     if model.planetary is not None and not model.meshes:
-        from .planetary import report_lines
-
-        return "\n".join([f"planetary stage: {model.name or '(unnamed)'}", *report_lines(model.planetary, model.iso)])
+        return "\n".join([f"planetary stage: {model.name or '(unnamed)'}", *gearbox_lines(model)])
     s = assemble(model)
     out = [f"gear train: {model.name or '(unnamed)'}", ""]
     out.append(f"{'gear':10s} {'z':>4s} {'m mm':>6s} {'x':>6s} {'b mm':>6s} {'d mm':>8s} {'d_b mm':>8s} "
@@ -59,17 +57,28 @@ def report(model) -> str:
         shape = " ".join(f"{v:+.3f}" for v in shapes[:, r] / np.abs(shapes[:, r]).max())
         out.append(f"  {f:10.2f} Hz  zeta {z:.4f}  = {orders} x mesh frequency  shape [{shape}]")
     if model.planetary is not None:
-        from .planetary import report_lines
-
-        out += report_lines(model.planetary, model.iso)
-        if model.planetary.output_gear is not None:
-            from .gearbox import modes as gearbox_modes
-
-            gb = gearbox_modes(model, s)
-            out += ["", f"gearbox: the stage's output drives {gb['output_gear']!r} through the output shaft; modes of "
-                        f"the whole train ({gb['model']} stage model, rigid-body mode removed; share of kinetic energy in the stage):",
-                    *(f"  {f:10.2f} Hz  stage {e:5.3f}" for f, e in zip(gb["natural_frequencies_hz"], gb["stage_energy_share"]))]
+        out += gearbox_lines(model, s)
     return "\n".join(out)
+
+
+def gearbox_lines(model, sys_=None) -> list[str]:
+    """The ``check`` text of a model's planetary stages and, for a gearbox, its whole-train modes."""
+    from .planetary import report_lines
+
+    out = report_lines(model.planetary, model.iso)
+    for k, spec in enumerate(model.stages):
+        out += [line.replace("planetary stage:", f"stage {k + 2} (planetary):", 1) for line in report_lines(spec, model.iso)]
+    last = [model.planetary, *model.stages][-1]
+    if model.stages or (sys_ is not None and last.output_gear is not None):
+        from .gearbox import modes as gearbox_modes
+
+        gb = gearbox_modes(model, sys_ if last.output_gear is not None else None)
+        drives = f", the last driving {gb['output_gear']!r}" if gb["output_gear"] and sys_ is not None else ""
+        out += ["", f"gearbox: {' -> '.join(gb['stages'])}{drives}, joined by their output shafts; modes of the whole "
+                    f"train ({', '.join(dict.fromkeys(gb['model']))} stage models, rigid-body mode removed; kinetic "
+                    "energy share in the planetary stages):",
+                *(f"  {f:10.2f} Hz  stages {e:5.3f}" for f, e in zip(gb["natural_frequencies_hz"], gb["stage_energy_share"]))]
+    return out
 
 
 def _rating_lines(model, s, j, kv) -> list[str]:

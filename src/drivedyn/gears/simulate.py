@@ -121,7 +121,7 @@ def run(model, progress=None) -> Result:
     from .checks import check_step, diagnose, diagnose_sweep
 
     if model.planetary is not None and not model.meshes:
-        from .planetary import run_stage
+        from .gearbox import run_stage
 
         return run_stage(model, progress)
     t0 = time.perf_counter()
@@ -175,16 +175,9 @@ def run(model, progress=None) -> Result:
         diagnose_sweep(result, sys_, sw)
     result.summary["solver"]["wall_time"] = time.perf_counter() - t0
     if model.planetary is not None:
-        from .planetary import analyse
+        from .gearbox import add_stages
 
-        from .planetary import diagnose_stage
-
-        result.summary["planetary"] = analyse(model.planetary, model.iso)[0]
-        diagnose_stage(result, result.summary["planetary"])
-        if model.planetary.output_gear is not None:
-            from .gearbox import modes as gearbox_modes
-
-            result.summary["gearbox"] = gearbox_modes(model, sys_)
+        add_stages(result, model, sys_)
     _units(result)
     if progress:
         progress(1.0, "done")
@@ -338,7 +331,6 @@ UNITS = {
     "rating.*.Z_E": "Pa^0.5", "rating.*.*": "1",
 }
 UNITS.update(PLANETARY_UNITS)
-UNITS.update({"gearbox.natural_frequencies_hz": "Hz", "gearbox.*": "1"})
 
 
 def _units(result) -> None:
