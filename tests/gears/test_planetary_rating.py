@@ -228,3 +228,18 @@ def test_stage_2_value_by_value():
     # 210.14 and 102.77; the safety factors within that too
     for g, (sf, safety) in ((s.pinion, (209.38, 2.82)), (s.wheel, (210.14, 2.04)), (r.pinion, (102.77, 4.18))):
         assert g["sigma_F"] == pytest.approx(sf, rel=5e-4) and g["S_F"] == pytest.approx(safety, abs=0.005 + 5e-4 * safety)
+
+
+def test_stage_2_method_b_kv_with_the_reports_deviations():
+    # ISO 6336-1 method B with the planetary reduced masses and the deviations of the report's accuracy
+    # table (grade 6: f_pb 17.9 / 20.7 um, f_falpha 23 / 27 um, the larger of each mesh's two gears);
+    # a mesh of two materials runs in by the mean of the two gears' allowances (the report's y_p 3.142
+    # = (0.075 + 160/700) x 20.7 / 2 for the ring mesh). Report: K_v 1.02 and 1.06 (printed).
+    out = rated_stage_2(kv=None, f_pb=(17.9, 20.7), f_falpha=(23.0, 27.0))
+    s, r = out["sun-planet"].factors, out["ring-planet"].factors
+    assert s["K_v_method_b"] == near(1.02, 2) and r["K_v_method_b"] == near(1.06, 2)
+    assert s["region"] == r["region"] == "subcritical"
+    # the running-in mean, by hand: y_p of the ring mesh
+    from drivedyn.gears.iso6336 import running_in
+
+    assert (running_in(20.7, "Eh", 1500.0, 4.88) + running_in(20.7, "St", 700.0, 4.88)) / 2 == near(3.142, 3)

@@ -140,8 +140,8 @@ def stiffness(p: Pair, low_load: float | None = None, blank_factor: float = 1.0)
 def rate_stage(st: StageGears, mats: tuple, *, planets: int, torque_sun: float, speed_sun_rel: float,
                k_gamma: float = 1.0, kv: tuple | None = None, ka: float = 1.0, life_hours: float = 20000.0,
                nu40: float = 220.0, rz_flank: tuple = (6.0, 6.0, 6.0), rz_root: tuple = (10.0, 10.0, 10.0),
-               k_hbeta: tuple | None = None, k_halpha: tuple | None = None, f_ma: float = 10.0, f_pb: float = 7.0,
-               f_falpha: float = 7.0, tip_relief: float | None = None, blank_factor: float = 1.0,
+               k_hbeta: tuple | None = None, k_halpha: tuple | None = None, f_ma: float = 10.0,
+               f_pb: float | tuple = 7.0, f_falpha: float | tuple = 7.0, tip_relief: float | None = None, blank_factor: float = 1.0,
                s_hmin: float = 1.0, s_fmin: float = 1.0, field: str = "planetary") -> dict:
     """Ratings of the sun-planet and ring-planet meshes of a stage (``mats`` = sun, planet, ring).
 
@@ -164,10 +164,13 @@ def rate_stage(st: StageGears, mats: tuple, *, planets: int, torque_sun: float, 
             ("ring-planet", ring, (mats[1], mats[2]), n_p, ("planet", "ring")))):
         w = ka * k_gamma * ft / p.b
         iso = stiffness(p, w, blank_factor)
+        # running-in of two different materials: the mean of the two (ISO 6336-1); deviations per mesh
         mb = iso6336.MethodB(z1=p.z1, c_single=iso.c_single, c_gamma=iso.c_gamma, m_red=m_red[j], eps_gamma=0.0,
-                             load_per_width=w, f_pb=f_pb, f_falpha=f_falpha, material=_run_in_class(mi, mj),
-                             sigma_hlim=min(mi.sigma_hlim, mj.sigma_hlim), c_a=tip_relief,
-                             pitch_radius=p.z1 * p.mn / 2e3)
+                             load_per_width=w, f_pb=_per_mesh(f_pb, j), f_falpha=_per_mesh(f_falpha, j),
+                             material=_run_in_class(mi, mi), sigma_hlim=mi.sigma_hlim, c_a=tip_relief,
+                             pitch_radius=p.z1 * p.mn / 2e3,
+                             material2=None if mi == mj else _run_in_class(mj, mj),
+                             sigma_hlim2=None if mi == mj else mj.sigma_hlim)
         from .rating import geometry
 
         eps = geometry(p)["eps_gamma"]
@@ -177,7 +180,7 @@ def rate_stage(st: StageGears, mats: tuple, *, planets: int, torque_sun: float, 
         idx = {"sun": 0, "planet": 1, "ring": 2}
         load = Load(torque1=ft * p.z1 * p.mn / 2000.0, n1=n1, kv=k_v, ka=ka, life_hours=life_hours, nu40=nu40,
                     rz_flank=tuple(rz_flank[idx[g]] for g in gears), rz_root=tuple(rz_root[idx[g]] for g in gears),
-                    f_ma=f_ma, f_pb=f_pb, c_gamma_alpha=iso.c_gamma,
+                    f_ma=f_ma, f_pb=_per_mesh(f_pb, j), c_gamma_alpha=iso.c_gamma,
                     k_hbeta=None if k_hbeta is None else k_hbeta[j], k_halpha=None if k_halpha is None else k_halpha[j],
                     s_hmin=s_hmin, s_fmin=s_fmin, k_gamma=k_gamma,
                     y_m=tuple(0.7 if g == "planet" else 1.0 for g in gears), cycles=tuple(cyc[g] for g in gears))
@@ -187,6 +190,11 @@ def rate_stage(st: StageGears, mats: tuple, *, planets: int, torque_sun: float, 
                           "n_E1": mb.resonance_speed * 60.0, "N": ratio_n, "K_v_method_b": kv_b, "region": region})
         out[name] = r
     return out
+
+
+def _per_mesh(v, j: int) -> float:
+    """A value given for both meshes, or one per mesh (sun-planet, ring-planet)."""
+    return float(v[j]) if isinstance(v, (tuple, list)) else float(v)
 
 
 def _run_in_class(a: Material, b: Material) -> str:
