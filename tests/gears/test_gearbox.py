@@ -27,12 +27,15 @@ def test_gearbox_example_runs_and_judges_every_mesh(gearbox):
     assert r.status == "success" and r.summary["verdict"] == "fail"
     s = r.summary
     names = list(s["criteria"])
-    for mesh in ("sun-planet", "ring-planet"):
-        assert f"S_H_planetary_{mesh}" in names and f"S_F_planetary_{mesh}" in names
+    for stage in ("planetary", "stage2"):
+        for mesh in ("sun-planet", "ring-planet"):
+            assert f"S_H_{stage}_{mesh}" in names and f"S_F_{stage}_{mesh}" in names
     assert "S_H_parallel" in names and "S_F_parallel" in names
     failed = [n for n, c in s["criteria"].items() if not c["pass"]]
-    # the report's own finding: the through-hardened ring's flank, S_H 0.96 < 1.25
-    assert failed == ["S_H_planetary_ring-planet"]
+    # the reports' own findings: stage 1's through-hardened ring flank S_H 0.96 and stage 2's sun flank
+    # S_H 1.21, both below 1.25
+    assert failed == ["S_H_planetary_ring-planet", "S_H_stage2_sun-planet"]
+    assert s["stages"]["stage2"]["rating"]["meshes"]["sun-planet"]["sun"]["S_H"] == pytest.approx(1.21, abs=0.005)
     ring = s["planetary"]["rating"]["meshes"]["ring-planet"]["ring"]
     assert ring["S_H"] == pytest.approx(0.96, abs=0.005) and ring["S_F"] is None
 
@@ -72,27 +75,32 @@ def test_gearbox_floating_sun_evens_out_the_pin_error(gearbox):
 
 
 def test_gearbox_modes_join_the_stage_and_the_train(gearbox):
-    # a weak output shaft decouples them: the whole train's modes are then the stage's (its output
-    # member free) and the train's own, each computed on its own
+    # weak shafts decouple them: the whole train's modes are then each stage's (its output member
+    # free) and the train's own, each computed on its own
     m, _ = gearbox
-    weak = drivedyn.replace(m, {"planetary.output_shaft_stiffness": 1e-3})
+    weak = drivedyn.replace(m, {"planetary.output_shaft_stiffness": 1e-3, "stages.0.output_shaft_stiffness": 1e-3})
     sys_ = assemble(weak)
     gb = gearbox_modes(weak, sys_)
-    M, K, names, g_in, g, kind = stage_matrices(weak.planetary)
     from scipy.linalg import eigh
 
-    fs = np.sqrt(np.clip(eigh(K, M, eigvals_only=True), 0, None)) / (2 * math.pi)
+    own = []
+    for spec in (weak.planetary, weak.stages[0]):
+        M, K, names, g_in, g_out, kind = stage_matrices(spec)
+        f_ = np.sqrt(np.clip(eigh(K, M, eigvals_only=True), 0, None)) / (2 * math.pi)
+        own.append((f_[f_ > 1.0], kind))
+    fs = own[0][0]
     ft, _, _ = sys_.modes()
-    want = sorted([*fs[fs > 1.0], *ft])
+    want = sorted([*own[0][0], *own[1][0], *ft])
     got = [f for f in gb["natural_frequencies_hz"] if f > 1.0]
-    assert kind == "lateral-torsional"
+    assert [k for _, k in own] == ["lateral-torsional", "torsional"]
     assert got == pytest.approx(want, rel=1e-6)
     # the stage's own elastic modes are those of planetary_lateral with the same data
     assert all(min(abs(f - x) for x in pl.modes(_lateral(weak))[0]) < 1e-6 * f for f in fs[fs > 1.0])
     # coupled through the real shaft: one mode more than the stage's elastic ones plus the train's
     # (the stage's free output rotation becomes elastic), and every mode attributed
     strong = gearbox_modes(m, assemble(m))
-    assert len(strong["natural_frequencies_hz"]) == len(want) + 1
+    assert len(strong["natural_frequencies_hz"]) == len(want) + 2        # the stages' free output rotations
+    assert strong["stages"] == ["planetary", "stage2"]
     assert all(0.0 <= e <= 1.0 + 1e-9 for e in strong["stage_energy_share"])
 
 
@@ -105,10 +113,14 @@ def _lateral(model):
 
 
 @pytest.mark.parametrize("edit, expect", [
-    (('torque = "999650.8801 N*m"', 'torque = "999000 N*m"'), "drive.torque: the stage delivers 999650.88 N m"),
-    (('speed = "47.76315789 rpm"', 'speed = "50 rpm"'), "drive.speed: the stage turns 'wheel' at"),
-    (('output_gear = "wheel"', 'output_gear = "hub"'), "planetary.output_gear: no gear named 'hub'"),
-    (('output_shaft_stiffness = "2e9 N*m/rad"\n', ''), "give output_gear and output_shaft_stiffness together"),
+    (('torque = "162105.5481 N*m"', 'torque = "162000 N*m"'), "drive.torque: the stage delivers 162105.548 N m"),
+    (('speed = "294.5394737 rpm"', 'speed = "300 rpm"'), "drive.speed: the stage turns 'wheel' at"),
+    (('output_gear = "wheel"', 'output_gear = "hub"'), "stages[0].output_gear: no gear named 'hub'"),
+    (('output_gear = "wheel"\n', ''), "stages[0].output_shaft_stiffness: the last stage drives no train"),
+    (('output_shaft_stiffness = "2e9 N*m/rad"', 'output_gear = "wheel"'), "give output_gear and output_shaft_stiffness together"),
+    (('torque = "999650.8801 N*m"', 'torque = "999000 N*m"'), "stages[0].torque: the stage before delivers 999650.88 N m"),
+    (('speed = "47.76315789 rpm"', 'speed = "47 rpm"'), "stages[0].rating.speed: the stage before turns it at"),
+    (('face_load_factors = [2.06, 1.15]', 'face_load_factors = [0.5, 1.15]'), "stages[0].rating.face_load_factors: must lie in [1, 10]"),
     (('ring_teeth = 56', 'ring_teeth = 30'), "ring_teeth: a ring of 30 teeth cannot hold"),
     (('centre_distance = "863 mm"', 'centre_distance = "863.01 mm"'),
      "planetary.centre_distance: 863.010000 mm is 8.679 um above the ring-planet zero-backlash centre distance"),
@@ -136,7 +148,7 @@ def test_lateral_contact_loss_is_a_diagnostic(tmp_path):
     # three planets in contact (the example's load sharing)
     good = drivedyn.load(drivedyn.example_path("gears-gearbox"))
     stage = good.planetary.model_copy(update={"output_gear": None, "output_shaft_stiffness": None})
-    alone = good.model_copy(update={"gears": [], "meshes": [], "drive": None, "planetary": stage})
+    alone = good.model_copy(update={"gears": [], "meshes": [], "drive": None, "planetary": stage, "stages": []})
     ok = drivedyn.run(alone)
     assert ok.status == "success"
     bad = drivedyn.replace(alone, {"planetary.position_errors": [-2e-3, 0.0, 0.0],
@@ -154,7 +166,7 @@ def test_stage_alone_kgamma_and_kv_computed_when_not_given():
     rating = good.planetary.rating.model_copy(update={"load_sharing_factor": None, "dynamic_factors": None,
                                                        "steels": None})
     stage = good.planetary.model_copy(update={"output_gear": None, "output_shaft_stiffness": None, "rating": rating})
-    alone = good.model_copy(update={"gears": [], "meshes": [], "drive": None, "planetary": stage})
+    alone = good.model_copy(update={"gears": [], "meshes": [], "drive": None, "planetary": stage, "stages": []})
     assert drivedyn.loads(drivedyn.dumps(alone)) == alone
     s = drivedyn.run(alone).summary["planetary"]
     r = s["rating"]

@@ -381,6 +381,7 @@ class PlanetaryRating(Spec):
     speed: quantity("rad/s", gt=0)                               # of the input member
     load_sharing_factor: Optional[float] = None                  # K_gamma; none: from the computed load sharing
     dynamic_factors: Optional[tuple[float, float]] = None        # K_v of sun-planet, ring-planet; none: ISO method B
+    face_load_factors: Optional[tuple[float, float]] = None      # K_Hbeta of sun-planet, ring-planet; none: iso's
     steels: Optional[tuple[Steel, Steel, Steel]] = None           # sun, planet, ring; none: iso's for all
     ring_hardness: Optional[float] = None                        # HB, for Z_W of a through-hardened ring
     sigma_hlim: Optional[tuple[Stress, Stress, Stress]] = None   # sun, planet, ring; none: the steels' (or iso's)
@@ -398,7 +399,7 @@ class PlanetaryRating(Spec):
             raise ValueError(f"must lie in [1, 3], got {v}")
         return v
 
-    @field_validator("dynamic_factors")
+    @field_validator("dynamic_factors", "face_load_factors")
     @classmethod
     def _kv(cls, v):
         if v is not None and not all(1.0 <= k <= 10.0 for k in v):
