@@ -50,3 +50,46 @@ def test_seed_table_with_the_examples_tips():
     assert p.path_of_contact * 1e3 == pytest.approx(11.068, abs=0.01)
     # nominal force per path, seed eq. 13: 0.5 T1 / (r_w1 cos a) = 1001.27 N (seed rounds T1)
     assert s.force_nominal[0] == pytest.approx(1001.27, rel=2e-4)
+
+
+def test_printed_centre_distance_within_tolerance_is_accepted():
+    # a pair whose profile shifts are printed to four decimals: the zero-backlash centre distance
+    # computed from the rounded shifts lies a few 1e-7 above the printed one
+    from drivedyn.errors import ModelError
+    from drivedyn.gears.geometry import CENTRE_TOLERANCE, GearGeometry, pair
+
+    class G:
+        def __init__(self, z, x):
+            self.teeth, self.module, self.pressure_angle, self.profile_shift = z, 8e-3, math.radians(20), x
+            self.face_width, self.tip_diameter, self.addendum, self.dedendum = 0.1, None, 1.0, 1.25
+
+    g1, g2 = GearGeometry.of(G(17, 0.4523)), GearGeometry.of(G(61, 0.1231))
+    a_zb = pair(g1, g2).a_zero_backlash
+    ok = pair(g1, g2, a_zb * (1 - 0.5 * CENTRE_TOLERANCE))
+    assert ok.a_w == a_zb * (1 - 0.5 * CENTRE_TOLERANCE)
+    with pytest.raises(ModelError) as err:
+        pair(g1, g2, a_zb * (1 - 3 * CENTRE_TOLERANCE))
+    msg = str(err.value)
+    # both numbers printed so that they differ, and the shortfall in um
+    a, b = (float(s.split(" mm")[0].split()[-1]) for s in (msg, msg.split("centre distance ")[1]))
+    assert a != b and a == pytest.approx(a_zb * 1e3 * (1 - 3e-6), abs=1e-6)
+    assert f"{a_zb * 3e-6 * 1e6:.4g} um below" in msg
+
+
+def test_printed_helical_pair_of_a_published_report_is_accepted():
+    # NREL 5 MW stage 3 as a KISSsoft 03/2017 report prints it (@NREL_5MW/stage_03.rtf of
+    # github.com/gfsReboucas/Drivetrain): z 24 / 95, m_n 14 mm, beta 10 deg, x 0.4800 / 0.6691,
+    # a 861.000 mm, tips 380.747 / 1395.376 mm. The four-decimal shifts put the zero-backlash centre
+    # distance 0.15 um (1.7e-7) above 861 mm: accepted, at the report's alpha_wt 22.856 deg
+    from drivedyn.gears.geometry import GearGeometry, pair
+
+    class G:
+        def __init__(self, z, x, da, hand):
+            self.teeth, self.module, self.pressure_angle, self.profile_shift = z, 14e-3, math.radians(20), x
+            self.face_width, self.tip_diameter, self.addendum, self.dedendum = 0.36, da, 1.0, 1.25
+            self.helix_angle, self.hand = math.radians(10), hand
+
+    g1, g2 = GearGeometry.of(G(24, 0.48, 0.380747, "right")), GearGeometry.of(G(95, 0.6691, 1.395376, "left"))
+    p = pair(g1, g2, 0.861)
+    assert 0 < p.a_zero_backlash - 0.861 < 1e-6 * 0.861
+    assert math.degrees(p.alpha_w) == pytest.approx(22.856, abs=5e-4)

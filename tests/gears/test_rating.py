@@ -200,3 +200,64 @@ def test_load_point_is_the_outer_point_of_single_contact():
     assert r.pinion["d_en"] / 2 == pytest.approx(math.hypot(p_.g1.rb * 1e3, rho_d), rel=1e-12)
     rho_b = (p_.tangent_length - p_.rho_end + p_.base_pitch) * 1e3          # the wheel's, from T2
     assert r.wheel["d_en"] / 2 == pytest.approx(math.hypot(p_.g2.rb * 1e3, rho_b), rel=1e-12)
+
+
+def test_given_kv_and_per_gear_roughness_reach_the_rating():
+    # [iso] dynamic_factor replaces the run's K_v in the rating; a gear's own R_z replaces iso's:
+    # sigma_H ~ sqrt(K_v) (K_Hbeta, K_Halpha given), Z_R from the mean R_z of the pair (ISO 6336-2)
+    import drivedyn
+    from drivedyn.gears.rating import rate_mesh
+    from drivedyn.gears.simulate import _rating
+    from drivedyn.gears.train import assemble
+
+    m = seed_model(**{"iso.face_load_factor": 1.2, "iso.transverse_load_factor": 1.0})
+    sys_ = assemble(m)
+    name = sys_.mesh_names[0]
+    a = _rating(m, sys_, [1.1] * sys_.m, [1.05] * sys_.m)[name]
+    g = drivedyn.replace(m, {"iso.dynamic_factor": 1.44})
+    b = _rating(g, assemble(g), [1.1] * sys_.m, [1.05] * sys_.m)[name]
+    assert b["kv_dynamic"] == 1.44 and b["kv_source"] == "given (iso.dynamic_factor)"
+    assert b["pinion_rating"]["sigma_H"] / a["pinion_rating"]["sigma_H"] == pytest.approx(math.sqrt(1.44 / 1.1), rel=1e-12)
+    r0 = rate_mesh(m, sys_, 0, 1.1)
+    rough = drivedyn.replace(m, {"gears.0.flank_roughness": 2 * m.iso.flank_roughness,
+                                 "gears.1.flank_roughness": 0.5 * m.iso.flank_roughness})
+    r1 = rate_mesh(rough, assemble(rough), 0, 1.1)
+    # mean R_z 1.25 x iso's: Z_R = (3 / R_z10)^C_ZR scales by 1.25^-C_ZR
+    c_zr = 0.08                      # sigma_Hlim 1500 N/mm^2 (ISO 6336-2: above 1200)
+    assert r1.factors["Z_R"] / r0.factors["Z_R"] == pytest.approx(1.25 ** -c_zr, rel=1e-12)
+
+
+def test_load_cycles_and_mean_stress_factor_per_gear():
+    # split path: the pinion drives both wheels on the same flank, so each tooth is loaded twice a turn
+    # (N_L = 2 x 60 n life); each wheel once. An idler (driven by one gear, driving another) is loaded
+    # once a turn on each flank and its teeth are bent both ways: Y_M = 0.7 (ISO 6336-3)
+    from drivedyn.gears.rating import rate_mesh
+    from drivedyn.gears.train import assemble
+    from drivedyn.model import from_dict
+
+    from .conftest import pair_model
+
+    m = seed_model()
+    sys_ = assemble(m)
+    life = m.iso.life
+    n_p = 1450 / 60
+    for j in range(sys_.m):
+        r = rate_mesh(m, sys_, j, 1.1)
+        assert r.pinion["N_L"] == pytest.approx(2 * n_p * life, rel=1e-9)
+        assert r.wheel["N_L"] == pytest.approx(n_p * 21 / 57 * life, rel=1e-9)
+        assert r.pinion["Y_M"] == 1.0 and r.wheel["Y_M"] == 1.0
+    d = pair_model().model_dump()
+    idler = {**d["gears"][1], "name": "i", "load_fraction": 0.0}
+    out = {**d["gears"][0], "name": "o", "load_fraction": 1.0}
+    d["gears"] = [d["gears"][0], idler, out]
+    d["meshes"] = [{**d["meshes"][0], "name": "pi", "gears": ["p", "i"]}, {**d["meshes"][0], "name": "io", "gears": ["i", "o"]}]
+    t = from_dict(d)
+    st = assemble(t)
+    a, b = rate_mesh(t, st, 0, 1.0), rate_mesh(t, st, 1, 1.0)
+    # mesh p-i: pinion p (21), wheel i (57); mesh i-o: pinion o (21), wheel i
+    assert a.wheel["Y_M"] == 0.7 and b.wheel["Y_M"] == 0.7 and a.pinion["Y_M"] == 1.0 and b.pinion["Y_M"] == 1.0
+    n_i = 151.84 / (2 * math.pi) * 21 / 57
+    assert a.wheel["N_L"] == pytest.approx(n_i * t.iso.life, rel=1e-9) == b.wheel["N_L"]
+    assert b.wheel["sigma_FG"] / a.wheel["sigma_FG"] == pytest.approx(1.0, rel=1e-12)
+    plain = rate_mesh(pair_model(), assemble(pair_model()), 0, 1.0)
+    assert a.wheel["sigma_FG"] == pytest.approx(0.7 * plain.wheel["sigma_FG"], rel=1e-12)

@@ -54,6 +54,20 @@ def evaluate(model, result):
             v, who = min((r[w + "_rating"][key], r[w]) for w in ("pinion", "wheel"))
             out.append(Criterion(f"{key}_{n}", v, r[f"{key}_min_required"], "1", "min", f"smallest {what}",
                                  f"{n}: {who}"))
+    # the planetary stage's meshes (planetary_rating.py): every rated gear of both meshes
+    stages = [("planetary", s.get("planetary") or {}), *((s.get("stages") or {}).items())]
+    for label, n, r, pr in ((label, n, r, st.get("rating") or {}) for label, st in stages
+                            for n, r in ((st.get("rating") or {}).get("meshes") or {}).items()):
+        for kind, key, what in (("pitting", "S_H", "contact (pitting) safety factor S_H, ISO 6336-2"),
+                                ("bending", "S_F", "tooth-root safety factor S_F, ISO 6336-3")):
+            rated = [(r[w][key], w) for w in (r["pinion"], r["wheel"]) if r[w].get(key) is not None]
+            if rated:
+                v, who = min(rated)
+                out.append(Criterion(f"{key}_{label}_{n}", v, pr[f"{key}_min_required"], "1", "min",
+                                     f"smallest {what} of the {n} mesh of {label}", f"{label} {n}: {who}"))
+            missing = [w for w in (r["pinion"], r["wheel"]) if r[w].get(key) is None]
+            if missing:
+                skipped[f"{key}_{label}_{n}_{missing[0]}"] = f"the {missing[0]}'s {key} is not rated ({'; '.join(r['notes'])})"
     sweep = (s.get("sweep") or {}).get("meshes") or {}
     if sweep:
         ranges = [(n, r) for n, e in sweep.items() for r in (e.get("unstable_speeds", []) + e.get("separation_speeds", []))]

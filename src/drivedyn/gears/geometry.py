@@ -15,6 +15,12 @@ from dataclasses import dataclass
 from ..errors import ModelError
 
 
+#: relative tolerance of a centre distance below the zero-backlash one: profile shifts printed to four
+#: decimals (x within 5e-5) move the zero-backlash centre distance by up to about 1e-4 m_n, a few 1e-7
+#: of it; a printed centre distance that far below is the same gear pair, not an interference
+CENTRE_TOLERANCE = 1e-6
+
+
 def inv(alpha: float) -> float:
     """Involute function inv(a) = tan(a) - a."""
     return math.tan(alpha) - alpha
@@ -156,9 +162,10 @@ def pair(g1: GearGeometry, g2: GearGeometry, center_distance: float | None = Non
     if center_distance is None:
         alpha_w, a_w = alpha_w0, a_zb
     else:
-        if center_distance < a_zb * (1 - 1e-9):
-            raise ModelError(f"{center_distance * 1e3:.4g} mm is below the zero-backlash centre distance "
-                             f"{a_zb * 1e3:.4g} mm: the teeth would interfere", field=f"{field}.center_distance")
+        if center_distance < a_zb * (1 - CENTRE_TOLERANCE):
+            raise ModelError(f"{center_distance * 1e3:.6f} mm is {(a_zb - center_distance) * 1e6:.4g} um below the "
+                             f"zero-backlash centre distance {a_zb * 1e3:.6f} mm (more than {CENTRE_TOLERANCE:g} of it): "
+                             "the teeth would interfere", field=f"{field}.center_distance")
         a_w = center_distance
         alpha_w = math.acos(a0 * math.cos(at) / a_w)
     t12 = a_w * math.sin(alpha_w)

@@ -134,6 +134,8 @@ class MethodB:
     sigma_hlim: float        # N/mm^2
     c_a: float | None        # tip relief, um (None: running-in C_ay)
     pitch_radius: float      # m (for the pitch-line speed)
+    material2: str | None = None      # the other gear's, when the two differ: running-in values are
+    sigma_hlim2: float | None = None  # the mean of the two gears' (ISO 6336-1:2006, 8.3.x and 6.3.x)
 
     @property
     def resonance_speed(self) -> float:
@@ -146,9 +148,13 @@ class MethodB:
         w = self.load_per_width
         ns = 0.5 + 0.35 * math.sqrt(w / 100.0) if w < 100.0 else 0.85  # eqs. (11), (12)
         v = 2 * math.pi * self.pitch_radius * n1
-        y_p = running_in(self.f_pb, self.material, self.sigma_hlim, v)
-        y_f = running_in(self.f_falpha, self.material, self.sigma_hlim, v)
-        c_ay = (1.0 / 18.0) * (self.sigma_hlim / 97.0 - 18.45) ** 2 + 1.5   # running-in tip relief, um
+        gears = [(self.material, self.sigma_hlim)]
+        if self.material2 is not None:
+            gears.append((self.material2, self.sigma_hlim2))
+        y_p = sum(running_in(self.f_pb, m, sh, v) for m, sh in gears) / len(gears)
+        y_f = sum(running_in(self.f_falpha, m, sh, v) for m, sh in gears) / len(gears)
+        # running-in tip relief, um
+        c_ay = sum((1.0 / 18.0) * (sh / 97.0 - 18.45) ** 2 + 1.5 for _, sh in gears) / len(gears)
         c_a = c_ay if self.c_a is None else self.c_a
         bp = self.c_single * max(self.f_pb - y_p, 0.0) / w          # eq. (15)
         bf = self.c_single * max(self.f_falpha - y_f, 0.0) / w      # eq. (16)

@@ -20,6 +20,8 @@ V_MAX = 300.0
 
 Length = quantity("m")
 Time = quantity("s")
+Stress = quantity("Pa", gt=0)
+Steel = Literal["case-carburized", "through-hardened"]
 
 
 def _name(v):
@@ -55,6 +57,8 @@ class Gear(Spec):
     load_fraction: float = 0.0
     root_radius: float = 0.25  # rho_fP / m of the basic rack (tool tip radius), for the ISO 6336-3 root
     steel: Optional[Literal["case-carburized", "through-hardened"]] = None   # this gear's material, else iso's
+    flank_roughness: Optional[quantity("m", gt=0)] = None   # this gear's R_z (ISO 6336-2 Z_R), else iso's
+    root_roughness: Optional[quantity("m", gt=0)] = None    # this gear's root R_z (ISO 6336-3 Y_RrelT), else iso's
 
     @field_validator("name")
     @classmethod
@@ -310,6 +314,7 @@ class Iso(Spec):
     mesh_misalignment: quantity("m", ge=0) = 10e-6
     face_load_factor: Optional[float] = None
     transverse_load_factor: Optional[float] = None
+    dynamic_factor: Optional[float] = None       # K_v given for the rating, instead of the run's (and method B's)
     min_safety_pitting: float = 1.0
     min_safety_bending: float = 1.0
 
@@ -320,7 +325,7 @@ class Iso(Spec):
             raise ValueError(f"must be > 0, got {v}")
         return v
 
-    @field_validator("face_load_factor", "transverse_load_factor")
+    @field_validator("face_load_factor", "transverse_load_factor", "dynamic_factor")
     @classmethod
     def _factor(cls, v):
         # ISO 6336-1 load factors are >= 1; above 10 the load distribution model has no meaning
@@ -354,9 +359,72 @@ class Iso(Spec):
         return self
 
 
+class PlanetaryLateral(Spec):
+    """The lateral-torsional model of the stage (Lin & Parker, J. Vib. Acoust. 121 (1999) 316-321):
+    masses and radial bearings of sun, ring and carrier, the planets' pin bearings, and the torsional
+    support of the held member."""
+
+    sun_mass: quantity("kg", gt=0)
+    ring_mass: quantity("kg", gt=0)
+    carrier_mass: quantity("kg", gt=0)
+    planet_bearing_stiffness: quantity("N/m", gt=0)              # each pin, radial and tangential
+    sun_bearing_stiffness: quantity("N/m", ge=0) = 0.0           # 0: a floating sun, centred by its meshes
+    ring_bearing_stiffness: Optional[quantity("N/m", gt=0)] = None     # none: held rigidly in translation
+    carrier_bearing_stiffness: Optional[quantity("N/m", gt=0)] = None
+    support_stiffness: Optional[quantity("N*m/rad", gt=0)] = None      # torsional support of the held member; none: rigid
+
+
+class PlanetaryRating(Spec):
+    """ISO 6336-2/-3 rating of the sun-planet and ring-planet meshes (the rest of the data from [iso])."""
+
+    face_width: quantity("m", gt=0)
+    speed: quantity("rad/s", gt=0)                               # of the input member
+    load_sharing_factor: Optional[float] = None                  # K_gamma; none: from the computed load sharing
+    dynamic_factors: Optional[tuple[float, float]] = None        # K_v of sun-planet, ring-planet; none: ISO method B
+    face_load_factors: Optional[tuple[float, float]] = None      # K_Hbeta of sun-planet, ring-planet; none: iso's
+    steels: Optional[tuple[Steel, Steel, Steel]] = None           # sun, planet, ring; none: iso's for all
+    ring_hardness: Optional[float] = None                        # HB, for Z_W of a through-hardened ring
+    sigma_hlim: Optional[tuple[Stress, Stress, Stress]] = None   # sun, planet, ring; none: the steels' (or iso's)
+    sigma_flim: Optional[tuple[Stress, Stress, Stress]] = None
+    tip_diameters: Optional[tuple[Length, Length, Length]] = None   # sun, planet, ring (inner); none: ISO 21771
+    bore_diameters: tuple[Length, Length, Length] = (0.0, 0.0, 0.0)  # sun, planet inner; ring outer (reduced mass)
+    flank_roughness: Optional[tuple[Length, Length, Length]] = None  # R_z of sun, planet, ring; none: iso's
+    root_roughness: Optional[tuple[Length, Length, Length]] = None
+    root_radius: tuple[float, float, float] = (0.25, 0.25, 0.25)     # rho_fP / m of the racks
+
+    @field_validator("load_sharing_factor")
+    @classmethod
+    def _kg(cls, v):
+        if v is not None and not 1.0 <= v <= 3.0:
+            raise ValueError(f"must lie in [1, 3], got {v}")
+        return v
+
+    @field_validator("dynamic_factors", "face_load_factors")
+    @classmethod
+    def _kv(cls, v):
+        if v is not None and not all(1.0 <= k <= 10.0 for k in v):
+            raise ValueError(f"must lie in [1, 10], got {list(v)}")
+        return v
+
+    @field_validator("ring_hardness")
+    @classmethod
+    def _hb(cls, v):
+        if v is not None and not 100.0 <= v <= 700.0:
+            raise ValueError(f"must lie in 100..700 HB, got {v}")
+        return v
+
+    @field_validator("root_radius")
+    @classmethod
+    def _rho(cls, v):
+        if not all(0.0 < r <= 0.6 for r in v):
+            raise ValueError(f"must lie in (0, 0.6] modules, got {list(v)}")
+        return v
+
+
 class Planetary(Spec):
-    """A simple planetary stage (sun, N planets on a carrier, ring; standard spur gears, no profile
-    shift): mesh phasing, lumped torsional modes and static load sharing with pin position errors."""
+    """A simple planetary stage (sun, N planets on a carrier, ring; spur gears, profile shifts
+    allowed): mesh phasing, torsional (and, with ``lateral``, lateral-torsional) modes, static load
+    sharing with pin position errors, and (with ``rating``) the ISO rating of every mesh."""
 
     sun_teeth: int
     planet_teeth: int
@@ -375,12 +443,26 @@ class Planetary(Spec):
     fixed: Literal["sun", "ring", "carrier"] = "ring"
     input: Literal["sun", "ring", "carrier"] = "sun"
     torque: quantity("N*m", gt=0)
+    ring_teeth: Optional[int] = None              # none: sun + 2 planet teeth
+    profile_shifts: tuple[float, float, float] = (0.0, 0.0, 0.0)   # sun, planet, ring (ISO 21771: ring d_a = d - 2 m (1 + x))
+    centre_distance: Optional[quantity("m", gt=0)] = None          # none: the sun-planet zero-backlash one
+    lateral: Optional[PlanetaryLateral] = None
+    rating: Optional[PlanetaryRating] = None
+    output_gear: Optional[str] = None             # a gear of the train on the stage's output shaft (a gearbox)
+    output_shaft_stiffness: Optional[quantity("N*m/rad", gt=0)] = None
 
-    @field_validator("sun_teeth", "planet_teeth")
+    @field_validator("sun_teeth", "planet_teeth", "ring_teeth")
     @classmethod
     def _z(cls, v):
-        if not 5 <= v <= 2000:
+        if v is not None and not 5 <= v <= 2000:
             raise ValueError(f"must lie in 5..2000, got {v}")
+        return v
+
+    @field_validator("profile_shifts")
+    @classmethod
+    def _x3(cls, v):
+        if not all(-3.0 < x < 3.0 for x in v):
+            raise ValueError(f"must lie in (-3, 3) modules, got {list(v)}")
         return v
 
     @field_validator("planets")
@@ -396,7 +478,9 @@ class Planetary(Spec):
         import math
 
         n, zs, zp = self.planets, self.sun_teeth, self.planet_teeth
-        zr = zs + 2 * zp
+        zr = self.ring_teeth or zs + 2 * zp
+        if zr - zp <= zs - 2:
+            raise ValueError(f"ring_teeth: a ring of {zr} teeth cannot hold planets of {zp} around a sun of {zs}")
         if self.planet_angles is None:
             if (zs + zr) % n:
                 raise ValueError(f"{n} planets cannot be equally spaced: (sun + ring teeth) / planets = "
@@ -407,8 +491,8 @@ class Planetary(Spec):
                 raise ValueError(f"planet_angles: {len(self.planet_angles)} angles for {n} planets")
             psi = sorted(a % (2 * math.pi) for a in self.planet_angles)
         # neighbouring planets must clear each other: centre chord above the planet's tip diameter
-        R = 0.5 * (zs + zp) * self.module
-        d_tip = (zp + 2) * self.module
+        R = self.centre_distance or 0.5 * (zs + zp) * self.module
+        d_tip = (zp + 2 + 2 * self.profile_shifts[1]) * self.module
         gaps = [b - a for a, b in zip(psi, psi[1:])] + [2 * math.pi - psi[-1] + psi[0]] if n > 1 else []
         if gaps and 2 * R * math.sin(min(gaps) / 2) <= d_tip:
             raise ValueError(f"neighbouring planets overlap: centre distance {2e3 * R * math.sin(min(gaps) / 2):.4g} mm "
@@ -419,6 +503,9 @@ class Planetary(Spec):
             raise ValueError("position_errors: a pin error above one module is not a position error")
         if self.fixed == self.input:
             raise ValueError(f"input and fixed are both {self.fixed!r}: the torque would go to ground")
+        if self.output_gear is not None and self.output_shaft_stiffness is None:
+            raise ValueError("give output_gear and output_shaft_stiffness together (the train gear on the stage's "
+                             "output shaft, and that shaft's stiffness)")
         return self
 
 
@@ -437,12 +524,21 @@ class Model(Spec):
     sweep: Sweep = Sweep()
     iso: Iso = Iso()
     planetary: Optional[Planetary] = None
+    stages: list[Planetary] = []                  # further planetary stages in series after [planetary] (a gearbox)
     criteria: Criteria = Criteria()               # design limits of the verdict (criteria.py, docs/criteria.md)
 
     @model_validator(mode="after")
     def _topology(self):
+        if self.stages and self.planetary is None:
+            raise ValueError("stages: give [planetary] first, the gearbox's first stage")
+        chain = [self.planetary, *self.stages] if self.planetary is not None else []
+        if len(chain) > 1:
+            self._chain(chain)
+        if chain and chain[-1].output_gear is None and chain[-1].output_shaft_stiffness is not None:
+            raise ValueError(f"{_where(len(chain) - 1)}.output_shaft_stiffness: the last stage drives no train "
+                             "(give output_gear, or remove the stiffness)")
         if self.planetary is not None and not self.gears and not self.meshes and not self.shafts:
-            return self           # a planetary stage alone: no train to check
+            return self           # planetary stages alone: no train to check
         if self.drive is None:
             raise ValueError("drive: a gear train needs [drive] (input, speed, power or torque)")
         names = [g.name for g in self.gears]
@@ -467,6 +563,8 @@ class Model(Spec):
             if g.face_width > b_max:
                 raise ValueError(f"gears[{k}].face_width: {g.face_width:.4g} m is more than {b_max:.4g} m "
                                  f"(100 modules or 2 pitch diameters, whichever is larger)")
+        if self.planetary is not None and [self.planetary, *self.stages][-1].output_gear is not None:
+            self._gearbox(names)
         gear = self.gears[names.index(self.drive.input)]
         top = max(self.drive.speed, self.sweep.speed_max or 0.0)
         v = top * 0.5 * gear.module * gear.teeth
@@ -474,3 +572,57 @@ class Model(Spec):
             raise ValueError(f"drive.speed: a pitch-line speed of {v:.4g} m/s at the input gear is above "
                              f"{V_MAX:g} m/s (the fastest turbo gears run below 200 m/s)")
         return self
+
+    def _gearbox(self, names):
+        """A planetary stage driving the train: the train starts at the stage's output gear, with the
+        torque (and, when the rating gives the stage's speed, the speed) the stage delivers."""
+        from .gearbox import output_torque
+        from .planetary import MEMBERS, _speed_ratio, stage_of
+
+        chain = [self.planetary, *self.stages]
+        pl, where = chain[-1], _where(len(chain) - 1)
+        if pl.output_gear not in names:
+            raise ValueError(f"{where}.output_gear: no gear named {pl.output_gear!r} (gears: {', '.join(names)})")
+        if self.drive.input != pl.output_gear:
+            raise ValueError(f"drive.input: the train of a gearbox starts at the stage's output gear "
+                             f"{pl.output_gear!r}, got {self.drive.input!r}")
+        t_out = output_torque(pl)
+        if self.drive.torque is None or abs(self.drive.torque - t_out) > 1e-6 * t_out:
+            got = "power" if self.drive.torque is None else f"{self.drive.torque:.9g} N m"
+            raise ValueError(f"drive.torque: the stage delivers {t_out:.9g} N m to {pl.output_gear!r} "
+                             f"({where}.torque x speed ratio), got {got}")
+        if pl.rating is not None:
+            st = stage_of(pl)
+            out = next(m for m in MEMBERS if m not in (pl.fixed, pl.input))
+            w_out = pl.rating.speed / abs(_speed_ratio(st, pl.input, out))
+            if abs(self.drive.speed - w_out) > 1e-6 * w_out:
+                raise ValueError(f"drive.speed: the stage turns {pl.output_gear!r} at {w_out:.9g} rad/s "
+                                 f"({where}.rating.speed / speed ratio), got {self.drive.speed:.9g} rad/s")
+
+    def _chain(self, chain):
+        """Planetary stages in series: each but the last drives the next one's input member through its
+        output shaft, with the torque (and, with ratings, the speed) it delivers."""
+        from .gearbox import output_speed, output_torque
+
+        for k, (a, b) in enumerate(zip(chain, chain[1:])):
+            wa, wb = _where(k), _where(k + 1)
+            if a.output_gear is not None:
+                raise ValueError(f"{wa}.output_gear: only the last stage drives the train; this one drives {wb}")
+            if a.output_shaft_stiffness is None:
+                raise ValueError(f"{wa}.output_shaft_stiffness: this stage drives {wb} through its output shaft: "
+                                 "give the shaft's torsional stiffness")
+            t = output_torque(a)
+            if abs(b.torque - t) > 1e-6 * t:
+                raise ValueError(f"{wb}.torque: the stage before delivers {t:.9g} N m ({wa}.torque x speed ratio), "
+                                 f"got {b.torque:.9g} N m")
+            if a.rating is not None and b.rating is not None:
+                w = output_speed(a)
+                if abs(b.rating.speed - w) > 1e-6 * w:
+                    raise ValueError(f"{wb}.rating.speed: the stage before turns it at {w:.9g} rad/s "
+                                     f"({wa}.rating.speed / speed ratio), got {b.rating.speed:.9g} rad/s")
+
+
+def _where(k: int) -> str:
+    """The model-file path of stage ``k`` of a gearbox (0: [planetary], then [[stages]])."""
+    return "planetary" if k == 0 else f"stages[{k - 1}]"
+

@@ -57,10 +57,19 @@ class Stage:
     pressure_angle: float = math.radians(20.0)
     position_errors: tuple = ()        # e_n, m (tangential, + with the carrier's rotation)
     support: dict = field(default_factory=dict)   # member -> torsional stiffness (N m/rad) or "fixed"
+    ring_teeth: int | None = None      # none: z_s + 2 z_p (standard gears)
+    centre_distance: float | None = None   # none: (z_s + z_p) m / 2 (no profile shift)
 
     @property
     def z_ring(self) -> int:
-        return self.z_sun + 2 * self.z_planet
+        return self.ring_teeth or self.z_sun + 2 * self.z_planet
+
+    @property
+    def cosines(self) -> tuple[float, float]:
+        """cos of the working pressure angles of the sun-planet and ring-planet meshes:
+        R cos(alpha_ws) = r_bs + r_bp, R cos(alpha_wr) = r_br - r_bp."""
+        rbs, rbp, rbr, R = self.radii
+        return (rbs + rbp) / R, (rbr - rbp) / R
 
     @property
     def n(self) -> int:
@@ -71,7 +80,7 @@ class Stage:
         """(r_bs, r_bp, r_br, R) in m."""
         c = math.cos(self.pressure_angle)
         rs, rp, rr = (0.5 * z * self.module for z in (self.z_sun, self.z_planet, self.z_ring))
-        return rs * c, rp * c, rr * c, rs + rp
+        return rs * c, rp * c, rr * c, self.centre_distance or rs + rp
 
     def errors(self) -> np.ndarray:
         e = np.zeros(self.n)
@@ -159,7 +168,7 @@ def load_sharing(st: Stage, torque: float, member: str = "sun") -> dict:
     M, K, names = matrices(st)
     n = st.n
     e = st.errors()
-    c = math.cos(st.pressure_angle)
+    c_s, c_r = st.cosines
     full = len(MEMBERS) + n
     # the error terms: V contains 1/2 k (a.q - e c)^2, so the load vector gains k e c a
     f = np.zeros(full)
@@ -169,27 +178,42 @@ def load_sharing(st: Stage, torque: float, member: str = "sun") -> dict:
         a[0], a[2], a[3 + i] = rbs, -(rbs + rbp), rbp
         b = np.zeros(full)
         b[1], b[2], b[3 + i] = rbr, -(rbr - rbp), -rbp
-        f += st.k_sun_planet * e[i] * c * a + st.k_ring_planet * e[i] * c * b
+        f += st.k_sun_planet * e[i] * c_s * a + st.k_ring_planet * e[i] * c_r * b
     keep = [MEMBERS.index(nm) if nm in MEMBERS else 3 + int(nm[6:]) - 1 for nm in names]
     q_free = np.linalg.solve(K, f[keep])
     q = np.zeros(full)
     q[keep] = q_free
     ths, thr, thc = q[0], q[1], q[2]
     thp = q[3:]
-    d_s = rbs * (ths - thc) + rbp * (thp - thc) - e * c
-    d_r = rbr * (thr - thc) - rbp * (thp - thc) - e * c
+    d_s = rbs * (ths - thc) + rbp * (thp - thc) - e * c_s
+    d_r = rbr * (thr - thc) - rbp * (thp - thc) - e * c_r
     F_s, F_r = st.k_sun_planet * d_s, st.k_ring_planet * d_r
+    if F_s.sum() < 0:
+        # the torque loads the other flanks (the carrier or ring drives the sun backwards in this
+        # sign convention): forces on the loaded flanks are positive
+        F_s, F_r = -F_s, -F_r
     mean = F_s.mean()
     return {"sun_planet_force": F_s, "ring_planet_force": F_r, "share": F_s / F_s.sum(),
             "load_sharing_factor": float(F_s.max() / mean) if mean > 0 else math.inf,
             "contact_lost": bool((F_s < 0).any() or (F_r < 0).any())}
 
 
+def centre_distance(spec) -> float:
+    """The stage's centre distance (m): given, else the sun-planet zero-backlash one (profile shifts)."""
+    if spec.centre_distance is not None:
+        return spec.centre_distance
+    from .planetary_rating import gears_of_spec, working_geometry
+
+    return working_geometry(gears_of_spec(spec))["a_w"] * 1e-3
+
+
 def stage_of(spec, support=None) -> Stage:
     """The Stage of a model's ``planetary`` section (SI)."""
     n = spec.planets
     psi = tuple(spec.planet_angles) if spec.planet_angles is not None else tuple(2 * math.pi * i / n for i in range(n))
-    return Stage(z_sun=spec.sun_teeth, z_planet=spec.planet_teeth, module=spec.module, planet_angles=psi,
+    shifted = spec.centre_distance is not None or any(spec.profile_shifts) or spec.ring_teeth is not None
+    return Stage(ring_teeth=spec.ring_teeth, centre_distance=centre_distance(spec) if shifted else None,
+                 z_sun=spec.sun_teeth, z_planet=spec.planet_teeth, module=spec.module, planet_angles=psi,
                  k_sun_planet=spec.sun_planet_stiffness, k_ring_planet=spec.ring_planet_stiffness,
                  inertia_sun=spec.sun_inertia, inertia_ring=spec.ring_inertia, inertia_carrier=spec.carrier_inertia,
                  inertia_planet=spec.planet_inertia, mass_planet=spec.planet_mass, pressure_angle=spec.pressure_angle,
@@ -197,17 +221,21 @@ def stage_of(spec, support=None) -> Stage:
                  support=support if support is not None else {spec.fixed: "fixed"})
 
 
-def analyse(spec) -> tuple[dict, dict]:
+def analyse(spec, iso=None) -> tuple[dict, dict]:
     """Summary entry and arrays of a model's planetary stage: phasing, modes (the fixed member held),
-    load sharing (the fixed member and the output held, the torque on the input)."""
-    st = stage_of(spec)
+    load sharing (the fixed member and the output held, the torque on the input); with ``lateral``
+    the lateral-torsional modes and load sharing, with ``rating`` the ISO rating of both meshes
+    (``iso``: the model's [iso] section)."""
+    lat = spec.lateral
+    hold = lat.support_stiffness if lat is not None and lat.support_stiffness is not None else "fixed"
+    st = stage_of(spec, support={spec.fixed: hold})
     rbs, rbp, rbr, R = st.radii
     g_s, g_r = phases(st)
     f, V, names, kinds = modes(st)
     rigid = f < 1e-6 * max(f.max(), 1e-300)
     f_planet = math.sqrt(rbp ** 2 * (st.k_sun_planet + st.k_ring_planet) / st.inertia_planet) / (2 * math.pi)
     output = next(m for m in MEMBERS if m not in (spec.fixed, spec.input))
-    held = stage_of(spec, support={spec.fixed: "fixed", output: "fixed"})
+    held = stage_of(spec, support={spec.fixed: hold, output: "fixed"})
     # the sun's share of the torques (T_s : T_r : T_c = 1 : z_r / z_s : -(1 + z_r / z_s), the stage in balance)
     t_sun = {"sun": spec.torque, "ring": spec.torque * st.z_sun / st.z_ring,
              "carrier": spec.torque * st.z_sun / (st.z_sun + st.z_ring)}[spec.input]
@@ -230,7 +258,72 @@ def analyse(spec) -> tuple[dict, dict]:
         "position_errors": [float(x) for x in st.errors()],
     }
     arrays = {"f": f[~rigid], "V": V[:, ~rigid], "names": names, "forces": ls}
+    k_gamma = ls["load_sharing_factor"]
+    if lat is not None:
+        lsum, larr = _lateral(spec, st, output)
+        summary["lateral"] = lsum
+        arrays["lateral"] = larr
+        k_gamma = lsum["load_sharing_factor"]
+    if spec.rating is not None and iso is not None:
+        from .planetary_rating import rate_spec
+
+        summary["rating"] = rate_spec(spec, iso, k_gamma, t_sun, member_speeds(st, spec.fixed, spec.input,
+                                                                               spec.rating.speed))
     return summary, arrays
+
+
+def lateral_stage(spec, st: Stage, torsion: dict):
+    """The planetary_lateral.LateralStage of a model's stage with its ``lateral`` data."""
+    from .planetary_lateral import LateralStage
+
+    lat = spec.lateral
+    rbs, rbp, rbr, R = st.radii
+    c_s, c_r = st.cosines
+    rigid = lambda k: "fixed" if k is None else k       # noqa: E731
+    return LateralStage(base_radius_sun=rbs, base_radius_planet=rbp, base_radius_ring=rbr, centre_distance=R,
+                        alpha_sun=math.acos(c_s), alpha_ring=math.acos(c_r), planet_angles=st.planet_angles,
+                        k_sun_planet=st.k_sun_planet, k_ring_planet=st.k_ring_planet,
+                        k_planet_bearing=lat.planet_bearing_stiffness,
+                        mass={"sun": lat.sun_mass, "ring": lat.ring_mass, "carrier": lat.carrier_mass,
+                              "planet": st.mass_planet},
+                        inertia={"sun": st.inertia_sun, "ring": st.inertia_ring, "carrier": st.inertia_carrier,
+                                 "planet": st.inertia_planet},
+                        bearing={"sun": lat.sun_bearing_stiffness, "ring": rigid(lat.ring_bearing_stiffness),
+                                 "carrier": rigid(lat.carrier_bearing_stiffness)},
+                        torsion=torsion, position_errors=st.position_errors)
+
+
+def _lateral(spec, st: Stage, output: str) -> tuple[dict, dict]:
+    """Lateral-torsional modes (the fixed member on its support) and load sharing (output held too)."""
+    from . import planetary_lateral as pl
+
+    lat = spec.lateral
+    hold = "fixed" if lat.support_stiffness is None else lat.support_stiffness
+    ls_ = lateral_stage(spec, st, {spec.fixed: hold})
+    f, V, names, kinds = pl.modes(ls_)
+    rigid = f < 1e-6 * max(f.max(), 1e-300)
+    ls = pl.load_sharing(lateral_stage(spec, st, {spec.fixed: hold, output: "fixed"}), spec.torque, spec.input)
+    counts = {k: sum(1 for kk, r in zip(kinds, rigid) if kk == k and not r)
+              for k in ("rotational", "translational", "planet", "mixed")}
+    out = {"floating_sun": lat.sun_bearing_stiffness == 0.0,
+           "natural_frequencies_hz": [float(x) for x, r in zip(f, rigid) if not r],
+           "mode_types": [k for k, r in zip(kinds, rigid) if not r], "mode_counts": counts,
+           "sun_planet_force": [float(x) for x in ls["sun_planet_force"]],
+           "ring_planet_force": [float(x) for x in ls["ring_planet_force"]],
+           "pin_force_tangential": [float(x) for x in ls["pin_force_tangential"]],
+           "load_share": [float(x) for x in ls["share"]], "load_sharing_factor": ls["load_sharing_factor"],
+           "sun_displacement": [float(x) for x in ls["sun_displacement"]]}
+    return out, {"f": f[~rigid], "V": V[:, ~rigid], "names": names, "forces": ls}
+
+
+def member_speeds(st: Stage, fixed: str, inp: str, speed: float) -> dict:
+    """Speeds (rad/s, one sense) of sun, ring and carrier with ``fixed`` at rest and ``inp`` at ``speed``
+    (Willis: w_s - w_c = -(z_r / z_s)(w_r - w_c))."""
+    zs, zr = st.z_sun, st.z_ring
+    unit = {"ring": {"carrier": 1.0, "sun": 1.0 + zr / zs, "ring": 0.0},
+            "carrier": {"carrier": 0.0, "sun": 1.0, "ring": -zs / zr},
+            "sun": {"sun": 0.0, "carrier": 1.0, "ring": 1.0 + zs / zr}}[fixed]
+    return {m: speed * w / unit[inp] for m, w in unit.items()}
 
 
 def _speed_ratio(st: Stage, inp: str, out: str) -> float:
@@ -247,46 +340,40 @@ def _speed_ratio(st: Stage, inp: str, out: str) -> float:
     return w[inp] / w[out]
 
 
-def run_stage(model, progress=None):
-    """The Result of a model that is a planetary stage alone."""
-    import xarray as xr
-
-    from .. import dumps
-    from ..results import Result, unit_map, variable
-
-    if progress:
-        progress(0.0, "planetary stage")
-    summary, a = analyse(model.planetary)
-    ds = xr.Dataset(
-        {"natural_frequency": variable(a["f"], ("mode",), "Hz", "natural frequency of the stage (fixed member held)"),
-         "mode_shape": variable(a["V"], ("coordinate", "mode"), "1", "mass-normalised mode shape (rotations)"),
-         "sun_planet_force": variable(a["forces"]["sun_planet_force"], ("planet",), "N", "static sun-planet mesh force"),
-         "ring_planet_force": variable(a["forces"]["ring_planet_force"], ("planet",), "N", "static ring-planet mesh force"),
-         "phase_sun_planet": variable(np.array(summary["phase_sun_planet"]), ("planet",), "1", "sun-planet mesh phase (periods)"),
-         "phase_ring_planet": variable(np.array(summary["phase_ring_planet"]), ("planet",), "1", "ring-planet mesh phase (periods)")},
-        coords={"mode": np.arange(len(a["f"])), "coordinate": a["names"], "planet": np.arange(1, len(summary["load_share"]) + 1)},
-        attrs={"model_toml": dumps(model), "title": model.name or "planetary stage", "planetary_only": 1})
-    r = Result(kind="gear-train", ds=ds, summary={"planetary": summary})
-    if summary["load_sharing_factor"] == math.inf or min(summary["sun_planet_force"] + summary["ring_planet_force"]) < 0:
-        fmin = min(summary["sun_planet_force"] + summary["ring_planet_force"])
-        r.diagnose("tooth-separation", f"planetary stage: a planet's mesh force is negative ({fmin:.4g} N) at the "
-                   "given torque and pin position errors: that planet's teeth would lose contact (the linear "
-                   "load sharing does not hold)", "planetary.sun_planet_force", fmin, 0.0, "N")
-    r.units = unit_map(r.summary, PLANETARY_UNITS)
-    if progress:
-        progress(1.0, "done")
-    return r
+def diagnose_stage(result, summary: dict, prefix: str = "planetary") -> None:
+    """tooth-separation when a planet's static mesh force is negative, in the torsional or the
+    lateral-torsional load sharing: that planet's teeth would lose contact (the linear load sharing
+    does not hold)."""
+    for key, what in (("", "torsional"), ("lateral", "lateral-torsional")):
+        s = summary.get(key) if key else summary
+        if not s:
+            continue
+        forces = s["sun_planet_force"] + s["ring_planet_force"]
+        fmin = min(forces)
+        if fmin < 0 or s["load_sharing_factor"] == math.inf:
+            where = prefix + "." + (key + "." if key else "") + "sun_planet_force"
+            result.diagnose("tooth-separation", f"{prefix} ({what} model): a planet's mesh force is negative "
+                            f"({fmin:.4g} N) at the given torque and pin position errors: that planet's teeth would "
+                            "lose contact (the linear load sharing does not hold)", where, fmin, 0.0, "N")
 
 
-PLANETARY_UNITS = {"planetary.planet_angles": "rad", "planetary.centre_distance": "m",
+PLANETARY_UNITS = {"planetary.lateral.natural_frequencies_hz": "Hz", "planetary.lateral.*_force": "N",
+                   "planetary.lateral.sun_displacement": "m", "planetary.lateral.*": "1",
+                   "planetary.rating.meshes.*.*.sigma_*": "Pa", "planetary.rating.meshes.*.reduced_mass": "kg/m",
+                   "planetary.rating.meshes.*.resonance_speed_rpm": "rpm", "planetary.rating.meshes.*.iso_c_*": "N/m^2",
+                   "planetary.rating.meshes.*.working_pressure_angle": "rad", "planetary.rating.*": "1",
+                   "planetary.planet_angles": "rad", "planetary.centre_distance": "m",
                    "planetary.natural_frequencies_hz": "Hz", "planetary.planet_mode_frequency_closed_form_hz": "Hz",
                    "planetary.torque_sun": "N*m", "planetary.*_force": "N", "planetary.position_errors": "m",
                    "planetary.*": "1"}
+# further stages of a gearbox ("stages.stage2.", ...) have the first one's units; the gearbox's modes
+PLANETARY_UNITS.update({k.replace("planetary.", "stages.*.", 1): v for k, v in list(PLANETARY_UNITS.items())})
+PLANETARY_UNITS.update({"gearbox.natural_frequencies_hz": "Hz", "gearbox.*": "1"})
 
 
-def report_lines(spec) -> list[str]:
+def report_lines(spec, iso=None) -> list[str]:
     """The ``check`` text of a planetary stage."""
-    s, _ = analyse(spec)
+    s, _ = analyse(spec, iso)
     out = ["", f"planetary stage: sun {spec.sun_teeth}, planets {spec.planet_teeth} x {spec.planets}, ring {s['ring_teeth']} "
                f"teeth, module {spec.module * 1e3:g} mm, centre distance {s['centre_distance'] * 1e3:.3f} mm; "
                f"{spec.input} in, {s['output']} out, {spec.fixed} fixed: speed ratio {s['speed_ratio_input_over_output']:.5g}",
@@ -299,4 +386,24 @@ def report_lines(spec) -> list[str]:
               if s["planet_mode_frequency_closed_form_hz"] else ""),
            f"  load sharing ({spec.torque:g} N m on the {spec.input}, {s['output']} held): sun-planet forces "
            + ", ".join(f"{x:.1f}" for x in s["sun_planet_force"]) + f" N, K_gamma {s['load_sharing_factor']:.4f}"]
+    if "lateral" in s:
+        la = s["lateral"]
+        out += [f"  lateral-torsional model (Lin & Parker 1999){', floating sun' if la['floating_sun'] else ''}: "
+                + ", ".join(f"{n} {k}" for k, n in la["mode_counts"].items() if n) + " modes; "
+                + ", ".join(f"{f:.1f} Hz {k[:5]}" for f, k in zip(la["natural_frequencies_hz"], la["mode_types"])),
+                "  load sharing (lateral-torsional): sun-planet forces " + ", ".join(f"{x:.1f}" for x in la["sun_planet_force"])
+                + f" N, K_gamma {la['load_sharing_factor']:.4f} (torsional model: {s['load_sharing_factor']:.4f})"]
+    if "rating" in s:
+        r = s["rating"]
+        out.append(f"  ISO 6336 rating, K_gamma {r['K_gamma']:.4f} ({r['K_gamma_source']}); load cycles "
+                   + ", ".join(f"{k} {v:.4g}" for k, v in r["load_cycles"].items()))
+        for name, e in r["meshes"].items():
+            out.append(f"    {name}: alpha_w {math.degrees(e['working_pressure_angle']):.3f} deg, eps_alpha {e['contact_ratio']:.4f}, "
+                       f"K_v {e['K_v']:.4f} ({e['K_v_source']}), Z_H {e['Z_H']:.4f}, Z_eps {e['Z_eps']:.4f}, {e['verdict']}")
+            for gear in (e["pinion"], e["wheel"]):
+                g = e[gear]
+                sf = "not rated" if g["S_F"] is None else f"{g['S_F']:.3f} (Y_F {g['Y_F']:.4f}, Y_S {g['Y_S']:.4f}, Y_M {g['Y_M']:g})"
+                out.append(f"      {gear:7s}: sigma_H {g['sigma_H'] / 1e6:.1f} N/mm^2, S_H {g['S_H']:.3f} (Z_NT {g['Z_NT']:.3f}, "
+                           f"Z_W {g['Z_W']:.3f}); S_F {sf}; {g['load_cycles']:.4g} cycles")
+            out += [f"      note: {n}" for n in e["notes"]]
     return out

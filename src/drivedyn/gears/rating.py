@@ -18,11 +18,10 @@ those units. Equation sources, by clause of ISO 6336-1/-2/-3:2006:
   rho'), Y_RrelT (root roughness), Y_X (module).
 
 The contact chain is checked digit by digit against ISO/TR 6336-30:2017 example 1
-(tests/gears/test_rating.py). No published worked example with tooth-root values was found for
-the root chain: its geometry (s_Fn, rho_F at the 30 deg tangent) is checked against the fillet
-that the basic rack generates (to 2e-5 m_n), and the load point d_en against the contact geometry
-of a spur pair; the root factors themselves (Y_F, Y_S, Y_NT, Y_deltarelT, Y_RrelT, Y_X) are not
-checked against published values.
+(tests/gears/test_rating.py); the root geometry (s_Fn, rho_F at the 30 deg tangent) against the
+fillet that the basic rack generates (to 2e-5 m_n); and both chains, external and internal contact
+and the external gears' root factors, against a KISSsoft report of a planetary stage to its printed
+digits (tests/gears/test_planetary_rating.py). An internal gear's tooth root is not rated.
 """
 from __future__ import annotations
 
@@ -65,6 +64,8 @@ class Pair:
     E: tuple = (206000.0, 206000.0)
     nu: tuple = (0.3, 0.3)
     b_each: tuple | None = None  # face widths of each gear (for K_Fbeta's b/h), default b
+    internal: bool = False      # gear 2 is an internal gear (a ring): z2 > 0, da2 its (inner) tip diameter,
+                                # x2 its profile shift as ISO 21771 writes it (d_a2 = d2 - 2 m_n (h_aP + x2))
 
 
 @dataclass(frozen=True)
@@ -73,6 +74,7 @@ class Material:
     sigma_hlim: float
     sigma_flim: float
     yield_strength: float | None = None
+    hardness_hb: float | None = None   # Brinell hardness, for the work hardening factor Z_W of a soft gear
 
 
 @dataclass(frozen=True)
@@ -94,6 +96,9 @@ class Load:
     k_halpha: float | None = None  # given instead of eqs. 73-76
     s_hmin: float = 1.0
     s_fmin: float = 1.0
+    k_gamma: float = 1.0        # mesh load factor of a planetary stage (ISO 6336-1: K_gamma multiplies F_t)
+    y_m: tuple = (1.0, 1.0)     # mean stress factor per gear (0.7: a planet's teeth bent both ways)
+    cycles: tuple | None = None  # load cycles per gear; default n1 60 h (pinion) and that / u (wheel)
 
 
 @dataclass
@@ -116,10 +121,13 @@ def geometry(p: Pair) -> dict:
     d1, d2 = p.z1 * p.mn / math.cos(p.beta), p.z2 * p.mn / math.cos(p.beta)
     db1, db2 = d1 * math.cos(at), d2 * math.cos(at)
     beta_b = math.atan(math.tan(p.beta) * math.cos(at))
-    a = 0.5 * (d1 + d2)
+    # internal (ISO 21771): the ring's tip circle lies inside, the path of contact runs from its tip
+    # inwards, the centre distance is the difference of the radii
+    sign = -1.0 if p.internal else 1.0
+    a = 0.5 * (d2 + sign * d1)
     awt = math.acos(a * math.cos(at) / p.aw)
     pbt = math.pi * p.mn * math.cos(at) / math.cos(p.beta)
-    g_alpha = 0.5 * (math.sqrt(p.da1 ** 2 - db1 ** 2) + math.sqrt(p.da2 ** 2 - db2 ** 2)) - p.aw * math.sin(awt)
+    g_alpha = 0.5 * (math.sqrt(p.da1 ** 2 - db1 ** 2) + sign * math.sqrt(p.da2 ** 2 - db2 ** 2)) - sign * p.aw * math.sin(awt)
     eps_a = g_alpha / pbt
     eps_b = p.b * math.sin(p.beta) / (math.pi * p.mn)
     zn = [z / (math.cos(beta_b) ** 2 * math.cos(p.beta)) for z in (p.z1, p.z2)]
@@ -253,7 +261,7 @@ def rate(p: Pair, mats: tuple, load: Load) -> Rating:
     ft = 2000.0 * load.torque1 / d1
     v = math.pi * d1 * load.n1 / 60000.0
     # ISO 6336-1 7.6 method C (pinion offset s = 0, no helix modification)
-    fm = ft * load.ka * load.kv
+    fm = ft * load.ka * load.k_gamma * load.kv
     if load.k_hbeta is None:
         f_sh = fm / b * 0.023 * (b / d1) ** 2
         f_betax = 1.33 * f_sh + load.f_ma
@@ -266,7 +274,9 @@ def rate(p: Pair, mats: tuple, load: Load) -> Rating:
     else:
         f_sh = f_betax = f_betay = y_beta = float("nan")
         k_hb = load.k_hbeta
-    h1, h2 = (p.da1 - (g["d1"] - 2 * p.mn * (p.h_fp[0] - p.x1))) / 2, (p.da2 - (g["d2"] - 2 * p.mn * (p.h_fp[1] - p.x2))) / 2
+    h1 = (p.da1 - (g["d1"] - 2 * p.mn * (p.h_fp[0] - p.x1))) / 2
+    h2 = ((g["d2"] + 2 * p.mn * (p.h_fp[1] - p.x2)) - p.da2) / 2 if p.internal else \
+        (p.da2 - (g["d2"] - 2 * p.mn * (p.h_fp[1] - p.x2))) / 2
     bb = p.b_each or (b, b)
     bh = max(min(bb[0] / h1, bb[1] / h2), 3.0)
     n_f = bh ** 2 / (1 + bh + bh ** 2)
@@ -284,7 +294,7 @@ def rate(p: Pair, mats: tuple, load: Load) -> Rating:
 
     if load.k_halpha is None:
         y_a = running_in(load.f_pb, _running_class(mats), min(m.sigma_hlim for m in mats), v)
-        f_th = ft * load.ka * load.kv * k_hb
+        f_th = ft * load.ka * load.k_gamma * load.kv * k_hb
         term = load.c_gamma_alpha * max(load.f_pb - y_a, 0.0) / (f_th / b)
         eg = g["eps_gamma"]
         k_a = (eg / 2 * (0.9 + 0.4 * term)) if eg <= 2 else 0.9 + 0.4 * math.sqrt(2 * (eg - 1) / eg) * term
@@ -295,62 +305,105 @@ def rate(p: Pair, mats: tuple, load: Load) -> Rating:
     z_h = math.sqrt(2 * math.cos(g["beta_b"]) * math.cos(g["alpha_wt"]) / (math.cos(g["alpha_t"]) ** 2 * math.sin(g["alpha_wt"])))
     z_e = math.sqrt(1 / (math.pi * ((1 - p.nu[0] ** 2) / p.E[0] + (1 - p.nu[1] ** 2) / p.E[1])))
     z_beta = 1 / math.sqrt(math.cos(p.beta))
-    ra1, ra2, rb1, rb2 = p.da1 / 2, p.da2 / 2, g["db1"] / 2, g["db2"] / 2
-    # M_1, M_2 (ISO 6336-2 6.2) with the tip radii; transverse pitch angles 2 pi / z
+    ra1, rb1, rb2 = p.da1 / 2, g["db1"] / 2, g["db2"] / 2
+    # M_1, M_2 (ISO 6336-2 6.2): sqrt of the product of the radii of curvature at the pitch point over
+    # that at the inner point of single contact B of the pinion (D of the wheel). Along the line of
+    # action from the pinion's tangent point, the pinion's radius is s and the wheel's T1T2 - s
+    # (external) or s + a_w sin(alpha_wt) (internal); B = E - p_bt, D = A + p_bt. For an external pair
+    # this is ISO's formula with the tip radii written out.
     t = math.tan(g["alpha_wt"])
-    m1 = t / math.sqrt((math.sqrt((ra1 / rb1) ** 2 - 1) - 2 * math.pi / p.z1)
-                       * (math.sqrt((ra2 / rb2) ** 2 - 1) - (ea - 1) * 2 * math.pi / p.z2))
-    m2 = t / math.sqrt((math.sqrt((ra2 / rb2) ** 2 - 1) - 2 * math.pi / p.z2)
-                       * (math.sqrt((ra1 / rb1) ** 2 - 1) - (ea - 1) * 2 * math.pi / p.z1))
+    lwt = p.aw * math.sin(g["alpha_wt"])
+    s_e = math.sqrt(ra1 ** 2 - rb1 ** 2)
+    s_a = s_e - g["eps_alpha"] * g["p_bt"]
+
+    def rho2(s):
+        return s + lwt if p.internal else lwt - s
+
+    def mm(s):
+        return t / math.sqrt(s / rb1 * rho2(s) / rb2)
+
+    m1, m2 = mm(s_e - g["p_bt"]), mm(s_a + g["p_bt"])
 
     def zbd(mm):
         if eb >= 1 or mm <= 1:
             return 1.0
         return mm if p.beta == 0 else mm - eb * (mm - 1)
 
-    z_b, z_d = zbd(m1), zbd(m2)
-    sigma_h0 = z_h * z_e * z_eps * z_beta * math.sqrt(ft / (d1 * b) * (u + 1) / u)
-    k_h = load.ka * load.kv * k_hb * k_ha
+    # ISO 6336-2 6.2: Z_D = 1 for an internal wheel
+    z_b, z_d = zbd(m1), (1.0 if p.internal else zbd(m2))
+    # (u + 1) / u with u negative for an internal pair (ISO 6336-2 eq. for sigma_H0)
+    u_s = -u if p.internal else u
+    sigma_h0 = z_h * z_e * z_eps * z_beta * math.sqrt(ft / (d1 * b) * (u_s + 1) / u_s)
+    k_h = load.ka * load.k_gamma * load.kv * k_hb * k_ha
     # lubricant, velocity, roughness (ISO 6336-2 11): one C_ZL from the weaker flank
     shl = min(m.sigma_hlim for m in mats)
     c_zl = _c_zl(shl)
     z_l = c_zl + 4 * (1 - c_zl) / (1.2 + 134.0 / load.nu40) ** 2
     c_zv = c_zl + 0.02
     z_v = c_zv + 2 * (1 - c_zv) / math.sqrt(0.8 + 32.0 / v)
-    rho1, rho2 = rb1 * t, rb2 * t
-    rho_red = rho1 * rho2 / (rho1 + rho2)
+    rho1, rho2_ = rb1 * t, rb2 * t
+    rho_red = rho1 * rho2_ / (rho2_ - rho1 if p.internal else rho1 + rho2_)
     rz10 = 0.5 * (load.rz_flank[0] + load.rz_flank[1]) * (10.0 / rho_red) ** (1 / 3)
     c_zr = 0.15 if shl < 850 else (0.32 - 0.0002 * shl if shl < 1200 else 0.08)
     z_r = (3.0 / rz10) ** c_zr
-    n_l = (60.0 * load.life_hours * load.n1, 60.0 * load.life_hours * load.n1 / u)
-    r.factors = {"F_t": ft, "v": v, "K_A": load.ka, "K_v": load.kv, "K_Hbeta": k_hb, "K_Fbeta": k_fb,
+    n_l = load.cycles or (60.0 * load.life_hours * load.n1, 60.0 * load.life_hours * load.n1 / u)
+    z_w = _z_w(mats)
+    r.factors = {"F_t": ft, "v": v, "K_A": load.ka, "K_gamma": load.k_gamma, "K_v": load.kv, "K_Hbeta": k_hb,
+                 "K_Fbeta": k_fb,
                  "K_Halpha": k_ha, "K_Falpha": k_fa, "f_sh": f_sh, "F_betax": f_betax, "y_beta": y_beta,
                  "F_betay": f_betay, "N_F": n_f, "Z_H": z_h, "Z_E": z_e, "Z_eps": z_eps, "Z_beta": z_beta,
-                 "Z_L": z_l, "Z_v": z_v, "Z_R": z_r, "R_z10": rz10, "sigma_H0": sigma_h0,
+                 "Z_L": z_l, "Z_v": z_v, "Z_R": z_r, "R_z10": rz10, "sigma_H0": sigma_h0, "rho_red": rho_red,
+                 "M_1": m1, "M_2": m2,
                  "Y_beta": 1 - min(eb, 1.0) * min(math.degrees(p.beta), 30.0) / 120.0}
     for which, (mat, zbd_, out) in enumerate(((mats[0], z_b, r.pinion), (mats[1], z_d, r.wheel))):
         who = "pinion" if which == 0 else "wheel"
         sigma_h = zbd_ * sigma_h0 * math.sqrt(k_h)
         z_nt = _loglog(n_l[which], _ZNT[mat.cls])
-        sigma_hg = mat.sigma_hlim * z_nt * z_l * z_v * z_r          # Z_W = Z_X = 1
+        sigma_hg = mat.sigma_hlim * z_nt * z_l * z_v * z_r * z_w[which]     # Z_X = 1
+        out.update({"Z_B_or_Z_D": zbd_, "sigma_H": sigma_h, "N_L": n_l[which], "Z_NT": z_nt, "Z_W": z_w[which],
+                    "sigma_HG": sigma_hg, "sigma_HP": sigma_hg / load.s_hmin, "S_H": sigma_hg / sigma_h,
+                    "sigma_Hlim": mat.sigma_hlim, "sigma_Flim": mat.sigma_flim, "material_class": mat.cls})
+        if which == 1 and p.internal:
+            # ISO 6336-3 rates an internal gear's root with the tooth form its pinion-type cutter
+            # generates; that construction is not built: the ring's root is not rated
+            notes.append("wheel: internal gear: tooth root not rated (ISO 6336-3's internal-gear tooth form, "
+                         "generated by a pinion-type cutter, is not built)")
+            nan = float("nan")
+            out.update({k: nan for k in ("Y_F", "Y_S", "sigma_F0", "sigma_F", "Y_NT", "Y_deltarelT", "Y_RrelT",
+                                         "Y_X", "sigma_FG", "sigma_FP", "S_F")})
+            out["Y_M"] = load.y_m[which]
+            continue
         root = _root(p, g, which, mat, load, notes)
         if root["eps_alpha_n"] > 2.05:
             notes.append(f"{who}: eps_alpha_n = {root['eps_alpha_n']:.3f} > 2.05: Y_DT = 1 kept (accuracy grade not modelled)")
         y_b = y_dt = 1.0
         bw = (p.b_each or (b, b))[which]
         sigma_f0 = ft / (bw * p.mn) * root["Y_F"] * root["Y_S"] * r.factors["Y_beta"] * y_b * y_dt
-        sigma_f = sigma_f0 * load.ka * load.kv * k_fb * k_fa
+        sigma_f = sigma_f0 * load.ka * load.k_gamma * load.kv * k_fb * k_fa
         y_nt = _loglog(n_l[which], _YNT[mat.cls])
         y_d = _y_delta(mat, root["q_s"], notes, who)
         y_r = _y_r(mat, (load.rz_root[which]))
         y_x = _lin(p.mn, _YX[mat.cls])
-        sigma_fg = mat.sigma_flim * 2.0 * y_nt * y_d * y_r * y_x     # Y_ST = 2
-        out.update({"Z_B_or_Z_D": zbd_, "sigma_H": sigma_h, "N_L": n_l[which], "Z_NT": z_nt, "sigma_HG": sigma_hg,
-                    "sigma_HP": sigma_hg / load.s_hmin, "S_H": sigma_hg / sigma_h, **root, "sigma_F0": sigma_f0,
-                    "sigma_F": sigma_f, "Y_NT": y_nt, "Y_deltarelT": y_d, "Y_RrelT": y_r, "Y_X": y_x,
-                    "sigma_FG": sigma_fg, "sigma_FP": sigma_fg / load.s_fmin, "S_F": sigma_fg / sigma_f,
-                    "sigma_Hlim": mat.sigma_hlim, "sigma_Flim": mat.sigma_flim, "material_class": mat.cls})
+        # Y_ST = 2; Y_M (ISO 6336-3:2019, 0.7 for teeth bent both ways, ISO 6336-3:2006 applied 0.7 to sigma_Flim)
+        sigma_fg = mat.sigma_flim * 2.0 * y_nt * y_d * y_r * y_x * load.y_m[which]
+        out.update({**root, "sigma_F0": sigma_f0, "sigma_F": sigma_f, "Y_NT": y_nt, "Y_deltarelT": y_d,
+                    "Y_RrelT": y_r, "Y_X": y_x, "Y_M": load.y_m[which], "sigma_FG": sigma_fg,
+                    "sigma_FP": sigma_fg / load.s_fmin, "S_F": sigma_fg / sigma_f})
     return r
+
+
+def _z_w(mats) -> tuple:
+    """Work hardening factor Z_W of each gear (ISO 6336-2:2006, 13): a through-hardened or structural
+    steel gear of Brinell hardness HB meshing with a surface-hardened one gains
+    Z_W = 1.2 - (HB - 130) / 1700 (HB within 130..470); 1 otherwise and without a hardness."""
+    out = []
+    for me, other in ((mats[0], mats[1]), (mats[1], mats[0])):
+        if me.cls in ("V", "St") and other.cls in ("Eh", "NT") and me.hardness_hb is not None:
+            hb = min(max(me.hardness_hb, 130.0), 470.0)
+            out.append(1.2 - (hb - 130.0) / 1700.0)
+        else:
+            out.append(1.0)
+    return tuple(out)
 
 
 def _running_class(mats) -> str:
@@ -390,13 +443,35 @@ def rate_mesh(model, sys_, j: int, kv: float) -> Rating:
                 b_each=(g1.b * 1e3, g2.b * 1e3))
     load = Load(torque1=abs(sys_.force_nominal[j]) * g1.rb, n1=abs(sys_.ratio[i1] * sys_.omega_in) * 30 / math.pi,
                 kv=kv, ka=iso.application_factor, life_hours=iso.life / 3600.0, nu40=iso.lubricant_viscosity * 1e6,
-                rz_flank=(iso.flank_roughness * 1e6,) * 2, rz_root=(iso.root_roughness * 1e6,) * 2,
+                rz_flank=tuple((g.flank_roughness or iso.flank_roughness) * 1e6 for g in (ga, gb)),
+                rz_root=tuple((g.root_roughness or iso.root_roughness) * 1e6 for g in (ga, gb)),
                 f_ma=iso.mesh_misalignment * 1e6, f_pb=iso.pitch_deviation * 1e6,
                 c_gamma_alpha=sys_.iso[j].c_gamma, k_hbeta=iso.face_load_factor, k_halpha=iso.transverse_load_factor,
-                s_hmin=iso.min_safety_pitting, s_fmin=iso.min_safety_bending)
+                s_hmin=iso.min_safety_pitting, s_fmin=iso.min_safety_bending,
+                cycles=tuple(cycles_of(sys_, i, j, iso.life) for i in (i1, i2)),
+                y_m=tuple(0.7 if _both_flanks(sys_, i) else 1.0 for i in (i1, i2)))
     r = rate(pair, (material_of(model, ga), material_of(model, gb)), load)
     r.geometry.update({"pinion": model.gears[i1].name, "wheel": model.gears[i2].name})
     return r
+
+
+def _role(sys_, i: int, j: int) -> str:
+    """Which flank of gear ``i`` mesh ``j`` loads: the driving or the driven one."""
+    return "driving" if int(sys_.mesh_a[j]) == i else "driven"
+
+
+def _both_flanks(sys_, i: int) -> bool:
+    """An idler: gear ``i`` drives one mesh and is driven in another, its teeth bent both ways
+    (ISO 6336-3: mean stress factor Y_M = 0.7)."""
+    return {_role(sys_, i, j) for j in range(sys_.m) if i in (int(sys_.mesh_a[j]), int(sys_.mesh_b[j]))} == {"driving", "driven"}
+
+
+def cycles_of(sys_, i: int, j: int, life: float) -> float:
+    """Load cycles of gear ``i``'s loaded flank in mesh ``j`` over ``life`` (s): a tooth meets every
+    mesh that loads the same flank once a turn (a pinion driving two wheels: twice a turn)."""
+    same = sum(1 for k in range(sys_.m) if i in (int(sys_.mesh_a[k]), int(sys_.mesh_b[k]))
+               and _role(sys_, i, k) == _role(sys_, i, j))
+    return abs(sys_.ratio[i] * sys_.omega_in) / (2 * math.pi) * life * same
 
 
 def summary_of(r_dyn: Rating, r_iso: Rating, load_min: tuple) -> dict:

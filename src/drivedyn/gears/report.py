@@ -11,9 +11,7 @@ from .train import assemble, method_b, reduced_mass_per_mesh
 def report(model) -> str:
     """Text report of what is known without integrating: per gear, per mesh, and the train's modes."""
     if model.planetary is not None and not model.meshes:
-        from .planetary import report_lines
-
-        return "\n".join([f"planetary stage: {model.name or '(unnamed)'}", *report_lines(model.planetary)])
+        return "\n".join([f"planetary stage: {model.name or '(unnamed)'}", *gearbox_lines(model)])
     s = assemble(model)
     out = [f"gear train: {model.name or '(unnamed)'}", ""]
     out.append(f"{'gear':10s} {'z':>4s} {'m mm':>6s} {'x':>6s} {'b mm':>6s} {'d mm':>8s} {'d_b mm':>8s} "
@@ -51,7 +49,7 @@ def report(model) -> str:
                 f"friction mu {s.mu[j]:g}",
                 f"  ISO method B: n_E1 {mb.resonance_speed * 60:.0f} rpm, N {N:.4f} ({region}), K_v {kv:.4f}"]
         if model.iso.rating:
-            out += _rating_lines(model, s, j, kv)
+            out += _rating_lines(model, s, j, kv if model.iso.dynamic_factor is None else model.iso.dynamic_factor)
     freqs, shapes, zeta = s.modes()
     out += ["", "natural frequencies (mean mesh stiffness, rigid-body mode removed):"]
     for r, (f, z) in enumerate(zip(freqs, zeta)):
@@ -59,10 +57,28 @@ def report(model) -> str:
         shape = " ".join(f"{v:+.3f}" for v in shapes[:, r] / np.abs(shapes[:, r]).max())
         out.append(f"  {f:10.2f} Hz  zeta {z:.4f}  = {orders} x mesh frequency  shape [{shape}]")
     if model.planetary is not None:
-        from .planetary import report_lines
-
-        out += report_lines(model.planetary)
+        out += gearbox_lines(model, s)
     return "\n".join(out)
+
+
+def gearbox_lines(model, sys_=None) -> list[str]:
+    """The ``check`` text of a model's planetary stages and, for a gearbox, its whole-train modes."""
+    from .planetary import report_lines
+
+    out = report_lines(model.planetary, model.iso)
+    for k, spec in enumerate(model.stages):
+        out += [line.replace("planetary stage:", f"stage {k + 2} (planetary):", 1) for line in report_lines(spec, model.iso)]
+    last = [model.planetary, *model.stages][-1]
+    if model.stages or (sys_ is not None and last.output_gear is not None):
+        from .gearbox import modes as gearbox_modes
+
+        gb = gearbox_modes(model, sys_ if last.output_gear is not None else None)
+        drives = f", the last driving {gb['output_gear']!r}" if gb["output_gear"] and sys_ is not None else ""
+        out += ["", f"gearbox: {' -> '.join(gb['stages'])}{drives}, joined by their output shafts; modes of the whole "
+                    f"train ({', '.join(dict.fromkeys(gb['model']))} stage models, rigid-body mode removed; kinetic "
+                    "energy share in the planetary stages):",
+                *(f"  {f:10.2f} Hz  stages {e:5.3f}" for f, e in zip(gb["natural_frequencies_hz"], gb["stage_energy_share"]))]
+    return out
 
 
 def _rating_lines(model, s, j, kv) -> list[str]:
@@ -71,7 +87,8 @@ def _rating_lines(model, s, j, kv) -> list[str]:
 
     r = rate_mesh(model, s, j, kv)
     f = r.factors
-    out = [f"  ISO 6336-2/-3 rating with ISO's K_v {kv:.4f} ({r.geometry['pinion']} = pinion): K_Hbeta {f['K_Hbeta']:.4f}, "
+    src = "ISO's" if model.iso.dynamic_factor is None else "the given"
+    out = [f"  ISO 6336-2/-3 rating with {src} K_v {kv:.4f} ({r.geometry['pinion']} = pinion): K_Hbeta {f['K_Hbeta']:.4f}, "
            f"K_Fbeta {f['K_Fbeta']:.4f}, K_Halpha {f['K_Halpha']:.4f}, Z_H {f['Z_H']:.4f}, Z_E {f['Z_E']:.2f} sqrt(N)/mm, "
            f"Z_eps {f['Z_eps']:.4f}, Z_L {f['Z_L']:.4f}, Z_v {f['Z_v']:.4f}, Z_R {f['Z_R']:.4f}"]
     for who, g in (("pinion", r.pinion), ("wheel", r.wheel)):

@@ -12,6 +12,7 @@ from ..results import Result, unit_map, variable
 from ..window import in_window, steady_window
 from . import _kernels
 from .kernel_inputs import params, stiffness_at, static_start
+from .planetary import PLANETARY_UNITS
 from .train import assemble, method_b
 
 
@@ -120,7 +121,7 @@ def run(model, progress=None) -> Result:
     from .checks import check_step, diagnose, diagnose_sweep
 
     if model.planetary is not None and not model.meshes:
-        from .planetary import run_stage
+        from .gearbox import run_stage
 
         return run_stage(model, progress)
     t0 = time.perf_counter()
@@ -174,9 +175,9 @@ def run(model, progress=None) -> Result:
         diagnose_sweep(result, sys_, sw)
     result.summary["solver"]["wall_time"] = time.perf_counter() - t0
     if model.planetary is not None:
-        from .planetary import analyse
+        from .gearbox import add_stages
 
-        result.summary["planetary"] = analyse(model.planetary)[0]
+        add_stages(result, model, sys_)
     _units(result)
     if progress:
         progress(1.0, "done")
@@ -301,12 +302,15 @@ def _rating(model, sys_, kv_dyn, kv_iso) -> dict:
     if not model.iso.rating:
         return {}
     out = {}
+    given = model.iso.dynamic_factor
     for j, name in enumerate(sys_.mesh_names):
-        if not (np.isfinite(kv_dyn[j]) and kv_dyn[j] > 0):
+        if given is None and not (np.isfinite(kv_dyn[j]) and kv_dyn[j] > 0):
             continue
-        r_dyn = rate_mesh(model, sys_, j, float(kv_dyn[j]))
+        # a K_v given in [iso] replaces the run's (the rating of a report with a prescribed K_v)
+        r_dyn = rate_mesh(model, sys_, j, float(kv_dyn[j] if given is None else given))
         r_iso = rate_mesh(model, sys_, j, float(kv_iso[j]))
         out[name] = summary_of(r_dyn, r_iso, (model.iso.min_safety_pitting, model.iso.min_safety_bending))
+        out[name]["kv_source"] = "time integration" if given is None else "given (iso.dynamic_factor)"
     return out
 
 
@@ -325,10 +329,8 @@ UNITS = {
     "sweep.meshes.*.separation_speeds": "rad/s", "floquet_growth_rate": "1/s",
     "rating.*.*_rating.sigma_*": "Pa", "rating.*.*_rating.load_cycles": "1", "rating.*.*_rating.*": "1",
     "rating.*.Z_E": "Pa^0.5", "rating.*.*": "1",
-    "planetary.planet_angles": "rad", "planetary.centre_distance": "m", "planetary.natural_frequencies_hz": "Hz",
-    "planetary.planet_mode_frequency_closed_form_hz": "Hz", "planetary.torque_sun": "N*m", "planetary.*_force": "N",
-    "planetary.position_errors": "m", "planetary.*": "1",
 }
+UNITS.update(PLANETARY_UNITS)
 
 
 def _units(result) -> None:

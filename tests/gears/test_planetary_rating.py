@@ -1,0 +1,245 @@
+"""ISO 6336 rating of a planetary stage (drivedyn.gears.planetary_rating) against a commercial rating
+tool's report, value by value.
+
+Reference: KISSsoft Release 03/2017 report "CALCULATION OF A SPUR PLANETARY GEAR STAGE", ISO 6336:2006
+method B, stage 1 of the NREL 5 MW reference gearbox, file @NREL_5MW/stage_01.rtf of the public
+repository github.com/gfsReboucas/Drivetrain (2020). Its data as printed: sun 19, planets 3 x 17,
+ring -56 teeth, m_n 45 mm, alpha_n 20 deg, spur, b 491 mm, x 0.6170 / 0.8021 / -0.5013, a 863 mm,
+tip diameters 978.808 / 905.470 / 2475.118 mm, h_fP 1.25, rho_fP 0.38 / 0.38 / 0.30, inner diameters
+482.33 / 408.99 mm and the ring's outer 2994.24 mm; sun and planets 18CrNiMo7-6 case-carburized
+(sigma_Hlim 1500, sigma_Flim 430 N/mm^2), ring 34CrNiMo6 through-hardened (700 / 290 N/mm^2,
+240 HBW, yield 1000 N/mm^2); R_z flank 4.8 / 4.8 / 8.0, root 20 um; ISO VG 220; 5000 kW, sun torque
+999650.9 N m, carrier torque 3945990.316 N m (ring held); K_A 1.25, K_gamma 1.10, K_Hbeta 1.15,
+K_Halpha 1.00 given; C_R 0.862 (web); 175200 h; S_Hmin 1.25, S_Fmin 1.56.
+
+The report prints K_v 1.01 (sun-planet) and 1.05 (ring-planet) as given. For the ring-planet mesh
+its sigma_H / sigma_H0 = 758.46 / 588.62 is sqrt(K_A K_gamma 1.05 K_Hbeta) to the printed digits; for
+the sun-planet mesh its sigma_Hw / sigma_H0 = 958.15 / 759.92 implies K_v = 1.0054 and its
+sigma_F / sigma_F0 = 175.90 / 113.46 with its K_Fbeta implies 1.0053: the report carries K_v = 1.005
+and prints it rounded. K_v = 1.0053 is used here for the sun-planet mesh.
+"""
+import math
+
+import pytest
+
+from drivedyn.errors import ModelError
+from drivedyn.gears import planetary_rating as pr
+from drivedyn.gears.rating import Material
+
+CASE = Material("Eh", 1500.0, 430.0)
+RING = Material("V", 700.0, 290.0, 1000.0, hardness_hb=240.0)
+
+
+def nrel_stage(**kw):
+    args = dict(z=(19, 17, 56), module=45.0, alpha_n=math.radians(20.0), x=(0.6170, 0.8021, -0.5013),
+                b=(491.0, 491.0, 491.0), centre_distance=863.0, tip_diameter=(978.808, 905.470, 2475.118),
+                h_fp=(1.25, 1.25, 1.25), rho_fp=(0.38, 0.38, 0.30), bore=(482.33, 408.99, 2994.24))
+    args.update(kw)
+    return pr.StageGears(**args)
+
+
+def rated(**kw):
+    t_sun, t_carrier = 999650.9, 3945990.316
+    rpm = 60 / (2 * math.pi)
+    n_sun, n_carrier = 5e6 / t_sun * rpm, 5e6 / t_carrier * rpm
+    args = dict(planets=3, torque_sun=t_sun, speed_sun_rel=n_sun - n_carrier, k_gamma=1.10, kv=(1.0053, 1.05),
+                ka=1.25, life_hours=175200.0, nu40=220.0, rz_flank=(4.8, 4.8, 8.0), rz_root=(20.0, 20.0, 20.0),
+                k_hbeta=(1.15, 1.15), k_halpha=(1.0, 1.0), blank_factor=0.862, s_hmin=1.25, s_fmin=1.56)
+    args.update(kw)
+    return pr.rate_stage(nrel_stage(), (CASE, CASE, RING), **args)
+
+
+def near(printed: float, decimals: int):
+    """The value as printed: within half a unit of its last digit, or 1e-4 of it where that is wider
+    (the report computes from its speeds and torques, which it prints to five to seven digits)."""
+    return pytest.approx(printed, abs=max(0.5 * 10.0 ** -decimals + 1e-9, 1e-4 * abs(printed)))
+
+
+def test_geometry_as_printed():
+    out = rated()
+    g = out["geometry"]
+    assert math.degrees(g["alpha_w_sun"]) == near(28.118, 3)
+    assert math.degrees(g["alpha_w_ring"]) == near(17.161, 3)
+    # the printed shifts (four decimals) put the zero-backlash centre distances 1.3e-6 and 1.5e-6 of a
+    # from 863 mm, on the side of backlash in both meshes: accepted as printed
+    assert g["a_zero_backlash_sun"] < 863.0 < g["a_zero_backlash_ring"]
+    sun, ring = out["sun-planet"].geometry, out["ring-planet"].geometry
+    assert sun["eps_alpha"] == near(1.115, 3) and ring["eps_alpha"] == near(1.278, 3)
+    assert out["F_t"] == pytest.approx(779454.877, rel=1e-7)
+
+
+def test_load_cycles_per_gear():
+    # the sun meets three planets a turn, the ring three, a planet meets each once (report, in millions)
+    c = rated()["cycles"]
+    assert c["sun"] / 1e6 == near(1124.7, 1)
+    assert c["planet"] / 1e6 == near(419.0, 1)
+    assert c["ring"] / 1e6 == near(381.6, 1)
+
+
+def test_stiffness_and_reduced_mass_method_b():
+    out = rated()
+    s, r = out["sun-planet"].factors, out["ring-planet"].factors
+    # c' with C_R = 0.862 as printed (the report rounds it): within 0.05 %
+    assert s["c_single"] == pytest.approx(12.362, rel=5e-4)
+    assert r["c_single"] == pytest.approx(13.289, rel=5e-4)
+    assert r["c_gamma_alpha"] == pytest.approx(16.063, rel=5e-4)
+    # sun-planet eps_alpha 1.115 < 1.2: ISO 6336-1 9.4 lets c_gamma_alpha be up to 10 % lower, which
+    # iso6336.single_pair_stiffness applies and the report does not
+    assert s["c_gamma_alpha"] == pytest.approx(0.9 * 13.426, rel=5e-4)
+    # planetary reduced masses (ISO 6336-1 6.5.9): m_s m_p / (m_s + N m_p) and m_p
+    assert out["reduced_mass"]["sun-planet"] == near(0.6606, 4)
+    assert out["reduced_mass"]["ring-planet"] == near(2.4597, 4)
+    assert r["n_E1"] == near(1435, 0) and r["N"] == near(0.028, 3)
+    assert s["n_E1"] == pytest.approx(2266 * math.sqrt(0.9), rel=5e-4) and s["N"] == pytest.approx(0.016, abs=1e-3)
+
+
+def test_sun_planet_contact_value_by_value():
+    r = rated()["sun-planet"]
+    f, sun, planet = r.factors, r.pinion, r.wheel
+    assert f["Z_H"] == near(2.06, 2) and f["Z_E"] == near(189.81, 2) and f["Z_eps"] == near(0.981, 3)
+    assert f["sigma_H0"] == near(759.92, 2)
+    assert f["Z_L"] == near(1.020, 3) and f["Z_v"] == near(0.961, 3) and f["Z_R"] == near(1.024, 3)
+    assert sun["Z_B_or_Z_D"] == near(1.04, 2) and planet["Z_B_or_Z_D"] == near(1.05, 2)
+    assert sun["sigma_H"] == pytest.approx(996.13, rel=2e-4)       # K_v 1.0053 for the printed 1.01
+    assert planet["sigma_H"] == pytest.approx(1002.73, rel=2e-4)
+    assert sun["Z_NT"] == near(0.909, 3) and planet["Z_NT"] == near(0.937, 3)
+    assert sun["Z_W"] == 1.0 and planet["Z_W"] == 1.0
+    assert sun["sigma_HG"] == near(1368.61, 2) and planet["sigma_HG"] == near(1410.69, 2)
+    assert sun["S_H"] == near(1.37, 2) and planet["S_H"] == near(1.41, 2)
+
+
+def test_sun_planet_root_value_by_value():
+    r = rated()["sun-planet"]
+    for g, (yf, ys, hf, afen, sfn, rhof, s0, sf, yd, ynt, ym, sfg, safety) in (
+            (r.pinion, (1.56, 2.06, 64.83, 30.75, 101.18, 18.12, 113.46, 175.90, 1.003, 0.888, 1.0, 586.11, 3.33)),
+            (r.wheel, (1.44, 2.14, 65.24, 33.33, 104.13, 17.19, 108.94, 168.90, 1.005, 0.906, 0.7, 419.35, 2.48))):
+        assert g["Y_F"] == near(yf, 2) and g["Y_S"] == near(ys, 2)
+        assert g["h_Fe"] == near(hf, 2) and math.degrees(g["alpha_Fen"]) == near(afen, 2)
+        assert g["s_Fn"] == near(sfn, 2) and g["rho_F"] == near(rhof, 2)
+        assert g["sigma_F0"] == near(s0, 2)
+        assert g["sigma_F"] == pytest.approx(sf, rel=2e-4)
+        assert g["Y_deltarelT"] == near(yd, 3) and g["Y_RrelT"] == near(0.957, 3) and g["Y_X"] == 0.8
+        assert g["Y_NT"] == near(ynt, 3) and g["Y_M"] == ym
+        assert g["sigma_FG"] == near(sfg, 2)
+        assert g["S_F"] == near(safety, 2)
+
+
+def test_ring_planet_internal_mesh_value_by_value():
+    r = rated()["ring-planet"]
+    f, planet, ring = r.factors, r.pinion, r.wheel
+    assert f["Z_H"] == near(2.71, 2) and f["Z_eps"] == near(0.952, 3)
+    assert f["sigma_H0"] == near(588.62, 2)
+    assert f["Z_L"] == near(1.038, 3) and f["Z_v"] == near(0.916, 3) and f["Z_R"] == near(1.025, 3)
+    assert planet["Z_B_or_Z_D"] == 1.0 and ring["Z_B_or_Z_D"] == 1.0      # M_1 = 0.85; Z_D = 1 internal
+    assert planet["sigma_H"] == near(758.46, 2) and ring["sigma_H"] == near(758.46, 2)
+    assert ring["Z_W"] == near(1.135, 3) and ring["Z_NT"] == near(0.940, 3)
+    assert ring["sigma_HG"] == near(727.36, 2) and planet["sigma_HG"] == near(1368.95, 2)
+    assert ring["S_H"] == near(0.96, 2) and planet["S_H"] == near(1.80, 2)
+    # the planet's root loaded by the ring
+    assert planet["Y_F"] == near(1.14, 2) and planet["Y_S"] == near(2.38, 2)
+    assert planet["h_Fe"] == near(49.53, 2) and math.degrees(planet["alpha_Fen"]) == near(29.87, 2)
+    assert planet["sigma_F0"] == near(95.70, 2)
+    # K_Fbeta = K_Hbeta^N_F with b/h of the teeth: the report's sigma_F / sigma_F0 implies K_Fbeta
+    # 1.11822, this 1.11840 (tooth depths from the nominal tip diameters): within 2e-4
+    assert planet["sigma_F"] == pytest.approx(154.50, rel=3e-4)
+    assert planet["S_F"] == near(2.71, 2)
+    # the ring's root: not rated, and said so
+    assert math.isnan(ring["S_F"]) and any("not rated" in n for n in r.notes)
+
+
+def test_kgamma_scales_the_stresses_as_the_standard_says():
+    # K_gamma multiplies F_t in every K product: sigma_H ~ sqrt(K_gamma), sigma_F ~ K_gamma (K factors given)
+    a, b = rated(k_gamma=1.0)["sun-planet"], rated(k_gamma=1.3)["sun-planet"]
+    assert b.pinion["sigma_H"] / a.pinion["sigma_H"] == pytest.approx(math.sqrt(1.3), rel=1e-12)
+    assert b.pinion["sigma_F"] / a.pinion["sigma_F"] == pytest.approx(1.3, rel=1e-12)
+
+
+def test_method_b_kv_when_not_given():
+    out = rated(kv=None)
+    for name in ("sun-planet", "ring-planet"):
+        f = out[name].factors
+        assert f["K_v"] == f["K_v_method_b"] and 1.0 < f["K_v"] < 1.05 and f["region"] == "subcritical"
+
+
+def test_interfering_centre_distance_is_refused_with_digits():
+    with pytest.raises(ModelError) as err:
+        pr.working_geometry(nrel_stage(centre_distance=863.01))
+    assert "above the ring-planet zero-backlash centre distance 863.001321 mm" in str(err.value)
+    with pytest.raises(ModelError) as err:
+        pr.working_geometry(nrel_stage(centre_distance=862.99))
+    assert "below the sun-planet zero-backlash centre distance 862.998875 mm" in str(err.value)
+
+
+# Stage 2 of the same gearbox, the same tool and repository (file @NREL_5MW/stage_02.rtf): sun 18,
+# planets 3 x 36, ring -93 teeth, m_n 21 mm, b 550 mm, x 0.3890 / 0.5039 / 0.1171, a 584 mm, tips
+# 432.838 / 815.663 / 1906.081 mm, inner diameters 194.32 / 576.96 mm, ring outer 2148.82 mm; the
+# carrier driven by stage 1's sun (999650.881 N m, 5 MW); K_Hbeta given 2.06 (sun-planet) and 1.15;
+# materials, roughness, K_A, K_gamma, life, C_R as stage 1. The report computes K_v by method B
+# (1.02 and 1.06) and uses the larger for both meshes: its sigma_Hw / sigma_H0 (994.13 / 573.40 and
+# 404.76 / 312.44) imply K_v = 1.0613 in both, used here.
+def rated_stage_2(**kw):
+    st = pr.StageGears(z=(18, 36, 93), module=21.0, alpha_n=math.radians(20.0), x=(0.3890, 0.5039, 0.1171),
+                       b=(550.0,) * 3, centre_distance=584.0, tip_diameter=(432.838, 815.663, 1906.081),
+                       rho_fp=(0.38, 0.38, 0.30), bore=(194.32, 576.96, 2148.82))
+    rpm = 60 / (2 * math.pi)
+    n_carrier = 5e6 / 999650.881 * rpm
+    args = dict(planets=3, torque_sun=999650.881 * 18 / 111, speed_sun_rel=n_carrier * 93 / 18, k_gamma=1.10,
+                kv=(1.0613, 1.0613), ka=1.25, life_hours=175200.0, nu40=220.0, rz_flank=(4.8, 4.8, 8.0),
+                rz_root=(20.0, 20.0, 20.0), k_hbeta=(2.06, 1.15), k_halpha=(1.0, 1.0), blank_factor=0.862,
+                s_hmin=1.25, s_fmin=1.56)
+    args.update(kw)
+    return pr.rate_stage(st, (CASE, CASE, RING), **args)
+
+
+def test_stage_2_value_by_value():
+    out = rated_stage_2()
+    assert {k: v / 1e6 for k, v in out["cycles"].items()} == {"sun": near(7782.3, 1), "planet": near(1297.1, 1),
+                                                               "ring": near(1506.3, 1)}
+    assert out["F_t"] == pytest.approx(285900.438, rel=1e-7)
+    assert out["reduced_mass"] == {"sun-planet": near(0.1534, 4), "ring-planet": near(1.4684, 4)}
+    s, r = out["sun-planet"], out["ring-planet"]
+    # eps_alpha 1.370 and 1.618: no 10 % reduction of c_gamma_alpha here; c' with the printed C_R 0.862
+    assert s.geometry["eps_alpha"] == near(1.370, 3) and r.geometry["eps_alpha"] == near(1.618, 3)
+    assert s.factors["c_single"] == pytest.approx(12.240, rel=5e-4) and r.factors["c_single"] == pytest.approx(14.053, rel=5e-4)
+    assert s.factors["c_gamma_alpha"] == pytest.approx(15.640, rel=5e-4)
+    assert r.factors["c_gamma_alpha"] == pytest.approx(20.563, rel=5e-4)
+    # n_E1 ~ sqrt(c_gamma_alpha), printed to the rpm: the C_R rounding and the last digit, within 1e-3
+    assert s.factors["n_E1"] == pytest.approx(5357, rel=1e-3) and r.factors["n_E1"] == pytest.approx(993, rel=1e-3)
+    assert s.factors["N"] == near(0.046, 3) and r.factors["N"] == near(0.124, 3)
+    for f, (zh, zeps, sh0, zl, zv, zr) in ((s.factors, (2.25, 0.936, 573.40, 1.020, 0.982, 1.007)),
+                                           (r.factors, (2.85, 0.891, 312.44, 1.038, 0.961, 1.026))):
+        assert f["Z_H"] == near(zh, 2) and f["Z_eps"] == near(zeps, 3) and f["sigma_H0"] == near(sh0, 2)
+        assert f["Z_L"] == near(zl, 3) and f["Z_v"] == near(zv, 3) and f["Z_R"] == near(zr, 3)
+    contact = ((s.pinion, (1.08, 1071.17, 0.857, 1295.42, 1.21)), (s.wheel, (1.00, 994.13, 0.905, 1368.61, 1.38)),
+               (r.pinion, (1.00, 404.76, 0.905, 1388.39, 3.43)), (r.wheel, (1.00, 404.76, 0.901, 732.21, 1.81)))
+    for g, (zb, sh, znt, shg, safety) in contact:
+        assert g["Z_B_or_Z_D"] == near(zb, 2) and g["sigma_H"] == near(sh, 2) and g["Z_NT"] == near(znt, 3)
+        assert g["sigma_HG"] == near(shg, 2) and g["S_H"] == near(safety, 2)
+    assert r.wheel["Z_W"] == near(1.135, 3)
+    root = ((s.pinion, (1.47, 2.04, 24.33, 25.74, 44.78, 9.52, 73.95, 0.999, 0.854, 1.0, 589.60)),
+            (s.wheel, (1.38, 2.18, 25.73, 24.68, 47.70, 8.69, 74.21, 1.002, 0.886, 0.7, 429.38)),
+            (r.pinion, (1.01, 2.48, 18.48, 22.21, 47.70, 8.69, 61.98, 1.002, 0.886, 0.7, 429.38)))
+    for g, (yf, ys, hf, afen, sfn, rhof, s0, yd, ynt, ym, sfg) in root:
+        assert g["Y_F"] == near(yf, 2) and g["Y_S"] == near(ys, 2) and g["h_Fe"] == near(hf, 2)
+        assert math.degrees(g["alpha_Fen"]) == near(afen, 2) and g["s_Fn"] == near(sfn, 2) and g["rho_F"] == near(rhof, 2)
+        assert g["sigma_F0"] == near(s0, 2) and g["Y_deltarelT"] == near(yd, 3) and g["Y_NT"] == near(ynt, 3)
+        assert g["Y_M"] == ym and g["Y_X"] == near(0.840, 3) and g["sigma_FG"] == near(sfg, 2)
+    # sigma_F with K_Fbeta = K_Hbeta^N_F (the report prints 1.94 and 1.14): within 5e-4 of its 209.38,
+    # 210.14 and 102.77; the safety factors within that too
+    for g, (sf, safety) in ((s.pinion, (209.38, 2.82)), (s.wheel, (210.14, 2.04)), (r.pinion, (102.77, 4.18))):
+        assert g["sigma_F"] == pytest.approx(sf, rel=5e-4) and g["S_F"] == pytest.approx(safety, abs=0.005 + 5e-4 * safety)
+
+
+def test_stage_2_method_b_kv_with_the_reports_deviations():
+    # ISO 6336-1 method B with the planetary reduced masses and the deviations of the report's accuracy
+    # table (grade 6: f_pb 17.9 / 20.7 um, f_falpha 23 / 27 um, the larger of each mesh's two gears);
+    # a mesh of two materials runs in by the mean of the two gears' allowances (the report's y_p 3.142
+    # = (0.075 + 160/700) x 20.7 / 2 for the ring mesh). Report: K_v 1.02 and 1.06 (printed).
+    out = rated_stage_2(kv=None, f_pb=(17.9, 20.7), f_falpha=(23.0, 27.0))
+    s, r = out["sun-planet"].factors, out["ring-planet"].factors
+    assert s["K_v_method_b"] == near(1.02, 2) and r["K_v_method_b"] == near(1.06, 2)
+    assert s["region"] == r["region"] == "subcritical"
+    # the running-in mean, by hand: y_p of the ring mesh
+    from drivedyn.gears.iso6336 import running_in
+
+    assert (running_in(20.7, "Eh", 1500.0, 4.88) + running_in(20.7, "St", 700.0, 4.88)) / 2 == near(3.142, 3)
