@@ -330,3 +330,24 @@ radius = 0.05
     assert math.degrees(entry_angles(along, compute_layout(along))["b"]["arriving"]) == pytest.approx(0.0, abs=1e-12)
     data = drivedyn.analyses.analysis("belt-drive").check_data(across)["supplier"]
     assert data["alignment"]["entry_angles"]["b"]["arriving"] == pytest.approx(math.radians(0.5))
+
+
+def test_tolerance_study_rows():
+    """The tolerance study's mean row is the duty cycle itself; a longer (worn) belt carries less
+    tension, so its hub loads are lower and its running slip factor smaller, row by row."""
+    from drivedyn.belt.supplier import report_data
+
+    data = report_data(resolve(drivedyn.load(drivedyn.example_path("fead-ag0868"))))
+    tol = {e["position"]: e for e in data["tolerance"]}
+    assert list(tol) == ["replace", "max belt", "mean", "min belt"]
+    rows = data["duty"]["rows"]
+    mean = tol["mean"]
+    assert mean["slip_factor_fixed"] == pytest.approx(min(v for r in rows for v in r["fixed_arm"]["slip_factor"].values()
+                                                          if v is not None), rel=1e-6)
+    for n in mean["hub_load_fixed"]:
+        assert mean["hub_load_fixed"][n] == pytest.approx(max(r["fixed_arm"]["hub_load"][n] for r in rows), rel=1e-6)
+    order = ["replace", "max belt", "mean", "min belt"]
+    for a, b in zip(order, order[1:]):
+        assert tol[a]["tension"] < tol[b]["tension"]
+        assert tol[a]["slip_factor_running"] < tol[b]["slip_factor_running"]
+        assert all(tol[a]["hub_load_running"][n] < tol[b]["hub_load_running"][n] for n in mean["hub_load_running"])

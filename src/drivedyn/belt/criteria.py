@@ -139,6 +139,16 @@ def _supplier_criteria(model, s, out, skipped):
             v, n, rpm = min(sm)
             out.append(Criterion("duty_dynamic_slip_margin", v, c.slip_margin_min, "1", "min",
                                  "smallest slip margin of the duty rows held in the rotational model", f"{n} at {rpm:.0f} rpm"))
+    tol = sup.get("tolerance")
+    if tol:
+        v, where = min((min(e["slip_factor_fixed"], e["slip_factor_running"]), e["position"]) for e in tol)
+        out.append(Criterion("tolerance_slip_factor", v, c.slip_margin_min, "1", "min",
+                             "smallest slip safety factor of the duty cycle at any belt length of the tolerance "
+                             "band and wear", f"{where} belt"))
+        lost = [f"{e['position']}: {len(e['rows_not_carried'])}" for e in tol if e["rows_not_carried"]]
+        out.append(Criterion("tolerance_rows_carried", sum(len(e["rows_not_carried"]) for e in tol), 0, "", "max",
+                             "duty rows with no running balance at any belt length of the tolerance band and wear",
+                             "; ".join(lost)))
     al = sup.get("alignment")
     if al:
         v, n = max((max(a.values()), n) for n, a in al["entry_angles"].items())

@@ -525,6 +525,9 @@ class DutyCycle(Spec):
     # crank's declared speed orders included: mean and peak hub loads, span tension bands, the arm's
     # travel against its stops, slip margins (about a second per row)
     dynamic: bool = False
+    # the tolerance study: the duty cycle at every reachable position-table row (replaced, longest,
+    # nominal and shortest belt), both conventions (supplier.py; about half a second per row)
+    tolerance: bool = False
     temperature: float = 80.0                    # deg C
     life: Life = Life()
 

@@ -147,7 +147,10 @@ CHECK_UNITS = {"steady.spans.*.tension": "N", "steady.pulleys.*.torque": "N*m", 
                "supplier.acceleration.speeds.*.pulley": "", "supplier.acceleration.speeds.*": "1",
                "supplier.duty_dynamic.crank_speed": "rad/s", "supplier.duty_dynamic.hub_load*": "N",
                "supplier.duty_dynamic.span_tension*": "N", "supplier.duty_dynamic.slip_margin*": "1",
-               "supplier.duty_dynamic.arm_travel*": "rad", "supplier.duty_dynamic.*": ""}
+               "supplier.duty_dynamic.arm_travel*": "rad", "supplier.duty_dynamic.*": "",
+               "supplier.tolerance.tension": "N", "supplier.tolerance.slip_factor*": "1",
+               "supplier.tolerance.hub_load*": "N", "supplier.tolerance.stop_clearance": "1",
+               "supplier.tolerance.rows_not_carried": "rad/s", "supplier.tolerance.position": ""}
 
 
 def check_json(model) -> str:

@@ -72,6 +72,8 @@ def report_data(drive) -> dict:
                        "rows": [_duty_row(r) for r in rows]}
         if model.duty_cycle.dynamic:
             out["duty_dynamic"] = dynamic_duty(drive)
+        if model.duty_cycle.tolerance and tables:
+            out["tolerance"] = tolerance_study(drive, tables[0])
         if model.duty_cycle.acceleration is not None:
             from .steady.duty import acceleration_envelope
 
@@ -152,6 +154,46 @@ def dynamic_duty(drive) -> list[dict]:
                             if "travel_min" in v},
              "note": ""}
         out.append(e)
+    return out
+
+
+TOLERANCE_ROWS = ("replace", "max belt", "mean", "min belt")
+
+
+def tolerance_study(drive, table) -> list[dict]:
+    """The duty cycle at each reachable belt length of the position table (a replaced belt, the
+    longest, the nominal, the shortest): the tensioner drawn at that row's position with that row's
+    tension installed, both conventions. Per row: the smallest slip factor (fixed and running arm),
+    the largest hub load of each pulley (fixed and running), the arm's smallest clearance to its
+    stops at its running balance, and the duty rows the drive cannot carry."""
+    from .. import replace
+    from .geometry.drive import resolve
+    from .geometry.positions import ROWS
+    from .steady.duty import duty_cycle
+
+    model = drive.model
+    j = [p.name for p in model.pulleys].index(table.pulley)
+    out = []
+    for name, pos in zip(ROWS, table.rows):
+        if name not in TOLERANCE_ROWS or pos is None:
+            continue
+        # the arm drawn at the row: its preload and stops follow again from the supplier data
+        moved = replace(model, {f"pulleys.{j}.center": list(pos.centre), f"pulleys.{j}.arm.preload": 0.0,
+                                f"pulleys.{j}.arm.stops": [-0.5, 0.5], "belt.pretension": pos.tension,
+                                "belt.length": None, "duty_cycle.tolerance": False, "duty_cycle.dynamic": False})
+        rows = duty_cycle(resolve(moved), pos.tension)
+        fin = [x for r in rows for x in r.fixed_arm.slip_factor.values() if math.isfinite(x)]
+        run = [x for r in rows if r.running_arm for x in r.running_arm.slip_factor.values() if math.isfinite(x)]
+        clear = [min(q - lo, hi - q) / (hi - lo) for r in rows for n, q in r.arm_travel.items()
+                 for lo, hi in [r.arm_stops[n]]]
+        names = [p.name for p in model.pulleys]
+        out.append({"position": name, "tension": pos.tension,
+                    "slip_factor_fixed": min(fin, default=math.inf), "slip_factor_running": min(run, default=math.inf),
+                    "hub_load_fixed": {n: max(r.fixed_arm.hub_load[n] for r in rows) for n in names},
+                    "hub_load_running": {n: max((r.running_arm.hub_load[n] for r in rows if r.running_arm),
+                                                default=math.nan) for n in names},
+                    "stop_clearance": min(clear, default=math.nan),
+                    "rows_not_carried": [r.crank_speed for r in rows if r.running_arm is None]})
     return out
 
 
@@ -262,6 +304,15 @@ def report_lines(data) -> list[str]:
                          + "  ".join(f"{n} {e['hub_load_mean'][n]:.0f}/{e['hub_load_peak'][n]:.0f}" for n in names)
                          + f"  margin {sm:.2f}  {arm}  {e['status']}"
                          + (f" ({', '.join(e['diagnostics'])})" if e["diagnostics"] else ""))
+    if "tolerance" in data:
+        lines += ["", "tolerance study: the duty cycle at each belt length of the position table (slip factor fixed | "
+                      "running arm, largest hub loads fixed | running, the arm's clearance to its stops)"]
+        for e in data["tolerance"]:
+            hubs = "  ".join(f"{n} {e['hub_load_fixed'][n]:.0f}|{e['hub_load_running'][n]:.0f}" for n in e["hub_load_fixed"])
+            lines.append(f"{e['position']:10s} T {e['tension']:6.1f} N  SF {e['slip_factor_fixed']:.2f}|"
+                         f"{e['slip_factor_running']:.2f}  {hubs}  clearance {100 * e['stop_clearance']:.0f} %"
+                         + (f"  not carried at {', '.join(f'{w * 30 / math.pi:.0f}' for w in e['rows_not_carried'])} rpm"
+                            if e["rows_not_carried"] else ""))
     if "alignment" in data:
         al = data["alignment"]
         lines += ["", f"belt entry angles (geometry/alignment.py), limit {al['limit'] * DEG:.2f} deg: "
