@@ -108,23 +108,22 @@ def dynamic_duty(drive) -> list[dict]:
     from ..errors import SolverError
     from ..window import in_window
     from .rotational.simulate import run
-    from .steady.duty import crank_of
+    from .steady.duty import belt_speed, crank_of, row_power
 
     model = drive.model
     dc = model.duty_cycle
     c = crank_of(model)
     lay = drive.layout
-    sign_c = math.copysign(1.0, model.pulleys[c].speed_time[-1][1] or 1.0)
     out = []
     for row in dc.rows:
-        w_c = sign_c * row.crank_speed
+        w_c = math.copysign(row.crank_speed, model.pulleys[c].speed_time[-1][1] or 1.0)
         pulleys = []
         for j, p in enumerate(model.pulleys):
             if j == c:
                 pulleys.append(p.model_copy(update={"speed_time": [[0.0, 0.0], [RAMP, w_c], [RAMP + HOLD, w_c]]}))
                 continue
-            w = abs(row.crank_speed * lay.rho[c] / lay.rho[j])
-            P = row.torque[p.name] * w if p.name in row.torque else row.power.get(p.name, dc.idler_drag)
+            w = abs(belt_speed(drive, row.crank_speed) / lay.rho[j])
+            P = row_power(row, p.name, w, dc.idler_drag)
             pulleys.append(p.model_copy(update={
                 "torque": 0.0, "torque_time": None, "torque_speed": None, "power": 0.0, "quadratic_torque": 0.0,
                 "harmonics": [], "viscous_torque": P / w ** 2}))

@@ -63,30 +63,39 @@ def crank_of(model) -> int:
     return presc[0]
 
 
+def _frame(drive):
+    """(model, its duty cycle, the crank's index, the drawn layout, creep theory's drive data)."""
+    model = drive.model
+    return model, model.duty_cycle, crank_of(model), drive.layout, drive_of(model, drive.layout)
+
+
+def belt_speed(drive, crank_speed: float) -> float:
+    """Belt speed (m/s, signed along the listed order) at a crank speed (rad/s, its magnitude; the
+    sense the crank's speed_time gives)."""
+    c = crank_of(drive.model)
+    return math.copysign(1.0, drive.model.pulleys[c].speed_time[-1][1] or 1.0) * crank_speed * drive.layout.rho[c]
+
+
+def row_power(row, name: str, speed: float, default=None):
+    """The power (W) a duty row puts on pulley ``name`` turning at ``speed`` (rad/s): its power, its
+    torque x speed, else ``default``."""
+    return row.torque[name] * speed if name in row.torque else row.power.get(name, default)
+
+
 def duty_cycle(drive, design_tension: float) -> list[DutyRowResult]:
     """Every row of the model's duty cycle in both conventions; ``design_tension``: the tension the
     supplier holds in the span leaving the tensioner (the position table's mean row)."""
-    model = drive.model
-    dc = model.duty_cycle
-    c = crank_of(model)
-    lay = drive.layout
-    d = drive_of(model, lay)
+    model, dc, c, lay, d = _frame(drive)
     nk = len(lay.names)
-    sign_c = math.copysign(1.0, model.pulleys[c].speed_time[-1][1] or 1.0)
     out = []
     for k, row in enumerate(dc.rows):
-        v = sign_c * row.crank_speed * lay.rho[c]               # belt speed, signed along the listed order
+        v = belt_speed(drive, row.crank_speed)
         forward = v > 0
         w = v / lay.rho                                         # pulley speeds (rad/s, CCW positive)
         M = np.zeros(nk)
         for j, p in enumerate(model.pulleys):
-            if j == c:
-                continue
-            if p.name in row.torque:
-                P = row.torque[p.name] * abs(w[j])
-            else:
-                P = row.power.get(p.name, dc.idler_drag)
-            M[j] = -math.copysign(P / abs(w[j]), w[j])          # a load opposes the pulley's turning
+            if j != c:                                          # a load opposes the pulley's turning
+                M[j] = -math.copysign(row_power(row, p.name, abs(w[j]), dc.idler_drag) / abs(w[j]), w[j])
         M[c] = -lay.rho[c] * float(np.sum(np.delete(M / lay.rho, c)))
         torques = {p.name: abs(float(M[j])) for j, p in enumerate(model.pulleys)}
         fixed = _fixed_arm(model, drive, d, M, forward, design_tension, v)
@@ -104,23 +113,17 @@ def acceleration_envelope(drive, design_tension: float) -> list[dict]:
     ``part_load`` and at full load (each accessory's largest over the rows). Per speed and load:
     the smallest factor and the pulley, accelerating and decelerating (Gates' slip page uses
     +-1000 rpm/s at 10 % and 100 % load)."""
-    model = drive.model
-    dc = model.duty_cycle
-    c = crank_of(model)
-    lay = drive.layout
-    d = drive_of(model, lay)
+    model, dc, c, lay, d = _frame(drive)
     nk = len(lay.names)
-    sign_c = math.copysign(1.0, model.pulleys[c].speed_time[-1][1] or 1.0)
     full = {}
     for row in dc.rows:                   # each accessory's largest power over the rows, at its speed
         for j, p in enumerate(model.pulleys):
-            w = abs(row.crank_speed * lay.rho[c] / lay.rho[j])
-            P = row.torque[p.name] * w if p.name in row.torque else row.power.get(p.name)
+            P = row_power(row, p.name, abs(belt_speed(drive, row.crank_speed) / lay.rho[j]))
             if P is not None:
                 full[p.name] = max(full.get(p.name, 0.0), P)
     out = []
     for row in dc.rows:
-        v = sign_c * row.crank_speed * lay.rho[c]
+        v = belt_speed(drive, row.crank_speed)
         w = v / lay.rho
         entry = {"crank_speed": row.crank_speed}
         for label, share in (("part_load", dc.part_load), ("full_load", 1.0)):
