@@ -134,8 +134,8 @@ def _table(model, j, s, d_eff, offset) -> PositionTable:
                 unreached[name] = why
                 rows.append(None)
                 continue
-            raise ModelError(f"pulley {p.name!r}: the tensioner cannot hold the {name} belt: {why}; belt.effective_length "
-                             f"{L * 1e3:.1f} mm +- {tol * 1e3:.1f} mm", field=field)
+            raise ModelError(f"pulley {p.name!r}: the tensioner's travel does not cover the belt's tolerance "
+                             f"(belt.length_tolerance +- {tol * 1e3:.1f} mm): for the {name} row {why}", field=field)
         rel = brentq(lambda x: rebl(x) - target, 0.0, load_stop, xtol=1e-12)
         rows.append(row(name, rel))
     mean = rows[ROWS.index("mean")]
