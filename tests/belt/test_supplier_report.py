@@ -351,3 +351,30 @@ def test_tolerance_study_rows():
         assert tol[a]["tension"] < tol[b]["tension"]
         assert tol[a]["slip_factor_running"] < tol[b]["slip_factor_running"]
         assert all(tol[a]["hub_load_running"][n] < tol[b]["hub_load_running"][n] for n in mean["hub_load_running"])
+
+
+@pytest.mark.parametrize("change, words", [
+    ({"pulleys.2.arm.free_angle": math.radians(190)}, "slackens the belt"),
+    ({"pulleys.2.arm.load_stop": math.radians(20)}, "lies before the drawn arm"),
+    ({"belt.length_tolerance": 0.04}, "does not cover the belt's tolerance"),
+])
+def test_inconsistent_tensioner_data_is_one_line_naming_the_field(change, words):
+    """A free arm on the belt's slack side, a load stop before the drawn (mean) arm, a tolerance band
+    the arm's travel cannot cover: one line that names the field and the numbers, no report."""
+    model = drivedyn.load(drivedyn.example_path("fead-ag0868"))
+    with pytest.raises(drivedyn.ModelError) as info:
+        drivedyn.check(drivedyn.replace(model, change))
+    text = str(info.value)
+    assert words in text and "\n" not in text and ("pulleys" in text or "belt" in text)
+
+
+def test_supplier_tensioner_data_varied_alone():
+    """A design loop varies the supplier's data alone (drivedyn.replace writes the derived preload and
+    stops back): the preload and stops follow the new data."""
+    model = drivedyn.load(drivedyn.example_path("fead-ag0868"))
+    arm = model.pulleys[2].arm
+    stiffer = drivedyn.replace(model, {"pulleys.2.arm.free_torque": arm.free_torque + 1.0})
+    assert stiffer.pulleys[2].arm.preload == pytest.approx(arm.preload + 1.0)
+    later = drivedyn.replace(model, {"pulleys.2.arm.load_stop": arm.load_stop + 0.1})
+    assert later.pulleys[2].arm.stops[0] == pytest.approx(arm.stops[0] - 0.1)
+    assert drivedyn.loads(drivedyn.dumps(model)) == model

@@ -130,7 +130,8 @@ class Arm(_Tensioner):
     # absolute angle with no belt (pivot to pulley centre, from +x counter-clockwise), the spring
     # torque there, and the load stop as an angle from the free arm. With free_torque, preload
     # follows (free_torque + rate x the angle from the free arm to the drawn arm); with load_stop,
-    # stops are [drawn-to-load-stop, drawn-to-free-arm] (the free arm is the other stop)
+    # stops are [drawn-to-load-stop, drawn-to-free-arm] (the free arm is the other stop); either
+    # replaces a preload or stops the file gives
     free_angle: Optional[quantity("rad")] = None
     free_torque: Optional[quantity("N*m", ge=0)] = None
     load_stop: Optional[quantity("rad", gt=0)] = None
@@ -191,21 +192,17 @@ def _supplier_arm(name, center, arm):
         raise ValueError(f"pulley {name!r}: arm.free_angle {math.degrees(arm.free_angle):.6g} deg is the drawn arm's "
                          "angle: the free arm lies where the spring puts the pulley with no belt, away from the drawn "
                          "position")
+    # the supplier's data rule: preload and stops follow from them (a value the file gives for them,
+    # e.g. written back by drivedyn.dumps, is replaced), so that a design loop may vary free_angle,
+    # free_torque, rate or load_stop alone
     upd = {}
     if arm.free_torque is not None:
-        preload = arm.free_torque + arm.rate * rel
-        if arm.preload and abs(arm.preload - preload) > 1e-9 * max(preload, 1.0):
-            raise ValueError(f"pulley {name!r}: arm.preload {arm.preload:.6g} N m at the drawn position disagrees with "
-                             f"free_torque + rate x {math.degrees(rel):.4g} deg = {preload:.6g} N m: give one of them")
-        upd["preload"] = preload
+        upd["preload"] = arm.free_torque + arm.rate * rel
     if arm.load_stop is not None:
         if not arm.load_stop > rel:
             raise ValueError(f"pulley {name!r}: arm.load_stop {math.degrees(arm.load_stop):.4g} deg from the free arm "
                              f"lies before the drawn arm ({math.degrees(rel):.4g} deg from it)")
-        stops = (rel - arm.load_stop, rel)
-        if arm.stops != (-0.5, 0.5) and any(abs(a - b) > 1e-9 for a, b in zip(arm.stops, stops)):
-            raise ValueError(f"pulley {name!r}: arm.stops disagree with load_stop and the free arm: give one of them")
-        upd["stops"] = stops
+        upd["stops"] = (rel - arm.load_stop, rel)
     return arm.model_copy(update=upd)
 
 
