@@ -35,17 +35,29 @@ def crank_index(model):
     return None
 
 
-def period_revolutions(model, j, rho) -> int:
-    """Crank revolutions in one period of the drive's excitation, pulley j the crank: its orders
-    (2 with half orders) and each accessory's own harmonics at its nominal speed ratio
-    |rho_j / rho_k| (a 7th order on a pulley turning 1.25 times the crank: 4 revolutions); at most 8."""
+#: the longest period (crank revolutions) a periodic run-up solves for
+MAX_PERIOD_REVS = 8
+
+
+def excitation_orders(model, j, rho) -> list[float]:
+    """The drive's excitation in orders of the crank (pulley j): its speed orders and each
+    accessory's own harmonics at its nominal speed ratio |rho_j / rho_k|."""
     orders = [o.order for o in model.pulleys[j].speed_orders]
     for k, p in enumerate(model.pulleys):
         orders += [hm.order * abs(rho[j] / rho[k]) for hm in p.harmonics]
-    for n in range(1, 9):
+    return orders
+
+
+def period_revolutions(model, j, rho, strict: bool = False):
+    """Crank revolutions in one period of the drive's excitation (excitation_orders: 2 with half
+    orders; a 7th order on a pulley turning 1.25 times the crank: 4 revolutions), at most
+    MAX_PERIOD_REVS; an excitation that does not repeat within them gives MAX_PERIOD_REVS (a window
+    to read a drift over), or None with ``strict`` (a periodic solution does not exist)."""
+    orders = excitation_orders(model, j, rho)
+    for n in range(1, MAX_PERIOD_REVS + 1):
         if all(abs(n * o - round(n * o)) < 0.02 for o in orders):
             return n
-    return 8
+    return None if strict else MAX_PERIOD_REVS
 
 
 def mean_speed(p, t):

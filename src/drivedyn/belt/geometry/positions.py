@@ -110,7 +110,7 @@ def _table(model, j, s, d_eff, offset) -> PositionTable:
 
     # the rows' belt lengths from the drawn (mean) position's: the reports' rows lie tol, tol + wear
     # and -tol from it whatever their printed offset between drive length and belt length
-    L, tol, wear = belt.effective_length, belt.length_tolerance, belt.wear_allowance * belt.effective_length
+    tol, wear = belt.length_tolerance, belt.wear_allowance * belt.effective_length
     mean = rebl(rel_drawn)
     targets = {"replace": mean + tol + wear, "max belt": mean + tol, "mean": mean, "min belt": mean - tol}
     lo_len, hi_len = rebl(load_stop), rebl(0.0)          # the arm's reach in required belt length

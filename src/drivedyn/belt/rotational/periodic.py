@@ -25,7 +25,7 @@ from ...errors import ModelError, Stopped, stop_reason
 from . import _kernels as RK
 from ..geometry.drive import resolve
 from . import simulate as RT
-from ..dynamics.runup import RPM, crank_index, period_revolutions
+from ..dynamics.runup import MAX_PERIOD_REVS, RPM, crank_index, excitation_orders, period_revolutions
 
 #: periodicity tolerance: the largest change over one period of a tension (share of the rest
 #: tension), a speed (share of the crank's) or the arm travel (share of 1 mrad)
@@ -144,9 +144,15 @@ def _sweep(drive, progress):
     if j is None:
         raise ModelError("\"periodic\" sweeps a run-up: one pulley's speed_time must change its "
                          "speed by more than 10 % (the crank)", field="simulation.runup")
+    # a periodic solution needs an excitation that repeats: refused before any work otherwise
+    revs = period_revolutions(model, j, drive.layout.rho, strict=True)
+    if revs is None:
+        orders = ", ".join(f"{o:.6g}" for o in excitation_orders(model, j, drive.layout.rho))
+        raise ModelError(f"runup = \"periodic\" solves for a period of at most {MAX_PERIOD_REVS} crank revolutions; "
+                         f"the excitation's orders of the crank ({orders}) do not repeat within them: use "
+                         "runup = \"time\"", field="simulation.runup")
     sysm = RT.build(drive)
     speeds = speeds_of(model, j)
-    revs = period_revolutions(model, j, sysm.R.rho)
     d = _Drive(sysm, j)
     R = sysm.R
     nk, na = R.nk, sysm.A.na
