@@ -63,3 +63,21 @@ def test_diagnostic_line_shows_quantity_value_and_limit():
     text = buf.getvalue()
     assert "status: warning" in text
     assert "gross-slip: pulley [a] slips (pulleys.a.sliding = 0.42, limit 0.027)" in text
+
+
+def test_lowered_limits_refuse_in_one_line_and_leave_the_schema(tmp_path):
+    """DRIVEDYN_MAX_STEPS below a gear model's default steps: `schema gear-train` still works, and
+    `check` of a model that would exceed it is one line and exit 2 (the gear model's default
+    simulation was validated against the limits at import and every gear-train command failed with a
+    traceback)."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "DRIVEDYN_MAX_STEPS": "1000"}
+    run = lambda *a: subprocess.run([sys.executable, "-m", "drivedyn", *a], capture_output=True, text=True, env=env)
+    out = run("schema", "gear-train")
+    assert out.returncode == 0 and '"properties"' in out.stdout, out.stderr[-500:]
+    out = run("check", str(drivedyn.example_path("gears-split-path")))
+    assert out.returncode == 2 and "Traceback" not in out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1 and "DRIVEDYN_MAX_STEPS" in out.stderr

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Literal, Optional
 
-from pydantic import field_validator, model_validator
+from pydantic import Field, field_validator, model_validator
 
 from ..model import Spec, check_name, quantity, table_rows
 from .criteria import Criteria
@@ -520,7 +520,8 @@ class Model(Spec):
     meshes: list[Mesh] = []
     shafts: list[Shaft] = []
     drive: Optional[Drive] = None
-    simulation: Simulation = Simulation()
+    # a factory, not an instance: the limits its validator checks are read when a model loads, not at import
+    simulation: Simulation = Field(default_factory=Simulation)
     sweep: Sweep = Sweep()
     iso: Iso = Iso()
     planetary: Optional[Planetary] = None
