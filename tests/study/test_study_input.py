@@ -16,6 +16,17 @@ values = [500.0, 600.0]
 """
 
 
+OPT = """
+base = "{belt}"
+mode = "optimise"
+[[parameters]]
+path = "belt.pretension"
+range = [400.0, 600.0]
+[optimise]
+objective = "pulleys.driven.slip"
+"""
+
+
 @pytest.mark.parametrize("text, expect", [
     (OK.replace("belt.pretension", "belt.pretensoin"), "did you mean 'pretension'"),
     (OK.replace("belt.pretension", "pulleys.idler.radius"), "no item 'idler'"),
@@ -27,6 +38,12 @@ values = [500.0, 600.0]
     (OK.replace("values = [500.0, 600.0]", 'range = [400.0, 500.0]'), "needs num"),
     (OK + "colour = 1\n", "unknown key"),
     (OK + '[sampler]\nmethod = "lhs"\n', "needs samples"),
+    # NaN and infinite bounds (a NaN constraint marked every design feasible), seeds numpy refuses,
+    # populations past the cases a study may have: refused before anything runs
+    (OK.replace("values = [500.0, 600.0]", 'range = ["nan", 30.0]\nnum = 2'), "must be a finite number"),
+    (OPT + 'constraints = [{ key = "spans.*.tension_min", max = "nan N" }]\n', "must be a finite number"),
+    (OPT + 'seed = -1\n', "must lie in [0, 2^32)"),
+    (OPT + 'population = 10000000\n', "more than the"),
 ])
 def test_bad_study_input_is_one_line_model_error(write_study, text, expect):
     path = write_study(text)

@@ -52,6 +52,18 @@ SAMPLERS = {
 }
 
 
+def _finite(v, what: str):
+    """A bound or value as given (a number, or a string with a unit): refused when its number is
+    not finite (NaN would mark every design feasible, an infinite range samples nothing)."""
+    try:
+        x = float(v) if not isinstance(v, str) else float(v.strip().split()[0])
+    except (TypeError, ValueError, IndexError):
+        return v                                 # not a plain number: the units check reads it
+    if not math.isfinite(x):
+        raise ValueError(f"{what} must be a finite number, got {v!r}")
+    return v
+
+
 class Parameter(Spec):
     """One swept parameter.
 
@@ -102,6 +114,11 @@ class Parameter(Spec):
             raise ValueError(f"parameter {self.label!r}: values is empty")
         if self.num is not None and self.range is None:
             raise ValueError(f"parameter {self.label!r}: num goes with range")
+        for k, v in enumerate(self.range or ()):
+            _finite(v, f"parameter {self.label!r}: range[{k}]")
+        for k in ("mean", "std"):
+            if getattr(self, k) is not None:
+                _finite(getattr(self, k), f"parameter {self.label!r}: {k}")
         if isinstance(self.path, list) and len(self.path) > 1 and not self.name:
             raise ValueError("a parameter that sets several paths needs a name")
         if self.factors is not None and len(self.factors) != len(self.paths):
@@ -177,6 +194,9 @@ class Constraint(Spec):
     def _bound(self):
         if self.min is None and self.max is None:
             raise ValueError(f"constraint {self.key!r}: give min or max (or both)")
+        for k in ("min", "max"):
+            if getattr(self, k) is not None:
+                _finite(getattr(self, k), f"constraint {self.key!r}: {k}")
         return self
 
 
@@ -211,6 +231,17 @@ class Optimise(Spec):
     def _positive(cls, v):
         if v < 1:
             raise ValueError(f"must be >= 1, got {v}")
+        if v > max_cases():
+            raise ValueError(f"{v} designs are more than the {max_cases()} cases a study may have "
+                             f"(set {CASES_VARIABLE} to allow more)")
+        return v
+
+    @field_validator("seed")
+    @classmethod
+    def _seed(cls, v):
+        # numpy's generators take seeds in [0, 2^32)
+        if not 0 <= v < 2 ** 32:
+            raise ValueError(f"must lie in [0, 2^32), got {v}")
         return v
 
 
