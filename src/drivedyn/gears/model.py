@@ -318,11 +318,20 @@ class Iso(Spec):
     min_safety_pitting: float = 1.0
     min_safety_bending: float = 1.0
 
-    @field_validator("application_factor", "blank_factor", "min_safety_pitting", "min_safety_bending")
+    @field_validator("blank_factor", "min_safety_pitting", "min_safety_bending")
     @classmethod
     def _pos(cls, v):
         if not v > 0:
             raise ValueError(f"must be > 0, got {v}")
+        return v
+
+    @field_validator("application_factor")
+    @classmethod
+    def _ka(cls, v):
+        # ISO 6336-1, 6.2 / annex B: K_A >= 1 (1 for uniform driver and load); below it the rating
+        # would credit the drive with less load than its nominal torque
+        if not 1.0 <= v <= 10.0:
+            raise ValueError(f"must lie in [1, 10] (ISO 6336-1: K_A >= 1), got {v}")
         return v
 
     @field_validator("face_load_factor", "transverse_load_factor", "dynamic_factor")
