@@ -44,6 +44,8 @@ objective = "pulleys.driven.slip"
     (OPT + 'constraints = [{ key = "spans.*.tension_min", max = "nan N" }]\n', "must be a finite number"),
     (OPT + 'seed = -1\n', "must lie in [0, 2^32)"),
     (OPT + 'population = 10000000\n', "more than the"),
+    (OPT.replace("belt.pretension", "belt.segments").replace("range = [400.0, 600.0]", "range = [150.2, 150.8]\ninteger = true"),
+     "holds no integer"),
 ])
 def test_bad_study_input_is_one_line_model_error(write_study, text, expect):
     path = write_study(text)

@@ -116,6 +116,11 @@ class Parameter(Spec):
             raise ValueError(f"parameter {self.label!r}: num goes with range")
         for k, v in enumerate(self.range or ()):
             _finite(v, f"parameter {self.label!r}: range[{k}]")
+        if self.integer and self.range is not None and all(isinstance(v, (int, float)) for v in self.range):
+            lo, hi = sorted(self.range)
+            if math.ceil(lo) > math.floor(hi):
+                raise ValueError(f"parameter {self.label!r}: integer = true, but range [{self.range[0]}, "
+                                 f"{self.range[1]}] holds no integer")
         for k in ("mean", "std"):
             if getattr(self, k) is not None:
                 _finite(getattr(self, k), f"parameter {self.label!r}: {k}")
