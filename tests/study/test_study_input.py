@@ -44,6 +44,7 @@ objective = "pulleys.driven.slip"
     (OPT + 'constraints = [{ key = "spans.*.tension_min", max = "nan N" }]\n', "must be a finite number"),
     (OPT + 'seed = -1\n', "must lie in [0, 2^32)"),
     (OPT + 'population = 10000000\n', "more than the"),
+    (OPT + 'budget = 4\n', "less than one generation, 6 designs"),
     (OPT.replace("belt.pretension", "belt.segments").replace("range = [400.0, 600.0]", "range = [150.2, 150.8]\ninteger = true"),
      "holds no integer"),
 ])

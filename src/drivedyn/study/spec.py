@@ -296,6 +296,13 @@ class StudySpec(Spec):
             fixed = [p.label for p in self.parameters if p.range is None]
             if fixed:
                 raise ValueError(f"parameters {fixed}: an optimisation varies parameters over a range = [low, high]")
+            # differential evolution's first generation is max(5, population x variables) designs
+            # (scipy.optimize.differential_evolution): a smaller budget would be overrun by it
+            first = max(5, self.optimise.population * len(self.parameters))
+            if self.optimise.budget < first:
+                raise ValueError(f"optimise.budget {self.optimise.budget} is less than one generation, {first} designs "
+                                 f"(population {self.optimise.population} x {len(self.parameters)} variables, at least 5): "
+                                 f"a budget >= {first} or a smaller population")
         elif self.optimise is not None:
             raise ValueError("[optimise] goes with mode = \"optimise\"")
         if self.mode == "check" and self.outputs.series:
