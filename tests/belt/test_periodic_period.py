@@ -31,3 +31,13 @@ def test_an_excitation_that_does_not_repeat_is_refused_before_any_work(changes):
         drivedyn.run(_periodic(changes))
     text = str(info.value)
     assert "simulation.runup" in text and "runup = \"time\"" in text and "\n" not in text
+
+
+def test_a_crawling_crank_is_refused_before_any_work():
+    """0.01-0.1 rpm: one period at each speed is millions of steps; the sweep ran without end, it is
+    now refused against the limit time integrations honour (DRIVEDYN_MAX_STEPS)."""
+    m = _periodic({"pulleys.0.speed_time": [[0.0, -0.001], [4.8, -0.01]]})
+    with pytest.raises(drivedyn.ModelError) as info:
+        drivedyn.run(m)
+    text = str(info.value)
+    assert "simulation.runup" in text and "DRIVEDYN_MAX_STEPS" in text and "\n" not in text

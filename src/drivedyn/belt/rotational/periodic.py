@@ -22,6 +22,7 @@ import time as _time
 import numpy as np
 
 from ...errors import ModelError, Stopped, stop_reason
+from ...limits import steps_problem
 from . import _kernels as RK
 from ..geometry.drive import resolve
 from . import simulate as RT
@@ -51,9 +52,12 @@ def speeds_of(model, j):
                          "speed after its spin-up (no speed range to sweep)", field="simulation.runup")
     width = model.output.runup_bin or (hi - lo) / 20
     edges = np.arange(math.floor(lo / width) * width, hi + width, width)
-    centres = 0.5 * (edges[:-1] + edges[1:])
+    keep = (edges[1:] > lo) & (edges[:-1] < hi)
+    # each bin's centre within the crank's range: a bin the range covers in part is solved at the
+    # middle of that part (a bin of 250 rpm swept 0.01-0.1 rpm at 125 rpm)
+    centres = 0.5 * (np.maximum(edges[:-1], lo) + np.minimum(edges[1:], hi))
     sign = math.copysign(1.0, max(w, key=abs))
-    return sign * centres[(edges[1:] > lo) & (edges[:-1] < hi)]
+    return sign * centres[keep]
 
 
 class _Drive:
@@ -153,6 +157,15 @@ def _sweep(drive, progress):
                          "runup = \"time\"", field="simulation.runup")
     sysm = RT.build(drive)
     speeds = speeds_of(model, j)
+    # the steps of the at most MAX_ITER periods per speed the solutions may take: refused before any
+    # work past the limit a time integration honours (a crawling crank's period is hours of steps)
+    n_per = SAMPLES_PER_REV * revs
+    most = MAX_ITER * sum(n_per * max(1, math.ceil(revs * 2 * math.pi / abs(w) / n_per / sysm.step)) for w in speeds)
+    problem = steps_problem(most, "the periodic run-up",
+                            f"up to {MAX_ITER} periods at each of {len(speeds)} crank speeds down to "
+                            f"{min(abs(w) for w in speeds) * RPM:.3g} rpm: a faster crank or runup = \"time\"")
+    if problem:
+        raise ModelError(problem, field="simulation.runup")
     d = _Drive(sysm, j)
     R = sysm.R
     nk, na = R.nk, sysm.A.na
