@@ -91,9 +91,12 @@ def add_supplier(model, result) -> None:
 
     if "supplier" in result.summary or not supplier.wanted(model):
         return
+    import numpy as np
+
     try:
         result.summary["supplier"] = supplier.report_data(resolve(model))
-    except ModelError as exc:
+    except (ModelError, np.linalg.LinAlgError, ArithmeticError, ValueError) as exc:
+        # after a finished run: the run's results stand, the report's tables say why they are missing
         result.summary["supplier_skipped"] = str(exc)
 
 

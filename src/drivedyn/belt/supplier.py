@@ -56,12 +56,17 @@ def report_data(drive) -> dict:
             "unreached": t.unreached, "take_up": t.take_up, "design_tension": t.design_tension,
             "length_offset": t.offset} for t in tables}
     if any(p.speed_time is not None for p in model.pulleys):
+        import numpy as np
+
         from .steady.modes import crank_free_modes, drive_modes
 
-        free, held = crank_free_modes(drive), drive_modes(drive)
-        out["resonance"] = {"frequency_hz": free.frequencies_hz[0] if free.frequencies_hz else None,
-                            "crank_held_hz": held.frequencies_hz[0] if held.frequencies_hz else None,
-                            "participation": free.participation[0] if free.participation else {}}
+        try:
+            free, held = crank_free_modes(drive), drive_modes(drive)
+            out["resonance"] = {"frequency_hz": free.frequencies_hz[0] if free.frequencies_hz else None,
+                                "crank_held_hz": held.frequencies_hz[0] if held.frequencies_hz else None,
+                                "participation": free.participation[0] if free.participation else {}}
+        except (np.linalg.LinAlgError, ArithmeticError, ValueError) as exc:   # a drive with no elastic mode
+            out["resonance_skipped"] = f"no rotational modes: {exc}"
     if model.duty_cycle is not None:
         from .steady.duty import duty_cycle
         from .steady.life import belt_life
