@@ -172,17 +172,17 @@ def drive_of(model, layout: Layout | None = None) -> CreepData:
     return d
 
 
-def _entry_exit(nk, forward):
+def entry_exit(nk, forward):
     """(entry span, exit span) per pulley; span k leaves pulley k in the listed order."""
     return [((j - 1) % nk, j) if forward else (j, (j - 1) % nk) for j in range(nk)]
 
 
-def _offsets(d: CreepData, M, forward):
+def tension_offsets(d: CreepData, M, forward):
     """Span tensions relative to span 0 from the torque balances, walking in the travel sense."""
     nk = len(d.names)
     s = 1.0 if forward else -1.0
     off = np.zeros(nk)
-    ee = _entry_exit(nk, forward)
+    ee = entry_exit(nk, forward)
     # start at pulley 1 (forward: entry span 0) or pulley 0 (backward: entry span 0)
     j = 1 % nk if forward else 0
     for _ in range(nk - 1):
@@ -195,7 +195,7 @@ def _offsets(d: CreepData, M, forward):
 def length_of(d: CreepData, T, c, forward):
     """Unstretched length of the belt carrying span tensions T (listed order)."""
     L = float(np.sum(d.span_length / (1 + T / d.EA)))
-    for j, (a, b) in enumerate(_entry_exit(len(d.names), forward)):
+    for j, (a, b) in enumerate(entry_exit(len(d.names), forward)):
         L += _wrap_length(abs(d.rho[j]), d.wrap[j], T[a], T[b], c, d.mu[j], d.EA, d.c1, d.c2)
     return L
 
@@ -203,7 +203,7 @@ def length_of(d: CreepData, T, c, forward):
 def tensions(d: CreepData, M, c, forward):
     """Span tensions (listed order) under pulley loads M (balanced: sum M_j / rho_j = 0) at
     centrifugal tension c, with L0 conserved. None when the belt would go slack (T <= c)."""
-    off = _offsets(d, M, forward)
+    off = tension_offsets(d, M, forward)
     f = lambda t0: length_of(d, t0 + off, c, forward) - d.L0
     lo = c - off.min() + 1e-9 * (d.EA + abs(c))
     if f(lo) <= 0:                     # even the slackest tight-enough belt is too short to need more
@@ -218,7 +218,7 @@ def tensions(d: CreepData, M, c, forward):
 
 
 def slip_arcs(d: CreepData, T, c, forward):
-    return np.array([_arc(T[a], T[b], c, d.mu[j]) for j, (a, b) in enumerate(_entry_exit(len(d.names), forward))])
+    return np.array([_arc(T[a], T[b], c, d.mu[j]) for j, (a, b) in enumerate(entry_exit(len(d.names), forward))])
 
 
 def _fill(d: CreepData, M, c, forward, lam):
@@ -274,7 +274,7 @@ def applied_torque(p, omega):
 def _speeds(d: CreepData, v0, T, forward, c=0.0):
     """Pulley speeds (rad/s): each turns with the belt arriving at it, v0 (1 + T_in/EA), on its
     running radius (``CreepData.running_radius``)."""
-    ee = _entry_exit(len(d.names), forward)
+    ee = entry_exit(len(d.names), forward)
     return np.array([v0 * (1 + T[a] / d.EA) / d.running_radius(j, T[a], c) for j, (a, _) in enumerate(ee)])
 
 
@@ -287,7 +287,7 @@ def _steady_speed(model, d: CreepData, T, prescribed):
         w = pulleys[j].speed_time[-1][1]
         v_try = w * d.rho[j]
         forward = v_try >= 0
-        a = _entry_exit(len(d.names), forward)[j][0]
+        a = entry_exit(len(d.names), forward)[j][0]
         return w * d.running_radius(j, T[a], 0.0) / (1 + T[a] / d.EA)
 
     def g(v0):
@@ -362,7 +362,7 @@ def steady_state(model, layout: Layout | None = None, loads=None, speed=None, wi
                          "(belt); tensions of that uniform acceleration, no centrifugal tension")
         else:
             drv = _driver(_balanced(d, M, w, presc), w, presc)
-            v = v0 * (1 + T[_entry_exit(nk, v0 >= 0)[drv][0]] / d.EA)
+            v = v0 * (1 + T[entry_exit(nk, v0 >= 0)[drv][0]] / d.EA)
             if abs(v0) < 1e-12:
                 state = "at rest"
             notes += _table_notes(pulleys, w, M, drv)
@@ -403,7 +403,7 @@ def _solve(d: CreepData, M, v, accel, state, presc, notes, with_margins=True) ->
         T = np.full(nk, math.nan)
         notes.append("no steady state: a span would go slack under these loads")
     arcs = slip_arcs(d, T, c, forward) if not slack else np.full(nk, math.inf)
-    ee = _entry_exit(nk, forward)
+    ee = entry_exit(nk, forward)
     marg = margins(d, Mb, c, forward) if with_margins else np.full(nk, math.inf)
     over = [j for j in range(nk) if arcs[j] > d.wrap[j] and (not slack or Mb[j] != 0)]
     if slack:

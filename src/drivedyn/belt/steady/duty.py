@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...errors import ModelError
-from .creep import _entry_exit, _offsets, drive_of
+from .creep import entry_exit, tension_offsets, drive_of
 
 
 @dataclass(frozen=True)
@@ -148,8 +148,8 @@ def acceleration_envelope(drive, design_tension: float) -> list[dict]:
 def _fixed_arm(model, drive, d, M, forward, design_tension, v) -> DutyColumns:
     lay = drive.layout
     nk = len(lay.names)
-    off = _offsets(d, M, forward)
-    ee = _entry_exit(nk, forward)
+    off = tension_offsets(d, M, forward)
+    ee = entry_exit(nk, forward)
     anchor = ee[drive.tensioners[0]][0] if drive.tensioners else None
     if anchor is None:
         raise ModelError("the supplier's duty table holds the span leaving the tensioner at the design tension: "
@@ -193,7 +193,7 @@ def _columns(model, lay, T, T_hub, forward, c, M, margin=None) -> DutyColumns:
         u = np.array([math.cos(sp.angle), math.sin(sp.angle)])
         hub[sp.start] += T_hub[k] * u
         hub[sp.end] -= T_hub[k] * u
-    ee = _entry_exit(nk, forward)
+    ee = entry_exit(nk, forward)
     mu = model.friction.coefficient
     sf = {}
     for j, p in enumerate(model.pulleys):
