@@ -111,21 +111,16 @@ def _table(model, j, s, d_eff, offset) -> PositionTable:
     # the rows' belt lengths from the drawn (mean) position's: the reports' rows lie tol, tol + wear
     # and -tol from it whatever their printed offset between drive length and belt length
     tol, wear = belt.length_tolerance, belt.wear_allowance * belt.effective_length
-    mean = rebl(rel_drawn)
-    targets = {"replace": mean + tol + wear, "max belt": mean + tol, "mean": mean, "min belt": mean - tol}
+    nominal = rebl(rel_drawn)
+    targets = {"replace": nominal + tol + wear, "max belt": nominal + tol, "min belt": nominal - tol}
+    fixed = {"free arm": 0.0, "mean": rel_drawn, "load stop": load_stop}      # rows at a known arm angle
     lo_len, hi_len = rebl(load_stop), rebl(0.0)          # the arm's reach in required belt length
     rows, unreached = [], {}
     for name in ROWS:
-        if name == "free arm":
-            rows.append(row(name, 0.0))
-            continue
-        if name == "load stop":
-            rows.append(row(name, load_stop))
+        if name in fixed:
+            rows.append(row(name, fixed[name]))
             continue
         target = targets[name]
-        if name == "mean":
-            rows.append(row(name, rel_drawn))
-            continue
         if not lo_len <= target <= hi_len:
             where = "beyond the free arm" if target > hi_len else "beyond the load stop"
             why = (f"a required belt length of {target * 1e3:.2f} mm lies {where} (the arm reaches "
