@@ -88,3 +88,14 @@ def test_crossing_placed_at_3000_rpm_is_listed():
     assert mine[0]["frequency_hz"] == pytest.approx(100, rel=0.005)
     # outside the judged range: not listed
     assert not [x for x in flapmod.crossings(fl, [2.0], (3500, 5000)) if x["span"] == sp.name]
+
+
+def test_a_negative_flap_order_is_refused():
+    """criteria.flap_orders = [-2] was accepted and never judged: refused naming the field."""
+    import pytest
+
+    import drivedyn
+
+    model = drivedyn.load(drivedyn.example_path("fead-runup"))
+    with pytest.raises(drivedyn.ModelError, match=r"criteria.flap_orders.*\(0, 1000\]"):
+        drivedyn.replace(model, {"criteria.flap_orders": [-2.0]})

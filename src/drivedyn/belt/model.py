@@ -556,6 +556,14 @@ class Criteria(Spec):
     # SAE 1999-01-1709)
     entry_angle_max: quantity("rad", gt=0) = 0.9 * math.pi / 180
 
+    @field_validator("flap_orders")
+    @classmethod
+    def _orders(cls, v):
+        bad = [o for o in v if not (math.isfinite(o) and 0 < o <= 1000)]
+        if bad:     # a negative order was accepted and never judged
+            raise ValueError(f"orders must lie in (0, 1000], got {bad}")
+        return v
+
 
 class Model(Spec):
     """A belt drive: belt, pulleys in belt order, contact, friction, simulation and output."""
