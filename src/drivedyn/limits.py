@@ -44,9 +44,12 @@ def max_bytes() -> float:
 def steps_problem(steps: float, what: str, fix: str) -> str | None:
     """None if ``steps`` fits the limit, else the one-line refusal."""
     limit = max_steps()
-    if steps <= limit:
+    if steps <= limit * (1 + 1e-9):       # a run at exactly the limit (its steps from a float division)
         return None
-    return (f"{what}: {steps:.3g} integration steps, more than the {limit:.3g} a run may take ({fix}, "
+    digits = 3
+    while f"{steps:.{digits}g}" == f"{limit:.{digits}g}" and digits < 12:     # never two equal numbers
+        digits += 1
+    return (f"{what}: {steps:.{digits}g} integration steps, more than the {limit:.{digits}g} a run may take ({fix}, "
             "or set DRIVEDYN_MAX_STEPS)")
 
 

@@ -81,3 +81,14 @@ def test_lowered_limits_refuse_in_one_line_and_leave_the_schema(tmp_path):
     out = run("check", str(drivedyn.example_path("gears-split-path")))
     assert out.returncode == 2 and "Traceback" not in out.stderr
     assert len(out.stderr.strip().splitlines()) == 1 and "DRIVEDYN_MAX_STEPS" in out.stderr
+
+
+def test_step_limit_at_and_just_past_the_limit(monkeypatch):
+    """A run at exactly DRIVEDYN_MAX_STEPS is allowed; just past it the refusal prints two different
+    numbers (it printed "1e+04 ... more than the 1e+04")."""
+    from drivedyn.limits import steps_problem
+
+    monkeypatch.setenv("DRIVEDYN_MAX_STEPS", "10000")
+    assert steps_problem(10000 * (1 + 1e-12), "x", "y") is None
+    text = steps_problem(10004, "x", "y")
+    assert "10004 integration steps, more than the 10000" in text
