@@ -72,6 +72,42 @@ def _progress_bar(console):
                     console=console, transient=False)
 
 
+#: seconds before the progress bar shows without a report (assembling a drive takes up to about 2 s;
+#: a first run then compiles the kernels, minutes, and the bar says so)
+BAR_DELAY = 3.0
+
+
+class _LazyBar:
+    """A progress bar that starts at the first report or after BAR_DELAY, whichever comes first."""
+
+    def __init__(self, bar, kind: str):
+        import threading
+
+        self.bar, self.kind, self.task = bar, kind, None
+        self.lock = threading.Lock()
+        self.timer = threading.Timer(BAR_DELAY, self._start)
+        self.timer.daemon = True
+        self.timer.start()
+
+    def _start(self):
+        with self.lock:
+            if self.task is None:
+                self.bar.start()
+                # until the first report: numba compiles the kernels on their first use only
+                self.task = self.bar.add_task(self.kind, total=1.0,
+                                              info="preparing (a first run compiles the kernels: 1-3 minutes)")
+
+    def update(self, frac, info=""):
+        self._start()
+        self.bar.update(self.task, completed=min(max(frac, 0.0), 1.0), info=info)
+
+    def close(self):
+        self.timer.cancel()
+        with self.lock:
+            if self.task is not None:
+                self.bar.stop()
+
+
 @app.command()
 def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         out: Path = typer.Option(Path("out"), "-o", "--out", help="Output folder."),
@@ -106,22 +142,20 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
     with contextlib.ExitStack() as stack:
         if painters is not None:
             stack.enter_context(painters)
-        with (contextlib.nullcontext() if quiet else _progress_bar(console)) as bar:
-            # until the first report: numba compiles the kernels on their first use only
-            task = None if quiet else bar.add_task(f"{m.kind}", total=1.0,
-                                                   info="preparing (a first run compiles the kernels: 1-3 minutes)")
-
-            def progress(frac, info=""):
-                bar.update(task, completed=min(max(frac, 0.0), 1.0), info=info)
-
-            refused = None
-            try:
-                result = api.run(m, progress=None if quiet else progress)
-            except SolverError as exc:
-                failure = exc
-                result = exc.partial
-            except ModelError as exc:
-                refused = exc           # said once the bar is gone, so that the error is the last line
+        # the bar appears at the first progress report, or after BAR_DELAY: a refusal found while the
+        # drive is assembled (milliseconds) is then the only line printed
+        bar = None if quiet else _LazyBar(_progress_bar(console), m.kind)
+        refused = None
+        try:
+            result = api.run(m, progress=None if quiet else bar.update)
+        except SolverError as exc:
+            failure = exc
+            result = exc.partial
+        except ModelError as exc:
+            refused = exc           # said once the bar is gone, so that the error is the last line
+        finally:
+            if bar is not None:
+                bar.close()
         if refused is not None:
             _fail(_named(model, refused))
         if result is not None:

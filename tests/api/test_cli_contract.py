@@ -92,3 +92,18 @@ def test_step_limit_at_and_just_past_the_limit(monkeypatch):
     assert steps_problem(10000 * (1 + 1e-12), "x", "y") is None
     text = steps_problem(10004, "x", "y")
     assert "10004 integration steps, more than the 10000" in text
+
+
+def test_a_refusal_while_the_drive_is_assembled_is_the_only_line(tmp_path):
+    """`drivedyn run` refused while assembling the drive (here its steps past DRIVEDYN_MAX_STEPS):
+    stderr holds the error line alone, not the progress bar's first frame before it."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "DRIVEDYN_MAX_STEPS": "1000"}
+    out = subprocess.run([sys.executable, "-m", "drivedyn", "run", str(drivedyn.example_path("belt-5pk")),
+                          "-o", str(tmp_path / "out")], capture_output=True, text=True, env=env)
+    assert out.returncode == 2
+    lines = [ln for ln in out.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith("drivedyn: error:"), out.stderr
