@@ -52,9 +52,9 @@ def belt_life(model, design_tension: float, belt_speeds) -> BeltLife:
     temp = [2.0 ** (((r.temperature if r.temperature is not None else dc.temperature) - fit.reference_temperature)
                     / fit.halving) for r in dc.rows]
     rows = [p * t for p, t in zip(passes, temp)]
-    D = sum(geo.values()) * sum(rows) * (design_tension / belt.ribs) ** fit.tension_exponent
+    g = sum(geo.values())
+    D = g * sum(rows) * (design_tension / belt.ribs) ** fit.tension_exponent
     # the range as the source prints it, to its 0.1 mm (AG0868's crank, 175.01 mm, lies in it)
     out = [p.name for p, d in zip(model.pulleys, d_mm) if not FIT_RANGE[0] * 1e3 - 0.05 <= d <= FIT_RANGE[1] * 1e3 + 0.05]
-    g = sum(geo.values())
     return BeltLife(fit.constant / D if D > 0 else math.inf, {n: x / g for n, x in geo.items()},
                     [x / sum(rows) for x in rows], not out, out)
