@@ -64,9 +64,18 @@ def literal(fig) -> None:
     study value is not matplotlib math text (an unknown command in it would end the drawing).
     The package's own labels use Unicode (mm\u00b2), not math text."""
     from matplotlib.text import Text
+    from matplotlib.ticker import LogFormatter, LogFormatterMathtext
 
     for t in fig.findobj(Text):
         t.set_parse_math(False)
+    # a log axis labels its ticks in math text ($\mathdefault{10^{-1}}$), which would print raw:
+    # plain numbers instead (0.1, 1, 10)
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            if isinstance(axis.get_major_formatter(), LogFormatterMathtext):
+                axis.set_major_formatter(LogFormatter(labelOnlyBase=True))
+            if isinstance(axis.get_minor_formatter(), LogFormatterMathtext):
+                axis.set_minor_formatter(LogFormatter(labelOnlyBase=True))
 
 
 def savefig(fig, path, **kw) -> Path:
