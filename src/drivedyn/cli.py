@@ -124,7 +124,8 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
     from . import api
     from .model import load
 
-    console = Console(stderr=True)
+    console = Console(stderr=True)      # progress and errors
+    results = Console()                 # what the run found: `drivedyn run m.toml > log.txt` keeps it
     try:
         m = load(model)
     except ModelError as exc:
@@ -177,18 +178,18 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
             except OSError as exc:      # after the up-front check: permissions changed, disk full, ...
                 _write_failed(out, exc, started)
     if result is not None:
-        console.print(f"wrote {out / 'results.nc'}, {out / 'summary.json'} and {len(written)} plot(s)")
+        results.print(f"wrote {out / 'results.nc'}, {out / 'summary.json'} and {len(written)} plot(s)")
         if report:
             from .report import write_report
 
             try:
-                console.print(f"report: {write_report(result, out, written, model=m, source=model)}")
+                results.print(f"report: {write_report(result, out, written, model=m, source=model)}")
             except OSError as exc:
                 _write_failed(out, exc, started)
-        _print_overview(console, result)
+        _print_overview(results, result)
         if show_all:
-            _print_summary(console, result)
-        _print_status(console, result)
+            _print_summary(results, result)
+        _print_status(results, result)
     if failure is not None:
         _fail(f"solve failed: {failure}" + ("; partial results kept in " + str(out) if result is not None else ""), code=1)
     if strict and result is not None and result.status == "warning":

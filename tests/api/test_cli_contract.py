@@ -31,7 +31,7 @@ def test_output_folder_below_a_file_is_refused(tmp_path, capsys):
 
 def test_summary_carries_status_diagnostics_and_units(tmp_path, capsys):
     code = main(["run", str(drivedyn.example_path("span-t10")), "-o", str(tmp_path), "-q", "--no-plots"])
-    out = capsys.readouterr().err
+    out = capsys.readouterr().out
     doc = json.loads((tmp_path / "summary.json").read_text())
     assert code == 0
     assert list(doc)[:5] == ["kind", "status", "message", "diagnostics", "units"]

@@ -88,19 +88,28 @@ def test_a_dollar_pulley_name_runs_with_plots_and_report(tmp_path):
 
 def test_rich_markup_in_a_name_is_printed_as_written(tmp_path):
     path = write(tmp_path, short_belt(**{"pulleys.0.name": "[bold]x[red]"}))
-    code, err, _, _ = cli("run", path, "-o", tmp_path / "out", "-q", "--no-plots", "--no-report")
+    code, err, out, _ = cli("run", path, "-o", tmp_path / "out", "-q", "--no-plots", "--no-report")
     assert code == 0, err
-    assert "[bold]x[red]" in err
+    assert "[bold]x[red]" in out
 
 
 def test_a_100000_character_name_is_shortened_on_the_terminal_and_kept_in_the_summary(tmp_path):
     name = "p" * 100_000
     path = write(tmp_path, short_belt(**{"pulleys.0.name": name}))    # the driver: a summary value too
-    code, err, _, seconds = cli("run", path, "-o", tmp_path / "out", "-q", "--no-plots", "--no-report")
+    code, err, out, seconds = cli("run", path, "-o", tmp_path / "out", "-q", "--no-plots", "--no-report")
     assert code == 0, err
     assert seconds < 60             # 232 s before (the terminal wrapped the cell)
-    assert max(len(ln) for ln in err.splitlines()) < 400
+    assert max(len(ln) for ln in (err + out).splitlines()) < 400
     assert name in json.loads((tmp_path / "out" / "summary.json").read_text())["pulleys"]
+
+
+def test_run_prints_its_findings_on_stdout(tmp_path):
+    """`drivedyn run m.toml -o out > log.txt` keeps the verdict, the tables and the status (they went
+    to stderr and left the file empty); progress and errors stay on stderr."""
+    code, err, out, _ = cli("run", write(tmp_path, short_belt()), "-o", tmp_path / "out", "-q", "--no-plots")
+    assert code == 0, err
+    assert "verdict:" in out and "status:" in out and "report:" in out
+    assert "verdict:" not in err
 
 
 def test_file_and_netcdf_names():
