@@ -250,8 +250,10 @@ def plot_spectrum(ds, driver, ax):
     ax[0].set_ylabel("tension (N)")
     ax[0].set_title("spectrum of the tight span's tension (steady window)")
     for nm in ds["pulley"].values:
-        ax[1].semilogy(fb, peaks(amp(ds["speed"].sel(pulley=nm).values)), color=colour(ds, nm), lw=0.8, label=str(nm))
-        ax[2].semilogy(fb, peaks(amp(ds["hub_load"].sel(pulley=nm).values)), color=colour(ds, nm), lw=0.8, label=str(nm))
+        for a, var in ((ax[1], "speed"), (ax[2], "hub_load")):
+            y = peaks(amp(ds[var].sel(pulley=nm).values))
+            if np.any(y > 0):       # a pulley held at a constant speed has none to draw on a log axis
+                a.semilogy(fb, y, color=colour(ds, nm), lw=0.8, label=str(nm))
     ax[1].set_ylabel("speed (rad/s)")
     ax[1].set_title("spectra of the pulley speeds")
     ax[2].set_ylabel("hub load (N)")
