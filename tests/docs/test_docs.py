@@ -20,9 +20,12 @@ def test_docs_build_strict(tmp_path):
     proc = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "-q", "-d", str(tmp_path / "site")],
                           cwd=ROOT, capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr[-3000:]
-    ref = (tmp_path / "site" / "reference" / "belt-drive" / "index.html").read_text()
+    ref = (tmp_path / "site" / "reference" / "belt-drive.html").read_text()
     assert "pretension" in ref and "slip_margin_min" in ref and "model-reference:" not in ref
-    assert "flap_speed_margin" in (tmp_path / "site" / "criteria" / "index.html").read_text()
+    assert "flap_speed_margin" in (tmp_path / "site" / "criteria.html").read_text()
+    # the site browses from disk: navigation links name the page file, never a directory
+    index = (tmp_path / "site" / "index.html").read_text()
+    assert 'href="criteria.html"' in index and 'href="criteria/"' not in index
 
 
 def test_readme_short_and_commands():
