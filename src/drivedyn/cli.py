@@ -72,6 +72,36 @@ def _progress_bar(console):
                     console=console, transient=False)
 
 
+SET_HELP = ("Change one value of the model, KEY=VALUE (repeatable): a dotted path and a TOML value, "
+            "e.g. --set simulation.model=rotational --set belt.pretension='\"600 N\"'.")
+
+
+def _load(model: Path, sets: list[str] | None):
+    """The model file, with the --set changes applied (one line and exit 2 on a bad one)."""
+    import tomllib
+
+    from . import replace
+    from .model import load
+
+    try:
+        m = load(model)
+        if not sets:
+            return m
+        changes = {}
+        for item in sets:
+            key, eq, text = item.partition("=")
+            if not eq or not key.strip():
+                raise ModelError(f"--set {item!r}: give KEY=VALUE, e.g. simulation.model=rotational")
+            try:
+                value = tomllib.loads(f"v = {text.strip()}")["v"]
+            except tomllib.TOMLDecodeError:
+                value = text.strip()          # a bare word: the string itself
+            changes[key.strip()] = value
+        return replace(m, changes)
+    except ModelError as exc:
+        _fail(_named(model, exc))
+
+
 #: seconds before the progress bar shows without a report (assembling a drive takes up to about 2 s;
 #: a first run then compiles the kernels, minutes, and the bar says so)
 BAR_DELAY = 3.0
@@ -117,19 +147,16 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         strict: bool = typer.Option(False, "--strict", help=f"Exit with status {EXIT_WARNING} when the run ends "
                                     f"with diagnostics (status 'warning'), {EXIT_CRITERIA} when a design criterion fails."),
         show_all: bool = typer.Option(False, "--all", help="Also print the full summary (every value of summary.json)."),
+        sets: list[str] = typer.Option(None, "--set", help=SET_HELP),
         ):
     """Run a model; write results.nc, summary.json, plots and report.html into OUT."""
     from rich.console import Console
 
     from . import api
-    from .model import load
 
     console = Console(stderr=True)      # progress and errors
     results = Console()                 # what the run found: `drivedyn run m.toml > log.txt` keeps it
-    try:
-        m = load(model)
-    except ModelError as exc:
-        _fail(str(exc))
+    m = _load(model, sets)
     check_outdir(out)
     import time
 
@@ -289,15 +316,12 @@ def _print_status(console, result):
 
 @app.command()
 def check(model: Path = typer.Argument(..., help="Model file (TOML)."),
-          as_json: bool = typer.Option(False, "--json", help="Belt drives: steady state, margins, modes as JSON.")):
+          as_json: bool = typer.Option(False, "--json", help="Belt drives: steady state, margins, modes as JSON."),
+          sets: list[str] = typer.Option(None, "--set", help=SET_HELP)):
     """Validate a model and print what is known without running it."""
     from . import api
-    from .model import load
 
-    try:
-        m = load(model)
-    except ModelError as exc:
-        _fail(str(exc))
+    m = _load(model, sets)
     try:
         if as_json and m.kind != "belt-drive":
             _fail(f"{model}: check --json is for belt-drive models (this is {m.kind})")

@@ -107,3 +107,20 @@ def test_a_refusal_while_the_drive_is_assembled_is_the_only_line(tmp_path):
     assert out.returncode == 2
     lines = [ln for ln in out.stderr.splitlines() if ln.strip()]
     assert len(lines) == 1 and lines[0].startswith("drivedyn: error:"), out.stderr
+
+
+def test_set_changes_one_value_from_the_command_line(tmp_path, capsys):
+    """--set KEY=VALUE (TOML values; repeatable) on run and check: no edited copy of the file needed;
+    a misspelt key or a missing '=' is one line, exit 2."""
+    path = str(drivedyn.example_path("fead-runup"))
+    code = main(["run", path, "-o", str(tmp_path / "o"), "-q", "--no-plots", "--no-report",
+                 "--set", "simulation.model=rotational", "--set", "simulation.runup=periodic",
+                 "--set", 'belt.pretension="380 N"'])
+    assert code == 0
+    doc = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert doc["belt"]["model"] == "rotational" and "runup" in doc
+    capsys.readouterr()
+    for bad, words in (("belt.pretensoin=3", "did you mean 'pretension'"), ("nonsense", "give KEY=VALUE")):
+        assert main(["check", path, "--set", bad]) == 2
+        err = capsys.readouterr().err.strip()
+        assert len(err.splitlines()) == 1 and words in err, err
