@@ -245,13 +245,17 @@ def _print_overview(console, result):
     style = {"pass": "green", "fail": "red"}.get(v["verdict"], "yellow")
     if v["rows"]:
         t = Table(title=f"verdict: [{style}]{v['verdict']}[/{style}]", title_justify="left")
-        for h in v["head"]:
+        for h in v["head"][:-1]:
             t.add_column(h, justify="right" if h in ("value", "limit") else "left")
         for r in v["rows"]:
-            cells = [escape(str(c)) for c in r]
+            cells = [escape(str(c)) for c in r[:-1]]
             cells[4] = f"[green]{cells[4]}[/green]" if r[4] == "pass" else f"[red]{cells[4]}[/red]"
             t.add_row(*cells)
         _print_table(console, t)
+        # what each criterion judges (span_tension is the tension less m v^2, not a span's minimum)
+        for r in v["rows"]:
+            if r[6]:
+                console.print(escape(f"  {r[0]}: {r[6]}"), style="dim", soft_wrap=not console.is_terminal)
     else:
         console.print(f"verdict: [{style}]{v['verdict']}[/{style}]")
     if v["note"]:

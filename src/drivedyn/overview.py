@@ -19,10 +19,10 @@ RPM = 30 / math.pi
 
 def verdict_table(summary: dict) -> dict:
     verdict = summary.get("verdict", "not judged")
-    rows = [[r["name"], r["value"], r["limit"], r["unit"], r["pass"], r["where"]] for r in criteria_rows(summary)]
+    rows = [[r["name"], r["value"], r["limit"], r["unit"], r["pass"], r["where"], r["text"]] for r in criteria_rows(summary)]
     skipped = summary.get("criteria_skipped") or {}
     note = "; ".join(f"{k}: {v}" for k, v in skipped.items())
-    return {"title": f"verdict: {verdict}", "head": ["criterion", "value", "limit", "unit", "", "where"],
+    return {"title": f"verdict: {verdict}", "head": ["criterion", "value", "limit", "unit", "", "where", "what it judges"],
             "rows": rows, "note": note, "verdict": verdict}
 
 

@@ -124,3 +124,14 @@ def test_set_changes_one_value_from_the_command_line(tmp_path, capsys):
         assert main(["check", path, "--set", bad]) == 2
         err = capsys.readouterr().err.strip()
         assert len(err.splitlines()) == 1 and words in err, err
+
+
+def test_the_verdict_says_what_each_criterion_judges(tmp_path, capsys):
+    """The verdict names criteria by id; each is followed by what it judges (span_tension read as a
+    span's minimum while it is the tension less m v^2), in the terminal and on the report page."""
+    assert main(["run", str(drivedyn.example_path("belt-5pk")), "-o", str(tmp_path), "-q", "--no-plots"]) == 0
+    out = capsys.readouterr().out
+    assert "span_tension: smallest span tension less the centrifugal tension m v^2" in out
+    page = (tmp_path / "report.html").read_text()
+    assert "what it judges" in page and "less the centrifugal tension" in page
+    assert "solve: <span class=\"status" in page
