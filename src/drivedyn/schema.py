@@ -16,9 +16,16 @@ from .analyses import analysis
 UNIT_STRING = r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*\S.*$"
 
 
+#: pydantic's bound names, where they stand in a number's schema, and JSON Schema's (draft 2020-12)
+BOUNDS = {"gt": "exclusiveMinimum", "ge": "minimum", "lt": "exclusiveMaximum", "le": "maximum"}
+
+
 def _with_units(node):
     if isinstance(node, dict):
         node = {k: _with_units(v) for k, v in node.items()}
+        if node.get("type") in ("number", "integer"):
+            # a validator and an editor read the standard keywords (they passed a negative mass)
+            node = {BOUNDS.get(k, k): v for k, v in node.items()}
         if "unit" in node and node.get("type") in ("number", "integer"):
             num = {k: v for k, v in node.items() if k not in ("unit", "title", "description", "default")}
             rest = {k: v for k, v in node.items() if k in ("unit", "title", "description", "default")}
@@ -130,7 +137,7 @@ def reference_markdown(kind: str) -> str:
             elif f.default is None:
                 default = "none"
             elif f.default is PydanticUndefined:
-                default = ""
+                default = "(the table's defaults)" if f.default_factory is not None else ""
             elif isinstance(f.default, BaseModel):
                 default = "(the table's defaults)"
             else:
@@ -144,6 +151,7 @@ def reference_markdown(kind: str) -> str:
             t = _type_text(f.annotation)
             if unit and t.startswith("number"):
                 t = "number or string with unit"
-            out.append(f"| `{fname}` | {t} | {unit} | {default} | {', '.join(bounds)} |")
+            # a unit in code: Markdown read N*m*s/rad as N, an italic m, s/rad
+            out.append(f"| `{fname}` | {t} | {f'`{unit}`' if unit else ''} | {default} | {', '.join(bounds)} |")
         out.append("")
     return "\n".join(out)

@@ -60,3 +60,24 @@ def test_schema_command(tmp_path):
     assert res.exit_code == 0 and json.loads(res.output)["properties"]["kind"]
     res = CliRunner().invoke(app, ["schema", "belt"])
     assert res.exit_code == 2 and "unknown kind" in res.output
+
+
+def test_bounds_in_standard_keywords_refuse_a_negative_mass():
+    """Bounds as JSON Schema states them (exclusiveMinimum, minimum, ...), not pydantic's gt / ge,
+    which a validator ignores: a negative mass or radius is rejected by the schema itself."""
+    schema = json_schema("belt-drive")
+    text = json.dumps(schema)
+    assert '"gt"' not in text and '"ge"' not in text and '"exclusiveMinimum"' in text
+    data = tomllib.loads(EXAMPLES["belt-5pk"].read_text())
+    data["belt"]["mass_per_length"] = -0.1
+    data["pulleys"][0]["radius"] = -0.027
+    bad = {tuple(e.absolute_path)[:3] for e in jsonschema.Draft202012Validator(schema).iter_errors(data)}
+    assert ("belt", "mass_per_length") in {b[:2] for b in bad} and ("pulleys", 0, "radius") in bad
+
+
+def test_the_reference_writes_units_as_code():
+    """N*m*s/rad in the model-file reference reads as written (Markdown made "Nms/rad" with an italic m)."""
+    from drivedyn.schema import reference_markdown
+
+    text = reference_markdown("belt-drive")
+    assert "| `N*m*s/rad` |" in text and "| N*m*s/rad |" not in text
