@@ -328,9 +328,21 @@ def _gears(result) -> list[dict]:
                     "note": "S_H and S_F with ISO's K_v, and every factor: rating.* in summary.json"})
     pl = s.get("planetary")
     if pl:
+        # in the units a gear engineer reads: angles in degrees, lengths in mm, pin errors in um, shares in %
+        show = {"planet_angles": ("deg", DEG), "centre_distance": ("mm", 1e3), "position_errors": ("um", 1e6),
+                "load_share": ("%", 100.0)}
+        items, units = [], dict(result.units)
+        for k, v in pl.items():
+            if isinstance(v, dict):
+                continue
+            if k in show and v is not None:
+                u, f = show[k]
+                v = [x * f for x in v] if isinstance(v, (list, tuple)) else v * f
+                units["planetary." + k] = u
+            items.append((k.replace("_", " "), v))
+            units["planetary." + k.replace("_", " ")] = units.get("planetary." + k, "")
         out.append({"title": "planetary stage", "head": ["quantity", "value", "unit"],
-                    "rows": _kv_rows([(k, v) for k, v in pl.items() if not isinstance(v, dict)], result.units,
-                                     "planetary."), "note": ""})
+                    "rows": _kv_rows(items, units, "planetary."), "note": ""})
         if pl.get("natural_frequencies_hz"):
             types = pl.get("mode_types") or [""] * len(pl["natural_frequencies_hz"])
             out.append({"title": "planetary stage: modes (lumped torsional model)", "head": ["mode", "frequency (Hz)", "type"],

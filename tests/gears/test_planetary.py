@@ -165,3 +165,16 @@ def test_planetary_bad_input_one_line_exit_2(tmp_path, capsys, edit, expect):
     assert main(["check", str(f)]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and expect in err, err
+
+
+def test_load_sharing_is_judged_and_said():
+    """The planetary example's K_gamma (2.16: one planet carries 54 % with the sun held and a 10 um pin
+    error) fails its criteria.load_sharing_max; without a limit the verdict's note says it (it read
+    "not judged" with nothing about the planets)."""
+    import drivedyn
+
+    m = drivedyn.load(drivedyn.example_path("gears-planetary"))
+    c = drivedyn.run(m).summary["criteria"]["load_sharing_planetary"]
+    assert c["value"] == pytest.approx(2.159, abs=1e-3) and not c["pass"] and "54 %" in c["where"]
+    s = drivedyn.run(drivedyn.replace(m, {"criteria.load_sharing_max": None})).summary
+    assert "K_gamma 2.16" in s["criteria_skipped"]["load_sharing_planetary"]

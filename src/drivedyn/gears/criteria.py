@@ -28,6 +28,9 @@ class Criteria(Spec):
     separation: bool = False                 # allow loss of tooth contact at the operating speed
     stable: bool = True                      # require the linear model stable at the operating speed
     sweep_unstable_ranges_max: Annotated[int, Field(ge=0)] = 0       # unstable or separating speed ranges allowed in the sweep
+    # the planets' mesh load factor K_gamma (the most loaded planet's share over the mean one) from
+    # the static load sharing: judged when given, else reported beside the verdict
+    load_sharing_max: quantity("1", ge=1) | None = None
 
 
 def evaluate(model, result):
@@ -68,6 +71,18 @@ def evaluate(model, result):
             missing = [w for w in (r["pinion"], r["wheel"]) if r[w].get(key) is None]
             if missing:
                 skipped[f"{key}_{label}_{n}_{missing[0]}"] = f"the {missing[0]}'s {key} is not rated ({'; '.join(r['notes'])})"
+    for label, st in stages:
+        kg = st.get("load_sharing_factor")
+        if kg is None:
+            continue
+        share = max(st.get("load_share") or [0.0])
+        where = f"{label}: the most loaded planet carries {100 * share:.0f} %"
+        if c.load_sharing_max is not None:
+            out.append(Criterion(f"load_sharing_{label}", kg, c.load_sharing_max, "1", "max",
+                                 "mesh load factor K_gamma of the planets (the most loaded planet's share over the "
+                                 "mean share)", where))
+        else:
+            skipped[f"load_sharing_{label}"] = f"K_gamma {kg:.3g} ({where}): no limit given (criteria.load_sharing_max)"
     sweep = (s.get("sweep") or {}).get("meshes") or {}
     if sweep:
         ranges = [(n, r) for n, e in sweep.items() for r in (e.get("unstable_speeds", []) + e.get("separation_speeds", []))]
