@@ -43,6 +43,15 @@ def max_cases() -> int:
         return MAX_CASES
 
 
+def check_cases(n, what: str, fix: str = "") -> None:
+    """Refuse ``n`` cases past :func:`max_cases` in one line (``what``: the count named, ``{n}`` in it
+    for the number; ``fix``: what to change besides the limit)."""
+    limit = max_cases()
+    if n > limit:
+        raise ValueError(f"{what.format(n=f'{n:.4g}')}, more than the {limit} cases a study may have "
+                         f"({fix + ', or ' if fix else ''}set {CASES_VARIABLE} to allow more)")
+
+
 #: accepted sampler names -> canonical name (the aliases are what people type)
 SAMPLERS = {
     "grid": "grid",
@@ -97,9 +106,8 @@ class Parameter(Spec):
     def _num(cls, v):
         if v is not None and v < 1:
             raise ValueError(f"must be >= 1, got {v}")
-        if v is not None and v > max_cases():
-            raise ValueError(f"{v} points are more than the {max_cases()} cases a study may have "
-                             f"(set {CASES_VARIABLE} to allow more)")
+        if v is not None:
+            check_cases(v, "{n} points", "fewer points")
         return v
 
     @model_validator(mode="after")
@@ -166,9 +174,8 @@ class Sampler(Spec):
             raise ValueError("sampler.samples does not apply to a grid (its size is the product of the parameters' num)")
         if self.method != "grid" and (self.samples is None or self.samples < 1):
             raise ValueError(f"the {self.method} sampler needs samples = N (>= 1)")
-        if self.samples is not None and self.samples > max_cases():
-            raise ValueError(f"samples: {self.samples} cases are more than the {max_cases()} a study may have "
-                             f"(set {CASES_VARIABLE} to allow more)")
+        if self.samples is not None:
+            check_cases(self.samples, "samples: {n} cases", "fewer samples")
         return self
 
 
@@ -236,9 +243,7 @@ class Optimise(Spec):
     def _positive(cls, v):
         if v < 1:
             raise ValueError(f"must be >= 1, got {v}")
-        if v > max_cases():
-            raise ValueError(f"{v} designs are more than the {max_cases()} cases a study may have "
-                             f"(set {CASES_VARIABLE} to allow more)")
+        check_cases(v, "{n} designs")
         return v
 
     @field_validator("seed")
@@ -319,10 +324,8 @@ class StudySpec(Spec):
                     raise ValueError(f"parameters[{k}]: a range on a grid needs num (number of points)")
             # the grid's size before anything is built: 1e6 cases would be minutes of validation
             # and gigabytes of case records before the first one runs
-            n = math.prod(len(p.values) if p.values is not None else p.num for p in self.parameters)
-            if n > max_cases():
-                raise ValueError(f"parameters: the grid has {n:.4g} cases, more than the {max_cases()} a study may have "
-                                 f"(fewer points, a sampled design, or set {CASES_VARIABLE} to allow more)")
+            check_cases(math.prod(len(p.values) if p.values is not None else p.num for p in self.parameters),
+                        "parameters: the grid has {n} cases", "fewer points, a sampled design")
         return self
 
     @field_validator("out")
