@@ -339,10 +339,9 @@ def _gears(result) -> list[dict]:
                 u, f = show[k]
                 v = [x * f for x in v] if isinstance(v, (list, tuple)) else v * f
                 units["planetary." + k] = u
-            items.append((k.replace("_", " "), v))
-            units["planetary." + k.replace("_", " ")] = units.get("planetary." + k, "")
-        out.append({"title": "planetary stage", "head": ["quantity", "value", "unit"],
-                    "rows": _kv_rows(items, units, "planetary."), "note": ""})
+            items.append((k, v))
+        rows = [[r[0].replace("_", " "), *r[1:]] for r in _kv_rows(items, units, "planetary.")]
+        out.append({"title": "planetary stage", "head": ["quantity", "value", "unit"], "rows": rows, "note": ""})
         if pl.get("natural_frequencies_hz"):
             types = pl.get("mode_types") or [""] * len(pl["natural_frequencies_hz"])
             out.append({"title": "planetary stage: modes (lumped torsional model)", "head": ["mode", "frequency (Hz)", "type"],
