@@ -15,6 +15,9 @@ from dataclasses import asdict, dataclass
 
 #: every diagnostic code, with what it means (docs/diagnostics.md lists the same)
 CODES = {
+    "model-accuracy": "the rotational belt model's span tension bands may sit further from the segment model's "
+                      "than the stated share (its estimate in summary.discretisation.estimate): confirm them with "
+                      "the segment model",
     "gross-slip": "a pulley slips grossly: the belt slides over the whole wrap instead of creeping",
     "contact-chatter": "belt segments bounce on a pulley: few wrapped segments in contact, peak normal forces far "
                        "above the static value",

@@ -141,14 +141,14 @@ def _figures(files, captions=None) -> list[dict]:
 
 
 def render(title, kind, status, message, diagnostics, headline, results, figures, model_rows, model_toml, source="",
-           extra="", table=None, model_heading="Model", verdict=None, tables=()) -> str:
+           extra="", table=None, model_heading="Model", verdict=None, tables=(), model_note="") -> str:
     from jinja2 import Environment, PackageLoader, select_autoescape
 
     env = Environment(loader=PackageLoader("drivedyn", "templates"), autoescape=select_autoescape(["html", "j2"]))
     return env.get_template("report.html.j2").render(
         title=title, kind=kind, status=status, message=message, diagnostics=diagnostics, headline=headline, results=results,
         figures=figures, model_rows=model_rows, model_toml=model_toml, source=source, extra=extra, table=table,
-        model_heading=model_heading, verdict=verdict, tables=list(tables),
+        model_heading=model_heading, verdict=verdict, tables=list(tables), model_note=model_note,
         version=__version__, written=_dt.datetime.now().isoformat(timespec="seconds"))
 
 
@@ -170,10 +170,33 @@ def write_report(result, outdir, files, model=None, source="") -> Path:
         results=_rows(flat, result.units), figures=_figures(files),
         model_rows=_model_rows(model) if model is not None else [],
         model_toml=dumps(model) if model is not None else "", source=str(source),
-        verdict=verdict_table(result.summary), tables=tables(result))
+        verdict=verdict_table(result.summary), tables=tables(result), model_note=model_note(result))
     from .outputs import write_text
 
     return write_text(outdir / "report.html", html)
+
+
+def model_note(result) -> str:
+    """Which belt model ran and what it is known to miss (one sentence under the solve's status)."""
+    if result.kind != "belt-drive":
+        return ""
+    s = result.summary
+    disc = s.get("discretisation", {})
+    if disc.get("model") == "rotational":
+        est = disc.get("estimate", {})
+        size = (f"; its span tension bands may sit up to {est['share_of_half_band']:g} x their half band from the "
+                "segment model's (discretisation.estimate)") if "share_of_half_band" in est else ""
+        return ("Model: the rotational model (one unknown per pulley, rotor and tensioner; the spans as axial springs; "
+                "each wrap's belt relaxed to its creep-theory content over one passage). Not in it: the spans' "
+                "transverse motion (flap, judged from its frequencies), the belt's axial waves and the tension "
+                f"history a wrap carries{size}. Confirm a design with simulation.model = \"segments\".")
+    n = s.get("belt", {}).get("segments") or disc.get("segments")
+    if n:
+        law = s.get("belt", {}).get("friction_law", "")
+        return (f"Model: the segment model (after Kubas, Archiwum Motoryzacji 67 (2015): {n} rigid belt segments in the plane, penalty contact, "
+                f"{law} friction). Not in it: the belt's motion out of the drive's plane and polygon effects "
+                "beyond the discretisation estimate (discretisation.estimate).")
+    return ""
 
 
 def _case_names(ds) -> list[str]:

@@ -341,7 +341,14 @@ def test_against_the_converged_segment_model():
     travel range at 3000 / 5000 rpm from -11 / +34 % to -1.6 / +11 % of 1332 segments)."""
     rot = drivedyn.run(_held(3000, 0.8))
     seg = drivedyn.run(drivedyn.replace(_held(3000, 0.8), {"simulation.model": "segments"}))
-    assert rot.status == "success"
+    # the bands are outside what the rotational model vouches for: said, with an estimate that
+    # covers the measured distance to the segment model on every span
+    assert rot.status == "warning" and [d.code for d in rot.diagnostics] == ["model-accuracy"]
+    share = rot.summary["discretisation"]["estimate"]["share_of_half_band"]
+    for sp, v in seg.summary["spans"].items():
+        r = rot.summary["spans"][sp]
+        u = share * 0.5 * (r["tension_max"] - r["tension_min"])
+        assert abs(r["tension_min"] - v["tension_min"]) < u and abs(r["tension_max"] - v["tension_max"]) < u
     for p, v in seg.summary["pulleys"].items():
         assert rot.summary["pulleys"][p]["slip"] == pytest.approx(v["slip"], abs=3e-4)
     for sp, v in seg.summary["spans"].items():

@@ -278,6 +278,8 @@ def run(drive, progress=None, keys=None):
                             f"{len(bad)} of {done} speeds ({rpm.min():.0f}-{rpm.max():.0f} rpm): largest change per "
                             f"period {max(residual):.2g} tolerance units", "runup.periodic_residual",
                             max(residual), TOLERANCE, "1")
+    if keys is None:
+        RT.extremes_estimate(result, RT.PERIODIC_SHARE)
     if failure:
         raise SolverError(failure + f" (periodic solutions kept for {done} of {len(speeds)} speeds)", partial=result)
     return result
