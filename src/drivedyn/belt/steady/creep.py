@@ -236,18 +236,25 @@ def margins(d: CreepData, M, c, forward, max_factor=1e3):
     out = np.full(nk, math.inf)
     if not np.any(M):
         return out
+    fills = {}                           # the fills at a load multiplier, for every pulley at once
+
+    def fill(lam):
+        if lam not in fills:
+            fills[lam] = _fill(d, M, c, forward, lam)
+        return fills[lam]
+
     for j in range(nk):
         if M[j] == 0:
             continue
-        g = lambda lam: min(_fill(d, M, c, forward, lam)[j], 10.0) - 1.0   # finite: brentq on a slack jump
+        g = lambda lam: min(fill(lam)[j], 10.0) - 1.0   # finite: brentq on a slack jump
         hi = 1.0
         while g(hi) < 0 and hi < max_factor:
             hi *= 2
         if g(hi) < 0:
             continue
         lo = 0.0 if hi == 1.0 else hi / 2
-        # a load multiplier to 1e-6 (printed to four digits): a third of the tension solves of 1e-10
-        out[j] = lo if g(lo) >= 0 else brentq(g, lo, hi, xtol=1e-6, rtol=1e-6)
+        # a load multiplier to 1e-5 (printed to four digits)
+        out[j] = lo if g(lo) >= 0 else brentq(g, lo, hi, xtol=1e-6, rtol=1e-5)
     return out
 
 
