@@ -400,6 +400,17 @@ class PlanetaryRating(Spec):
     flank_roughness: Optional[tuple[Length, Length, Length]] = None  # R_z of sun, planet, ring; none: iso's
     root_roughness: Optional[tuple[Length, Length, Length]] = None
     root_radius: tuple[float, float, float] = (0.25, 0.25, 0.25)     # rho_fP / m of the racks
+    # the ring's root section at its 60 deg tangent (ISO 6336-3 internal gears), from its tooth form:
+    # chord s_Fn, fillet radius rho_F, diameter d_sFn; none: the ring's root is not rated
+    ring_root_section: tuple[Length, Length, Length] | None = None
+
+    @field_validator("ring_root_section")
+    @classmethod
+    def _section(cls, v):
+        if v is not None and not (all(x > 0 for x in v) and v[0] < v[2] and v[1] < v[2]):
+            got = ", ".join(f"{x:.6g} m" for x in v)
+            raise ValueError(f"chord, fillet radius and diameter must be positive, the diameter the largest, got {got}")
+        return v
 
     @field_validator("load_sharing_factor")
     @classmethod

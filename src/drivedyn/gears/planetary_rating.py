@@ -19,7 +19,9 @@ What a stage adds to the rating of a pair (rating.py), by source:
   m_red = m_s* m_p* / (m_s* + N m_p*), ring-planet m_red = m_p* (the ring held);
 - ISO 6336-2 for an internal pair: u < 0 in sigma_H0, rho_red = rho_1 rho_2 / (rho_2 - rho_1), Z_D = 1.
 
-The internal gear's tooth root is not rated (rating.py says why). Units as rating.py (mm, N, rpm).
+The internal gear's tooth root is rated with its root section given (chord, fillet radius and diameter at
+the 60 deg tangent; rating._root_internal says why it is not built), else not rated. Units as rating.py
+(mm, N, rpm).
 """
 from __future__ import annotations
 
@@ -51,6 +53,7 @@ class StageGears:
     E: tuple = (206000.0, 206000.0, 206000.0)
     nu: tuple = (0.3, 0.3, 0.3)
     bore: tuple = (0.0, 0.0, 0.0)  # inner diameters d_i (for the reduced mass); ring: its outer one
+    ring_root_section: tuple | None = None  # the ring's (s_Fn, rho_F, d_sFn) at its 60 deg tangent; none: not rated
 
     def diameters(self) -> dict:
         zs, zp, zr = self.z
@@ -115,7 +118,8 @@ def pairs(st: StageGears, field: str = "planetary") -> tuple[Pair, Pair, dict]:
                nu=(st.nu[0], st.nu[1]), b_each=(st.b[0], st.b[1]), **common)
     ring = Pair(z1=zp, z2=zr, x1=st.x[1], x2=st.x[2], b=min(st.b[1], st.b[2]), da1=g["da"][1], da2=g["da"][2],
                 h_fp=(st.h_fp[1], st.h_fp[2]), rho_fp=(st.rho_fp[1], st.rho_fp[2]), E=(st.E[1], st.E[2]),
-                nu=(st.nu[1], st.nu[2]), b_each=(st.b[1], st.b[2]), internal=True, **common)
+                nu=(st.nu[1], st.nu[2]), b_each=(st.b[1], st.b[2]), internal=True,
+                root_section2=st.ring_root_section, **common)
     return sun, ring, wg
 
 
@@ -184,7 +188,10 @@ def rate_stage(st: StageGears, mats: tuple, *, planets: int, torque_sun: float, 
                     k_hbeta=None if k_hbeta is None else k_hbeta[j], k_halpha=None if k_halpha is None else k_halpha[j],
                     s_hmin=s_hmin, s_fmin=s_fmin, k_gamma=k_gamma,
                     y_m=tuple(0.7 if g == "planet" else 1.0 for g in gears), cycles=tuple(cyc[g] for g in gears))
-        r = rate(p, (mi, mj), load)
+        try:
+            r = rate(p, (mi, mj), load)
+        except ValueError as exc:      # the ring's given root section does not fit its teeth
+            raise ModelError(str(exc), field=f"{field}.rating.ring_root_section") from None
         r.geometry.update({"pinion": gears[0], "wheel": gears[1]})
         r.factors.update({"c_single": iso.c_single, "c_gamma_alpha": iso.c_gamma, "m_red": m_red[j],
                           "n_E1": mb.resonance_speed * 60.0, "N": ratio_n, "K_v_method_b": kv_b, "region": region})
@@ -286,4 +293,6 @@ def gears_of_spec(spec) -> StageGears:
                       centre_distance=None if spec.centre_distance is None else spec.centre_distance * 1e3,
                       tip_diameter=None if r is None or r.tip_diameters is None else tuple(d * 1e3 for d in r.tip_diameters),
                       rho_fp=tuple(r.root_radius) if r else (0.25, 0.25, 0.25),
-                      bore=tuple(d * 1e3 for d in r.bore_diameters) if r else (0.0, 0.0, 0.0))
+                      bore=tuple(d * 1e3 for d in r.bore_diameters) if r else (0.0, 0.0, 0.0),
+                      ring_root_section=None if r is None or r.ring_root_section is None
+                      else tuple(v * 1e3 for v in r.ring_root_section))
