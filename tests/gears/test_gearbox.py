@@ -182,3 +182,28 @@ def test_stage_alone_kgamma_and_kv_computed_when_not_given():
     assert r["K_gamma_source"] == "load sharing" and r["K_gamma"] == pytest.approx(s["lateral"]["load_sharing_factor"])
     for e in r["meshes"].values():
         assert e["K_v_source"] == "ISO 6336-1 method B" and e["K_v"] == e["K_v_method_b"] > 1.0
+
+
+def test_the_overview_shows_every_stage_its_meshes_and_the_whole_trains_modes(gearbox):
+    # what `drivedyn run` prints and report.html shows: each stage's quantities, the rating of every
+    # gear of both its meshes (stage 1 and stage 2), its modes, and the gearbox's modes
+    from drivedyn.overview import tables
+
+    _, r = gearbox
+    t = {x["title"]: x for x in tables(r)}
+    for k, stage in ((1, "planetary"), (2, "stage2")):
+        rating = t[f"stage {k}: ISO 6336 rating, method B"]
+        assert [row[1] for row in rating["rows"]] == ["sun", "planet", "planet", "ring"]
+        assert [row[0] for row in rating["rows"]] == ["sun-planet", "", "ring-planet", ""]
+        meshes = r.summary["planetary"] if k == 1 else r.summary["stages"][stage]
+        ring = meshes["rating"]["meshes"]["ring-planet"]["ring"]
+        assert rating["rows"][3][3] == f"{ring['S_H']:.3f}" and rating["rows"][3][5] == f"{ring['S_F']:.3f}"
+        assert f"stage {k}: modes (lumped torsional model)" in t
+        rows = {row[0]: row for row in t[f"stage {k}"]["rows"]}
+        assert rows["centre distance"][1:] == ["863" if k == 1 else "584", "mm"]
+    assert "stage 1: modes (lateral-torsional model, floating sun)" in t
+    gb = next(x for x in t.values() if x["title"].startswith("gearbox: modes of the whole train"))
+    assert gb["head"][2:] == ["energy in planetary (%)", "energy in stage2 (%)", "energy in the train (%)"]
+    assert gb["rows"][0][1] == f"{r.summary['gearbox']['natural_frequencies_hz'][0]:.1f}"
+    # the verdict says where in words: stage 1, stage 2
+    assert r.summary["criteria"]["S_H_stage2_sun-planet"]["where"] == "stage 2 sun-planet: sun"
