@@ -19,6 +19,7 @@ sigma_F / sigma_F0 = 175.90 / 113.46 with its K_Fbeta implies 1.0053: the report
 and prints it rounded. K_v = 1.0053 is used here for the sun-planet mesh.
 """
 import math
+from pathlib import Path
 
 import pytest
 
@@ -292,10 +293,97 @@ def test_a_bad_ring_root_section_in_a_model_file_is_one_line_naming_the_field(tm
     import drivedyn
     from drivedyn.cli import main
 
-    src = open(drivedyn.example_path("gears-gearbox")).read()
+    src = Path(drivedyn.example_path("gears-gearbox")).read_text()
     for wrong in ('"-22.24 mm", "2673.522 mm"', '"22.24 mm", "2490 mm"'):
         bad = tmp_path / "bad.toml"
         bad.write_text(src.replace('"22.24 mm", "2673.522 mm"', wrong))
         assert main(["check", str(bad)]) == 2
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and "planetary.rating.ring_root_section" in err[0]
+
+
+# A helical stage (no published report found): sun 21, planets 3 x 27, ring 75 teeth, m_n 4 mm,
+# alpha_n 20 deg, beta 15 deg, b 60 mm (eps_beta 1.236 >= 1: Z_eps = sqrt(1/eps_alpha), Z_B = Z_D = 1),
+# standard gears, sun torque 1500 N m, the sun at 1000 rpm relative to the carrier, K_A 1, K_gamma 1,
+# K_v 1.05 / 1.03, K_Hbeta 1.2, K_Halpha 1 given. The reference: ISO 21771 / ISO 6336-1, -2 written
+# out below, independently of drivedyn's code.
+def test_helical_stage_against_an_independent_calculation():
+    zs, zp, zr, mn, an, beta, b = 21, 27, 75, 4.0, math.radians(20.0), math.radians(15.0), 60.0
+    st = pr.StageGears(z=(zs, zp, zr), module=mn, alpha_n=an, x=(0.0, 0.0, 0.0), b=(b, b, b), beta=beta)
+    out = pr.rate_stage(st, (CASE, CASE, CASE), planets=3, torque_sun=1500.0, speed_sun_rel=1000.0,
+                        kv=(1.05, 1.03), k_hbeta=(1.2, 1.2), k_halpha=(1.0, 1.0), life_hours=20000.0)
+    # ISO 21771: transverse module and pressure angle, base helix angle, diameters
+    mt, at = mn / math.cos(beta), math.atan(math.tan(an) / math.cos(beta))
+    bb = math.asin(math.sin(beta) * math.cos(an))
+    d = {k: z * mt for k, z in (("s", zs), ("p", zp), ("r", zr))}
+    rb = {k: v * math.cos(at) / 2 for k, v in d.items()}
+    ra = {"s": d["s"] / 2 + mn, "p": d["p"] / 2 + mn, "r": d["r"] / 2 - mn}
+    a = (zs + zp) * mt / 2                      # standard: a = (z_r - z_p) m_t / 2 too
+    assert a == pytest.approx((zr - zp) * mt / 2, rel=1e-15)
+    assert out["geometry"]["a_w"] == pytest.approx(a, rel=1e-12)
+    assert out["geometry"]["alpha_w_sun"] == pytest.approx(at, abs=1e-9)
+    assert out["geometry"]["alpha_w_ring"] == pytest.approx(at, abs=1e-9)
+    pbt = math.pi * mt * math.cos(at)
+    l_s, l_r = (math.sqrt(ra[k] ** 2 - rb[k] ** 2) for k in ("s", "r"))
+    l_p = math.sqrt(ra["p"] ** 2 - rb["p"] ** 2)
+    eps = {"sun-planet": (l_s + l_p - a * math.sin(at)) / pbt,          # external
+           "ring-planet": (l_p - l_r + a * math.sin(at)) / pbt}         # internal (ring tip inside)
+    eps_b = b * math.sin(beta) / (math.pi * mn)
+    ft = 2000.0 * 1500.0 / 3 / d["s"]
+    assert out["F_t"] == pytest.approx(ft, rel=1e-12)
+    z_e = math.sqrt(206000.0 / (2 * math.pi * (1 - 0.3 ** 2)))
+    z_h = math.sqrt(2 * math.cos(bb) * math.cos(at) / (math.cos(at) ** 2 * math.sin(at)))
+    for mesh, d1, u, kv in (("sun-planet", d["s"], zp / zs, 1.05), ("ring-planet", d["p"], -zr / zp, 1.03)):
+        r = out[mesh]
+        assert r.geometry["eps_alpha"] == pytest.approx(eps[mesh], rel=1e-12)
+        assert r.geometry["eps_beta"] == pytest.approx(eps_b, rel=1e-12)
+        z_eps = math.sqrt(1 / eps[mesh])
+        s_h0 = z_h * z_e * z_eps / math.sqrt(math.cos(beta)) * math.sqrt(ft / (d1 * b) * (u + 1) / u)
+        f = r.factors
+        assert f["Z_H"] == pytest.approx(z_h, rel=1e-12) and f["Z_eps"] == pytest.approx(z_eps, rel=1e-12)
+        assert f["Z_beta"] == pytest.approx(1 / math.sqrt(math.cos(beta)), rel=1e-12)
+        assert f["sigma_H0"] == pytest.approx(s_h0, rel=1e-12)
+        for g in (r.pinion, r.wheel):
+            assert g["Z_B_or_Z_D"] == 1.0
+            assert g["sigma_H"] == pytest.approx(s_h0 * math.sqrt(kv * 1.2), rel=1e-12)
+        assert f["Y_beta"] == pytest.approx(1 - 15.0 / 120.0, rel=1e-12)       # eps_beta >= 1: 1 - beta/120 deg
+        # the planet's root: sigma_F0 = F_t / (b m_n) Y_F Y_S Y_beta, its virtual teeth z / (cos^2 beta_b cos beta)
+        planet = r.wheel if mesh == "sun-planet" else r.pinion
+        assert planet["z_n"] == pytest.approx(zp / (math.cos(bb) ** 2 * math.cos(beta)), rel=1e-12)
+        assert planet["sigma_F0"] == pytest.approx(ft / (b * mn) * planet["Y_F"] * planet["Y_S"] * (1 - 15 / 120), rel=1e-12)
+        # ISO 6336-1 9.3: c' = c'_th C_M C_R C_B cos(beta), c'_th = 1 / q' with the virtual tooth numbers
+        # (z_n = infinity for the ring), C_M 0.8, C_B (1 + 0.5 (1.2 - 1.25)) = 0.975;
+        # c_gamma_alpha = c' (0.75 eps_alpha + 0.25)
+        zn = [z / (math.cos(bb) ** 2 * math.cos(beta)) for z in ((zs, zp) if mesh == "sun-planet" else (zp, math.inf))]
+        q = 0.04723 + 0.15551 / zn[0] + 0.25791 / zn[1]
+        c1 = 1 / q * 0.8 * 0.975 * math.cos(beta)
+        assert f["c_single"] == pytest.approx(c1, rel=1e-12)
+        assert f["c_gamma_alpha"] == pytest.approx(c1 * (0.75 * eps[mesh] + 0.25), rel=1e-12)
+    # spur again at beta = 0: the stage rating is the spur one
+    spur = pr.rate_stage(pr.StageGears(z=(zs, zp, zr), module=mn, alpha_n=an, x=(0.0, 0.0, 0.0), b=(b, b, b)),
+                         (CASE, CASE, CASE), planets=3, torque_sun=1500.0, speed_sun_rel=1000.0, kv=(1.05, 1.03),
+                         k_hbeta=(1.2, 1.2), k_halpha=(1.0, 1.0), life_hours=20000.0)
+    assert spur["geometry"]["a_w"] == pytest.approx((zs + zp) * mn / 2, rel=1e-15)
+    assert spur["sun-planet"].factors["Z_beta"] == 1.0
+
+
+def test_a_helical_stage_in_a_model_file_is_rated_and_modelled_in_its_transverse_section():
+    # examples/gears-planetary.toml made helical (15 deg) with a rating: the planets sit at
+    # (z_s + z_p) m_n / (2 cos beta), the planet modes at the closed form with the transverse base
+    # radius r_bp = z_p m_t cos(alpha_t) / 2, and both meshes rated with the helix (Z_beta, eps_beta)
+    import drivedyn
+
+    src = Path(drivedyn.example_path("gears-planetary")).read_text()
+    src = src.replace('pressure_angle = "20 deg"\n', 'pressure_angle = "20 deg"\nhelix_angle = "15 deg"\n')
+    src = src.replace("[criteria]", '[planetary.rating]\nface_width = "30 mm"\nspeed = "1500 rpm"\n\n[criteria]')
+    r = drivedyn.run(drivedyn.loads(src))
+    pl = r.summary["planetary"]
+    beta, an = math.radians(15.0), math.radians(20.0)
+    mt, at = 3e-3 / math.cos(beta), math.atan(math.tan(an) / math.cos(beta))
+    assert pl["centre_distance"] == pytest.approx((25 + 23) * mt / 2, rel=1e-12)
+    rbp = 23 * mt * math.cos(at) / 2
+    assert pl["planet_mode_frequency_closed_form_hz"] == pytest.approx(
+        math.sqrt(rbp ** 2 * (5e8 + 7e8) / 0.0008) / (2 * math.pi), rel=1e-12)
+    m = pl["rating"]["meshes"]
+    assert m["sun-planet"]["working_pressure_angle"] == pytest.approx(at, abs=1e-9)
+    assert m["ring-planet"]["ring"]["S_F"] is None and m["sun-planet"]["sun"]["S_H"] > 0

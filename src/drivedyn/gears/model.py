@@ -442,7 +442,7 @@ class PlanetaryRating(Spec):
 
 
 class Planetary(Spec):
-    """A simple planetary stage (sun, N planets on a carrier, ring; spur gears, profile shifts
+    """A simple planetary stage (sun, N planets on a carrier, ring; spur or helical gears, profile shifts
     allowed): mesh phasing, torsional (and, with ``lateral``, lateral-torsional) modes, static load
     sharing with pin position errors, and (with ``rating``) the ISO rating of every mesh."""
 
@@ -450,6 +450,9 @@ class Planetary(Spec):
     planet_teeth: int
     module: quantity("m", gt=0)
     pressure_angle: quantity("rad", gt=0, lt=0.8) = 0.3490658503988659
+    # helical stages: module and pressure angle in the normal section; the sun of one hand, planets and
+    # ring of the other
+    helix_angle: quantity("rad", ge=0, lt=0.7853981633974483) = 0.0
     planets: int
     planet_angles: Optional[list[quantity("rad")]] = None
     sun_planet_stiffness: quantity("N/m", gt=0)
@@ -511,8 +514,9 @@ class Planetary(Spec):
                 raise ValueError(f"planet_angles: {len(self.planet_angles)} angles for {n} planets")
             psi = sorted(a % (2 * math.pi) for a in self.planet_angles)
         # neighbouring planets must clear each other: centre chord above the planet's tip diameter
-        R = self.centre_distance or 0.5 * (zs + zp) * self.module
-        d_tip = (zp + 2 + 2 * self.profile_shifts[1]) * self.module
+        m_t = self.module / math.cos(self.helix_angle)
+        R = self.centre_distance or 0.5 * (zs + zp) * m_t
+        d_tip = zp * m_t + (2 + 2 * self.profile_shifts[1]) * self.module
         gaps = [b - a for a, b in zip(psi, psi[1:])] + [2 * math.pi - psi[-1] + psi[0]] if n > 1 else []
         if gaps and 2 * R * math.sin(min(gaps) / 2) <= d_tip:
             raise ValueError(f"neighbouring planets overlap: centre distance {2e3 * R * math.sin(min(gaps) / 2):.4g} mm "
