@@ -391,6 +391,7 @@ def _stage_tables(label: str, pl: dict, units: dict, prefix: str) -> list[dict]:
                     "head": ["mesh", "gear", "sigma_H (MPa)", "S_H", "sigma_F (MPa)", "S_F", "cycles (1e6)"],
                     "rows": rows,
                     "note": f"K_gamma {rt['K_gamma']:.3f} ({rt['K_gamma_source']}); K_v " + ", ".join(kv)
+                    + (f", {rt['K_v_note'].split(':')[0]}" if rt.get("K_v_note") else "")
                     + f"; required S_H {rt['S_H_min_required']:g}, S_F {rt['S_F_min_required']:g}; every factor: "
                     f"{prefix}rating.* in summary.json"})
     if pl.get("natural_frequencies_hz"):

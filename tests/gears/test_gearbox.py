@@ -202,6 +202,9 @@ def test_the_overview_shows_every_stage_its_meshes_and_the_whole_trains_modes(ge
         rows = {row[0]: row for row in t[f"stage {k}"]["rows"]}
         assert rows["centre distance"][1:] == ["863" if k == 1 else "584", "mm"]
     assert "stage 1: modes (lateral-torsional model, floating sun)" in t
+    # a stage's K_v is not from a time integration, and the overview says so
+    assert r.summary["planetary"]["rating"]["K_v_note"].startswith("not from a time integration")
+    assert "not from a time integration" in t["stage 2: ISO 6336 rating, method B"]["note"]
     gb = next(x for x in t.values() if x["title"].startswith("gearbox: modes of the whole train"))
     assert gb["head"][2:] == ["energy in planetary (%)", "energy in stage2 (%)", "energy in the train (%)"]
     assert gb["rows"][0][1] == f"{r.summary['gearbox']['natural_frequencies_hz'][0]:.1f}"

@@ -265,7 +265,10 @@ def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict) -> dic
                      tip_relief=None if iso.tip_relief is None else iso.tip_relief * 1e6, blank_factor=iso.blank_factor,
                      s_hmin=iso.min_safety_pitting, s_fmin=iso.min_safety_bending, field="planetary")
     summary = {"K_gamma": kg, "K_gamma_source": "given" if r.load_sharing_factor is not None else "load sharing",
-               "load_cycles": {k: float(v) for k, v in out["cycles"].items()}, "meshes": {}}
+               "load_cycles": {k: float(v) for k, v in out["cycles"].items()}, "meshes": {},
+               # said where K_v is read: a stage's meshes are not integrated in time (a train's are)
+               "K_v_note": "not from a time integration (the planetary stage is not integrated in time): "
+                           + ("given" if r.dynamic_factors else "ISO 6336-1 method B with the planetary reduced masses")}
     for name in ("sun-planet", "ring-planet"):
         rt = out[name]
         f = rt.factors
