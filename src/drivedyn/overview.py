@@ -326,31 +326,87 @@ def _gears(result) -> list[dict]:
                     "head": ["mesh", "gear", "sigma_H (MPa)", "sigma_HP (MPa)", "S_H", "sigma_F (MPa)",
                              "sigma_FP (MPa)", "S_F"], "rows": rows,
                     "note": "S_H and S_F with ISO's K_v, and every factor: rating.* in summary.json"})
-    pl = s.get("planetary")
-    if pl:
-        # in the units a gear engineer reads: angles in degrees, lengths in mm, pin errors in um, shares in %
-        show = {"planet_angles": ("deg", DEG), "centre_distance": ("mm", 1e3), "position_errors": ("um", 1e6),
-                "load_share": ("%", 100.0)}
-        items, units = [], dict(result.units)
-        for k, v in pl.items():
-            if isinstance(v, dict):
-                continue
-            if k in show and v is not None:
-                u, f = show[k]
-                v = [x * f for x in v] if isinstance(v, (list, tuple)) else v * f
-                units["planetary." + k] = u
-            items.append((k, v))
-        rows = [[r[0].replace("_", " "), *r[1:]] for r in _kv_rows(items, units, "planetary.")]
-        out.append({"title": "planetary stage", "head": ["quantity", "value", "unit"], "rows": rows, "note": ""})
-        if pl.get("natural_frequencies_hz"):
-            types = pl.get("mode_types") or [""] * len(pl["natural_frequencies_hz"])
-            out.append({"title": "planetary stage: modes (lumped torsional model)", "head": ["mode", "frequency (Hz)", "type"],
-                        "rows": [[str(i + 1), f"{f:.1f}", str(t)] for i, (f, t) in
-                                 enumerate(zip(pl["natural_frequencies_hz"], types))], "note": ""})
+    stages = [("planetary", s["planetary"], "planetary.")] if s.get("planetary") else []
+    stages += [(k, v, f"stages.{k}.") for k, v in (s.get("stages") or {}).items()]
+    for k, (name, pl, prefix) in enumerate(stages):
+        label = "planetary stage" if len(stages) == 1 else f"stage {k + 1}"
+        out += _stage_tables(label, pl, dict(result.units), prefix)
+    gb = s.get("gearbox")
+    if gb and gb.get("natural_frequencies_hz"):
+        names = gb.get("stages") or []
+        shares = gb.get("energy_share") or {}
+        head = ["mode", "frequency (Hz)"] + [f"energy in {n} (%)" for n in names] + ["energy in the train (%)"]
+        rows = []
+        for i, f in enumerate(gb["natural_frequencies_hz"][:12]):
+            per = [shares.get(n, [float("nan")] * (i + 1))[i] for n in names]
+            rows.append([str(i + 1), f"{f:.1f}"] + [f"{100 * x:.1f}" for x in per]
+                        + [f"{100 * max(0.0, 1.0 - gb['stage_energy_share'][i]):.1f}"])
+        n = len(gb["natural_frequencies_hz"])
+        out.append({"title": "gearbox: modes of the whole train (" + " + ".join(gb.get("model") or []) + " stages, train)",
+                    "head": head, "rows": rows,
+                    "note": (f"lowest 12 of {n}; " if n > 12 else "") + "every mode: gearbox.* in summary.json"})
     fr = s.get("natural_frequencies_hz") or []
     if fr:
-        out.append({"title": "natural frequencies (linear, mean mesh stiffness)", "head": ["mode", "frequency (Hz)"],
+        out.append({"title": "natural frequencies" + (" of the train" if stages else "") + " (linear, mean mesh stiffness)",
+                    "head": ["mode", "frequency (Hz)"],
                     "rows": [[str(i + 1), f"{f:.1f}"] for i, f in enumerate(fr)], "note": ""})
+    return out
+
+
+_STAGE_NAMES = {"planet_mode_frequency_closed_form_hz": "planet modes, closed form",
+                "speed_ratio_input_over_output": "speed ratio input / output", "torque_sun": "sun torque",
+                "sun_planet_force": "sun-planet force", "ring_planet_force": "ring-planet force",
+                "phase_sun_planet": "mesh phase sun-planet (periods)", "phase_ring_planet": "mesh phase ring-planet (periods)",
+                "load_sharing_factor": "load sharing factor K_gamma"}
+
+
+def _stage_tables(label: str, pl: dict, units: dict, prefix: str) -> list[dict]:
+    """A planetary stage's tables: its quantities, the ISO rating of every gear of both meshes, its modes."""
+    # in the units a gear engineer reads: angles in degrees, lengths in mm, pin errors in um, shares in %
+    show = {"planet_angles": ("deg", DEG), "centre_distance": ("mm", 1e3), "position_errors": ("um", 1e6),
+            "load_share": ("%", 100.0)}
+    items = []
+    for k, v in pl.items():
+        if isinstance(v, dict) or k in ("natural_frequencies_hz", "mode_types"):
+            continue
+        if k in show and v is not None:
+            u, f = show[k]
+            v = [x * f for x in v] if isinstance(v, (list, tuple)) else v * f
+            units[prefix + k] = u
+        items.append((k, v))
+    rows = [[_STAGE_NAMES.get(r[0], r[0].replace("_", " ")), *r[1:]] for r in _kv_rows(items, units, prefix)]
+    out = [{"title": label, "head": ["quantity", "value", "unit"], "rows": rows, "note": f"every value: {prefix}* in summary.json"}]
+    rt = pl.get("rating")
+    if rt:
+        rows, kv = [], []
+        for mesh, e in rt["meshes"].items():
+            kv.append(f"{mesh} {e['K_v']:.4f} ({e['K_v_source']})")
+            for i, gear in enumerate((e["pinion"], e["wheel"])):
+                g = e[gear]
+                sf = "not rated" if g["S_F"] is None else f"{g['S_F']:.3f}"
+                rows.append([mesh if i == 0 else "", gear, f"{g['sigma_H'] / 1e6:.1f}", f"{g['S_H']:.3f}",
+                             "" if g["sigma_F"] is None else f"{g['sigma_F'] / 1e6:.1f}", sf,
+                             f"{g['load_cycles'] / 1e6:.4g}"])
+        out.append({"title": f"{label}: ISO 6336 rating, method B",
+                    "head": ["mesh", "gear", "sigma_H (MPa)", "S_H", "sigma_F (MPa)", "S_F", "cycles (1e6)"],
+                    "rows": rows,
+                    "note": f"K_gamma {rt['K_gamma']:.3f} ({rt['K_gamma_source']}); K_v " + ", ".join(kv)
+                    + (f", {rt['K_v_note'].split(':')[0]}" if rt.get("K_v_note") else "")
+                    + f"; required S_H {rt['S_H_min_required']:g}, S_F {rt['S_F_min_required']:g}; every factor: "
+                    f"{prefix}rating.* in summary.json"})
+    if pl.get("natural_frequencies_hz"):
+        types = pl.get("mode_types") or [""] * len(pl["natural_frequencies_hz"])
+        out.append({"title": f"{label}: modes (lumped torsional model)", "head": ["mode", "frequency (Hz)", "type"],
+                    "rows": [[str(i + 1), f"{f:.1f}", str(t)] for i, (f, t) in
+                             enumerate(zip(pl["natural_frequencies_hz"], types))], "note": ""})
+    la = pl.get("lateral")
+    if la and la.get("natural_frequencies_hz"):
+        f_la = la["natural_frequencies_hz"]
+        out.append({"title": f"{label}: modes (lateral-torsional model{', floating sun' if la.get('floating_sun') else ''})",
+                    "head": ["mode", "frequency (Hz)", "type"],
+                    "rows": [[str(i + 1), f"{f:.1f}", str(t)] for i, (f, t) in enumerate(zip(f_la[:12], la["mode_types"]))],
+                    "note": (f"lowest 12 of {len(f_la)}; " if len(f_la) > 12 else "")
+                    + f"K_gamma {la['load_sharing_factor']:.4f} with this model"})
     return out
 
 

@@ -37,7 +37,14 @@ def test_gearbox_example_runs_and_judges_every_mesh(gearbox):
     assert failed == ["S_H_planetary_ring-planet", "S_H_stage2_sun-planet"]
     assert s["stages"]["stage2"]["rating"]["meshes"]["sun-planet"]["sun"]["S_H"] == pytest.approx(1.21, abs=0.005)
     ring = s["planetary"]["rating"]["meshes"]["ring-planet"]["ring"]
-    assert ring["S_H"] == pytest.approx(0.96, abs=0.005) and ring["S_F"] is None
+    assert ring["S_H"] == pytest.approx(0.96, abs=0.005)
+    # the rings' roots with the root sections the reports print: S_F 2.79 and 3.88 in the reports.
+    # The example's rings are the table's through-hardened steel (yield 900 N/mm^2, the reports' 1000:
+    # Y_deltarelT 1.0074 for 1.0045 in stage 2) and stage 2 runs at K_v 1.06 (the report's 1.0613):
+    # 3.8815 x 1.0613 / 1.06 x 1.0074 / 1.0045 = 3.897
+    assert ring["S_F"] == pytest.approx(2.79, abs=0.005)
+    ring2 = s["stages"]["stage2"]["rating"]["meshes"]["ring-planet"]["ring"]
+    assert ring2["S_F"] == pytest.approx(3.8815 * 1.0613 / 1.06 * 1.0074 / 1.0045, abs=0.001)
 
 
 def test_gearbox_rating_is_the_stage_rating(gearbox):
@@ -56,6 +63,8 @@ def test_gearbox_rating_is_the_stage_rating(gearbox):
         for who, g in zip(("pinion", "wheel"), gears):
             assert got[mesh][g]["S_H"] == pytest.approx(getattr(d, who)["S_H"], rel=1e-12)
             assert got[mesh][g]["sigma_H"] == pytest.approx(getattr(d, who)["sigma_H"] * 1e6, rel=1e-12)
+    # without the ring's root section the direct rating leaves the ring's root unrated
+    assert math.isnan(direct["ring-planet"].wheel["S_F"]) and got["ring-planet"]["ring"]["S_F"] > 0
     assert r.units["planetary.rating.meshes.sun-planet.sun.sigma_H"] == "Pa"
 
 
@@ -173,3 +182,31 @@ def test_stage_alone_kgamma_and_kv_computed_when_not_given():
     assert r["K_gamma_source"] == "load sharing" and r["K_gamma"] == pytest.approx(s["lateral"]["load_sharing_factor"])
     for e in r["meshes"].values():
         assert e["K_v_source"] == "ISO 6336-1 method B" and e["K_v"] == e["K_v_method_b"] > 1.0
+
+
+def test_the_overview_shows_every_stage_its_meshes_and_the_whole_trains_modes(gearbox):
+    # what `drivedyn run` prints and report.html shows: each stage's quantities, the rating of every
+    # gear of both its meshes (stage 1 and stage 2), its modes, and the gearbox's modes
+    from drivedyn.overview import tables
+
+    _, r = gearbox
+    t = {x["title"]: x for x in tables(r)}
+    for k, stage in ((1, "planetary"), (2, "stage2")):
+        rating = t[f"stage {k}: ISO 6336 rating, method B"]
+        assert [row[1] for row in rating["rows"]] == ["sun", "planet", "planet", "ring"]
+        assert [row[0] for row in rating["rows"]] == ["sun-planet", "", "ring-planet", ""]
+        meshes = r.summary["planetary"] if k == 1 else r.summary["stages"][stage]
+        ring = meshes["rating"]["meshes"]["ring-planet"]["ring"]
+        assert rating["rows"][3][3] == f"{ring['S_H']:.3f}" and rating["rows"][3][5] == f"{ring['S_F']:.3f}"
+        assert f"stage {k}: modes (lumped torsional model)" in t
+        rows = {row[0]: row for row in t[f"stage {k}"]["rows"]}
+        assert rows["centre distance"][1:] == ["863" if k == 1 else "584", "mm"]
+    assert "stage 1: modes (lateral-torsional model, floating sun)" in t
+    # a stage's K_v is not from a time integration, and the overview says so
+    assert r.summary["planetary"]["rating"]["K_v_note"].startswith("not from a time integration")
+    assert "not from a time integration" in t["stage 2: ISO 6336 rating, method B"]["note"]
+    gb = next(x for x in t.values() if x["title"].startswith("gearbox: modes of the whole train"))
+    assert gb["head"][2:] == ["energy in planetary (%)", "energy in stage2 (%)", "energy in the train (%)"]
+    assert gb["rows"][0][1] == f"{r.summary['gearbox']['natural_frequencies_hz'][0]:.1f}"
+    # the verdict says where in words: stage 1, stage 2
+    assert r.summary["criteria"]["S_H_stage2_sun-planet"]["where"] == "stage 2 sun-planet: sun"

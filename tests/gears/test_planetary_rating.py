@@ -19,6 +19,7 @@ sigma_F / sigma_F0 = 175.90 / 113.46 with its K_Fbeta implies 1.0053: the report
 and prints it rounded. K_v = 1.0053 is used here for the sun-planet mesh.
 """
 import math
+from pathlib import Path
 
 import pytest
 
@@ -38,7 +39,7 @@ def nrel_stage(**kw):
     return pr.StageGears(**args)
 
 
-def rated(**kw):
+def rated(gears=None, **kw):
     t_sun, t_carrier = 999650.9, 3945990.316
     rpm = 60 / (2 * math.pi)
     n_sun, n_carrier = 5e6 / t_sun * rpm, 5e6 / t_carrier * rpm
@@ -46,7 +47,7 @@ def rated(**kw):
                 ka=1.25, life_hours=175200.0, nu40=220.0, rz_flank=(4.8, 4.8, 8.0), rz_root=(20.0, 20.0, 20.0),
                 k_hbeta=(1.15, 1.15), k_halpha=(1.0, 1.0), blank_factor=0.862, s_hmin=1.25, s_fmin=1.56)
     args.update(kw)
-    return pr.rate_stage(nrel_stage(), (CASE, CASE, RING), **args)
+    return pr.rate_stage(gears or nrel_stage(), (CASE, CASE, RING), **args)
 
 
 def near(printed: float, decimals: int):
@@ -143,8 +144,38 @@ def test_ring_planet_internal_mesh_value_by_value():
     # 1.11822, this 1.11840 (tooth depths from the nominal tip diameters): within 2e-4
     assert planet["sigma_F"] == pytest.approx(154.50, rel=3e-4)
     assert planet["S_F"] == near(2.71, 2)
-    # the ring's root: not rated, and said so
+    # the ring's root without its root section: not rated, and said so
     assert math.isnan(ring["S_F"]) and any("not rated" in n for n in r.notes)
+
+
+# The ring's root (ISO 6336-3 internal gear, 60 deg tangent) with the root section the report prints
+# for it (s_Fn 129.40 mm, rho_F 22.24 mm, dsFn -2673.522 mm: KISSsoft builds them from its pinion-type
+# cutter z_0 36, x_0 0, rho_fP 0.3 "according to ISO 6336-3:2007-04-01"; drivedyn does not, see
+# rating._root_internal): the load point, bending arm, Y_F, Y_S and the whole root chain against the
+# report. Load point: the report's d-D of the ring, 2497.634 mm.
+def test_ring_root_with_its_section_given_value_by_value():
+    out = rated(gears=nrel_stage(ring_root_section=(129.40, 22.24, 2673.522)))
+    r = out["ring-planet"]
+    ring = r.wheel
+    assert ring["d_en"] == near(2497.634, 3)
+    assert math.degrees(ring["alpha_Fen"]) == near(19.59, 2) and ring["h_Fe"] == near(78.40, 2)
+    assert ring["Y_F"] == near(1.27, 2) and ring["Y_S"] == near(2.13, 2)
+    assert ring["sigma_F0"] == near(95.32, 2)
+    # K_Fbeta = K_Hbeta^N_F 1.1184 against the 1.1182 the report's sigma_F / sigma_F0 implies (as the planet's)
+    assert ring["sigma_F"] == pytest.approx(153.89, rel=3e-4)
+    assert ring["Y_deltarelT"] == near(1.003, 3) and ring["Y_RrelT"] == near(0.957, 3) and ring["Y_X"] == near(0.850, 3)
+    assert ring["Y_NT"] == near(0.907, 3) and ring["Y_M"] == 1.0
+    assert ring["sigma_FG"] == near(429.14, 2)
+    assert ring["S_F"] == near(2.79, 2)
+    assert any("root section (s_Fn, rho_F, d_sFn) given" in n for n in r.notes)
+    # the planet's rating does not change with the ring's section
+    assert r.pinion["S_F"] == rated()["ring-planet"].pinion["S_F"]
+
+
+def test_a_ring_root_section_that_does_not_fit_is_refused_naming_the_field():
+    with pytest.raises(ModelError) as err:
+        rated(gears=nrel_stage(ring_root_section=(129.40, 22.24, 2490.0)))
+    assert err.value.field == "planetary.rating.ring_root_section" and "2497.63" in str(err.value)
 
 
 def test_kgamma_scales_the_stresses_as_the_standard_says():
@@ -177,10 +208,10 @@ def test_interfering_centre_distance_is_refused_with_digits():
 # materials, roughness, K_A, K_gamma, life, C_R as stage 1. The report computes K_v by method B
 # (1.02 and 1.06) and uses the larger for both meshes: its sigma_Hw / sigma_H0 (994.13 / 573.40 and
 # 404.76 / 312.44) imply K_v = 1.0613 in both, used here.
-def rated_stage_2(**kw):
+def rated_stage_2(gears_kw=None, **kw):
     st = pr.StageGears(z=(18, 36, 93), module=21.0, alpha_n=math.radians(20.0), x=(0.3890, 0.5039, 0.1171),
                        b=(550.0,) * 3, centre_distance=584.0, tip_diameter=(432.838, 815.663, 1906.081),
-                       rho_fp=(0.38, 0.38, 0.30), bore=(194.32, 576.96, 2148.82))
+                       rho_fp=(0.38, 0.38, 0.30), bore=(194.32, 576.96, 2148.82), **(gears_kw or {}))
     rpm = 60 / (2 * math.pi)
     n_carrier = 5e6 / 999650.881 * rpm
     args = dict(planets=3, torque_sun=999650.881 * 18 / 111, speed_sun_rel=n_carrier * 93 / 18, k_gamma=1.10,
@@ -230,6 +261,19 @@ def test_stage_2_value_by_value():
         assert g["sigma_F"] == pytest.approx(sf, rel=5e-4) and g["S_F"] == pytest.approx(safety, abs=0.005 + 5e-4 * safety)
 
 
+def test_stage_2_ring_root_with_its_section_given():
+    # the report's ring root section (cutter z_0 30, x_0 0, rho_fP 0.3): s_Fn 56.76, rho_F 8.78, dsFn
+    # -1998.168 mm; load point its d-D 1928.177 mm
+    out = rated_stage_2(gears_kw={"ring_root_section": (56.76, 8.78, 1998.168)})
+    ring = out["ring-planet"].wheel
+    assert ring["d_en"] == pytest.approx(1928.177, abs=2e-3)
+    assert math.degrees(ring["alpha_Fen"]) == near(18.63, 2) and ring["h_Fe"] == near(30.32, 2)
+    assert ring["Y_F"] == near(1.20, 2) and ring["Y_S"] == near(2.34, 2) and ring["sigma_F0"] == near(69.12, 2)
+    assert ring["sigma_F"] == pytest.approx(114.61, rel=5e-4)
+    assert ring["Y_deltarelT"] == near(1.005, 3) and ring["Y_X"] == near(0.904, 3) and ring["Y_NT"] == near(0.883, 3)
+    assert ring["sigma_FG"] == near(444.89, 2) and ring["S_F"] == pytest.approx(3.88, abs=0.005 + 5e-4 * 3.88)
+
+
 def test_stage_2_method_b_kv_with_the_reports_deviations():
     # ISO 6336-1 method B with the planetary reduced masses and the deviations of the report's accuracy
     # table (grade 6: f_pb 17.9 / 20.7 um, f_falpha 23 / 27 um, the larger of each mesh's two gears);
@@ -243,3 +287,103 @@ def test_stage_2_method_b_kv_with_the_reports_deviations():
     from drivedyn.gears.iso6336 import running_in
 
     assert (running_in(20.7, "Eh", 1500.0, 4.88) + running_in(20.7, "St", 700.0, 4.88)) / 2 == near(3.142, 3)
+
+
+def test_a_bad_ring_root_section_in_a_model_file_is_one_line_naming_the_field(tmp_path, capsys):
+    import drivedyn
+    from drivedyn.cli import main
+
+    src = Path(drivedyn.example_path("gears-gearbox")).read_text()
+    for wrong in ('"-22.24 mm", "2673.522 mm"', '"22.24 mm", "2490 mm"'):
+        bad = tmp_path / "bad.toml"
+        bad.write_text(src.replace('"22.24 mm", "2673.522 mm"', wrong))
+        assert main(["check", str(bad)]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and "planetary.rating.ring_root_section" in err[0]
+
+
+# A helical stage (no published report found): sun 21, planets 3 x 27, ring 75 teeth, m_n 4 mm,
+# alpha_n 20 deg, beta 15 deg, b 60 mm (eps_beta 1.236 >= 1: Z_eps = sqrt(1/eps_alpha), Z_B = Z_D = 1),
+# standard gears, sun torque 1500 N m, the sun at 1000 rpm relative to the carrier, K_A 1, K_gamma 1,
+# K_v 1.05 / 1.03, K_Hbeta 1.2, K_Halpha 1 given. The reference: ISO 21771 / ISO 6336-1, -2 written
+# out below, independently of drivedyn's code.
+def test_helical_stage_against_an_independent_calculation():
+    zs, zp, zr, mn, an, beta, b = 21, 27, 75, 4.0, math.radians(20.0), math.radians(15.0), 60.0
+    st = pr.StageGears(z=(zs, zp, zr), module=mn, alpha_n=an, x=(0.0, 0.0, 0.0), b=(b, b, b), beta=beta)
+    out = pr.rate_stage(st, (CASE, CASE, CASE), planets=3, torque_sun=1500.0, speed_sun_rel=1000.0,
+                        kv=(1.05, 1.03), k_hbeta=(1.2, 1.2), k_halpha=(1.0, 1.0), life_hours=20000.0)
+    # ISO 21771: transverse module and pressure angle, base helix angle, diameters
+    mt, at = mn / math.cos(beta), math.atan(math.tan(an) / math.cos(beta))
+    bb = math.asin(math.sin(beta) * math.cos(an))
+    d = {k: z * mt for k, z in (("s", zs), ("p", zp), ("r", zr))}
+    rb = {k: v * math.cos(at) / 2 for k, v in d.items()}
+    ra = {"s": d["s"] / 2 + mn, "p": d["p"] / 2 + mn, "r": d["r"] / 2 - mn}
+    a = (zs + zp) * mt / 2                      # standard: a = (z_r - z_p) m_t / 2 too
+    assert a == pytest.approx((zr - zp) * mt / 2, rel=1e-15)
+    assert out["geometry"]["a_w"] == pytest.approx(a, rel=1e-12)
+    assert out["geometry"]["alpha_w_sun"] == pytest.approx(at, abs=1e-9)
+    assert out["geometry"]["alpha_w_ring"] == pytest.approx(at, abs=1e-9)
+    pbt = math.pi * mt * math.cos(at)
+    l_s, l_r = (math.sqrt(ra[k] ** 2 - rb[k] ** 2) for k in ("s", "r"))
+    l_p = math.sqrt(ra["p"] ** 2 - rb["p"] ** 2)
+    eps = {"sun-planet": (l_s + l_p - a * math.sin(at)) / pbt,          # external
+           "ring-planet": (l_p - l_r + a * math.sin(at)) / pbt}         # internal (ring tip inside)
+    eps_b = b * math.sin(beta) / (math.pi * mn)
+    ft = 2000.0 * 1500.0 / 3 / d["s"]
+    assert out["F_t"] == pytest.approx(ft, rel=1e-12)
+    z_e = math.sqrt(206000.0 / (2 * math.pi * (1 - 0.3 ** 2)))
+    z_h = math.sqrt(2 * math.cos(bb) * math.cos(at) / (math.cos(at) ** 2 * math.sin(at)))
+    for mesh, d1, u, kv in (("sun-planet", d["s"], zp / zs, 1.05), ("ring-planet", d["p"], -zr / zp, 1.03)):
+        r = out[mesh]
+        assert r.geometry["eps_alpha"] == pytest.approx(eps[mesh], rel=1e-12)
+        assert r.geometry["eps_beta"] == pytest.approx(eps_b, rel=1e-12)
+        z_eps = math.sqrt(1 / eps[mesh])
+        s_h0 = z_h * z_e * z_eps / math.sqrt(math.cos(beta)) * math.sqrt(ft / (d1 * b) * (u + 1) / u)
+        f = r.factors
+        assert f["Z_H"] == pytest.approx(z_h, rel=1e-12) and f["Z_eps"] == pytest.approx(z_eps, rel=1e-12)
+        assert f["Z_beta"] == pytest.approx(1 / math.sqrt(math.cos(beta)), rel=1e-12)
+        assert f["sigma_H0"] == pytest.approx(s_h0, rel=1e-12)
+        for g in (r.pinion, r.wheel):
+            assert g["Z_B_or_Z_D"] == 1.0
+            assert g["sigma_H"] == pytest.approx(s_h0 * math.sqrt(kv * 1.2), rel=1e-12)
+        assert f["Y_beta"] == pytest.approx(1 - 15.0 / 120.0, rel=1e-12)       # eps_beta >= 1: 1 - beta/120 deg
+        # the planet's root: sigma_F0 = F_t / (b m_n) Y_F Y_S Y_beta, its virtual teeth z / (cos^2 beta_b cos beta)
+        planet = r.wheel if mesh == "sun-planet" else r.pinion
+        assert planet["z_n"] == pytest.approx(zp / (math.cos(bb) ** 2 * math.cos(beta)), rel=1e-12)
+        assert planet["sigma_F0"] == pytest.approx(ft / (b * mn) * planet["Y_F"] * planet["Y_S"] * (1 - 15 / 120), rel=1e-12)
+        # ISO 6336-1 9.3: c' = c'_th C_M C_R C_B cos(beta), c'_th = 1 / q' with the virtual tooth numbers
+        # (z_n = infinity for the ring), C_M 0.8, C_B (1 + 0.5 (1.2 - 1.25)) = 0.975;
+        # c_gamma_alpha = c' (0.75 eps_alpha + 0.25)
+        zn = [z / (math.cos(bb) ** 2 * math.cos(beta)) for z in ((zs, zp) if mesh == "sun-planet" else (zp, math.inf))]
+        q = 0.04723 + 0.15551 / zn[0] + 0.25791 / zn[1]
+        c1 = 1 / q * 0.8 * 0.975 * math.cos(beta)
+        assert f["c_single"] == pytest.approx(c1, rel=1e-12)
+        assert f["c_gamma_alpha"] == pytest.approx(c1 * (0.75 * eps[mesh] + 0.25), rel=1e-12)
+    # spur again at beta = 0: the stage rating is the spur one
+    spur = pr.rate_stage(pr.StageGears(z=(zs, zp, zr), module=mn, alpha_n=an, x=(0.0, 0.0, 0.0), b=(b, b, b)),
+                         (CASE, CASE, CASE), planets=3, torque_sun=1500.0, speed_sun_rel=1000.0, kv=(1.05, 1.03),
+                         k_hbeta=(1.2, 1.2), k_halpha=(1.0, 1.0), life_hours=20000.0)
+    assert spur["geometry"]["a_w"] == pytest.approx((zs + zp) * mn / 2, rel=1e-15)
+    assert spur["sun-planet"].factors["Z_beta"] == 1.0
+
+
+def test_a_helical_stage_in_a_model_file_is_rated_and_modelled_in_its_transverse_section():
+    # examples/gears-planetary.toml made helical (15 deg) with a rating: the planets sit at
+    # (z_s + z_p) m_n / (2 cos beta), the planet modes at the closed form with the transverse base
+    # radius r_bp = z_p m_t cos(alpha_t) / 2, and both meshes rated with the helix (Z_beta, eps_beta)
+    import drivedyn
+
+    src = Path(drivedyn.example_path("gears-planetary")).read_text()
+    src = src.replace('pressure_angle = "20 deg"\n', 'pressure_angle = "20 deg"\nhelix_angle = "15 deg"\n')
+    src = src.replace("[criteria]", '[planetary.rating]\nface_width = "30 mm"\nspeed = "1500 rpm"\n\n[criteria]')
+    r = drivedyn.run(drivedyn.loads(src))
+    pl = r.summary["planetary"]
+    beta, an = math.radians(15.0), math.radians(20.0)
+    mt, at = 3e-3 / math.cos(beta), math.atan(math.tan(an) / math.cos(beta))
+    assert pl["centre_distance"] == pytest.approx((25 + 23) * mt / 2, rel=1e-12)
+    rbp = 23 * mt * math.cos(at) / 2
+    assert pl["planet_mode_frequency_closed_form_hz"] == pytest.approx(
+        math.sqrt(rbp ** 2 * (5e8 + 7e8) / 0.0008) / (2 * math.pi), rel=1e-12)
+    m = pl["rating"]["meshes"]
+    assert m["sun-planet"]["working_pressure_angle"] == pytest.approx(at, abs=1e-9)
+    assert m["ring-planet"]["ring"]["S_F"] is None and m["sun-planet"]["sun"]["S_H"] > 0

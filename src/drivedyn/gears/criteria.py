@@ -59,6 +59,8 @@ def evaluate(model, result):
                                  f"{n}: {who}"))
     # the planetary stage's meshes (planetary_rating.py): every rated gear of both meshes
     stages = [("planetary", s.get("planetary") or {}), *((s.get("stages") or {}).items())]
+    # where, in words: "stage 1", "stage 2", ... in a gearbox, else "planetary"
+    shown = {label: (f"stage {k + 1}" if len(stages) > 1 else label) for k, (label, _) in enumerate(stages)}
     for label, n, r, pr in ((label, n, r, st.get("rating") or {}) for label, st in stages
                             for n, r in ((st.get("rating") or {}).get("meshes") or {}).items()):
         for kind, key, what in (("pitting", "S_H", "contact (pitting) safety factor S_H, ISO 6336-2"),
@@ -67,16 +69,19 @@ def evaluate(model, result):
             if rated:
                 v, who = min(rated)
                 out.append(Criterion(f"{key}_{label}_{n}", v, pr[f"{key}_min_required"], "1", "min",
-                                     f"smallest {what} of the {n} mesh of {label}", f"{label} {n}: {who}"))
+                                     f"smallest {what} of the {n} mesh of {shown[label]}", f"{shown[label]} {n}: {who}"))
             missing = [w for w in (r["pinion"], r["wheel"]) if r[w].get(key) is None]
             if missing:
                 skipped[f"{key}_{label}_{n}_{missing[0]}"] = f"the {missing[0]}'s {key} is not rated ({'; '.join(r['notes'])})"
     for label, st in stages:
-        kg = st.get("load_sharing_factor")
+        # the lateral-torsional model's load sharing where there is one (as the rating's K_gamma)
+        src = st["lateral"] if "load_sharing_factor" in (st.get("lateral") or {}) else st
+        kg = src.get("load_sharing_factor")
         if kg is None:
             continue
-        share = max(st.get("load_share") or [0.0])
-        where = f"{label}: the most loaded planet carries {100 * share:.0f} %"
+        share = max(src.get("load_share") or [0.0])
+        where = (f"{shown[label]}: the most loaded planet carries {100 * share:.0f} %"
+                 + (" (lateral-torsional model)" if src is not st else ""))
         if c.load_sharing_max is not None:
             out.append(Criterion(f"load_sharing_{label}", kg, c.load_sharing_max, "1", "max",
                                  "mesh load factor K_gamma of the planets (the most loaded planet's share over the "

@@ -400,6 +400,17 @@ class PlanetaryRating(Spec):
     flank_roughness: Optional[tuple[Length, Length, Length]] = None  # R_z of sun, planet, ring; none: iso's
     root_roughness: Optional[tuple[Length, Length, Length]] = None
     root_radius: tuple[float, float, float] = (0.25, 0.25, 0.25)     # rho_fP / m of the racks
+    # the ring's root section at its 60 deg tangent (ISO 6336-3 internal gears), from its tooth form:
+    # chord s_Fn, fillet radius rho_F, diameter d_sFn; none: the ring's root is not rated
+    ring_root_section: tuple[Length, Length, Length] | None = None
+
+    @field_validator("ring_root_section")
+    @classmethod
+    def _section(cls, v):
+        if v is not None and not (all(x > 0 for x in v) and v[0] < v[2] and v[1] < v[2]):
+            got = ", ".join(f"{x:.6g} m" for x in v)
+            raise ValueError(f"chord, fillet radius and diameter must be positive, the diameter the largest, got {got}")
+        return v
 
     @field_validator("load_sharing_factor")
     @classmethod
@@ -431,7 +442,7 @@ class PlanetaryRating(Spec):
 
 
 class Planetary(Spec):
-    """A simple planetary stage (sun, N planets on a carrier, ring; spur gears, profile shifts
+    """A simple planetary stage (sun, N planets on a carrier, ring; spur or helical gears, profile shifts
     allowed): mesh phasing, torsional (and, with ``lateral``, lateral-torsional) modes, static load
     sharing with pin position errors, and (with ``rating``) the ISO rating of every mesh."""
 
@@ -439,6 +450,9 @@ class Planetary(Spec):
     planet_teeth: int
     module: quantity("m", gt=0)
     pressure_angle: quantity("rad", gt=0, lt=0.8) = 0.3490658503988659
+    # helical stages: module and pressure angle in the normal section; the sun of one hand, planets and
+    # ring of the other
+    helix_angle: quantity("rad", ge=0, lt=0.7853981633974483) = 0.0
     planets: int
     planet_angles: Optional[list[quantity("rad")]] = None
     sun_planet_stiffness: quantity("N/m", gt=0)
@@ -500,8 +514,9 @@ class Planetary(Spec):
                 raise ValueError(f"planet_angles: {len(self.planet_angles)} angles for {n} planets")
             psi = sorted(a % (2 * math.pi) for a in self.planet_angles)
         # neighbouring planets must clear each other: centre chord above the planet's tip diameter
-        R = self.centre_distance or 0.5 * (zs + zp) * self.module
-        d_tip = (zp + 2 + 2 * self.profile_shifts[1]) * self.module
+        m_t = self.module / math.cos(self.helix_angle)
+        R = self.centre_distance or 0.5 * (zs + zp) * m_t
+        d_tip = zp * m_t + (2 + 2 * self.profile_shifts[1]) * self.module
         gaps = [b - a for a, b in zip(psi, psi[1:])] + [2 * math.pi - psi[-1] + psi[0]] if n > 1 else []
         if gaps and 2 * R * math.sin(min(gaps) / 2) <= d_tip:
             raise ValueError(f"neighbouring planets overlap: centre distance {2e3 * R * math.sin(min(gaps) / 2):.4g} mm "

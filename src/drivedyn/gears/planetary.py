@@ -2,9 +2,10 @@
 mesh phasing, natural modes and static load sharing with planet position errors.
 
 Coordinates: absolute rotations of the sun, ring and carrier and of each planet (rad, all positive
-in one sense); sun, planets and ring are standard spur gears (no profile shift, so the ring has
+in one sense); sun, planets and ring are standard gears (no profile shift, so the ring has
 z_r = z_s + 2 z_p teeth and the planets sit at radius R = (z_s + z_p) m / 2), meshing at the
-pressure angle alpha. In the carrier's frame the stage is an ordinary train with fixed axes, which
+pressure angle alpha; a helical stage is taken in its transverse section (m = m_t, alpha = alpha_t,
+stiffnesses along the transverse lines of action; axial forces and tilting are not modelled). In the carrier's frame the stage is an ordinary train with fixed axes, which
 gives the mesh deflections along the lines of action (compressive positive when the sun drives):
 
     sun-planet n  (external): d_sn = r_bs (th_s - th_c) + r_bp (th_n - th_c) - e_n cos(alpha)
@@ -212,12 +213,15 @@ def stage_of(spec, support=None) -> Stage:
     n = spec.planets
     psi = tuple(spec.planet_angles) if spec.planet_angles is not None else tuple(2 * math.pi * i / n for i in range(n))
     shifted = spec.centre_distance is not None or any(spec.profile_shifts) or spec.ring_teeth is not None
+    # a helical stage in its transverse section (m_t, alpha_t): the mesh stiffnesses act along the
+    # transverse lines of action; axial forces and tilting are not modelled
+    c = math.cos(spec.helix_angle)
     return Stage(ring_teeth=spec.ring_teeth, centre_distance=centre_distance(spec) if shifted else None,
-                 z_sun=spec.sun_teeth, z_planet=spec.planet_teeth, module=spec.module, planet_angles=psi,
+                 z_sun=spec.sun_teeth, z_planet=spec.planet_teeth, module=spec.module / c, planet_angles=psi,
                  k_sun_planet=spec.sun_planet_stiffness, k_ring_planet=spec.ring_planet_stiffness,
                  inertia_sun=spec.sun_inertia, inertia_ring=spec.ring_inertia, inertia_carrier=spec.carrier_inertia,
-                 inertia_planet=spec.planet_inertia, mass_planet=spec.planet_mass, pressure_angle=spec.pressure_angle,
-                 position_errors=tuple(spec.position_errors),
+                 inertia_planet=spec.planet_inertia, mass_planet=spec.planet_mass,
+                 pressure_angle=math.atan(math.tan(spec.pressure_angle) / c), position_errors=tuple(spec.position_errors),
                  support=support if support is not None else {spec.fixed: "fixed"})
 
 
@@ -375,7 +379,9 @@ def report_lines(spec, iso=None) -> list[str]:
     """The ``check`` text of a planetary stage."""
     s, _ = analyse(spec, iso)
     out = ["", f"planetary stage: sun {spec.sun_teeth}, planets {spec.planet_teeth} x {spec.planets}, ring {s['ring_teeth']} "
-               f"teeth, module {spec.module * 1e3:g} mm, centre distance {s['centre_distance'] * 1e3:.3f} mm; "
+               f"teeth, module {spec.module * 1e3:g} mm"
+               + (f", helix {math.degrees(spec.helix_angle):g} deg" if spec.helix_angle else "")
+               + f", centre distance {s['centre_distance'] * 1e3:.3f} mm; "
                f"{spec.input} in, {s['output']} out, {spec.fixed} fixed: speed ratio {s['speed_ratio_input_over_output']:.5g}",
            f"  mesh phases (periods, planet 1 = 0): sun-planet {[round(x, 4) for x in s['phase_sun_planet']]}, "
            f"ring-planet {[round(x, 4) for x in s['phase_ring_planet']]}"

@@ -1,6 +1,7 @@
 """ISO 6336 rating of every mesh of a planetary stage: sun-planet (external) and ring-planet (internal).
 
-What a stage adds to the rating of a pair (rating.py), by source:
+What a stage adds to the rating of a pair (rating.py), by source (a helical stage: module and
+pressure angle normal, the transverse ones below, the sun of one hand and planets and ring of the other):
 
 - geometry with profile shifts (ISO 21771): sun-planet inv alpha_w = inv alpha_t + 2 tan alpha_n (x_s + x_p)
   / (z_s + z_p); ring-planet (internal, x_r as ISO 21771 writes an internal gear's shift, d_a = d - 2 m_n
@@ -19,7 +20,9 @@ What a stage adds to the rating of a pair (rating.py), by source:
   m_red = m_s* m_p* / (m_s* + N m_p*), ring-planet m_red = m_p* (the ring held);
 - ISO 6336-2 for an internal pair: u < 0 in sigma_H0, rho_red = rho_1 rho_2 / (rho_2 - rho_1), Z_D = 1.
 
-The internal gear's tooth root is not rated (rating.py says why). Units as rating.py (mm, N, rpm).
+The internal gear's tooth root is rated with its root section given (chord, fillet radius and diameter at
+the 60 deg tangent; rating._root_internal says why it is not built), else not rated. Units as rating.py
+(mm, N, rpm).
 """
 from __future__ import annotations
 
@@ -51,26 +54,36 @@ class StageGears:
     E: tuple = (206000.0, 206000.0, 206000.0)
     nu: tuple = (0.3, 0.3, 0.3)
     bore: tuple = (0.0, 0.0, 0.0)  # inner diameters d_i (for the reduced mass); ring: its outer one
+    ring_root_section: tuple | None = None  # the ring's (s_Fn, rho_F, d_sFn) at its 60 deg tangent; none: not rated
+    beta: float = 0.0              # helix angle (sun one hand, planets and ring the other); module, alpha_n normal
+
+    @property
+    def transverse(self) -> tuple[float, float]:
+        """(m_t, alpha_t): m_n / cos beta, atan(tan alpha_n / cos beta) (ISO 21771)."""
+        c = math.cos(self.beta)
+        return self.module / c, math.atan(math.tan(self.alpha_n) / c)
 
     def diameters(self) -> dict:
         zs, zp, zr = self.z
         m = self.module
-        d = [zz * m for zz in self.z]
+        m_t, a_t = self.transverse
+        d = [zz * m_t for zz in self.z]
         da = list(self.tip_diameter) if self.tip_diameter else [
             d[0] + 2 * m * (self.h_ap + self.x[0]), d[1] + 2 * m * (self.h_ap + self.x[1]),
             d[2] - 2 * m * (self.h_ap + self.x[2])]
         df = [d[0] - 2 * m * (self.h_fp[0] - self.x[0]), d[1] - 2 * m * (self.h_fp[1] - self.x[1]),
               d[2] + 2 * m * (self.h_fp[2] - self.x[2])]
-        db = [di * math.cos(self.alpha_n) for di in d]
+        db = [di * math.cos(a_t) for di in d]
         return {"d": d, "da": da, "df": df, "db": db}
 
 
 def working_geometry(st: StageGears, field: str = "planetary") -> dict:
-    """Working pressure angles and zero-backlash centre distances of both meshes (spur)."""
+    """Transverse working pressure angles and zero-backlash centre distances of both meshes (ISO 21771:
+    inv alpha_wt = inv alpha_t + 2 tan alpha_n sum(x) / sum(z), a = sum(z) m_t cos alpha_t / (2 cos alpha_wt),
+    the internal mesh with z_r negative)."""
     zs, zp, zr = st.z
-    a_n = st.alpha_n
-    t = math.tan(a_n)
-    m = st.module
+    t = math.tan(st.alpha_n)
+    m, a_n = st.transverse          # transverse module and pressure angle (the normal ones for spur gears)
     w_s = inv_inverse(inv(a_n) + 2 * t * (st.x[0] + st.x[1]) / (zs + zp))
     a_s = (zs + zp) * m / 2 * math.cos(a_n) / math.cos(w_s)
     w_r0 = inv_inverse(inv(a_n) + 2 * t * (st.x[1] + st.x[2]) / (zp - zr))
@@ -109,13 +122,14 @@ def pairs(st: StageGears, field: str = "planetary") -> tuple[Pair, Pair, dict]:
     wg = working_geometry(st, field)
     g = st.diameters()
     zs, zp, zr = st.z
-    common = dict(mn=st.module, alpha_n=st.alpha_n, beta=0.0, aw=wg["a_w"])
+    common = dict(mn=st.module, alpha_n=st.alpha_n, beta=st.beta, aw=wg["a_w"])
     sun = Pair(z1=zs, z2=zp, x1=st.x[0], x2=st.x[1], b=min(st.b[0], st.b[1]), da1=g["da"][0], da2=g["da"][1],
                h_fp=(st.h_fp[0], st.h_fp[1]), rho_fp=(st.rho_fp[0], st.rho_fp[1]), E=(st.E[0], st.E[1]),
                nu=(st.nu[0], st.nu[1]), b_each=(st.b[0], st.b[1]), **common)
     ring = Pair(z1=zp, z2=zr, x1=st.x[1], x2=st.x[2], b=min(st.b[1], st.b[2]), da1=g["da"][1], da2=g["da"][2],
                 h_fp=(st.h_fp[1], st.h_fp[2]), rho_fp=(st.rho_fp[1], st.rho_fp[2]), E=(st.E[1], st.E[2]),
-                nu=(st.nu[1], st.nu[2]), b_each=(st.b[1], st.b[2]), internal=True, **common)
+                nu=(st.nu[1], st.nu[2]), b_each=(st.b[1], st.b[2]), internal=True,
+                root_section2=st.ring_root_section, **common)
     return sun, ring, wg
 
 
@@ -134,7 +148,7 @@ def stiffness(p: Pair, low_load: float | None = None, blank_factor: float = 1.0)
     return iso6336.single_pair_stiffness(zz[0], zz[1], xx[0], xx[1], eps, low_load if low_load is not None else 1e9,
                                          dedendum=p.h_fp, alpha_deg=math.degrees(p.alpha_n),
                                          youngs=(p.E[0] * 1e6, p.E[1] * 1e6), blank_factor=blank_factor,
-                                         low_load=low_load is not None)
+                                         low_load=low_load is not None, beta=p.beta)
 
 
 def rate_stage(st: StageGears, mats: tuple, *, planets: int, torque_sun: float, speed_sun_rel: float,
@@ -151,7 +165,8 @@ def rate_stage(st: StageGears, mats: tuple, *, planets: int, torque_sun: float, 
     """
     zs, zp, zr = st.z
     sun, ring, wg = pairs(st, field)
-    ft = 2000.0 * torque_sun / planets / (zs * st.module)              # N per planet at the sun's reference circle
+    m_t = st.transverse[0]
+    ft = 2000.0 * torque_sun / planets / (zs * m_t)                    # N per planet at the sun's reference circle
     n_p = speed_sun_rel * zs / zp
     n_r = speed_sun_rel * zs / zr
     cyc = {"sun": 60 * life_hours * planets * speed_sun_rel, "planet": 60 * life_hours * n_p,
@@ -168,7 +183,7 @@ def rate_stage(st: StageGears, mats: tuple, *, planets: int, torque_sun: float, 
         mb = iso6336.MethodB(z1=p.z1, c_single=iso.c_single, c_gamma=iso.c_gamma, m_red=m_red[j], eps_gamma=0.0,
                              load_per_width=w, f_pb=_per_mesh(f_pb, j), f_falpha=_per_mesh(f_falpha, j),
                              material=_run_in_class(mi, mi), sigma_hlim=mi.sigma_hlim, c_a=tip_relief,
-                             pitch_radius=p.z1 * p.mn / 2e3,
+                             pitch_radius=p.z1 * m_t / 2e3,
                              material2=None if mi == mj else _run_in_class(mj, mj),
                              sigma_hlim2=None if mi == mj else mj.sigma_hlim)
         from .rating import geometry
@@ -178,13 +193,16 @@ def rate_stage(st: StageGears, mats: tuple, *, planets: int, torque_sun: float, 
         kv_b, ratio_n, region = mb.kv(n1 / 60.0)
         k_v = kv[j] if kv is not None else kv_b
         idx = {"sun": 0, "planet": 1, "ring": 2}
-        load = Load(torque1=ft * p.z1 * p.mn / 2000.0, n1=n1, kv=k_v, ka=ka, life_hours=life_hours, nu40=nu40,
+        load = Load(torque1=ft * p.z1 * m_t / 2000.0, n1=n1, kv=k_v, ka=ka, life_hours=life_hours, nu40=nu40,
                     rz_flank=tuple(rz_flank[idx[g]] for g in gears), rz_root=tuple(rz_root[idx[g]] for g in gears),
                     f_ma=f_ma, f_pb=_per_mesh(f_pb, j), c_gamma_alpha=iso.c_gamma,
                     k_hbeta=None if k_hbeta is None else k_hbeta[j], k_halpha=None if k_halpha is None else k_halpha[j],
                     s_hmin=s_hmin, s_fmin=s_fmin, k_gamma=k_gamma,
                     y_m=tuple(0.7 if g == "planet" else 1.0 for g in gears), cycles=tuple(cyc[g] for g in gears))
-        r = rate(p, (mi, mj), load)
+        try:
+            r = rate(p, (mi, mj), load)
+        except ValueError as exc:      # the ring's given root section does not fit its teeth
+            raise ModelError(str(exc), field=f"{field}.rating.ring_root_section") from None
         r.geometry.update({"pinion": gears[0], "wheel": gears[1]})
         r.factors.update({"c_single": iso.c_single, "c_gamma_alpha": iso.c_gamma, "m_red": m_red[j],
                           "n_E1": mb.resonance_speed * 60.0, "N": ratio_n, "K_v_method_b": kv_b, "region": region})
@@ -247,16 +265,21 @@ def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict) -> dic
                      tip_relief=None if iso.tip_relief is None else iso.tip_relief * 1e6, blank_factor=iso.blank_factor,
                      s_hmin=iso.min_safety_pitting, s_fmin=iso.min_safety_bending, field="planetary")
     summary = {"K_gamma": kg, "K_gamma_source": "given" if r.load_sharing_factor is not None else "load sharing",
-               "load_cycles": {k: float(v) for k, v in out["cycles"].items()}, "meshes": {}}
+               "load_cycles": {k: float(v) for k, v in out["cycles"].items()}, "meshes": {},
+               # said where K_v is read: a stage's meshes are not integrated in time (a train's are)
+               "K_v_note": "not from a time integration (the planetary stage is not integrated in time): "
+                           + ("given" if r.dynamic_factors else "ISO 6336-1 method B with the planetary reduced masses")}
     for name in ("sun-planet", "ring-planet"):
         rt = out[name]
         f = rt.factors
         e = {"pinion": rt.geometry["pinion"], "wheel": rt.geometry["wheel"],
              "working_pressure_angle": rt.geometry["alpha_wt"], "contact_ratio": rt.geometry["eps_alpha"],
+             "overlap_ratio": rt.geometry["eps_beta"],
              "K_v": f["K_v"], "K_v_method_b": f["K_v_method_b"], "K_v_source": "given" if r.dynamic_factors else "ISO 6336-1 method B",
              "reduced_mass": f["m_red"] * 1e3, "resonance_speed_rpm": f["n_E1"],
              "iso_c_single": f["c_single"] * 1e9, "iso_c_gamma": f["c_gamma_alpha"] * 1e9}
-        for key in ("K_A", "K_gamma", "K_Hbeta", "K_Fbeta", "K_Halpha", "K_Falpha", "Z_H", "Z_eps", "Z_L", "Z_v", "Z_R"):
+        for key in ("K_A", "K_gamma", "K_Hbeta", "K_Fbeta", "K_Halpha", "K_Falpha", "Z_H", "Z_eps", "Z_beta", "Y_beta",
+                    "Z_L", "Z_v", "Z_R"):
             e[key] = f[key]
         worst = []
         for who, g in (("pinion", rt.pinion), ("wheel", rt.wheel)):
@@ -282,8 +305,11 @@ def gears_of_spec(spec) -> StageGears:
     r = spec.rating
     zr = spec.ring_teeth or spec.sun_teeth + 2 * spec.planet_teeth
     return StageGears(z=(spec.sun_teeth, spec.planet_teeth, zr), module=spec.module * 1e3, alpha_n=spec.pressure_angle,
+                      beta=spec.helix_angle,
                       x=tuple(spec.profile_shifts), b=(r.face_width * 1e3,) * 3 if r else (1.0, 1.0, 1.0),
                       centre_distance=None if spec.centre_distance is None else spec.centre_distance * 1e3,
                       tip_diameter=None if r is None or r.tip_diameters is None else tuple(d * 1e3 for d in r.tip_diameters),
                       rho_fp=tuple(r.root_radius) if r else (0.25, 0.25, 0.25),
-                      bore=tuple(d * 1e3 for d in r.bore_diameters) if r else (0.0, 0.0, 0.0))
+                      bore=tuple(d * 1e3 for d in r.bore_diameters) if r else (0.0, 0.0, 0.0),
+                      ring_root_section=None if r is None or r.ring_root_section is None
+                      else tuple(v * 1e3 for v in r.ring_root_section))

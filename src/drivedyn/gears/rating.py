@@ -21,7 +21,8 @@ The contact chain is checked digit by digit against ISO/TR 6336-30:2017 example 
 (tests/gears/test_rating.py); the root geometry (s_Fn, rho_F at the 30 deg tangent) against the
 fillet that the basic rack generates (to 2e-5 m_n); and both chains, external and internal contact
 and the external gears' root factors, against a KISSsoft report of a planetary stage to its printed
-digits (tests/gears/test_planetary_rating.py). An internal gear's tooth root is not rated.
+digits (tests/gears/test_planetary_rating.py). An internal gear's tooth root is rated when its root
+section (s_Fn, rho_F, d_sFn) is given (_root_internal says why it is not built); else not rated.
 """
 from __future__ import annotations
 
@@ -66,6 +67,8 @@ class Pair:
     b_each: tuple | None = None  # face widths of each gear (for K_Fbeta's b/h), default b
     internal: bool = False      # gear 2 is an internal gear (a ring): z2 > 0, da2 its (inner) tip diameter,
                                 # x2 its profile shift as ISO 21771 writes it (d_a2 = d2 - 2 m_n (h_aP + x2))
+    root_section2: tuple | None = None  # internal gear 2: (s_Fn, rho_F, d_sFn) at its 60 deg tangent, mm, given
+                                        # (virtual gear of the normal section); none: its root is not rated
 
 
 @dataclass(frozen=True)
@@ -226,6 +229,59 @@ def _root(p: Pair, g: dict, which: int, mat: Material, load: Load, notes: list) 
             "eps_alpha_n": eps_an}
 
 
+def _root_internal(p: Pair, g: dict, notes: list) -> dict:
+    """ISO 6336-3:2006 method B, 6.2 and 6.3, for an internal gear (gear 2) with its root section given.
+
+    The section (chord s_Fn, fillet radius rho_F, diameter d_sFn at the 60 deg tangent that ISO 6336-3
+    takes for internal gears) comes from the caller: ISO builds it from the pinion-type cutter, and
+    neither the external gears' rack construction (E, G, H, theta with z_n < 0 and the 60 deg tangent:
+    s_Fn 128.6 mm, rho_F 6.8 mm) nor an exact numerical generation by the cutter (z_0 36, x_0 0,
+    rho_a0 0.3 m_n: s_Fn 132.16 mm, rho_F 13.57 mm, d_sFn 2673.25 mm) reproduces the 129.40 mm,
+    22.24 mm, 2673.52 mm that KISSsoft prints for NREL 5 MW stage 1's ring (its note: "roF and sFn
+    according to ISO 6336-3:2007-04-01"); stage 2's ring: 57.53 / 7.78 against 56.76 / 8.78 mm.
+
+    The rest is built here. Load at the single-contact point nearest the ring's tip (its smallest
+    diameter): p_bn (eps_alpha_n - 1) beyond its tip contact along the line of action, where the roll
+    distance grows towards its root, d_en = 2 sqrt((sqrt(r_an^2 - r_bn^2) + p_bn (eps_alpha_n - 1))^2
+    + r_bn^2); the internal tooth's half angle there gamma_e = (pi/2 + 2 x tan alpha_n) / z_n - inv alpha_n
+    + inv alpha_en (the tooth widens outwards), alpha_Fen = alpha_en + gamma_e; the load line crosses
+    the tooth's centre line at d_en/2 (cos gamma_e + sin gamma_e tan alpha_Fen), and h_Fe is that
+    point's distance to the section chord at sqrt((d_sFn/2)^2 - (s_Fn/2)^2). Y_F, Y_S: ISO 6336-3
+    eqs. as for external gears. Checked against both NREL reports: d_en 2497.634 / 1928.178 mm
+    (printed d-D 2497.634 / 1928.177), alpha_Fen, h_F, Y_F, Y_S, sigma_F0 to the printed digits.
+    """
+    s_fn, rho_f, d_sfn = p.root_section2
+    cbb = math.cos(g["beta_b"]) ** 2
+    z_n, m = g["zn2"], p.mn
+    eps_an = g["eps_alpha"] / cbb
+    dn = g["d2"] / cbb
+    dbn = dn * math.cos(p.alpha_n)
+    dan = dn - (g["d2"] - p.da2)
+    den = 2 * math.sqrt((math.sqrt((dan / 2) ** 2 - (dbn / 2) ** 2) + math.pi * m * math.cos(p.alpha_n) * (eps_an - 1)) ** 2
+                        + (dbn / 2) ** 2)
+    aen = math.acos(dbn / den)
+    gamma_e = (0.5 * math.pi + 2 * math.tan(p.alpha_n) * p.x2) / z_n - inv(p.alpha_n) + inv(aen)
+    afen = aen + gamma_e
+    y_load = den / 2 * (math.cos(gamma_e) + math.sin(gamma_e) * math.tan(afen))
+    if not 0 < s_fn < d_sfn or d_sfn <= den:
+        raise ValueError(f"the root section (chord {s_fn:.6g} mm, diameter {d_sfn:.6g} mm) must lie beyond the load "
+                         f"point's diameter {den:.6g} mm, with the chord shorter than the diameter")
+    h_fe = math.sqrt((d_sfn / 2) ** 2 - (s_fn / 2) ** 2) - y_load
+    if h_fe <= 0:
+        raise ValueError(f"the root section at diameter {d_sfn:.6g} mm lies inside the load line's crossing of the "
+                         f"tooth's centre line (at {2 * y_load:.6g} mm): bending arm {h_fe:.4g} mm")
+    y_f = 6 * h_fe / m * math.cos(afen) / ((s_fn / m) ** 2 * math.cos(p.alpha_n))
+    L = s_fn / h_fe
+    q_s = s_fn / (2 * rho_f)
+    y_s = (1.2 + 0.13 * L) * q_s ** (1 / (1.21 + 2.3 / L))
+    if not 1.0 <= q_s < 8.0:
+        notes.append(f"wheel: notch parameter q_s = {q_s:.3g} outside 1..8 (ISO 6336-3 validity of Y_S)")
+    notes.append("wheel: internal gear: root section (s_Fn, rho_F, d_sFn) given, not computed")
+    return {"z_n": z_n, "d_en": den, "alpha_en": aen, "gamma_e": gamma_e, "alpha_Fen": afen, "h_Fe": h_fe,
+            "s_Fn": s_fn, "rho_F": rho_f, "d_sFn": d_sfn, "theta": float("nan"), "Y_F": y_f, "Y_S": y_s, "q_s": q_s,
+            "eps_alpha_n": eps_an}
+
+
 def _y_delta(mat: Material, q_s: float, notes: list, who: str) -> float:
     """Relative notch sensitivity Y_deltarelT (ISO 6336-3:2006, 11.x), slip-layer thickness rho' in mm."""
     if mat.cls == "Eh":
@@ -363,17 +419,21 @@ def rate(p: Pair, mats: tuple, load: Load) -> Rating:
         out.update({"Z_B_or_Z_D": zbd_, "sigma_H": sigma_h, "N_L": n_l[which], "Z_NT": z_nt, "Z_W": z_w[which],
                     "sigma_HG": sigma_hg, "sigma_HP": sigma_hg / load.s_hmin, "S_H": sigma_hg / sigma_h,
                     "sigma_Hlim": mat.sigma_hlim, "sigma_Flim": mat.sigma_flim, "material_class": mat.cls})
-        if which == 1 and p.internal:
-            # ISO 6336-3 rates an internal gear's root with the tooth form its pinion-type cutter
-            # generates; that construction is not built: the ring's root is not rated
-            notes.append("wheel: internal gear: tooth root not rated (ISO 6336-3's internal-gear tooth form, "
-                         "generated by a pinion-type cutter, is not built)")
+        if which == 1 and p.internal and p.root_section2 is None:
+            # ISO 6336-3 rates an internal gear's root with the tooth form its pinion-type cutter generates;
+            # that construction is not built here (see _root_internal): without the section given, the
+            # ring's root is not rated
+            notes.append("wheel: internal gear: tooth root not rated (give its root section: chord s_Fn, fillet "
+                          "radius rho_F and diameter d_sFn at the 60 deg tangent, from the tooth form)")
             nan = float("nan")
             out.update({k: nan for k in ("Y_F", "Y_S", "sigma_F0", "sigma_F", "Y_NT", "Y_deltarelT", "Y_RrelT",
                                          "Y_X", "sigma_FG", "sigma_FP", "S_F")})
             out["Y_M"] = load.y_m[which]
             continue
-        root = _root(p, g, which, mat, load, notes)
+        if which == 1 and p.internal:
+            root = _root_internal(p, g, notes)
+        else:
+            root = _root(p, g, which, mat, load, notes)
         if root["eps_alpha_n"] > 2.05:
             notes.append(f"{who}: eps_alpha_n = {root['eps_alpha_n']:.3f} > 2.05: Y_DT = 1 kept (accuracy grade not modelled)")
         y_b = y_dt = 1.0
