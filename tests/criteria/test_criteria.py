@@ -146,3 +146,18 @@ def test_no_criteria_is_not_judged(tmp_path):
     res, doc, _, _ = _run(tmp_path, "mesh-l", {})
     assert doc["verdict"] == "not judged" and doc["criteria"] == {}
     assert res.exit_code == 0
+
+
+def test_the_drivers_gross_slip_reaches_the_verdict():
+    """Slip is measured against the crank, so a crank whose belt slides over its whole wrap passed the
+    slip criterion (fead-runup's rotational run: the crank slides 13 % of the window). gross_slip
+    counts the pulleys with the gross-slip diagnostic, the driver included."""
+    m = drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-runup")), {"simulation.model": "rotational"})
+    r = drivedyn.run(m)
+    crit = r.summary["criteria"]
+    assert crit["slip_runup"]["pass"]                  # against the crank: nothing to see
+    assert not crit["gross_slip"]["pass"] and "crankshaft" in crit["gross_slip"]["where"]
+    assert r.summary["verdict"] == "fail"
+    # and a drive without it passes the criterion
+    ok = drivedyn.run(drivedyn.load(drivedyn.example_path("belt-accessory")))
+    assert ok.summary["criteria"]["gross_slip"]["pass"] and ok.summary["criteria"]["gross_slip"]["value"] == 0

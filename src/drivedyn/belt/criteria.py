@@ -195,6 +195,15 @@ def evaluate(model, result):
             out.append(Criterion("slip_mean", v, c.slip_max, "1", "max",
                                  "largest mean slip of any pulley over the steady window", n))
 
+    # gross slip, the driver's included: slip is measured against the crank, so a crank whose belt
+    # slides over its wrap never shows in slip_mean / slip_runup; each model's gross-slip diagnostic
+    # says where a belt leaves creep for sliding (segments/diagnose.py, rotational/simulate.py)
+    gross = sorted({d.quantity.split(".")[1] for d in getattr(result, "diagnostics", [])
+                    if d.code == "gross-slip" and d.quantity.count(".") >= 2})
+    out.append(Criterion("gross_slip", len(gross), c.gross_slip_max, "", "max",
+                         "pulleys whose belt slides grossly over its wrap (the gross-slip diagnostic), the driver "
+                         "included", ", ".join(gross) or "none"))
+
     # slip margin: the pulleys that carry torque (an idler's margin says nothing)
     if ru:
         skipped["slip_margin"] = "run-up: the slip per bin is judged instead (slip_runup)"

@@ -543,6 +543,7 @@ class Criteria(Spec):
 
     slip_max: quantity("1", gt=0) = 0.02                          # largest slip of any pulley (fraction)
     slip_margin_min: quantity("1", ge=0) = 1.3                    # smallest slip margin of a pulley that carries torque
+    gross_slip_max: Annotated[int, Field(ge=0)] = 0               # pulleys in gross slip (the gross-slip diagnostic), the driver included
     span_tension_min: quantity("N", ge=0) | None = None   # smallest T - m v^2; default 0.1 x belt.pretension
     stop_clearance_min: quantity("1", ge=0, lt=0.5) = 0.1                 # free travel kept at each stop, fraction of stop-to-stop
     hub_load_max: quantity("N", gt=0) | None = None       # bearing limit on the peak hub load (not judged unless given)
