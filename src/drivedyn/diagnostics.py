@@ -15,6 +15,8 @@ from dataclasses import asdict, dataclass
 
 #: every diagnostic code, with what it means (docs/diagnostics.md lists the same)
 CODES = {
+    "optimum-on-bound": "an optimisation's best design sits on a bound of a parameter's range (within 2 % of it): "
+                        "the optimum may lie outside the design space",
     "model-accuracy": "the rotational belt model's span tension bands may sit further from the segment model's "
                       "than the stated share (its estimate in summary.discretisation.estimate): confirm them with "
                       "the segment model",

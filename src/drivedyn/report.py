@@ -273,3 +273,46 @@ def write_study_report(res, study_file, outdir) -> Path:
     from .outputs import write_text
 
     return write_text(Path(outdir) / "report.html", html)
+
+
+def write_optimisation_report(res, study, study_file, outdir, hits=()) -> Path:
+    """``outdir/report.html`` for an optimisation: the best design, its objective and constraint
+    margins, the designs evaluated, an optimum on a bound of its range (said as a diagnostic), the
+    convergence plot and the study file."""
+    from .study.optimise import ON_BOUND
+
+    o = res.optimum
+    opt = study.spec.optimise
+    units = study.units
+    n = len(o.evaluations)
+    feasible = sum(1 for e in o.evaluations if e.feasible)
+    rows = [{"key": "designs evaluated", "value": str(n), "unit": ""},
+            {"key": "feasible designs", "value": str(feasible), "unit": ""}]
+    diags = [{"code": "optimum-on-bound", "quantity": h["name"], "value": f"{h['value']:.6g}", "limit": f"{h['bound']:.6g}",
+              "unit": f" {h['unit']}" if h["unit"] not in ("", "1") else "",
+              "text": f"the best design sits on the {h['side']} bound of this parameter's range (within "
+                      f"{100 * ON_BOUND:g} % of it): the optimum may lie outside the range; widen it"} for h in hits]
+    if o.values is None:
+        status, message = "failed", "no feasible design: widen the ranges, loosen the constraints or raise the budget"
+    else:
+        status, message = ("warning" if hits else "success"), f"best {opt.objective} = {o.objective:.6g}"
+        rows.append({"key": f"objective ({opt.sense}): {opt.objective}", "value": f"{o.objective:.6g}", "unit": ""})
+        rows += [{"key": k, "value": f"{v:.6g}" if isinstance(v, float) else str(v), "unit": units.get(k, "") or ""}
+                 for k, v in o.values.items()]
+        for key, c in o.constraints.items():
+            if "value" in c:
+                bounds = " ".join(f"{side} {c[side]:.4g}" for side in ("min", "max") if side in c)
+                rows.append({"key": f"constraint {key} ({bounds})", "value": f"{c['value']:.4g} (margin {c['margin']:.4g})",
+                             "unit": ""})
+    params = [{"key": p.label, "value": f"{p.range[0]} .. {p.range[1]}" if p.range is not None else str(p.values),
+               "unit": f"{p.scale}{', integer' if p.integer else ''}"} for p in study.spec.parameters]
+    text = res.ds.attrs.get("study_toml", "") if getattr(res, "ds", None) is not None else ""
+    captions = {Path(p).name: "the best feasible objective against the designs evaluated; dots: each feasible design"
+                for p in res.plots or []}
+    html = render(title=f"optimisation: {study.name or Path(study_file).stem}", kind="optimisation study",
+                  status=status, message=message, diagnostics=diags, headline=rows, results=[],
+                  figures=_figures(res.plots, captions), model_rows=params, model_toml=text, source=str(study_file),
+                  model_heading="Design space")
+    from .outputs import write_text
+
+    return write_text(Path(outdir) / "report.html", html)

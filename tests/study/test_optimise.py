@@ -88,3 +88,23 @@ def test_dry_run_lists_the_design_variables(write_study, tmp_path, capsys):
 
     assert main(write_study(STUDY), out=tmp_path / "out", dry_run=True) == 0
     assert not (tmp_path / "out" / "study.nc").exists()
+
+
+def test_an_optimum_on_a_bound_is_said(client, write_study, tmp_path):
+    """Without the constraints the least pretension is the range's lower end (200 N): the
+    optimum may lie outside the design space, which the command prints and report.html lists
+    (before, the best design was printed without a word, and the report was not written)."""
+    from drivedyn.report import write_optimisation_report
+    from drivedyn.study.optimise import on_bounds
+
+    text = STUDY.replace('constraints = [{ key = "steady.slip_margin", min = 1.5 }, { key = "steady.pulleys.*.slip_arc", '
+                         'max = "3 rad" }]', "constraints = []")
+    study = load_study(write_study(text))
+    run = run_optimisation(study, tmp_path / "out", client=client, plots=False)
+    hits = on_bounds(study, run.optimum.values)
+    assert [(h["name"], h["side"], h["bound"]) for h in hits] == [("belt.pretension", "lower", 200.0)]
+    page = write_optimisation_report(run, study, "s.toml", tmp_path / "out", hits).read_text()
+    assert "optimum-on-bound" in page and "belt.pretension" in page
+    # an optimum inside its range: nothing said
+    inside = dict(run.optimum.values, **{"belt.pretension": 390.0})
+    assert on_bounds(study, inside) == []

@@ -29,7 +29,7 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
 
     study = study_file if isinstance(study_file, Study) else load_study(study_file)
     if study.spec.mode == "optimise":
-        return _optimise(study, study_file, out, scheduler, workers, plots, quiet, console, dry_run)
+        return _optimise(study, study_file, out, scheduler, workers, plots, quiet, console, dry_run, report)
     # a dry run resolves only the cases it lists (a large grid is listed in seconds)
     study, design, cases, outdir = prepare(study, out, first=50 if dry_run and not prune else None)
     total = len(design.cases)
@@ -96,13 +96,14 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
     return 0 if not bad.any() else 1
 
 
-def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console, dry_run=False) -> int:
+def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console, dry_run=False, report=True) -> int:
     """``drivedyn study`` of an optimisation: a progress bar over the budget, then the best design
     (``dry_run``: the design variables, objective and constraints, nothing run)."""
     from rich.markup import escape
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
     from .execute import run_optimisation
+    from .optimise import on_bounds
 
     opt = study.spec.optimise
     names = ", ".join(p.label for p in study.spec.parameters)
@@ -125,6 +126,11 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
     n = len(o.evaluations)
     feasible = sum(1 for e in o.evaluations if e.feasible)
     console.print(f"{n} designs evaluated ({res.counts['ran']} run now, {res.counts['cached']} from the cache), {feasible} feasible")
+    hits = on_bounds(study, o.values) if o.values is not None else []
+    if report:
+        from ..report import write_optimisation_report
+
+        console.print(escape(f"report: {write_optimisation_report(res, study, study_file, Path(res.path).parent, hits)}"))
     if o.values is None:
         console.print("[red]no feasible design[/]: widen the ranges, loosen the constraints or raise the budget")
         console.print(escape(f"wrote {res.path}"))
@@ -133,6 +139,9 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
     console.print(escape(f"best: {opt.objective} = {o.objective:.6g}"))
     for k, v in o.values.items():
         console.print(escape(f"  {k} = {v:.6g} {units.get(k, '') or ''}".rstrip()) if isinstance(v, float) else escape(f"  {k} = {v}"))
+    for h in hits:
+        console.print("[yellow]" + escape(f"  {h['name']} sits on the {h['side']} bound of its range ({h['bound']:.6g} "
+                                          f"{h['unit']}): the optimum may lie outside it; widen the range") + "[/]")
     for key, c in o.constraints.items():
         bounds = " ".join(f"{side} {c[side]:.4g}" for side in ("min", "max") if side in c)
         if "value" in c:

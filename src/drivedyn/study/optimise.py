@@ -176,6 +176,36 @@ def run_optimise(study, execute) -> Optimum:
     return Optimum(dict(best["case"].values), best["objective"], best["case"].toml, best["cons"], evaluations, history)
 
 
+#: an optimum closer than this share of its range (in the range's own scale) to a bound sits on it
+ON_BOUND = 0.02
+
+
+def on_bounds(study, values: dict) -> list[dict]:
+    """The ranged parameters whose optimum value sits on a bound of its range: the optimum may lie
+    outside the design space (``[{"name", "value", "bound", "side"}]``)."""
+    from .spec import to_number
+
+    hits = []
+    for p in study.spec.parameters:
+        v = values.get(p.label) if values else None
+        if p.range is None or not isinstance(v, (int, float)):
+            continue
+        unit = study.units.get(p.label)
+        lo, hi = (to_number(b, unit) for b in p.range)
+        if p.scale == "log" and lo > 0 and hi > 0 and v > 0:
+            u = (math.log(v) - math.log(lo)) / (math.log(hi) - math.log(lo))
+        else:
+            u = (v - lo) / (hi - lo) if hi != lo else 0.5
+        if p.integer:      # an integer's bound is a step away at most
+            at_lo, at_hi = round(v) <= math.ceil(lo), round(v) >= math.floor(hi)
+        else:
+            at_lo, at_hi = u <= ON_BOUND, u >= 1 - ON_BOUND
+        if at_lo or at_hi:
+            hits.append({"name": p.label, "value": float(v), "bound": float(lo if at_lo else hi),
+                         "side": "lower" if at_lo else "upper", "unit": unit or ""})
+    return hits
+
+
 def plot_convergence(opt: Optimum, path: Path, objective: str, sense: str, unit: str = "") -> Path:
     """The best feasible objective against the designs evaluated, each feasible design's dotted."""
     from ..plotting import figure, savefig
