@@ -44,6 +44,9 @@ def slip_margin(result, model, sysm, sel):
     an accelerating drive counts what its belt transmits)."""
     from ..steady.creep import steady_state
 
+    if result.summary.get("runup"):
+        # a run-up is judged bin by bin (slip_runup): one margin over the swept window says nothing
+        return
     ds = result.ds
     t = ds["time"].values[sel]
     w = ds["speed"].values[sel]

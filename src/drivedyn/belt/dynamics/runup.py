@@ -149,24 +149,23 @@ def runup_tables(model, t, ten, hub, speed, r, spans, pulleys, travel=None, bin_
     def per_bin(x, fn):
         return np.array([fn(x[which == b], axis=0) for b in used])
 
-    phis = []
+    basis = []
 
     def order_amp(x):
-        if not phis:
-            phis.append(mean_angle(p, t))
-        phi = phis[0]
+        if not basis:           # each bin's samples and order phasors, once for every table
+            phi = mean_angle(p, t)
+            for b in used:
+                idx = np.nonzero(which == b)[0]
+                # whole engine cycles (two revolutions: half orders too) or revolutions only, so
+                # that the orders stay orthogonal and do not leak into one another
+                span = abs(phi[idx[-1]] - phi[idx[0]])
+                cycle = 4 * math.pi if span >= 4 * math.pi else 2 * math.pi
+                if span >= cycle:
+                    idx = idx[np.abs(phi[idx] - phi[idx[0]]) < cycle * math.floor(span / cycle)]
+                basis.append((idx, np.exp(-1j * np.outer(order_list, phi[idx])) * (2 / len(idx))))
         out = np.zeros((len(used), len(order_list), x.shape[1]))
-        for a, b in enumerate(used):
-            idx = np.nonzero(which == b)[0]
-            # whole engine cycles (two revolutions: half orders too) or revolutions only, so that
-            # the orders stay orthogonal and do not leak into one another
-            span = abs(phi[idx[-1]] - phi[idx[0]])
-            cycle = 4 * math.pi if span >= 4 * math.pi else 2 * math.pi
-            if span >= cycle:
-                idx = idx[np.abs(phi[idx] - phi[idx[0]]) < cycle * math.floor(span / cycle)]
-            xs = x[idx] - x[idx].mean(axis=0)
-            for q, k in enumerate(order_list):
-                out[a, q] = np.abs(2 / len(idx) * (np.exp(-1j * k * phi[idx]) @ xs))
+        for a, (idx, E) in enumerate(basis):
+            out[a] = np.abs(E @ (x[idx] - x[idx].mean(axis=0)))
         return out
 
     dims = ("speed_bin",)
