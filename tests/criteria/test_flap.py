@@ -99,3 +99,33 @@ def test_a_negative_flap_order_is_refused():
     model = drivedyn.load(drivedyn.example_path("fead-runup"))
     with pytest.raises(drivedyn.ModelError, match=r"criteria.flap_orders.*\(0, 1000\]"):
         drivedyn.replace(model, {"criteria.flap_orders": [-2.0]})
+
+
+def test_crossings_judged_by_what_excites_the_span():
+    """fead-runup's rotational run-up: a crank order at f1 excites only a span whose end moves with
+    the tensioner (direct); on spans between fixed pulleys it is listed, not counted (all nine
+    crossings counted before); an order at 2 f1 counts where the tension modulation exceeds the
+    damped Mathieu threshold 4 zeta, so raising zeta above a crossing's modulation / 4 drops it."""
+    import drivedyn
+
+    m = drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-runup")), {"simulation.model": "rotational"})
+    r = drivedyn.run(m)
+    c = r.summary["criteria"]["flap_crossings"]
+    xs = c["details"]
+    tensioner_spans = {"alternator-tensioner", "tensioner-crankshaft"}
+    for x in xs:
+        if x["kind"] == "direct":
+            assert x["span"] in tensioner_spans and x["counted"] and x["amplitude"] > 0
+        elif x["kind"] == "none":
+            assert x["span"] not in tensioner_spans and not x["counted"]
+        else:
+            assert x["frequency_hz"] == pytest.approx(2 * np.interp(x["rpm"], r.summary["flap"]["speed_rpm"],
+                                                                    r.summary["flap"]["spans"][x["span"]]["f1"]), rel=1e-6)
+            assert x["counted"] == (x["modulation"] > 4 * 0.02)
+    assert c["value"] == sum(x["counted"] for x in xs) < len(xs)
+    assert any(x["kind"] == "none" for x in xs) and "flap_crossings_listed" in r.summary["criteria_skipped"]
+    par = [x for x in xs if x["kind"] == "parametric" and x["counted"]]
+    assert par
+    zeta = 1.01 * max(x["modulation"] for x in par) / 4
+    r2 = drivedyn.run(drivedyn.replace(m, {"criteria.flap_damping_ratio": zeta}))
+    assert not [x for x in r2.summary["criteria"]["flap_crossings"]["details"] if x["kind"] == "parametric" and x["counted"]]

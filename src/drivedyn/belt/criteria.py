@@ -273,13 +273,22 @@ def evaluate(model, result):
         lo, hi = speed_range(ds, s, driver)
         rng = (lo * (1 - c.flap_speed_margin), hi * (1 + c.flap_speed_margin))
         if orders:
-            xs = flapmod.crossings(fl, orders, rng)
-            out.append(Criterion("flap_crossings", len(xs), c.flap_crossings_max, "", "max",
+            amp, mean, end = _run_readers(ds, s)
+            xs = flapmod.judged_crossings(model, fl, orders, rng, c.flap_damping_ratio, amp, mean, end)
+            counted = [x for x in xs if x["counted"]]
+            out.append(Criterion("flap_crossings", len(counted), c.flap_crossings_max, "", "max",
                                  f"crossings of a span's first flap mode by crank orders {_orders(orders)} within "
-                                 f"{rng[0]:.0f}-{rng[1]:.0f} rpm",
-                                 "; ".join(f"{x['span']} order {_o(x['order'])} at {x['rpm']:.0f} rpm "
-                                           f"({x['frequency_hz']:.0f} Hz)" for x in xs[:4])
-                                 + (f"; {len(xs) - 4} more" if len(xs) > 4 else ""), xs))
+                                 f"{rng[0]:.0f}-{rng[1]:.0f} rpm that excite the span: directly (k n = f1, an end "
+                                 f"moving with a tensioner) or parametrically (k n = 2 f1, tension modulation above "
+                                 f"4 zeta, zeta {c.flap_damping_ratio:g})",
+                                 "; ".join(_flap_where(x) for x in counted[:4])
+                                 + (f"; {len(counted) - 4} more" if len(counted) > 4 else ""), xs))
+            rest = [x for x in xs if not x["counted"]]
+            if rest:
+                skipped["flap_crossings_listed"] = (
+                    f"{len(rest)} crossings listed, not counted: "
+                    + "; ".join(f"{x['span']} order {_o(x['order'])} at {x['rpm']:.0f} rpm ({x['kind']}: {x['note']})"
+                                for x in rest[:4]) + (f"; {len(rest) - 4} more" if len(rest) > 4 else ""))
         else:
             skipped["flap_crossings"] = "the crank declares no speed orders (criteria.flap_orders names more)"
 
@@ -300,6 +309,59 @@ def evaluate(model, result):
                                               "criteria.resonance_crossings_max judges them)")
     _supplier_criteria(model, s, out, skipped)
     return out, skipped
+
+
+def _flap_where(x):
+    if x["kind"] == "direct":
+        return (f"{x['span']} order {_o(x['order'])} at {x['rpm']:.0f} rpm ({x['frequency_hz']:.0f} Hz, direct: "
+                f"{x['note']}, about {1e3 * x['amplitude']:.1f} mm at resonance)")
+    return (f"{x['span']} order {_o(x['order'])} at {x['rpm']:.0f} rpm ({x['frequency_hz']:.0f} Hz = 2 f1, "
+            f"parametric: {x['note']})")
+
+
+def _run_readers(ds, s):
+    """(tension_amp(span, order, rpm), tension_mean(span, rpm), end_amp(tensioner, order, rpm)) from a
+    run: a run-up's order tables between its bins; a steady run's half bands (an order's amplitude is
+    at most the half band: conservative)."""
+    ru = s.get("runup")
+    if ru and "runup_tension_order" in ds and "speed_bin" in ds.coords:
+        rpm = np.asarray(ds["speed_bin"].values, float)
+        order = [float(k) for k in np.atleast_1d(ds["order"].values)] if "order" in ds.coords else []
+        up = np.argsort(rpm)
+
+        def at(values, n):
+            return float(np.interp(n, rpm[up], np.asarray(values, float)[up]))
+
+        def amp(span, k, n):
+            if float(k) in order:
+                return at(ds["runup_tension_order"].sel(span=span).values[:, order.index(float(k))], n)
+            return 0.5 * (at(ds["runup_tension_max"].sel(span=span).values, n)
+                          - at(ds["runup_tension_min"].sel(span=span).values, n))
+
+        def mean(span, n):
+            return at(ds["runup_tension_mean"].sel(span=span).values, n)
+
+        def end(name, k, n):
+            if "runup_arm_travel_order" in ds and name in ds["arm"].values.tolist() and float(k) in order:
+                return at(ds["runup_arm_travel_order"].sel(arm=name).values[:, order.index(float(k))], n)
+            if "runup_arm_travel_max" in ds and "arm" in ds.coords and name in ds["arm"].values.tolist():
+                return 0.5 * (at(ds["runup_arm_travel_max"].sel(arm=name).values, n)
+                              - at(ds["runup_arm_travel_min"].sel(arm=name).values, n))
+            return 0.0
+        return amp, mean, end
+    spans, ten = s.get("spans", {}), s.get("tensioners", {})
+
+    def amp(span, k, n):
+        e = spans.get(span, {})
+        return 0.5 * (e.get("tension_max", 0.0) - e.get("tension_min", 0.0))
+
+    def mean(span, n):
+        return spans.get(span, {}).get("tension_mean", 0.0)
+
+    def end(name, k, n):
+        e = ten.get(name, {})
+        return 0.5 * (e.get("travel_max", 0.0) - e.get("travel_min", 0.0))
+    return amp, mean, end
 
 
 def _o(k):

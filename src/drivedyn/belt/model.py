@@ -551,6 +551,10 @@ class Criteria(Spec):
     flap_speed_margin: quantity("1", ge=0, lt=1) = 0.1                  # the run's speed range widened by this fraction each way
     flap_orders: list[float] = []                   # orders of the crank to judge besides its declared speed orders
     flap_amplitude_min: quantity("rad/s", ge=0) = 0.0     # declared speed orders weaker than this are not judged
+    # the span's first flap mode's damping ratio: sets the parametric threshold (tension modulation
+    # above 4 zeta) and the direct response's size (assumed, a belt property to measure: 1-3 % is
+    # the range of transverse belt-span damping in the literature on serpentine drives)
+    flap_damping_ratio: quantity("1", gt=0, lt=1) = 0.02
     resonance_crossings_max: Annotated[int, Field(ge=0)] | None = None      # crossings of rotational modes (listed; judged only if given)
     # the belt's entry angle on a pulley from offsets and misalignment (judged when any is given):
     # Gates' limit for PK belts on grooved pulleys (chirp begins near 0.33 deg: Meckstroth et al.,

@@ -82,7 +82,7 @@ def excited_orders(model, crank: str, amplitude_min: float = 0.0, extra=()) -> l
     return sorted(orders)
 
 
-def crossings(fl: dict, orders, speed_range, mode="f1") -> list[dict]:
+def crossings(fl: dict, orders, speed_range, mode="f1", factor=1.0) -> list[dict]:
     """Where order k meets a span's ``mode`` frequency inside ``speed_range`` (rpm, lo..hi):
     [{"span", "order", "rpm", "frequency_hz"}], sorted by speed. A steady run (one point) is
     taken at constant frequency: the crossing is at n = 60 f / k."""
@@ -90,7 +90,7 @@ def crossings(fl: dict, orders, speed_range, mode="f1") -> list[dict]:
     out = []
     rpm = np.asarray(fl.get("speed_rpm", []), float)
     for name, s in fl.get("spans", {}).items():
-        f = np.asarray(s[mode], float)
+        f = factor * np.asarray(s[mode], float)
         for k in orders:
             if len(rpm) == 1:
                 if f[0] > 0:
@@ -105,4 +105,68 @@ def crossings(fl: dict, orders, speed_range, mode="f1") -> list[dict]:
                     n = float(np.interp(x, np.arange(len(rpm)), rpm))
                     if lo <= n <= hi:
                         out.append({"span": name, "order": k, "rpm": n, "frequency_hz": k * n / 60})
+    return sorted(out, key=lambda c: c["rpm"])
+
+
+def moving_ends(model, lay) -> dict:
+    """Per span with an end on a tensioner pulley: the transverse motion of that end per unit arm
+    rotation (m/rad, an arm: its length times the share of its swing normal to the span) or slider
+    travel (m/m), and the tensioner's name."""
+    out = {}
+    for sp in lay.spans:
+        d = np.subtract(sp.p1, sp.p0)
+        d = d / max(float(np.hypot(*d)), 1e-12)
+        for j in (sp.start, sp.end):
+            p = model.pulleys[j]
+            if p.arm is not None:
+                arm = np.subtract(lay.centers[j], p.arm.pivot)
+                swing = np.array([-arm[1], arm[0]])          # the centre's motion per radian
+                e = abs(float(swing[0] * d[1] - swing[1] * d[0]))
+            elif p.slider is not None:
+                u = np.asarray(p.slider.direction, float)
+                u = u / max(float(np.hypot(*u)), 1e-12)
+                e = abs(float(u[0] * d[1] - u[1] * d[0]))
+            else:
+                continue
+            out[sp.name] = (max(e, out.get(sp.name, (0.0, ""))[0]), p.name)
+    return out
+
+
+def judged_crossings(model, fl: dict, orders, speed_range, zeta, tension_amp, tension_mean, end_amp) -> list[dict]:
+    """The flap crossings classed by what excites the span (Mathieu's equation for a string whose
+    stiffness the tension modulates; the forced string for a moving end):
+
+    - ``direct``: order k at the first flap frequency (k n = f1) on a span whose end moves with a
+      tensioner: its end's transverse motion e (end_amp(span, order, rpm), m) drives the first mode,
+      at resonance to about e (2 / pi) / (2 zeta) = e / (pi zeta) (``amplitude``); counted;
+    - ``parametric``: order k at twice the first flap frequency (k n = 2 f1, the principal parametric
+      resonance): counted where the order's tension amplitude dT exceeds 4 zeta (T - m v^2), the
+      damped Mathieu threshold (eps > 4 zeta, eps = dT / (T - m v^2)); listed below it;
+    - ``none``: order k at f1 on a span between fixed pulleys: a rotational order does not move it
+      across (an ideal drive in its plane; pulley run-out and belt non-uniformity are not modelled),
+      so it is listed, not counted.
+
+    ``tension_amp(span, order, rpm)`` and ``tension_mean(span, rpm)`` (N) read the run."""
+    from ..geometry.layout import compute_layout
+
+    ends = moving_ends(model, compute_layout(model))
+    m = model.belt.mass_per_length
+    # belt speed per crank rpm (the flap points' ratio)
+    per_rpm = (fl["belt_speed"][0] / fl["speed_rpm"][0]) if fl.get("speed_rpm") and fl["speed_rpm"][0] else 0.0
+    out = []
+    for x in crossings(fl, orders, speed_range):
+        e_per = ends.get(x["span"])
+        if e_per is not None:
+            e = end_amp(e_per[1], x["order"], x["rpm"]) * e_per[0]
+            out.append(dict(x, kind="direct", counted=True, end_motion=e, amplitude=e / (math.pi * zeta),
+                            note=f"its end moves with {e_per[1]}"))
+        else:
+            out.append(dict(x, kind="none", counted=False, note="both ends on fixed pulleys"))
+    for x in crossings(fl, orders, speed_range, factor=2.0):
+        v = x["rpm"] * per_rpm
+        T = tension_mean(x["span"], x["rpm"]) - m * v * v
+        dT = tension_amp(x["span"], x["order"], x["rpm"])
+        eps = dT / T if T > 0 else math.inf
+        out.append(dict(x, kind="parametric", counted=bool(eps > 4 * zeta), modulation=eps, threshold=4 * zeta,
+                        note=f"tension modulation {eps:.3f} against {4 * zeta:.3f}"))
     return sorted(out, key=lambda c: c["rpm"])
