@@ -40,7 +40,8 @@ class Spec(BaseModel):
     """Base of every model object: frozen, unknown keys forbidden, defaults validated, and no
     NaN or inf in any float field (quantities are refused earlier, in ``units.to_si``)."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True, validate_default=True, allow_inf_nan=False)
+    model_config = ConfigDict(extra="forbid", frozen=True, validate_default=True, allow_inf_nan=False,
+                              use_attribute_docstrings=True)
 
 
 def _si_validator(unit: str):
