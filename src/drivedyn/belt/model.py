@@ -462,10 +462,10 @@ class Contact(Spec):
     """Penalty contact (seed eqs. 9-10), coefficients per unit length of belt."""
 
     stiffness_linear: quantity("N/m^2", ge=0)
-    """Linear contact stiffness per unit length of belt: normal pressure per metre of penetration (seed 000, eq. 9, c2
-    = this x segment length)."""
+    """Linear contact stiffness per unit length of belt: a segment of length l pressed p into its pulley carries a
+    normal force (stiffness_linear p + stiffness_quadratic p^2) l (seed 000, eq. 9: c2 = this x l)."""
     stiffness_quadratic: quantity("N/m^3", ge=0) = 0.0
-    """Quadratic contact stiffness per unit length of belt (seed 000, c1 = this x segment length)."""
+    """Quadratic contact stiffness per unit length of belt (seed 000, eq. 9: c1 = this x segment length l)."""
     damping: quantity("N*s/m^2", ge=0) = 0.0
     """Contact damping per unit length of belt (seed 000, eq. 10, b = this x segment length), ramped in over
     damping_depth."""
@@ -570,7 +570,8 @@ class Output(Spec):
     """Time window [start, end] of the steady-state statistics (tensions, slip, hub loads); none: the last quarter of
     the run."""
     runup_bin: Optional[quantity("rad/s", gt=0)] = None
-    """Width of the crank-speed bins a run-up is evaluated in; none: no binning."""
+    """Width of the crank-speed bins a run-up (a crank speed table that sweeps a range) is evaluated in; none: a
+    twentieth of the crank's speed range."""
     animation: bool = False
     """Write belt.gif, an animation of the belt (a few seconds to write)."""
 

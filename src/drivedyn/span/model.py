@@ -221,9 +221,10 @@ class Chart(Spec):
     points: tuple[int, int] = (200, 200)
     """Grid points [pretension, speed] of the chart (2..2000 each)."""
     tongues: int = 3
-    """Number of parametric-resonance regions (tongues) drawn and judged (1..8)."""
+    """Number of parametric-resonance regions (tongues) computed, drawn and judged (1..8)."""
     floquet: bool = True
-    """Check stability on the chart's grid by Floquet multipliers as well as by the tongues' approximate boundaries."""
+    """Compute the Floquet map over the chart's grid: the largest Floquet multiplier with the whole tooth-force
+    signal, beside the tongues of its harmonics."""
     steps_per_oscillation: int = 48
     """Integration steps per excitation period of the Floquet computation (8..1000)."""
     zoom: Zoom = Zoom()

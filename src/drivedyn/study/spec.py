@@ -104,8 +104,8 @@ class Parameter(Spec):
     factors: Optional[list[float]] = None
     """One factor per path: each path gets the value times its factor."""
     unit: Optional[str] = None
-    """Unit of the values for a field that declares none (table entries, plain floats): reads strings and labels the
-    coordinate; the field's SI values are set."""
+    """Unit of the values where the model field declares none (table entries, plain floats): strings with units are
+    read in it and the study's coordinate is labelled with it (the field itself takes SI values)."""
 
     @field_validator("path")
     @classmethod
