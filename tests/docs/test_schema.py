@@ -124,3 +124,10 @@ def test_descriptions_carry_the_unit_and_reach_the_reference():
     row = next(line for line in text.splitlines() if line.startswith("| `pretension` |"))
     assert row.count(" | ") == 5 and "Installation (static) tension" in row
     assert "SI unit" not in row                        # the reference has its own unit column
+
+
+@pytest.mark.parametrize("kind", sorted(KINDS))
+def test_every_table_says_what_it_is(kind):
+    """Each table of a model file has its class's docstring as its description (the reference prints it
+    above the table's fields)."""
+    assert not [n for n, d in json_schema(kind).get("$defs", {}).items() if not d.get("description")]

@@ -391,6 +391,10 @@ class FrictionZone(Spec):
 
 
 class Belt(Spec):
+    """The belt: mass, axial and bending stiffness and damping as properties per unit length (the
+    segments' values follow from them, so a model means the same physics at any segment count), the
+    segment count, the installation tension or the unstretched length, and its catalogue name."""
+
     mass_per_length: quantity("kg/m", gt=0)
     """Mass of the belt per metre of length."""
     axial_stiffness: quantity("N", gt=0)
@@ -560,6 +564,9 @@ class Simulation(Spec):
 
 
 class Output(Spec):
+    """What a run records: the sampling interval, snapshots of the whole belt, the segments whose time
+    series are kept, the steady window, the run-up bins and the animation."""
+
     interval: quantity("s", gt=0) = 1e-3
     """Sampling interval of the recorded time series."""
     frames: int = 100

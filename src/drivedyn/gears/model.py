@@ -78,8 +78,8 @@ class Gear(Spec):
     """Share of the input power taken off at this gear as a load (0..1; the shares add up to at most 1), lowered by
     the mean tooth-friction loss so that the train keeps its speed."""
     root_radius: float = 0.25
-    """Root radius rho_fP / m of the basic rack (the tool's tip radius; 0.25: ISO 53 type A), for the ISO 6336-3 tooth
-    root (in (0, 0.6])."""
+    """Root radius rho_fP / m of the basic rack (the tool's tip radius; ISO 53 and DIN 867 racks have 0.2..0.4), for
+    the ISO 6336-3 tooth root (in (0, 0.6])."""
     steel: Optional[Literal["case-carburized", "through-hardened"]] = None
     """This gear's material for the rating, from the table of rating.py (ISO 6336 class and allowable stresses); none:
     iso's."""
