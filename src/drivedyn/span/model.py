@@ -58,10 +58,12 @@ class Span(Spec):
     length: Optional[quantity("m", gt=0)] = None
     """Free length of the span between its tangent points (give this, belt_model or belt_results)."""
     belt_model: Optional[str] = None
-    """A belt-drive model file (relative to this file) whose span span_name is analysed: length, mass, stiffness,
-    tension and speed from it."""
+    """A belt-drive model file (relative to this file, else the working folder, else a shipped example's name) and
+    its span span_name: the length from its layout; mass per metre, bending stiffness and pretension default to its
+    belt's."""
     belt_results: Optional[str] = None
-    """A belt-drive run's results.nc (relative to this file): the span span_name's length, tension and speed from it."""
+    """A belt-drive run's results.nc (relative to this file): the span span_name from the model stored in it, and the
+    pretension and speed default to the span's mean tension and belt speed in the run's steady window."""
     span_name: Optional[str] = None
     """Name of the span in the belt-drive model or results, "pulleyA-pulleyB" in belt order; needed with belt_model or
     belt_results."""
