@@ -73,13 +73,36 @@ def _unit_in_descriptions(schema: dict) -> dict:
     return schema
 
 
+def _described():
+    """pydantic's schema generator with each model field's docstring (drivedyn.model.field_docs) as
+    the description of its property."""
+    from pydantic.json_schema import GenerateJsonSchema
+
+    from .model import field_docs
+
+    class Described(GenerateJsonSchema):
+        def model_schema(self, schema):
+            out = super().model_schema(schema)
+            props = self.resolve_ref_schema(out).get("properties", {})
+            for name, text in field_docs(schema["cls"]).items():
+                if name in props and not props[name].get("description"):
+                    props[name]["description"] = text
+            return out
+
+    return Described
+
+
+def spec_json_schema(cls) -> dict:
+    """The JSON Schema of a model class (a model kind's ``Model``, a study's ``StudySpec``): bounds in
+    JSON Schema's keywords, unit strings accepted where numbers are, and every property's
+    description the docstring under its field, on one line and ending with its SI unit."""
+    s = copy.deepcopy(cls.model_json_schema(mode="validation", schema_generator=_described()))
+    return _unit_in_descriptions(_with_units(s))
+
+
 def json_schema(kind: str) -> dict:
-    """The JSON Schema (draft 2020-12) of a model file of ``kind``; every property carries the
-    ``description`` written under its field in the model classes (pydantic reads those docstrings:
-    ``use_attribute_docstrings`` on ``drivedyn.model.Spec``)."""
-    model = analysis(kind).Model
-    s = copy.deepcopy(model.model_json_schema(mode="validation"))
-    s = _unit_in_descriptions(_with_units(s))
+    """The JSON Schema (draft 2020-12) of a model file of ``kind``."""
+    s = spec_json_schema(analysis(kind).Model)
     s["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     s["title"] = f"drivedyn model file, kind = \"{kind}\""
     return s
@@ -125,7 +148,7 @@ def reference_markdown(kind: str) -> str:
     from pydantic import BaseModel
     from pydantic_core import PydanticUndefined
 
-    from .model import unwrap
+    from .model import field_docs, unwrap
 
     root = analysis(kind).Model
     seen, order = set(), []
@@ -154,6 +177,7 @@ def reference_markdown(kind: str) -> str:
         if doc and not doc.startswith(("Base", "A base")):
             out += ["", doc.split("\n\n")[0].replace("\n", " ")]
         out += ["", "| field | type | unit (SI) | default | bounds | meaning |", "|---|---|---|---|---|---|"]
+        docs = field_docs(cls)
         for fname, f in cls.model_fields.items():
             unit = ""
             for m in f.metadata:
@@ -190,7 +214,7 @@ def reference_markdown(kind: str) -> str:
             if unit and t.startswith("number"):
                 t = "number or string with unit"
             # a unit in code: Markdown read N*m*s/rad as N, an italic m, s/rad
-            meaning = _cell(f.description or "")
+            meaning = _cell(docs.get(fname) or f.description or "")
             out.append(f"| `{fname}` | {t} | {f'`{unit}`' if unit else ''} | {default} | {', '.join(bounds)} | {meaning} |")
         out.append("")
     return "\n".join(out)
