@@ -342,7 +342,8 @@ def check(model: Path = typer.Argument(..., help="Model file (TOML)."),
 @app.command()
 def schema(kind: str = typer.Argument(..., help="Model kind: belt-drive, gear-train, span-stability, toothed-mesh."),
            out: Optional[Path] = typer.Option(None, "-o", "--out", help="Write to this file instead of printing.")):
-    """Print the JSON Schema of a model kind (for TOML editors: Taplo / Even Better TOML)."""
+    """Print the JSON Schema of a model kind (for TOML editors: Taplo / Even Better TOML): every field
+    with its description, SI unit, default and bounds."""
     import json
 
     from .schema import json_schema

@@ -44,11 +44,65 @@ def _with_units(node):
     return node
 
 
+def _units_in(node) -> set:
+    """The SI units a property's schema declares, down through anyOf / prefixItems / items (not $ref)."""
+    if isinstance(node, list):
+        return set().union(*(_units_in(v) for v in node)) if node else set()
+    if not isinstance(node, dict):
+        return set()
+    found = {node["unit"]} if isinstance(node.get("unit"), str) and node["unit"] else set()
+    for k in ("anyOf", "prefixItems", "items", "additionalProperties"):
+        if k in node:
+            found |= _units_in(node[k])
+    return found
+
+
+def _unit_in_descriptions(schema: dict) -> dict:
+    """Each property's description ends with its SI unit, where it has one ("(SI unit: N)"): an editor
+    shows the description on hover and ignores the non-standard ``unit`` keyword."""
+    tables = [schema] + list(schema.get("$defs", {}).values())
+    for t in tables:
+        for node in t.get("properties", {}).values():
+            if node.get("description"):       # docstrings wrap at the code's width: one line for a tooltip
+                node["description"] = " ".join(node["description"].split())
+            units = _units_in(node)
+            if len(units) == 1 and node.get("description") and "(SI unit:" not in node["description"]:
+                u = units.pop()
+                if u != "1":
+                    node["description"] += f" (SI unit: {u}; a string with a unit is converted)"
+    return schema
+
+
+def _described():
+    """pydantic's schema generator with each model field's docstring (drivedyn.model.field_docs) as
+    the description of its property."""
+    from pydantic.json_schema import GenerateJsonSchema
+
+    from .model import field_docs
+
+    class Described(GenerateJsonSchema):
+        def model_schema(self, schema):
+            out = super().model_schema(schema)
+            props = self.resolve_ref_schema(out).get("properties", {})
+            for name, text in field_docs(schema["cls"]).items():
+                if name in props and not props[name].get("description"):
+                    props[name]["description"] = text
+            return out
+
+    return Described
+
+
+def spec_json_schema(cls) -> dict:
+    """The JSON Schema of a model class (a model kind's ``Model``, a study's ``StudySpec``): bounds in
+    JSON Schema's keywords, unit strings accepted where numbers are, and every property's
+    description the docstring under its field, on one line and ending with its SI unit."""
+    s = copy.deepcopy(cls.model_json_schema(mode="validation", schema_generator=_described()))
+    return _unit_in_descriptions(_with_units(s))
+
+
 def json_schema(kind: str) -> dict:
     """The JSON Schema (draft 2020-12) of a model file of ``kind``."""
-    model = analysis(kind).Model
-    s = copy.deepcopy(model.model_json_schema(mode="validation"))
-    s = _with_units(s)
+    s = spec_json_schema(analysis(kind).Model)
     s["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     s["title"] = f"drivedyn model file, kind = \"{kind}\""
     return s
@@ -78,16 +132,23 @@ def _type_text(ann) -> str:
     return {float: "number", int: "integer", str: "string", bool: "true / false"}.get(core, str(core).replace("typing.", ""))
 
 
+def _cell(text: str) -> str:
+    """A description as one Markdown table cell: one line, pipes escaped, the asterisks of units
+    (N*m) not read as emphasis, the angle brackets of "<= 0" not as HTML."""
+    return " ".join(text.split()).replace("|", "\\|").replace("*", "\\*").replace("<", "&lt;")
+
+
 def reference_markdown(kind: str) -> str:
     """The model-file reference of ``kind`` as Markdown tables, one per table of the file, from
-    the pydantic models (field, type, SI unit, default, bounds) and their docstrings."""
+    the pydantic models (field, type, SI unit, default, bounds) and their docstrings (the class's
+    above its table, each field's in the table's "meaning" column)."""
     import inspect
     import typing
 
     from pydantic import BaseModel
     from pydantic_core import PydanticUndefined
 
-    from .model import unwrap
+    from .model import field_docs, unwrap
 
     root = analysis(kind).Model
     seen, order = set(), []
@@ -115,7 +176,8 @@ def reference_markdown(kind: str) -> str:
         doc = inspect.getdoc(cls) or ""
         if doc and not doc.startswith(("Base", "A base")):
             out += ["", doc.split("\n\n")[0].replace("\n", " ")]
-        out += ["", "| field | type | unit (SI) | default | bounds |", "|---|---|---|---|---|"]
+        out += ["", "| field | type | unit (SI) | default | bounds | meaning |", "|---|---|---|---|---|---|"]
+        docs = field_docs(cls)
         for fname, f in cls.model_fields.items():
             unit = ""
             for m in f.metadata:
@@ -152,6 +214,7 @@ def reference_markdown(kind: str) -> str:
             if unit and t.startswith("number"):
                 t = "number or string with unit"
             # a unit in code: Markdown read N*m*s/rad as N, an italic m, s/rad
-            out.append(f"| `{fname}` | {t} | {f'`{unit}`' if unit else ''} | {default} | {', '.join(bounds)} |")
+            meaning = _cell(docs.get(fname) or f.description or "")
+            out.append(f"| `{fname}` | {t} | {f'`{unit}`' if unit else ''} | {default} | {', '.join(bounds)} | {meaning} |")
         out.append("")
     return "\n".join(out)

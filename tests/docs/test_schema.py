@@ -81,3 +81,53 @@ def test_the_reference_writes_units_as_code():
 
     text = reference_markdown("belt-drive")
     assert "| `N*m*s/rad` |" in text and "| N*m*s/rad |" not in text
+
+
+def _properties(schema):
+    """(table, field, schema node) of every property of a schema: the top level's and each $defs table's."""
+    yield from (("top level", n, v) for n, v in schema.get("properties", {}).items())
+    for table, node in schema.get("$defs", {}).items():
+        yield from ((table, n, v) for n, v in node.get("properties", {}).items())
+
+
+def _undescribed(schema):
+    return [f"{t}.{n}" for t, n, v in _properties(schema) if not str(v.get("description") or "").strip()]
+
+
+@pytest.mark.parametrize("kind", sorted(KINDS))
+def test_every_property_says_what_it_means(kind):
+    """Every field of every model kind has a description in the schema (an editor shows it on hover):
+    the docstring written under the field in the model class."""
+    schema = json_schema(kind)
+    assert len(list(_properties(schema))) > 20
+    assert not _undescribed(schema)
+
+
+def test_every_study_field_says_what_it_means():
+    from drivedyn.schema import spec_json_schema
+    from drivedyn.study.spec import StudySpec
+
+    assert not _undescribed(spec_json_schema(StudySpec))
+
+
+def test_descriptions_carry_the_unit_and_reach_the_reference():
+    """A physical field's description ends with its SI unit (editors ignore the ``unit`` keyword), and the
+    model-file reference of the docs prints each field's description in its "meaning" column."""
+    from drivedyn.schema import reference_markdown
+
+    belt = json_schema("belt-drive")["$defs"]["Belt"]["properties"]
+    assert belt["pretension"]["description"].startswith("Installation (static) tension")
+    assert belt["pretension"]["description"].endswith("(SI unit: N; a string with a unit is converted)")
+    assert "\n" not in belt["pretension"]["description"]
+    text = reference_markdown("belt-drive")
+    assert "| field | type | unit (SI) | default | bounds | meaning |" in text
+    row = next(line for line in text.splitlines() if line.startswith("| `pretension` |"))
+    assert row.count(" | ") == 5 and "Installation (static) tension" in row
+    assert "SI unit" not in row                        # the reference has its own unit column
+
+
+@pytest.mark.parametrize("kind", sorted(KINDS))
+def test_every_table_says_what_it_is(kind):
+    """Each table of a model file has its class's docstring as its description (the reference prints it
+    above the table's fields)."""
+    assert not [n for n, d in json_schema(kind).get("$defs", {}).items() if not d.get("description")]

@@ -31,8 +31,11 @@ class Harmonic(Spec):
     """A torque component amplitude * sin(order * theta + phase), theta the pulley's own angle."""
 
     order: float
+    """Order of the component: cycles per revolution of this pulley (in (0, 1000])."""
     amplitude: quantity("N*m")
+    """Torque amplitude of the component; counter-clockwise positive, like every torque of the drive."""
     phase: quantity("rad") = 0.0
+    """Phase of the component at the pulley's angle 0 (the sine starts at 0 by default)."""
 
     @field_validator("order")
     @classmethod
@@ -49,9 +52,13 @@ class SpeedOrder(Spec):
     Give the order's speed amplitude (rad/s) or its angle amplitude (rad), or both."""
 
     order: float
+    """Engine order: cycles per crank revolution (in (0, 1000]; 2 for a four-cylinder's firing order)."""
     amplitude: quantity("rad/s") = 0.0
+    """Speed amplitude of the order (added to the angle amplitude times order times mean speed); 0: none."""
     angle: quantity("rad") = 0.0
+    """Angle amplitude of the order (its speed amplitude grows with order x mean speed); 0: none."""
     phase: quantity("rad") = 0.0
+    """Phase of the order's cosine at the crank's mean angle 0."""
 
     @field_validator("order")
     @classmethod
@@ -70,10 +77,19 @@ class Clutch(Spec):
     (the prescribed-speed pulley, else the one with the largest applied torque) drives it."""
 
     type: Literal["one-way", "decoupler"] = "one-way"
+    """"one-way": an overrunning clutch (rigid while it drives the rotor, free while the rotor overruns); "decoupler":
+    the same with a torsion spring (rate, damping) in series."""
     inertia: quantity("kg*m^2", gt=0)
+    """The accessory rotor's moment of inertia about its axis, behind the clutch (the pulley's own inertia stays in
+    the pulley's inertia)."""
     rate: quantity("N*m/rad", ge=0) = 0.0
+    """Torsional stiffness of a decoupler's spring between pulley and rotor; required (> 0) for a decoupler, unused by
+    a one-way clutch."""
     damping: quantity("N*m*s/rad", ge=0) = 0.0
+    """Viscous damping of the decoupler's spring (torque per relative speed of pulley and rotor)."""
     sense: Optional[Literal["ccw", "cw"]] = None
+    """The rotor's running sense, "ccw" or "cw" (the sense in which the clutch transmits drive); none: the pulley's
+    sense when the crank drives the belt."""
 
     @model_validator(mode="after")
     def _spring(self):
@@ -87,8 +103,12 @@ class _Tensioner(Spec):
     pulley's ``center``), positive into the belt (the sense that tightens it); the code finds that
     sense from the layout. Spring load = preload - rate x travel, or a table over travel."""
 
-    friction_asymmetry: float = 1.0    # friction moving away from the belt / moving into it
+    friction_asymmetry: float = 1.0
+    """Coulomb friction moving away from the belt over friction moving into it (1: symmetric; an asymmetric damper
+    resists belt-tightening less)."""
     spring_table: Optional[list[list]] = None
+    """The spring as a table of rows [travel, load] (arm: rad, N*m; slider: m, N; travel from the drawn position,
+    positive into the belt; at least 2 rows); replaces preload and rate."""
 
     @field_validator("friction_asymmetry")
     @classmethod
@@ -117,24 +137,37 @@ class Arm(_Tensioner):
     tensioner idler, made dynamic). Travel and stops in rad."""
 
     pivot: tuple[Length, Length]
-    inertia: quantity("kg*m^2", gt=0)            # arm about the pivot, the pulley's mass included
-    preload: quantity("N*m", ge=0) = 0.0         # spring torque at the drawn position
+    """Position [x, y] of the arm's fixed pivot, in the drive's coordinates (the same frame as the pulleys' centres)."""
+    inertia: quantity("kg*m^2", gt=0)
+    """Moment of inertia of the arm about its pivot, the pulley's mass included (the pulley's own spin inertia is the
+    pulley's inertia)."""
+    preload: quantity("N*m", ge=0) = 0.0
+    """Spring torque at the drawn position (travel 0), acting into the belt; replaced by the one free_torque gives."""
     rate: quantity("N*m/rad", ge=0) = 0.0
+    """Torsional rate of the spring: its torque falls by rate x travel as the arm swings into the belt."""
     damping: quantity("N*m*s/rad", ge=0) = 0.0
-    friction: quantity("N*m", ge=0) = 0.0        # Coulomb torque moving into the belt
-    friction_speed: quantity("rad/s", gt=0) = 0.01   # regularisation of the Coulomb law
+    """Viscous damping of the arm about its pivot."""
+    friction: quantity("N*m", ge=0) = 0.0
+    """Coulomb friction torque of the arm's damper moving into the belt (away from it: x friction_asymmetry)."""
+    friction_speed: quantity("rad/s", gt=0) = 0.01
+    """Arm speed over which the Coulomb friction is regularised (smoothed from 0 to full); smaller is closer to dry
+    friction and needs smaller steps."""
     stops: tuple[quantity("rad"), quantity("rad")] = (-0.5, 0.5)
+    """Travel [min, max] of the arm from the drawn position at which its stops engage (min <= 0 <= max, positive into
+    the belt); replaced by [drawn-to-load-stop, drawn-to-free-arm] when load_stop is given."""
     stop_stiffness: quantity("N*m/rad", gt=0) = 1e4
+    """Torsional stiffness of the stops once the arm reaches one (a stiff penalty spring)."""
     stop_damping: quantity("N*m*s/rad", ge=0) = 1.0
-    # the tensioner as its supplier gives it (the position table, geometry/positions.py): the arm's
-    # absolute angle with no belt (pivot to pulley centre, from +x counter-clockwise), the spring
-    # torque there, and the load stop as an angle from the free arm. With free_torque, preload
-    # follows (free_torque + rate x the angle from the free arm to the drawn arm); with load_stop,
-    # stops are [drawn-to-load-stop, drawn-to-free-arm] (the free arm is the other stop); either
-    # replaces a preload or stops the file gives
+    """Viscous damping acting while the arm presses on a stop."""
     free_angle: Optional[quantity("rad")] = None
+    """Supplier data (the position table, geometry/positions.py): the arm's absolute angle with no belt, pivot to
+    pulley centre, from +x counter-clockwise; needed by free_torque and load_stop. None: not given."""
     free_torque: Optional[quantity("N*m", ge=0)] = None
+    """Supplier data: the spring torque at the free arm; preload then follows as free_torque + rate x the angle from
+    the free arm to the drawn arm. None: preload as given."""
     load_stop: Optional[quantity("rad", gt=0)] = None
+    """Supplier data: the load stop as an angle from the free arm (> 0); the stops then become [drawn-to-load-stop,
+    drawn-to-free-arm]. None: stops as given."""
 
     @field_validator("spring_table")
     @classmethod
@@ -155,15 +188,26 @@ class Slider(_Tensioner):
     tensioner. Travel and stops in m."""
 
     direction: tuple[float, float]
+    """Direction [x, y] of the slide (any length, not zero); the code finds which way along it tightens the belt."""
     mass: quantity("kg", gt=0)
-    preload: quantity("N", ge=0) = 0.0           # spring force at the drawn position
+    """Moving mass of the slider, the pulley included."""
+    preload: quantity("N", ge=0) = 0.0
+    """Spring force at the drawn position (travel 0), pushing into the belt."""
     rate: quantity("N/m", ge=0) = 0.0
+    """Spring rate: the force falls by rate x travel as the slider moves into the belt; 0: a constant-force tensioner."""
     damping: quantity("N*s/m", ge=0) = 0.0
+    """Viscous damping of the slide."""
     friction: quantity("N", ge=0) = 0.0
+    """Coulomb friction force of the slide moving into the belt (away from it: x friction_asymmetry)."""
     friction_speed: quantity("m/s", gt=0) = 1e-3
+    """Slider speed over which the Coulomb friction is regularised (smoothed from 0 to full)."""
     stops: tuple[Length, Length] = (-0.02, 0.02)
+    """Travel [min, max] from the drawn position at which the slide's stops engage (min <= 0 <= max, positive into the
+    belt)."""
     stop_stiffness: quantity("N/m", gt=0) = 1e6
+    """Stiffness of the stops once the slider reaches one (a stiff penalty spring)."""
     stop_damping: quantity("N*s/m", ge=0) = 100.0
+    """Viscous damping acting while the slider presses on a stop."""
 
     @field_validator("spring_table")
     @classmethod
@@ -210,35 +254,67 @@ class Pulley(Spec):
     """A pulley or idler, in belt order. Counter-clockwise is positive for angles and torques."""
 
     name: str
+    """Name used in results, span names ("crank-alternator") and overrides; no spaces, dots, dashes or slashes."""
     center: tuple[Length, Length]
+    """Position [x, y] of the pulley's axis in the drive's plane (x right, y up, as drawn)."""
     radius: quantity("m", gt=0)
+    """Radius on which the belt's centre line (its pitch line, the tension member) runs: the pitch radius of the
+    pulley (geometry/catalogue.py); the layout, the belt's length and the contact penetration are measured from it."""
     side: Literal["inside", "back"] = "inside"
+    """Which face of the belt runs on the pulley: "inside" (the ribbed or toothed face, wrapped by the loop) or "back"
+    (a backside idler outside the loop)."""
     inertia: quantity("kg*m^2", gt=0) = 1e-3
+    """Moment of inertia of the pulley about its axis (of everything turning rigidly with it; a clutch's rotor is
+    clutch.inertia)."""
     torque: quantity("N*m") = 0.0
+    """Constant external torque on the pulley, counter-clockwise positive (a driver turning clockwise has a negative
+    torque; a load opposes its rotation)."""
     torque_time: Optional[list[list]] = None
+    """Torque over time as rows [time, torque], linearly interpolated and held beyond the last row; added to torque."""
     torque_speed: Optional[list[list]] = None
+    """Torque over the pulley's speed as rows [speed, torque] (at least 2, speed counter-clockwise positive),
+    extrapolated linearly; added to torque."""
     viscous_torque: quantity("N*m*s/rad", ge=0) = 0.0
+    """Viscous load coefficient: a torque -c omega opposing the pulley's speed."""
     harmonics: list[Harmonic] = []
+    """Torque components amplitude sin(order theta + phase) on the pulley's own angle theta (an accessory's pulsating
+    load, e.g. a compressor)."""
     speed_time: Optional[list[list]] = None
-    speed_orders: list[SpeedOrder] = []            # engine orders on the prescribed speed
-    drag: quantity("N*m", ge=0) = 0.0              # bearing drag (Coulomb, over +-drag_speed)
+    """Prescribed speed over time as rows [time, speed] (counter-clockwise positive): makes this pulley the crank,
+    driven kinematically; excludes torques, loads and clutches on it."""
+    speed_orders: list[SpeedOrder] = []
+    """Engine orders (firing pulsation) superposed on the prescribed speed; needs speed_time."""
+    drag: quantity("N*m", ge=0) = 0.0
+    """Bearing drag: a Coulomb torque opposing the rotation, regularised over +-drag_speed."""
     drag_speed: quantity("rad/s", gt=0) = 1.0
-    quadratic_torque: quantity("N*m*s^2/rad^2", ge=0) = 0.0   # pumps: torque -c omega |omega|
-    power: quantity("W", ge=0) = 0.0               # electrical load of an alternator
-    efficiency: float = 1.0                        # of the alternator: torque -power / (eta omega)
-    cut_in_speed: quantity("rad/s", gt=0) = 100.0  # no power below it, full power from twice it
+    """Speed over which the bearing drag rises from 0 to its full value (regularisation of the Coulomb law)."""
+    quadratic_torque: quantity("N*m*s^2/rad^2", ge=0) = 0.0
+    """Quadratic load coefficient c of a pump or fan: torque -c omega |omega|."""
+    power: quantity("W", ge=0) = 0.0
+    """Electrical power an alternator delivers: torque -power / (efficiency omega) above the cut-in speed."""
+    efficiency: float = 1.0
+    """Efficiency of the alternator (in (0, 1]): the shaft power is power / efficiency."""
+    cut_in_speed: quantity("rad/s", gt=0) = 100.0
+    """Alternator cut-in speed: no electrical load below it, rising linearly to the full power at twice it."""
     clutch: Optional[Clutch] = None
-    arm: Optional[Arm] = None          # a pivoted tensioner carries this pulley
-    slider: Optional[Slider] = None    # a linear tensioner carries this pulley
-    # the effective diameter of a ribbed pulley (belt length is measured on it); None: from the
-    # belt's profile, 2 x radius -+ 2 hb (grooved, back side; geometry/catalogue.py)
+    """An overrunning clutch or decoupler between this pulley and its accessory's rotor; none: the loads act on the
+    pulley itself."""
+    arm: Optional[Arm] = None
+    """A pivoted (automatic) tensioner carrying this pulley; none: the pulley's axis is fixed."""
+    slider: Optional[Slider] = None
+    """A linear tensioner carrying this pulley; none: the pulley's axis is fixed."""
     effective_diameter: Optional[quantity("m", gt=0)] = None
-    # alignment (geometry/alignment.py): the groove's centre plane along the axis, from the drive's
-    # plane, and the pulley's plane turned by ``misalignment`` about the in-plane direction
-    # ``misalignment_axis`` (from +x counter-clockwise)
+    """Effective diameter of a ribbed (poly-V) pulley, on which a catalogue belt's length is measured (ISO 9981,
+    ISO 9982); none: from the belt's profile, 2 x radius - 2 h_b on a grooved pulley, + 2 h_b on a back-side one
+    (geometry/catalogue.py)."""
     axial_offset: quantity("m") = 0.0
+    """Axial position of the groove's centre plane from the drive's plane (geometry/alignment.py); a misaligned pulley
+    bends the belt sideways into its groove."""
     misalignment: quantity("rad") = 0.0
+    """Angular misalignment: the pulley's plane turned by this angle about the in-plane direction misalignment_axis
+    (geometry/alignment.py)."""
     misalignment_axis: quantity("rad") = 0.0
+    """In-plane direction about which the pulley's plane is turned by misalignment, from +x counter-clockwise."""
 
     @field_validator("name")
     @classmethod
@@ -299,8 +375,11 @@ class FrictionZone(Spec):
     """A stretch of belt (arc length from the start of segment 0) with its own friction coefficient."""
 
     start: Length
+    """Start of the zone: arc length along the belt from the start of segment 0."""
     end: Length
+    """End of the zone: arc length along the belt from the start of segment 0 (after start)."""
     coefficient: float
+    """Friction coefficient mu of belt segments in the zone, instead of friction.coefficient (>= 0)."""
 
     @model_validator(mode="after")
     def _order(self):
@@ -312,29 +391,49 @@ class FrictionZone(Spec):
 
 
 class Belt(Spec):
+    """The belt: mass, axial and bending stiffness and damping as properties per unit length (the
+    segments' values follow from them, so a model means the same physics at any segment count), the
+    segment count, the installation tension or the unstretched length, and its catalogue name."""
+
     mass_per_length: quantity("kg/m", gt=0)
+    """Mass of the belt per metre of length."""
     axial_stiffness: quantity("N", gt=0)
+    """Axial (tensile) stiffness EA: tension = EA x strain (to the power axial_exponent); the seed's element stiffness
+    c_L is EA / l (Kubas, seed 000, eq. 9; examples/belt-5pk.toml)."""
     axial_damping: quantity("N*s", ge=0) = 0.0
+    """Axial damping per unit strain rate (N s): the element damping is axial_damping / l (seed 000, b_L)."""
     bending_stiffness: quantity("N*m^2", ge=0) = 0.0
-    # below the damper that damps the segment chain's grid-scale rotation mode (system.GRID_ZETA,
-    # summary.discretisation.grid_damping), that damper is used
+    """Bending stiffness EI of the belt: the joint stiffness between segments is bending_stiffness / l (seed 000,
+    c_B)."""
     bending_damping: quantity("N*m^2*s", ge=0) = 0.0
+    """Bending damping: joint damping bending_damping / l (seed 000, b_B). Below the damper that damps the segment
+    chain's grid-scale rotation mode (system.GRID_ZETA, summary.discretisation.grid_damping), that damper is used."""
     axial_exponent: float = 1.0
+    """Exponent e of the tension law F = EA strain^e (1: linear; in [0.5, 3]; seed 000, eq. 9)."""
     bending_exponent: float = 1.0
-    segments: Union[int, Literal["auto"]] = "auto"     # "auto": chosen by accuracy (resolution.py)
+    """Exponent of the bending law between segments (1: linear; in [0.5, 3])."""
+    segments: Union[int, Literal["auto"]] = "auto"
+    """Number of rigid segments the belt is divided into (12..5000); "auto": chosen for accuracy by resolution.py (at
+    most 2000)."""
     pretension: Optional[quantity("N", gt=0)] = None
+    """Installation (static) tension of the belt; the unstretched length follows from the layout. Give exactly one of
+    pretension and length."""
     length: Optional[quantity("m", gt=0)] = None
-    # the belt as its catalogue names it (the supplier's report, geometry/catalogue.py): the ribbed
-    # profile (ISO 9982) and ribs, the nominal effective length (8PK1020: 1020 mm), its tolerance
-    # +- and the allowance for wear and growth (a share of the length)
+    """Unstretched length of the belt's centre line (on the pulleys' radius, not a catalogue's effective length); the
+    tension follows from the layout. Give exactly one of pretension and length."""
     profile: Optional[Literal["PH", "PJ", "PK", "PL", "PM"]] = None
+    """Ribbed (poly-V) profile as ISO 9982 names it (PK for automotive drives); none: not a catalogue belt."""
     ribs: Optional[Annotated[int, Field(ge=1, le=100)]] = None
+    """Number of ribs (the 8 of 8PK1020)."""
     effective_length: Optional[quantity("m", gt=0)] = None
+    """Nominal effective length, as the catalogue name gives it (1020 mm for 8PK1020; ISO 9982)."""
     length_tolerance: quantity("m", ge=0) = 0.0
+    """Tolerance +- on the effective length (the supplier's report checks the tensioner over it)."""
     wear_allowance: quantity("1", ge=0, lt=0.1) = 0.0
-    # required belt length = effective drive length - length_offset; None: the drawn layout's
-    # effective drive length less the nominal length (the drawn tensioner is at the nominal length)
+    """Allowance for the belt's wear and growth in service, a share of the length (0.01: 1 %)."""
     length_offset: Optional[quantity("m")] = None
+    """Required belt length = effective drive length - length_offset; none: the drawn layout's effective drive length
+    less the nominal length (the drawn tensioner is at the nominal length)."""
 
     @field_validator("segments")
     @classmethod
@@ -367,12 +466,16 @@ class Contact(Spec):
     """Penalty contact (seed eqs. 9-10), coefficients per unit length of belt."""
 
     stiffness_linear: quantity("N/m^2", ge=0)
+    """Linear contact stiffness per unit length of belt: a segment of length l pressed p into its pulley carries a
+    normal force (stiffness_linear p + stiffness_quadratic p^2) l (seed 000, eq. 9: c2 = this x l)."""
     stiffness_quadratic: quantity("N/m^3", ge=0) = 0.0
+    """Quadratic contact stiffness per unit length of belt (seed 000, eq. 9: c1 = this x segment length l)."""
     damping: quantity("N*s/m^2", ge=0) = 0.0
-    # p_max of the damping ramp (eq. 10). None: the smallest static penetration at the pretension
-    # (system.damping_depth), so that a stiff contact keeps its nominal damping: with a fixed
-    # 1 mm and a 12 um static penetration the ramp leaves 5e-4 of it and the segments bounce.
+    """Contact damping per unit length of belt (seed 000, eq. 10, b = this x segment length), ramped in over
+    damping_depth."""
     damping_depth: Optional[quantity("m", gt=0)] = None
+    """Penetration p_max over which the contact damping ramps in (seed 000, eq. 10); none: the smallest static
+    penetration at the pretension (system.damping_depth), so that a stiff contact keeps its nominal damping."""
 
     @model_validator(mode="after")
     def _some_stiffness(self):
@@ -391,11 +494,20 @@ class Friction(Spec):
     docs/belt-drive.md)."""
 
     law: Literal["threlfall", "elastic-plastic"] = "elastic-plastic"
+    """"elastic-plastic": a stuck bit of belt held by its cover's shear up to displacement_limit, then sliding with mu
+    N (docs/belt-drive.md); "threlfall": seed 000's regularised Coulomb law (eqs. 11-17)."""
     coefficient: float = 1.0
+    """Friction coefficient mu between belt and pulleys (static = kinetic; a poly-V belt's apparent coefficient
+    includes the wedge effect)."""
     velocity_threshold: quantity("m/s", gt=0) = 1e-5
+    """Slip speed Delta_v over which Threlfall's law rises to full friction (seed 000, eq. 11)."""
     displacement_limit: quantity("m", gt=0) = 1e-4
+    """Elastic displacement Delta_max of a stuck bit of belt before it slides (elastic-plastic law only)."""
     zones: list[FrictionZone] = []
-    radius: Literal["contact", "centre"] = "contact"     # seed 000, eq. 12: see the docstring
+    """Stretches of belt with their own friction coefficient (arc length from the start of segment 0)."""
+    radius: Literal["contact", "centre"] = "contact"
+    """Where the pulley's speed is read for the slip and the friction's moment arm (seed 000, eq. 12): "contact" (the
+    contact radius: classical creep theory's thin belt) or "centre" (the segment's centre)."""
 
     @field_validator("coefficient")
     @classmethod
@@ -417,26 +529,30 @@ class Simulation(Spec):
     periodic solutions per crank-speed bin (``runup``, rotational model)."""
 
     duration: quantity("s", gt=0) = 1.0
-    # "segments": the belt as a chain of rigid segments (seed 000); "rotational": pulleys, arms and
-    # rotors with the spans as axial springs and creep on the wraps (rotational/simulate.py), milliseconds
-    # per simulated second
+    """Simulated time from the start of the run."""
     model: Literal["segments", "rotational"] = "segments"
-    # a run-up by time integration of the crank's speed table ("time"), or its steady response at
-    # each crank-speed bin as a periodic solution ("periodic", rotational model: periodic.py)
+    """Belt model: "segments", the belt as a chain of rigid segments (seed 000); "rotational", pulleys, arms and
+    rotors with the spans as axial springs and creep on the wraps (rotational/simulate.py; milliseconds per
+    simulated second)."""
     runup: Literal["time", "periodic"] = "time"
-    # "auto": the implicit scheme; the semi-implicit one with rotation_scaling = true, and for an
-    # accessory drive (tensioners, clutches, orders) under Threlfall's law (integrator below)
+    """A run-up by time integration of the crank's speed table ("time"), or its steady response at each crank-speed
+    bin as a periodic solution ("periodic", rotational model only: periodic.py)."""
     method: Literal["auto", "implicit", "semi-implicit", "rkf45"] = "auto"
+    """Integration scheme of the segments: "auto" is the implicit scheme, the semi-implicit one with rotation_scaling
+    = true and for a drive with tensioners, clutches or orders under Threlfall's law; "rkf45" does not integrate
+    tensioners, clutches or speed orders."""
     step: Optional[quantity("s", gt=0)] = None
-    # the segments' rotational inertia x 3.3 (system.ROTATION_SCALE): a 1.3x longer stable step of
-    # the semi-implicit scheme (what it changes: system.py); None: with the elastic-plastic
-    # friction law, where it leaves the answers as they were
+    """Fixed time step; none: the stable step the scheme needs, found from the model."""
     rotation_scaling: Optional[bool] = None
-    # run the drive a second time at 0.7 x the segments and report the change as an estimate of
-    # the discretisation error (resolution.py; about 1.5 x the cost)
+    """Scale the segments' rotational inertia by 3.3 (system.ROTATION_SCALE) for a 1.3x longer stable step of the
+    semi-implicit scheme; none: on with the elastic-plastic law, off with Threlfall's."""
     resolution_check: bool = False
+    """Run the drive a second time at 0.7 x the segments and report the change as an estimate of the discretisation
+    error (resolution.py; about 1.5 x the cost; segment model only)."""
     rtol: float = 1e-6
+    """Relative error tolerance of the adaptive rkf45 scheme (other schemes ignore it)."""
     atol: float = 1e-9
+    """Absolute error tolerance of the adaptive rkf45 scheme, in the state's SI units (other schemes ignore it)."""
 
     @model_validator(mode="after")
     def _periodic(self):
@@ -448,12 +564,23 @@ class Simulation(Spec):
 
 
 class Output(Spec):
+    """What a run records: the sampling interval, snapshots of the whole belt, the segments whose time
+    series are kept, the steady window, the run-up bins and the animation."""
+
     interval: quantity("s", gt=0) = 1e-3
+    """Sampling interval of the recorded time series."""
     frames: int = 100
+    """Number of snapshots of the whole belt (every segment's state) kept for plots and the animation (1..10000)."""
     segments: list[int] = [0]
+    """Indices of the segments whose time series are recorded (0 is the first segment; < belt.segments)."""
     steady_window: Optional[tuple[Time, Time]] = None
-    runup_bin: Optional[quantity("rad/s", gt=0)] = None   # width of the crank-speed bins of a run-up
-    animation: bool = False      # belt.gif (a few seconds to write)
+    """Time window [start, end] of the steady-state statistics (tensions, slip, hub loads); none: the last quarter of
+    the run."""
+    runup_bin: Optional[quantity("rad/s", gt=0)] = None
+    """Width of the crank-speed bins a run-up (a crank speed table that sweeps a range) is evaluated in; none: a
+    twentieth of the crank's speed range."""
+    animation: bool = False
+    """Write belt.gif, an animation of the belt (a few seconds to write)."""
 
     @model_validator(mode="after")
     def _window(self):
@@ -469,10 +596,16 @@ class DutyRow(Spec):
     accessories' loads as powers or torques (by pulley name), and the temperature."""
 
     crank_speed: quantity("rad/s", gt=0)
+    """Crank speed of this row."""
     share: quantity("1", gt=0, le=1)
+    """Share of the running time spent at this row (the rows' shares add up to 1)."""
     power: dict[str, quantity("W", ge=0)] = {}
+    """Accessory loads as powers, by pulley name."""
     torque: dict[str, quantity("N*m", ge=0)] = {}
-    temperature: Optional[float] = None          # deg C; None: the duty cycle's
+    """Accessory loads as torques, by pulley name (magnitudes opposing the rotation); a pulley has power or torque,
+    not both."""
+    temperature: Optional[float] = None
+    """Ambient temperature of this row in deg C (-60..250); none: the duty cycle's temperature."""
 
     @field_validator("temperature")
     @classmethod
@@ -490,12 +623,20 @@ class Life(Spec):
     hours, d_e in mm, v in m/s, L in m, T in N."""
 
     exponent: float = 5.6
+    """Exponent on the effective diameter d_e (mm) in the damage rate: small pulleys dominate the damage (MFSim fit to
+    Gates reports, steady/life.py)."""
     back_side_weight: float = 0.31
+    """Weight w of a back-side pulley against a grooved one in the damage sum (in [0, 10])."""
     tension_exponent: float = 0.96
+    """Exponent on the design tension per rib T_design / ribs (N) in the damage rate."""
     constant: float = 1.475304e-4
-    reference_temperature: float = 80.0         # deg C
-    halving: float = 23.0                       # deg C per halving of the life
-    target: Optional[quantity("s", gt=0)] = None    # B10 the verdict asks for
+    """Constant of the fit: B10 life (hours) = constant / damage rate."""
+    reference_temperature: float = 80.0
+    """Temperature (deg C) at which the fit's life holds unchanged."""
+    halving: float = 23.0
+    """Temperature rise (deg C) that halves the life."""
+    target: Optional[quantity("s", gt=0)] = None
+    """B10 life the verdict asks for; none: the life is reported, not judged."""
 
     @model_validator(mode="after")
     def _positive(self):
@@ -513,20 +654,25 @@ class DutyCycle(Spec):
     pulley, the temperature and the belt-life fit."""
 
     rows: list[DutyRow]
-    idler_drag: quantity("W", ge=0) = 10.0      # on each pulley without a declared load (Gates: 0.01 kW)
-    # the crank's acceleration and deceleration the slip factors are checked under, with each
-    # pulley's inertia, at part_load and full accessory load (the rows' largest); None: not checked
+    """The duty cycle's rows: crank speed, share of time, accessory loads and temperature."""
+    idler_drag: quantity("W", ge=0) = 10.0
+    """Drag power put on each pulley without a declared load, idlers and tensioner pulleys (Gates: 0.01 kW)."""
     acceleration: Optional[quantity("rad/s^2", gt=0)] = None
+    """The crank's acceleration and deceleration under which the slip factors are checked, with each pulley's inertia,
+    at part_load and at full accessory load (the rows' largest); none: not checked."""
     part_load: quantity("1", gt=0, le=1) = 0.1
-    # each row also from the dynamics: the rotational model held at the row (supplier.py), the
-    # crank's declared speed orders included: mean and peak hub loads, span tension bands, the arm's
-    # travel against its stops, slip margins (about a second per row)
+    """Part accessory load of the acceleration check, a share of the full load."""
     dynamic: bool = False
-    # the tolerance study: the duty cycle at every reachable position-table row (replaced, longest,
-    # nominal and shortest belt), both conventions (supplier.py; about half a second per row)
+    """Also evaluate each row from the dynamics: the rotational model held at the row (supplier.py), the crank's speed
+    orders included: mean and peak hub loads, span tension bands, the arm's travel against its stops, slip margins
+    (about a second per row)."""
     tolerance: bool = False
-    temperature: float = 80.0                    # deg C
+    """The tolerance study: the duty cycle at every reachable position-table row (replaced, longest, nominal and
+    shortest belt), both conventions (supplier.py; about half a second per row)."""
+    temperature: float = 80.0
+    """Ambient temperature in deg C of every row that gives none."""
     life: Life = Life()
+    """The belt-life fit (rib fatigue) and its target."""
 
     @model_validator(mode="after")
     def _rows(self):
@@ -541,25 +687,38 @@ class DutyCycle(Spec):
 class Criteria(Spec):
     """Limits the verdict judges a belt run against (every field optional)."""
 
-    slip_max: quantity("1", gt=0) = 0.02                          # largest slip of any pulley (fraction)
-    slip_margin_min: quantity("1", ge=0) = 1.3                    # smallest slip margin of a pulley that carries torque
-    gross_slip_max: Annotated[int, Field(ge=0)] = 0               # pulleys in gross slip (the gross-slip diagnostic), the driver included
-    span_tension_min: quantity("N", ge=0) | None = None   # smallest T - m v^2; default 0.1 x belt.pretension
-    stop_clearance_min: quantity("1", ge=0, lt=0.5) = 0.1                 # free travel kept at each stop, fraction of stop-to-stop
-    hub_load_max: quantity("N", gt=0) | None = None       # bearing limit on the peak hub load (not judged unless given)
-    flap_crossings_max: Annotated[int, Field(ge=0)] = 0                     # crossings of a span's first flap mode by an excited order
-    flap_speed_margin: quantity("1", ge=0, lt=1) = 0.1                  # the run's speed range widened by this fraction each way
-    flap_orders: list[float] = []                   # orders of the crank to judge besides its declared speed orders
-    flap_amplitude_min: quantity("rad/s", ge=0) = 0.0     # declared speed orders weaker than this are not judged
-    # the span's first flap mode's damping ratio: sets the parametric threshold (tension modulation
-    # above 4 zeta) and the direct response's size (assumed, a belt property to measure: 1-3 % is
-    # the range of transverse belt-span damping in the literature on serpentine drives)
+    slip_max: quantity("1", gt=0) = 0.02
+    """Largest slip of any pulley allowed (a fraction: 0.02 = 2 %)."""
+    slip_margin_min: quantity("1", ge=0) = 1.3
+    """Smallest slip margin of a pulley that carries torque (the torque the wrap could carry over the torque it
+    carries; docs/criteria.md)."""
+    gross_slip_max: Annotated[int, Field(ge=0)] = 0
+    """Pulleys allowed in gross slip (the gross-slip diagnostic of either model), the driver included: slip is
+    measured against the driver, so a driving pulley's own gross slip shows only here."""
+    span_tension_min: quantity("N", ge=0) | None = None
+    """Smallest span tension allowed, T - m v^2 (the tension left for the wraps); none: 0.1 x belt.pretension."""
+    stop_clearance_min: quantity("1", ge=0, lt=0.5) = 0.1
+    """Free travel kept at each tensioner stop, a share of the stop-to-stop travel (< 0.5)."""
+    hub_load_max: quantity("N", gt=0) | None = None
+    """Bearing limit on the peak hub load of any pulley; none: not judged."""
+    flap_crossings_max: Annotated[int, Field(ge=0)] = 0
+    """Crossings of a span's first transverse (flap) mode by an excited order allowed in the run's speed range."""
+    flap_speed_margin: quantity("1", ge=0, lt=1) = 0.1
+    """The run's speed range widened by this share each way for the flap check."""
+    flap_orders: list[float] = []
+    """Orders of the crank to judge besides its declared speed orders (each in (0, 1000])."""
+    flap_amplitude_min: quantity("rad/s", ge=0) = 0.0
+    """Declared speed orders weaker than this speed amplitude are not judged."""
     flap_damping_ratio: quantity("1", gt=0, lt=1) = 0.02
-    resonance_crossings_max: Annotated[int, Field(ge=0)] | None = None      # crossings of rotational modes (listed; judged only if given)
-    # the belt's entry angle on a pulley from offsets and misalignment (judged when any is given):
-    # Gates' limit for PK belts on grooved pulleys (chirp begins near 0.33 deg: Meckstroth et al.,
-    # SAE 1999-01-1709)
+    """Damping ratio of a span's first flap mode: sets the parametric threshold (tension modulation above 4 x it)
+    and the direct response's size at resonance (assumed: 1-3 % is the usual range for belt spans; measure it
+    when a crossing sits near the threshold)."""
+    resonance_crossings_max: Annotated[int, Field(ge=0)] | None = None
+    """Crossings of the drive's rotational modes by excited orders allowed; none: listed, not judged."""
     entry_angle_max: quantity("rad", gt=0) = 0.9 * math.pi / 180
+    """Largest entry angle of the belt on a pulley from offsets and misalignment (judged when any is given): Gates'
+    limit for PK belts on grooved pulleys, 0.9 deg (chirp begins near 0.33 deg: Meckstroth et al., SAE
+    1999-01-1709)."""
 
     @field_validator("flap_orders")
     @classmethod
@@ -574,17 +733,30 @@ class Model(Spec):
     """A belt drive: belt, pulleys in belt order, contact, friction, simulation and output."""
 
     kind: Literal["belt-drive"]
+    """The kind of model file: "belt-drive"."""
     schema_version: Literal[1] = 1
+    """Version of the model-file format (1)."""
     name: str = ""
+    """A name for the drive, shown in reports."""
     belt: Belt
+    """The belt: mass, stiffness, damping, segments, tension or length, catalogue name."""
     pulleys: list[Pulley]
+    """Pulleys and idlers in the order the belt passes them round its loop (at least 2; the spans are named
+    "from-to" in this order)."""
     contact: Contact
+    """Penalty contact between belt and pulleys (seed 000, eqs. 9-10)."""
     friction: Friction = Friction()
+    """Friction law between belt and pulleys."""
     gravity: quantity("m/s^2") = 9.81
+    """Gravitational acceleration on the belt segments, acting along -y (0: none)."""
     simulation: Simulation = Simulation()
+    """How long and how the drive is simulated."""
     output: Output = Output()
-    criteria: Criteria = Criteria()               # design limits of the verdict (criteria.py, docs/criteria.md)
-    duty_cycle: Optional[DutyCycle] = None        # the supplier report's duty cycle (steady/duty.py)
+    """What the run records and writes."""
+    criteria: Criteria = Criteria()
+    """Design limits of the verdict (criteria.py, docs/criteria.md)."""
+    duty_cycle: Optional[DutyCycle] = None
+    """The supplier report's duty cycle (steady/duty.py); none: no supplier report."""
 
     @model_validator(mode="after")
     def _pulleys(self):

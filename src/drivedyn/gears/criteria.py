@@ -24,13 +24,17 @@ RPM = 30 / math.pi
 class Criteria(Spec):
     """Limits the verdict judges a gear-train run against (every field optional)."""
 
-    kv_max: quantity("1", ge=1) | None = None              # largest dynamic factor K_v of any mesh (not judged unless given)
-    separation: bool = False                 # allow loss of tooth contact at the operating speed
-    stable: bool = True                      # require the linear model stable at the operating speed
-    sweep_unstable_ranges_max: Annotated[int, Field(ge=0)] = 0       # unstable or separating speed ranges allowed in the sweep
-    # the planets' mesh load factor K_gamma (the most loaded planet's share over the mean one) from
-    # the static load sharing: judged when given, else reported beside the verdict
+    kv_max: quantity("1", ge=1) | None = None
+    """Largest dynamic factor K_v of any mesh allowed; none: not judged."""
+    separation: bool = False
+    """Allow loss of tooth contact at the operating speed (false: the smallest mesh force must stay above 0)."""
+    stable: bool = True
+    """Require the linear model parametrically stable at the operating speed (Floquet growth rate <= 0)."""
+    sweep_unstable_ranges_max: Annotated[int, Field(ge=0)] = 0
+    """Unstable or separating speed ranges allowed in the sweep."""
     load_sharing_max: quantity("1", ge=1) | None = None
+    """Largest planet mesh load factor K_gamma (the most loaded planet's share over the mean one) from the static load
+    sharing; none: reported beside the verdict, not judged."""
 
 
 def evaluate(model, result):

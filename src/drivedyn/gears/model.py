@@ -36,29 +36,57 @@ class Gear(Spec):
     """A spur or helical gear: tooth data (basic rack in modules, normal section), blank and external torque."""
 
     name: str
+    """Name of the gear, used by meshes, shafts and the drive; no spaces, dots or slashes."""
     teeth: int
+    """Number of teeth z (5..2000)."""
     module: quantity("m", gt=0)
-    pressure_angle: quantity("rad", gt=0, lt=0.8) = 0.3490658503988659  # 20 deg
-    # helical gears run at 8-30 deg (double helical up to 40); 45 deg is the limit of the model's thin slices
+    """Normal module m_n of the basic rack (ISO 54; the transverse module is m_n / cos beta)."""
+    pressure_angle: quantity("rad", gt=0, lt=0.8) = 0.3490658503988659
+    """Normal pressure angle alpha_n of the basic rack (20 deg: ISO 53)."""
     helix_angle: quantity("rad", ge=0, lt=0.7853981633974483) = 0.0
+    """Helix angle beta at the reference diameter (0: spur; helical gears run at 8-30 deg, double helical up to 40;
+    below 45 deg, the limit of the model's thin slices)."""
     hand: Literal["right", "left"] = "right"
+    """Hand of the helix; meshing external helical gears have opposite hands."""
     profile_shift: float = 0.0
+    """Profile shift coefficient x, in modules (ISO 21771; positive away from the gear's centre)."""
     face_width: quantity("m", gt=0)
+    """Face width b of the teeth, along the axis."""
     inertia: quantity("kg*m^2", gt=0)
+    """Moment of inertia of the gear (and what turns rigidly with it) about its axis."""
     tip_diameter: Optional[quantity("m", gt=0)] = None
-    addendum: float = 1.0      # h_aP / m of the basic rack
-    dedendum: float = 1.25     # h_fP / m of the basic rack
+    """Tip diameter d_a; none: from the basic rack and profile shift, d + 2 m_n (h_aP/m + x) (ISO 21771)."""
+    addendum: float = 1.0
+    """Addendum h_aP / m of the basic rack (1: ISO 53)."""
+    dedendum: float = 1.25
+    """Dedendum h_fP / m of the basic rack (1.25: ISO 53)."""
     bore_diameter: Optional[quantity("m", gt=0)] = None
+    """Inner diameter of the gear body, for the fillet-foundation term of the potential-energy stiffness; none: the
+    root circle."""
     youngs_modulus: quantity("Pa", gt=0) = 206e9
+    """Young's modulus of the gear's material (206 GPa: steel, ISO 6336-1)."""
     poisson: float = 0.3
+    """Poisson's ratio of the gear's material (0.3: steel)."""
     torque: quantity("N*m") = 0.0
+    """Constant external torque on the gear, positive when it drives the gear in its nominal direction of rotation
+    (loads are negative; seed 003, eqs. 9-11)."""
     torque_speed: Optional[list[list]] = None
+    """Torque over the gear's speed as rows [speed, torque] (at least 2), added to torque; same sign convention."""
     torque_time: Optional[list[list]] = None
+    """Torque over time as rows [time, torque] (at least 2), added to torque; same sign convention."""
     load_fraction: float = 0.0
-    root_radius: float = 0.25  # rho_fP / m of the basic rack (tool tip radius), for the ISO 6336-3 root
-    steel: Optional[Literal["case-carburized", "through-hardened"]] = None   # this gear's material, else iso's
-    flank_roughness: Optional[quantity("m", gt=0)] = None   # this gear's R_z (ISO 6336-2 Z_R), else iso's
-    root_roughness: Optional[quantity("m", gt=0)] = None    # this gear's root R_z (ISO 6336-3 Y_RrelT), else iso's
+    """Share of the input power taken off at this gear as a load (0..1; the shares add up to at most 1), lowered by
+    the mean tooth-friction loss so that the train keeps its speed."""
+    root_radius: float = 0.25
+    """Root radius rho_fP / m of the basic rack (the tool's tip radius; ISO 53 and DIN 867 racks have 0.2..0.4), for
+    the ISO 6336-3 tooth root (in (0, 0.6])."""
+    steel: Optional[Literal["case-carburized", "through-hardened"]] = None
+    """This gear's material for the rating, from the table of rating.py (ISO 6336 class and allowable stresses); none:
+    iso's."""
+    flank_roughness: Optional[quantity("m", gt=0)] = None
+    """This gear's flank roughness R_z (ISO 6336-2 Z_R); none: iso's."""
+    root_roughness: Optional[quantity("m", gt=0)] = None
+    """This gear's root roughness R_z (ISO 6336-3 Y_RrelT); none: iso's."""
 
     @field_validator("name")
     @classmethod
@@ -132,10 +160,17 @@ class Stiffness(Spec):
     """
 
     model: Literal["cai", "rectangular", "potential-energy", "constant"] = "cai"
+    """Shape of the time-varying mesh stiffness: "cai" (Cai's parabola per tooth pair), "rectangular"
+    (single/double-contact wave), "potential-energy" (from the tooth geometry), "constant" (the mean only)."""
     mean: Optional[quantity("N/m", gt=0)] = None
+    """Mean mesh stiffness along the line of action; none: ISO 6336-1 c_gamma_alpha x b (method B)."""
     single: Optional[quantity("N/m", gt=0)] = None
+    """Stiffness in single-tooth contact of the rectangular wave (give with double; not with mean)."""
     double: Optional[quantity("N/m", gt=0)] = None
+    """Stiffness in double-tooth contact of the rectangular wave (give with single; not with mean)."""
     engagement: float = 0.0
+    """Duration, in mesh periods, over which a tooth pair's stiffness ramps in and out (smoothstep; 0: a step; at most
+    0.45)."""
 
     @field_validator("engagement")
     @classmethod
@@ -161,16 +196,30 @@ class Mesh(Spec):
     """A mesh between two external spur gears: ``gears = [driving, driven]``."""
 
     name: str
+    """Name of the mesh, used in results; no spaces, dots or slashes."""
     gears: tuple[str, str]
+    """The two gears in mesh, [driving, driven] (external spur or helical gears)."""
     stiffness: Stiffness = Stiffness()
+    """The mesh's time-varying stiffness."""
     damping: Optional[quantity("N*s/m", ge=0)] = None
+    """Viscous mesh damping along the line of action; give this or damping_ratio, not both."""
     damping_ratio: Optional[float] = None
+    """Mesh damping as a ratio of the critical damping of the pair's reduced mass on the mean stiffness (in [0, 1));
+    none, with no damping either: 0.05."""
     friction: float = 0.0
+    """Tooth friction coefficient mu (in [0, 1); 0: no friction)."""
     position_angle: quantity("rad") = 0.0
+    """Angular position of the mesh around the driving gear; sets the mesh's phase when phase is not given (-z_driving
+    x angle / 2 pi, mesh periods)."""
     phase: Optional[float] = None
+    """Phase of the mesh's stiffness cycle, in mesh periods (in [0, 1)); none: from position_angle."""
     center_distance: Optional[quantity("m", gt=0)] = None
+    """Working centre distance; none: the zero-backlash one of the two gears' profile shifts (ISO 21771)."""
     separation: bool = False
+    """Let the teeth separate: the mesh force cannot pull, and the teeth cross the backlash before they touch again;
+    false: a linear mesh whose force may go negative."""
     backlash: quantity("m", ge=0) = 0.0
+    """Circumferential backlash along the line of action (used with separation)."""
 
     @field_validator("name")
     @classmethod
@@ -204,9 +253,13 @@ class Shaft(Spec):
     """A torsional shaft joining two gears on the same axis (they turn the same way)."""
 
     name: str
+    """Name of the shaft, used in results; no spaces, dots or slashes."""
     gears: tuple[str, str]
+    """The two gears the shaft joins (on one axis, turning the same way)."""
     stiffness: quantity("N*m/rad", gt=0)
+    """Torsional stiffness of the shaft between the two gears."""
     damping: quantity("N*m*s/rad", ge=0) = 0.0
+    """Torsional damping of the shaft."""
 
     @field_validator("name")
     @classmethod
@@ -218,9 +271,13 @@ class Drive(Spec):
     """Operating point: the input gear, its nominal speed and the input power or torque."""
 
     input: str
+    """Name of the input (driving) gear."""
     speed: quantity("rad/s", gt=0)
+    """Nominal speed of the input gear, in its nominal direction of rotation."""
     power: Optional[quantity("W", gt=0)] = None
+    """Input power (give this or torque)."""
     torque: Optional[quantity("N*m", gt=0)] = None
+    """Input torque on the input gear (give this or power)."""
 
     @model_validator(mode="after")
     def _load(self):
@@ -233,14 +290,25 @@ class Simulation(Spec):
     """Time integration: the seed's fixed-step RK4 or adaptive Dormand-Prince 5(4)."""
 
     method: Literal["rk4", "dopri5"] = "rk4"
+    """Time integration: "rk4" (the seed's fixed-step fourth-order Runge-Kutta, seed 003) or "dopri5" (adaptive
+    Dormand-Prince 5(4))."""
     step: quantity("s", gt=0) = 5e-6
+    """Time step of rk4 (the first step of dopri5)."""
     duration: quantity("s", gt=0) = 0.05
+    """Simulated time."""
     start: Literal["static", "ramp", "rest"] = "static"
+    """Initial state: "static" (static equilibrium at the start position, no start-up step), "ramp" (the load ramped
+    smoothly over ramp_time), "rest" (undeflected, full load at t = 0: a start-up transient)."""
     ramp_time: quantity("s", ge=0) = 0.0
+    """Duration of the load ramp of start = "ramp"."""
     steady_window: Optional[tuple[Time, Time]] = None
+    """Time window [start, end] in which K_v and the steady results are read; none: the last quarter of the run."""
     output_interval: Optional[quantity("s", gt=0)] = None
+    """Sampling interval of the written time series; none: every step (rk4) or duration / 20000 (dopri5)."""
     rtol: float = 1e-8
+    """Relative error tolerance of dopri5 (rk4 ignores it)."""
     atol: quantity("m", gt=0) = 1e-12
+    """Absolute error tolerance of dopri5 on the deflections (rk4 ignores it)."""
 
     @model_validator(mode="after")
     def _window(self):
@@ -272,12 +340,20 @@ class Sweep(Spec):
     """K_v against input speed at the nominal torques (a run per speed, in compiled code)."""
 
     enabled: bool = False
+    """Run the speed sweep: K_v against input speed at the nominal torques."""
     speed_min: Optional[quantity("rad/s", gt=0)] = None
+    """Lowest input speed of the sweep; none: speed_max / 100."""
     speed_max: Optional[quantity("rad/s", gt=0)] = None
+    """Highest input speed of the sweep; none: 1.3 x the speed where the first mesh frequency meets the highest
+    natural frequency."""
     count: int = 200
+    """Number of speeds of the sweep (2..10000)."""
     settle: Optional[quantity("s", gt=0)] = None
+    """Settling time before K_v is read at each speed; none: five decay times of the least damped mode, at most 0.5 s."""
     window_cycles: int = 20
+    """Mesh periods of the first mesh over which K_v is read at each speed (2..10000)."""
     steps_per_cycle: int = 64
+    """RK4 steps per mesh period at least (16..10000)."""
 
     @model_validator(mode="after")
     def _range(self):
@@ -296,27 +372,52 @@ class Iso(Spec):
     rating (method B) of every mesh: material, lubricant, roughness, life and minimum safety factors."""
 
     application_factor: float = 1.0
+    """Application factor K_A (ISO 6336-1, 6.2 / annex B: 1 for uniform driver and load; in [1, 10])."""
     low_load: bool = True
+    """Apply the low-load factor to c' below K_A F_t / b = 100 N/mm (ISO 6336-1:2006, 9.3.1)."""
     blank_factor: float = 1.0
+    """Gear blank factor C_R of c' (ISO 6336-1:2006, 9.3.4: 1 for solid blanks)."""
     pitch_deviation: quantity("m", ge=0) = 7e-6
+    """Transverse base pitch deviation f_pb (ISO 6336-1 method B dynamic factor)."""
     profile_deviation: quantity("m", ge=0) = 7e-6
+    """Profile form deviation f_f_alpha (ISO 6336-1 method B dynamic factor)."""
     material: Literal["St", "V", "Eh", "NT", "GG"] = "Eh"
+    """ISO 6336 material class: St (structural steel), V (through-hardened), Eh (case-hardened), NT (nitrided), GG
+    (grey cast iron); sets the running-in allowances of ISO 6336-1."""
     sigma_hlim: quantity("Pa", gt=0) = 1500e6
+    """Allowable contact stress number sigma_Hlim (ISO 6336-5)."""
     tip_relief: Optional[quantity("m", ge=0)] = None
+    """Tip relief C_a (ISO 6336-1 method B); none: no tip relief."""
     rating: bool = True
+    """Rate every mesh to ISO 6336-2/-3 (method B) with the run's K_v."""
     steel: Optional[Literal["case-carburized", "through-hardened"]] = None
+    """A steel from the table of rating.py (sets material, sigma_hlim, sigma_flim and yield_strength; give it or
+    them); none: the fields as given."""
     sigma_flim: quantity("Pa", gt=0) = 430e6
+    """Allowable bending stress number sigma_Flim (ISO 6336-5)."""
     yield_strength: Optional[quantity("Pa", gt=0)] = None
+    """Yield strength R_p0.2 of a through-hardened steel, for the relative notch sensitivity Y_deltarelT (ISO 6336-3);
+    none: Y_deltarelT = 1."""
     life: quantity("s", gt=0) = 20000 * 3600.0
+    """Required life of the gears, for the life factors Z_NT and Y_NT (20 000 h)."""
     lubricant_viscosity: quantity("m^2/s", gt=0) = 220e-6
-    flank_roughness: quantity("m", gt=0) = 6e-6          # R_z (ISO 6336-2 Z_R divides by it)
+    """Kinematic viscosity of the lubricant at 40 deg C (ISO VG grade; ISO 6336-2 Z_L, Z_v)."""
+    flank_roughness: quantity("m", gt=0) = 6e-6
+    """Flank roughness R_z (ISO 6336-2 Z_R)."""
     root_roughness: quantity("m", gt=0) = 10e-6
+    """Root roughness R_z (ISO 6336-3 Y_RrelT)."""
     mesh_misalignment: quantity("m", ge=0) = 10e-6
+    """Mesh misalignment f_ma, for the face load factor K_Hbeta (ISO 6336-1)."""
     face_load_factor: Optional[float] = None
+    """Face load factor K_Hbeta given (in [1, 10]); none: computed (ISO 6336-1)."""
     transverse_load_factor: Optional[float] = None
-    dynamic_factor: Optional[float] = None       # K_v given for the rating, instead of the run's (and method B's)
+    """Transverse load factor K_Halpha given (in [1, 10]); none: computed (ISO 6336-1)."""
+    dynamic_factor: Optional[float] = None
+    """Dynamic factor K_v given for the rating (in [1, 10]), instead of the run's and method B's."""
     min_safety_pitting: float = 1.0
+    """Minimum safety factor against pitting S_Hmin the verdict requires (ISO 6336-2)."""
     min_safety_bending: float = 1.0
+    """Minimum safety factor against tooth-root bending S_Fmin the verdict requires (ISO 6336-3)."""
 
     @field_validator("blank_factor", "min_safety_pitting", "min_safety_bending")
     @classmethod
@@ -374,35 +475,57 @@ class PlanetaryLateral(Spec):
     support of the held member."""
 
     sun_mass: quantity("kg", gt=0)
+    """Mass of the sun (with what moves rigidly with it) for the lateral model (Lin & Parker 1999)."""
     ring_mass: quantity("kg", gt=0)
+    """Mass of the ring for the lateral model."""
     carrier_mass: quantity("kg", gt=0)
-    planet_bearing_stiffness: quantity("N/m", gt=0)              # each pin, radial and tangential
-    sun_bearing_stiffness: quantity("N/m", ge=0) = 0.0           # 0: a floating sun, centred by its meshes
-    ring_bearing_stiffness: Optional[quantity("N/m", gt=0)] = None     # none: held rigidly in translation
+    """Mass of the carrier for the lateral model."""
+    planet_bearing_stiffness: quantity("N/m", gt=0)
+    """Stiffness of each planet's pin bearing, radial and tangential."""
+    sun_bearing_stiffness: quantity("N/m", ge=0) = 0.0
+    """Radial bearing stiffness of the sun; 0: a floating sun, centred by its meshes."""
+    ring_bearing_stiffness: Optional[quantity("N/m", gt=0)] = None
+    """Radial bearing stiffness of the ring; none: held rigidly in translation."""
     carrier_bearing_stiffness: Optional[quantity("N/m", gt=0)] = None
-    support_stiffness: Optional[quantity("N*m/rad", gt=0)] = None      # torsional support of the held member; none: rigid
+    """Radial bearing stiffness of the carrier; none: held rigidly in translation."""
+    support_stiffness: Optional[quantity("N*m/rad", gt=0)] = None
+    """Torsional stiffness of the held member's support; none: rigid."""
 
 
 class PlanetaryRating(Spec):
     """ISO 6336-2/-3 rating of the sun-planet and ring-planet meshes (the rest of the data from [iso])."""
 
     face_width: quantity("m", gt=0)
-    speed: quantity("rad/s", gt=0)                               # of the input member
-    load_sharing_factor: Optional[float] = None                  # K_gamma; none: from the computed load sharing
-    dynamic_factors: Optional[tuple[float, float]] = None        # K_v of sun-planet, ring-planet; none: ISO method B
-    face_load_factors: Optional[tuple[float, float]] = None      # K_Hbeta of sun-planet, ring-planet; none: iso's
-    steels: Optional[tuple[Steel, Steel, Steel]] = None           # sun, planet, ring; none: iso's for all
-    ring_hardness: Optional[float] = None                        # HB, for Z_W of a through-hardened ring
-    sigma_hlim: Optional[tuple[Stress, Stress, Stress]] = None   # sun, planet, ring; none: the steels' (or iso's)
+    """Face width of the sun-planet and ring-planet meshes."""
+    speed: quantity("rad/s", gt=0)
+    """Speed of the input member, for the rating."""
+    load_sharing_factor: Optional[float] = None
+    """Mesh load factor K_gamma (in [1, 3]); none: from the computed load sharing."""
+    dynamic_factors: Optional[tuple[float, float]] = None
+    """K_v of the sun-planet and ring-planet meshes; none: ISO 6336-1 method B."""
+    face_load_factors: Optional[tuple[float, float]] = None
+    """K_Hbeta of the sun-planet and ring-planet meshes; none: iso's."""
+    steels: Optional[tuple[Steel, Steel, Steel]] = None
+    """Steels of sun, planet and ring from the table of rating.py; none: iso's for all."""
+    ring_hardness: Optional[float] = None
+    """Brinell hardness (HB) of a through-hardened ring, for the work-hardening factor Z_W (ISO 6336-2)."""
+    sigma_hlim: Optional[tuple[Stress, Stress, Stress]] = None
+    """sigma_Hlim of sun, planet and ring; none: the steels' (or iso's)."""
     sigma_flim: Optional[tuple[Stress, Stress, Stress]] = None
-    tip_diameters: Optional[tuple[Length, Length, Length]] = None   # sun, planet, ring (inner); none: ISO 21771
-    bore_diameters: tuple[Length, Length, Length] = (0.0, 0.0, 0.0)  # sun, planet inner; ring outer (reduced mass)
-    flank_roughness: Optional[tuple[Length, Length, Length]] = None  # R_z of sun, planet, ring; none: iso's
+    """sigma_Flim of sun, planet and ring; none: the steels' (or iso's)."""
+    tip_diameters: Optional[tuple[Length, Length, Length]] = None
+    """Tip diameters of sun, planet and ring (the ring's inner); none: ISO 21771."""
+    bore_diameters: tuple[Length, Length, Length] = (0.0, 0.0, 0.0)
+    """Bore diameters of sun and planet and the ring's outer diameter, for the reduced masses (0: solid)."""
+    flank_roughness: Optional[tuple[Length, Length, Length]] = None
+    """Flank roughness R_z of sun, planet and ring; none: iso's."""
     root_roughness: Optional[tuple[Length, Length, Length]] = None
-    root_radius: tuple[float, float, float] = (0.25, 0.25, 0.25)     # rho_fP / m of the racks
-    # the ring's root section at its 60 deg tangent (ISO 6336-3 internal gears), from its tooth form:
-    # chord s_Fn, fillet radius rho_F, diameter d_sFn; none: the ring's root is not rated
+    """Root roughness R_z of sun, planet and ring; none: iso's."""
+    root_radius: tuple[float, float, float] = (0.25, 0.25, 0.25)
+    """Root radii rho_fP / m of the racks of sun, planet and ring."""
     ring_root_section: tuple[Length, Length, Length] | None = None
+    """The ring's root section at its 60 deg tangent (ISO 6336-3, internal gears), from its tooth form: chord s_Fn,
+    fillet radius rho_F, diameter d_sFn; none: the ring's root is not rated."""
 
     @field_validator("ring_root_section")
     @classmethod
@@ -447,32 +570,57 @@ class Planetary(Spec):
     sharing with pin position errors, and (with ``rating``) the ISO rating of every mesh."""
 
     sun_teeth: int
+    """Number of teeth of the sun."""
     planet_teeth: int
+    """Number of teeth of each planet."""
     module: quantity("m", gt=0)
+    """Module of the stage (normal module of a helical stage)."""
     pressure_angle: quantity("rad", gt=0, lt=0.8) = 0.3490658503988659
-    # helical stages: module and pressure angle in the normal section; the sun of one hand, planets and
-    # ring of the other
+    """Pressure angle of the basic rack (normal section of a helical stage; 20 deg: ISO 53)."""
     helix_angle: quantity("rad", ge=0, lt=0.7853981633974483) = 0.0
+    """Helix angle of a helical stage (the sun of one hand, planets and ring of the other); 0: spur."""
     planets: int
+    """Number of planets (1..24)."""
     planet_angles: Optional[list[quantity("rad")]] = None
+    """Angular positions of the planets on the carrier; none: equally spaced (then (sun + ring teeth) / planets must
+    be whole)."""
     sun_planet_stiffness: quantity("N/m", gt=0)
+    """Mean mesh stiffness of each sun-planet mesh."""
     ring_planet_stiffness: quantity("N/m", gt=0)
+    """Mean mesh stiffness of each ring-planet mesh."""
     sun_inertia: quantity("kg*m^2", gt=0)
+    """Moment of inertia of the sun."""
     ring_inertia: quantity("kg*m^2", gt=0)
+    """Moment of inertia of the ring."""
     carrier_inertia: quantity("kg*m^2", gt=0)
+    """Moment of inertia of the carrier (without the planets)."""
     planet_inertia: quantity("kg*m^2", gt=0)
+    """Moment of inertia of each planet about its own axis."""
     planet_mass: quantity("kg", gt=0)
+    """Mass of each planet (it turns with the carrier)."""
     position_errors: list[quantity("m")] = []
+    """Tangential pin position errors of the planets, one per planet (positive with the carrier's rotation; missing
+    ones 0), for the static load sharing."""
     fixed: Literal["sun", "ring", "carrier"] = "ring"
+    """The held member."""
     input: Literal["sun", "ring", "carrier"] = "sun"
+    """The input member (not the held one)."""
     torque: quantity("N*m", gt=0)
-    ring_teeth: Optional[int] = None              # none: sun + 2 planet teeth
-    profile_shifts: tuple[float, float, float] = (0.0, 0.0, 0.0)   # sun, planet, ring (ISO 21771: ring d_a = d - 2 m (1 + x))
-    centre_distance: Optional[quantity("m", gt=0)] = None          # none: the sun-planet zero-backlash one
+    """Input torque on the input member."""
+    ring_teeth: Optional[int] = None
+    """Number of teeth of the ring; none: sun + 2 x planet teeth."""
+    profile_shifts: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    """Profile shift coefficients of sun, planet and ring (ISO 21771: ring d_a = d - 2 m (1 + x))."""
+    centre_distance: Optional[quantity("m", gt=0)] = None
+    """Working centre distance sun-planet; none: the sun-planet zero-backlash one."""
     lateral: Optional[PlanetaryLateral] = None
+    """The lateral-torsional model's data (Lin & Parker); none: the torsional model only."""
     rating: Optional[PlanetaryRating] = None
-    output_gear: Optional[str] = None             # a gear of the train on the stage's output shaft (a gearbox)
+    """ISO 6336-2/-3 rating of the stage's meshes; none: not rated."""
+    output_gear: Optional[str] = None
+    """A gear of the train on the stage's output shaft (a gearbox); give with output_shaft_stiffness."""
     output_shaft_stiffness: Optional[quantity("N*m/rad", gt=0)] = None
+    """Torsional stiffness of the shaft from the stage's output member to output_gear."""
 
     @field_validator("sun_teeth", "planet_teeth", "ring_teeth")
     @classmethod
@@ -538,19 +686,32 @@ class Model(Spec):
     planetary stage (``planetary``) analysed on its own."""
 
     kind: Literal["gear-train"]
+    """The kind of model file: "gear-train"."""
     schema_version: Literal[1] = 1
+    """Version of the model-file format (1)."""
     name: str = ""
+    """A name for the train, shown in reports."""
     gears: list[Gear] = []
+    """The gears of the train."""
     meshes: list[Mesh] = []
+    """The meshes between pairs of gears."""
     shafts: list[Shaft] = []
+    """Torsional shafts joining gears on one axis."""
     drive: Optional[Drive] = None
+    """Operating point: input gear, speed and power or torque."""
     # a factory, not an instance: the limits its validator checks are read when a model loads, not at import
     simulation: Simulation = Field(default_factory=Simulation)
+    """Time integration of the train."""
     sweep: Sweep = Sweep()
+    """K_v against input speed."""
     iso: Iso = Iso()
+    """ISO 6336 data: load factors, material, lubricant, roughness, life, minimum safety factors."""
     planetary: Optional[Planetary] = None
-    stages: list[Planetary] = []                  # further planetary stages in series after [planetary] (a gearbox)
-    criteria: Criteria = Criteria()               # design limits of the verdict (criteria.py, docs/criteria.md)
+    """A planetary stage, analysed on its own or as the first stage of a gearbox."""
+    stages: list[Planetary] = []
+    """Further planetary stages in series after [planetary] (a gearbox)."""
+    criteria: Criteria = Criteria()
+    """Design limits of the verdict (criteria.py, docs/criteria.md)."""
 
     @model_validator(mode="after")
     def _topology(self):

@@ -14,8 +14,12 @@ from ..model import Spec, quantity
 class Criteria(Spec):
     """Limits the verdict judges a span against (every field optional)."""
 
-    critical_speed_ratio_max: quantity("1", gt=0, le=1) = 0.5    # belt speed over the span's critical speed
-    tongue_distance_min: quantity("1", ge=0) = 0.05        # distance of the speed to the nearest tongue, fraction of the speed
+    critical_speed_ratio_max: quantity("1", gt=0, le=1) = 0.5
+    """Largest belt speed over the span's critical speed allowed (0.5: the first natural frequency has fallen by a
+    quarter there)."""
+    tongue_distance_min: quantity("1", ge=0) = 0.05
+    """Smallest distance of the operating speed to the nearest parametric-resonance region (tongue), a share of the
+    speed (0: inside one)."""
 
 
 def evaluate(model, result):

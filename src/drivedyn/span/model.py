@@ -56,14 +56,27 @@ class Span(Spec):
     """The free span, modelled as a simply supported moving beam (seed eq. 1-2)."""
 
     length: Optional[quantity("m", gt=0)] = None
+    """Free length of the span between its tangent points (give this, belt_model or belt_results)."""
     belt_model: Optional[str] = None
-    belt_results: Optional[str] = None   # a belt-drive run's results.nc: span, tension and speed from it
+    """A belt-drive model file (relative to this file, else the working folder, else a shipped example's name) and
+    its span span_name: the length from its layout; mass per metre, bending stiffness and pretension default to its
+    belt's."""
+    belt_results: Optional[str] = None
+    """A belt-drive run's results.nc (relative to this file): the span span_name from the model stored in it, and the
+    pretension and speed default to the span's mean tension and belt speed in the run's steady window."""
     span_name: Optional[str] = None
+    """Name of the span in the belt-drive model or results, "pulleyA-pulleyB" in belt order; needed with belt_model or
+    belt_results."""
     mass_per_length: Optional[quantity("kg/m", gt=0)] = None
+    """Mass of the belt per metre (or give density and area)."""
     density: Optional[quantity("kg/m^3", gt=0)] = None
+    """Density of the belt material (with area, instead of mass_per_length)."""
     area: Optional[quantity("m^2", gt=0)] = None
+    """Cross-section area of the belt (with density, instead of mass_per_length)."""
     bending_stiffness: Optional[quantity("N*m^2", ge=0)] = None
+    """Bending stiffness EI of the belt (seed 002, eqs. 1-2: the span as a simply supported moving beam)."""
     damping_ratio: float = 0.0
+    """Modal damping ratio zeta of the span's transverse modes (in [0, 1)); 0: undamped."""
 
     _belt_path = field_validator("belt_model", "belt_results")(classmethod(lambda cls, v, info: _relative_to_model(v, info)))
 
@@ -97,18 +110,26 @@ class Span(Spec):
 class Operation(Spec):
     """The installation: static tension F0 and belt speed V."""
 
-    pretension: Optional[quantity("N", gt=0)] = None   # None: taken from the belt-drive model or results
-    speed: Optional[quantity("m/s", ge=0)] = None      # None: the belt results' span speed, else 0
+    pretension: Optional[quantity("N", gt=0)] = None
+    """Static (installation) tension F0 of the span; none: from the belt-drive model or results."""
+    speed: Optional[quantity("m/s", ge=0)] = None
+    """Belt speed V; none: the belt results' span speed, else 0."""
 
 
 class Excitation(Spec):
     """Tooth-passing excitation of the span tension."""
 
     teeth: int = 16
+    """Number of teeth z of the pulley whose tooth passing excites the span (1..1000; 1: once per turn)."""
     pulley_radius: Optional[quantity("m", gt=0)] = None
+    """Pitch radius r of that pulley (give this or pitch): tooth pitch 2 pi r / z."""
     pitch: Optional[quantity("m", gt=0)] = None
+    """Tooth pitch p of the belt (give this or pulley_radius)."""
     period: Literal["tooth-passing", "seed"] = "tooth-passing"
+    """Period convention of the tension fluctuation: "tooth-passing" (p / V, physical) or "seed" (the seed's printed T
+    = pi r / (V z), half of it; seed 002)."""
     harmonics: int = 10
+    """Number of Fourier harmonics of the tooth force kept (1..64)."""
 
     @field_validator("teeth")
     @classmethod
@@ -136,10 +157,16 @@ class Excitation(Spec):
 class ToothForce(Spec):
     """The tooth force over one tooth (phase 0..2 pi), or its first-harmonic amplitude."""
 
-    polynomial: Optional[list[float]] = None     # N, coefficients highest power first, in phi (rad)
-    samples: Optional[list[list[float]]] = None  # [[phi (rad), force (N)], ...] over one tooth
-    series: Optional[str] = None                 # CSV file: time (s), force (N)
+    polynomial: Optional[list[float]] = None
+    """Tooth force (N) over one tooth as polynomial coefficients in the phase phi (rad), highest power first (give
+    exactly one of polynomial, samples, series, amplitude)."""
+    samples: Optional[list[list[float]]] = None
+    """Tooth force over one tooth as rows [phi (rad), force (N)], phi increasing over at most 2 pi (at least 4 rows)."""
+    series: Optional[str] = None
+    """A CSV file of time (s), force (N), relative to this file, or a belt-drive results.nc (the span's tension in its
+    steady window)."""
     amplitude: Optional[quantity("N", ge=0)] = None
+    """First-harmonic amplitude of the tooth force, given directly."""
 
     _series_path = field_validator("series")(classmethod(lambda cls, v, info: _relative_to_model(v, info)))
 
@@ -175,8 +202,11 @@ class Zoom(Spec):
     """The zoomed principal tongue (seed fig. 3b); ranges default to around the tongue."""
 
     pretension: Optional[tuple[Force, Force]] = None
+    """Pretension range [min, max] of the zoomed chart; none: around the principal tongue."""
     speed: Optional[tuple[Speed, Speed]] = None
+    """Speed range [min, max] of the zoomed chart; none: around the principal tongue."""
     points: tuple[int, int] = (120, 120)
+    """Grid points [pretension, speed] of the zoomed chart (2..2000 each)."""
 
     _pr = field_validator("pretension")(classmethod(lambda cls, v: _check_range(v, "pretension")))
     _sp = field_validator("speed")(classmethod(lambda cls, v: _check_range(v, "speed")))
@@ -187,12 +217,20 @@ class Chart(Spec):
     """The stability chart in the (F0, V) plane (seed fig. 3a)."""
 
     pretension: tuple[Force, Force] = (0.0, 300.0)
+    """Pretension range [min, max] of the stability chart (F0 axis)."""
     speed: tuple[Speed, Speed] = (0.0, 70.0)
+    """Belt speed range [min, max] of the stability chart (V axis)."""
     points: tuple[int, int] = (200, 200)
+    """Grid points [pretension, speed] of the chart (2..2000 each)."""
     tongues: int = 3
+    """Number of parametric-resonance regions (tongues) computed, drawn and judged (1..8)."""
     floquet: bool = True
+    """Compute the Floquet map over the chart's grid: the largest Floquet multiplier with the whole tooth-force
+    signal, beside the tongues of its harmonics."""
     steps_per_oscillation: int = 48
+    """Integration steps per excitation period of the Floquet computation (8..1000)."""
     zoom: Zoom = Zoom()
+    """The zoomed principal tongue (seed 002, fig. 3b)."""
 
     _pr = field_validator("pretension")(classmethod(lambda cls, v: _check_range(v, "pretension")))
     _sp = field_validator("speed")(classmethod(lambda cls, v: _check_range(v, "speed")))
@@ -218,12 +256,19 @@ class Measurement(Spec):
     """A measured span frequency, to be turned into the span tension (the field method)."""
 
     frequency: quantity("Hz", gt=0)
+    """Measured transverse natural frequency of the span (for the tension, the field method)."""
     mode: int = 1
+    """Mode number n of the measured frequency (1..10; 1: the fundamental)."""
     speed: quantity("m/s", ge=0) = 0.0
+    """Belt speed during the measurement (0: at rest)."""
     frequency_uncertainty: quantity("Hz", ge=0) = 0.0
+    """Uncertainty (+-) of the measured frequency."""
     length_uncertainty: quantity("m", ge=0) = 0.0
+    """Uncertainty (+-) of the span length."""
     mass_uncertainty: quantity("kg/m", ge=0) = 0.0
+    """Uncertainty (+-) of the mass per metre."""
     bending_uncertainty: quantity("N*m^2", ge=0) = 0.0
+    """Uncertainty (+-) of the bending stiffness."""
 
     @field_validator("mode")
     @classmethod
@@ -237,9 +282,13 @@ class Response(Spec):
     """Time response of the modal coordinate q(t) (seed eq. 4) to M(t) = M0 + M1 Phi(t)."""
 
     duration: quantity("s", gt=0) = 0.5
+    """Duration of the time response."""
     moment_amplitude: quantity("N*m", ge=0) = 0.0
+    """Amplitude M1 of the end-moment fluctuation M(t) = M0 + M1 Phi(t) (seed 002, eq. 4)."""
     initial_displacement: quantity("m") = 1e-4
+    """Initial modal displacement q(0) of the span."""
     points: int = 2000
+    """Number of output points of the response (10..200000)."""
 
     @field_validator("points")
     @classmethod
@@ -253,16 +302,27 @@ class Model(Spec):
     """A belt span: its stability chart, frequencies and (optionally) tension from a frequency."""
 
     kind: Literal["span-stability"]
+    """The kind of model file: "span-stability"."""
     schema_version: Literal[1] = 1
+    """Version of the model-file format (1)."""
     name: str = ""
+    """A name for the span, shown in reports."""
     span: Span
+    """The free span: length (or its source), mass, bending stiffness, damping."""
     operation: Operation = Operation()
+    """The installation's pretension and belt speed."""
     excitation: Excitation
+    """What excites the span tension: the pulley's teeth (count, radius or pitch) and the period convention."""
     tooth_force: ToothForce
+    """The tooth-force signal over one tooth, or its first-harmonic amplitude."""
     chart: Chart = Chart()
+    """The (F0, V) stability chart (seed 002, fig. 3a)."""
     measurement: Optional[Measurement] = None
+    """A measured span frequency turned into the span tension; none: not asked."""
     response: Optional[Response] = None
-    criteria: Criteria = Criteria()               # design limits of the verdict (criteria.py, docs/criteria.md)
+    """Time response of the span's modal coordinate; none: not computed."""
+    criteria: Criteria = Criteria()
+    """Design limits of the verdict (criteria.py, docs/criteria.md)."""
 
     @model_validator(mode="after")
     def _pretension(self):

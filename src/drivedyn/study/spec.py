@@ -82,16 +82,30 @@ class Parameter(Spec):
     """
 
     path: Union[str, list[str]]
+    """Dotted path of the model field varied ("belt.pretension", "pulleys.alternator.inertia": list items by name or
+    index), or a list of paths that move together."""
     name: Optional[str] = None
+    """Name of the parameter in the study's results; needed when path lists several paths; none: the path."""
     values: Optional[list[Any]] = None
+    """The values, as a list (numbers or strings with units)."""
     range: Optional[tuple[Any, Any]] = None
+    """The range [low, high] (numbers or strings with units): num points of a grid, or the bounds of a sampled design
+    or of an optimisation."""
     num: Optional[int] = None
+    """Number of grid points over range."""
     scale: Literal["linear", "log"] = "linear"
+    """Spacing of the points over range: "linear" or "log"."""
     mean: Optional[Any] = None
+    """Mean of a normally distributed parameter (with std; sampled designs only)."""
     std: Optional[Any] = None
+    """Standard deviation of a normally distributed parameter (with mean)."""
     integer: bool = False
+    """Round the values to integers (segment counts, tooth counts)."""
     factors: Optional[list[float]] = None
+    """One factor per path: each path gets the value times its factor."""
     unit: Optional[str] = None
+    """Unit of the values where the model field declares none (table entries, plain floats): strings with units are
+    read in it and the study's coordinate is labelled with it (the field itself takes SI values)."""
 
     @field_validator("path")
     @classmethod
@@ -155,8 +169,12 @@ class Sampler(Spec):
     """How cases are drawn: a full ``grid`` or ``samples`` points of a sampled design."""
 
     method: str = "grid"
+    """"grid" (every combination of the parameters' values), or a sampled design: "lhs" (Latin hypercube), "sobol",
+    "montecarlo"."""
     samples: Optional[int] = None
+    """Number of cases of a sampled design (not with grid)."""
     seed: int = 0
+    """Seed of the random numbers of a sampled design (the same seed gives the same cases)."""
 
     @field_validator("method")
     @classmethod
@@ -183,14 +201,18 @@ class Outputs(Spec):
     """What to keep of each case: summary keys (glob patterns) and whole Dataset variables."""
 
     summary: list[str] = ["*"]
+    """Summary keys kept from each case, as glob patterns ("*": all)."""
     series: list[str] = []
+    """Whole variables of each case's Dataset kept (time series, by name)."""
 
 
 class Plots(Spec):
     """Which summary keys to plot against the parameters (default: the listed outputs)."""
 
     keys: Optional[list[str]] = None
+    """Summary keys plotted against the parameters; none: the listed outputs."""
     enabled: bool = True
+    """Draw the study's plots."""
 
 
 class Constraint(Spec):
@@ -199,8 +221,11 @@ class Constraint(Spec):
     ``min`` and / or ``max`` (with units, like parameter values)."""
 
     key: str
+    """Summary key bounded ("*" matches any part; every match must hold; a list counts by its extreme)."""
     min: Optional[Any] = None
+    """Lower bound (a number or a string with a unit); none: no lower bound."""
     max: Optional[Any] = None
+    """Upper bound (a number or a string with a unit); none: no upper bound."""
 
     @model_validator(mode="after")
     def _bound(self):
@@ -221,12 +246,20 @@ class Optimise(Spec):
     (1997) 341-359, scipy.optimize), each generation one batch of cases on the cluster."""
 
     objective: str
-    sense: Literal["minimise", "maximise"] = "minimise"      # "minimize", "maximize" read as these
+    """Summary key to minimise or maximise (a list counts by its largest value when minimised, its smallest when
+    maximised)."""
+    sense: Literal["minimise", "maximise"] = "minimise"
+    """"minimise" or "maximise" ("minimize", "maximize" read as these)."""
     constraints: list[Constraint] = []
+    """Bounds on summary keys that every accepted design must meet."""
     evaluate: Literal["run", "check"] = "run"
+    """How a design is judged: "run" simulates it, "check" uses check's data (milliseconds per design)."""
     budget: int = 200
-    population: int = 6            # designs per generation, per design variable (scipy's popsize)
+    """Designs evaluated at most."""
+    population: int = 6
+    """Designs per generation, per design variable (scipy's popsize of differential evolution; Storn & Price 1997)."""
     seed: int = 0
+    """Seed of the optimiser's random numbers."""
 
     @field_validator("sense", mode="before")
     @classmethod
@@ -259,25 +292,38 @@ class StudySpec(Spec):
     """The validated content of a study file."""
 
     kind: Literal["study"] = "study"
+    """The kind of file: "study"."""
     schema_version: Literal[1] = 1
+    """Version of the study-file format (1)."""
     name: str = ""
+    """A name for the study; empty: the study file's name."""
     description: str = ""
+    """Free text saying what the study is for (not used by the computation)."""
     base: Optional[str] = None
+    """The base model file, relative to this file (give this or [model])."""
     model: Optional[dict[str, Any]] = None
+    """The base model inline, as a table (give this or base)."""
     out: Optional[str] = None
+    """Output folder, relative to the working folder; none: the study file's name."""
     overrides: dict[str, Any] = {}
+    """Fixed changes to the base model in every case, by dotted path."""
     parameters: list[Parameter]
+    """The parameters varied."""
     sampler: Sampler = Sampler()
+    """How cases are drawn from the parameters."""
     outputs: Outputs = Outputs()
+    """What is kept of each case."""
     plots: Plots = Plots()
-    # wall-time limit per case, checked at the case's progress reports (belt: every 1 % of the
-    # simulated time); a case that exceeds it ends as "failed" and keeps what it computed
+    """Which summary keys are plotted."""
     case_timeout: Optional[quantity("s", gt=0)] = None
-    # "run" simulates each case; "check" evaluates what check knows (belt drives: the creep-theory
-    # steady state, slip margins, modes) in milliseconds per case, for margin maps of many cases
-    # "optimise": design by optimisation over the ranged parameters ([optimise], optimise.py)
-    mode: Literal["run", "check", "optimise"] = "run"      # "optimize" reads as "optimise"
+    """Wall-time limit per case, checked at the case's progress reports (belt: every 1 % of the simulated time); a
+    case that exceeds it ends as "failed" and keeps what it computed; none: no limit."""
+    mode: Literal["run", "check", "optimise"] = "run"
+    """"run" simulates each case; "check" evaluates what check knows (belt drives: the creep-theory steady state, slip
+    margins, modes) in milliseconds per case; "optimise": design by optimisation over the ranged parameters
+    ([optimise]); "optimize" reads as "optimise"."""
     optimise: Optional[Optimise] = None
+    """The optimisation: objective, constraints, budget (mode = "optimise")."""
 
     @field_validator("mode", mode="before")
     @classmethod

@@ -19,8 +19,10 @@ from ..model import Spec, quantity
 class Criteria(Spec):
     """Limits the verdict judges a mesh under load against (every field optional)."""
 
-    jump_margin_min: quantity("1", ge=0) = 1.5             # jump torque over the transmitted torque
-    teeth_in_mesh_min: Annotated[int, Field(ge=1)] = 6               # teeth in mesh on the pulley
+    jump_margin_min: quantity("1", ge=0) = 1.5
+    """Smallest jump torque over the transmitted torque allowed."""
+    teeth_in_mesh_min: Annotated[int, Field(ge=1)] = 6
+    """Fewest teeth in mesh on the pulley allowed (timing-belt catalogues ask for 6)."""
 
 
 def evaluate(model, result):
