@@ -279,8 +279,6 @@ def write_optimisation_report(res, study, study_file, outdir, hits=()) -> Path:
     """``outdir/report.html`` for an optimisation: the best design, its objective and constraint
     margins, the designs evaluated, an optimum on a bound of its range (said as a diagnostic), the
     convergence plot and the study file."""
-    from .study.optimise import ON_BOUND
-
     o = res.optimum
     opt = study.spec.optimise
     units = study.units
@@ -291,7 +289,7 @@ def write_optimisation_report(res, study, study_file, outdir, hits=()) -> Path:
     diags = [{"code": "optimum-on-bound", "quantity": h["name"], "value": f"{h['value']:.6g}", "limit": f"{h['bound']:.6g}",
               "unit": f" {h['unit']}" if h["unit"] not in ("", "1") else "",
               "text": f"the best design sits on the {h['side']} bound of this parameter's range (within "
-                      f"{100 * ON_BOUND:g} % of it): the optimum may lie outside the range; widen it"} for h in hits]
+                      f"{100 * h['share']:g} % of its range): the optimum may lie outside the range; widen it"} for h in hits]
     if o.values is None:
         status, message = "failed", "no feasible design: widen the ranges, loosen the constraints or raise the budget"
     else:

@@ -202,7 +202,7 @@ def on_bounds(study, values: dict) -> list[dict]:
             at_lo, at_hi = u <= ON_BOUND, u >= 1 - ON_BOUND
         if at_lo or at_hi:
             hits.append({"name": p.label, "value": float(v), "bound": float(lo if at_lo else hi),
-                         "side": "lower" if at_lo else "upper", "unit": unit or ""})
+                         "side": "lower" if at_lo else "upper", "unit": unit or "", "share": ON_BOUND})
     return hits
 
 
