@@ -8,7 +8,10 @@ examples/belt-5pk.toml -o TMP` (after a first run, so the kernels are cached), `
 examples/fead-runup.toml --set simulation.model=rotational -o TMP` with and without
 `--no-plots --no-report`. Each is run --repeat times (default 3); the table gives the best and the
 median. --cold also times the first `run examples/belt-5pk.toml` with NUMBA_CACHE_DIR pointing at
-an empty folder (every kernel compiled: minutes on a 2-core machine).
+an empty folder (every kernel compiled: minutes on a 2-core machine). --pyc unsets
+PYTHONDONTWRITEBYTECODE for the commands, so that drivedyn's modules are read from __pycache__ as
+after `pip install` (which compiles them); with it set, every start compiles drivedyn's ~0.3 s of
+source anew.
 
 Not a timed test: the numbers depend on the machine and on what else runs on it (the load
 average is printed with the table); compare numbers measured back to back.
@@ -28,8 +31,13 @@ ROOT = Path(__file__).resolve().parents[1]
 CLI = [sys.executable, "-m", "drivedyn.cli"]
 
 
+PYC = False     # --pyc
+
+
 def env(**extra) -> dict:
     e = dict(os.environ)
+    if PYC:
+        e.pop("PYTHONDONTWRITEBYTECODE", None)
     src = str(ROOT / "src")
     e["PYTHONPATH"] = src + (os.pathsep + e["PYTHONPATH"] if e.get("PYTHONPATH") else "")
     e.update(extra)
@@ -41,7 +49,7 @@ def wall(args, environ=None) -> float:
     other than 0 (or 4/5, a failed verdict under --strict, never used here) are reported."""
     t = time.perf_counter()
     p = subprocess.run(args, cwd=ROOT, env=environ or env(), stdout=subprocess.DEVNULL,
-                       stderr=subprocess.PIPE, text=True)
+                       stderr=subprocess.PIPE, text=True, check=False)
     dt = time.perf_counter() - t
     if p.returncode != 0:
         print(f"  ! {' '.join(map(str, args[2:]))} exited {p.returncode}: {p.stderr.strip()[-300:]}",
@@ -61,7 +69,10 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--cold", action="store_true", help="also a first run from an empty kernel cache")
+    ap.add_argument("--pyc", action="store_true", help="let Python cache drivedyn's bytecode, as an installed package has it")
     a = ap.parse_args(argv)
+    global PYC
+    PYC = a.pyc
 
     with tempfile.TemporaryDirectory(prefix="drivedyn-e2e-") as tmp:
         out = str(Path(tmp) / "out")
@@ -88,7 +99,7 @@ def main(argv=None) -> None:
 
     load = os.getloadavg()
     print(f"\n{sys.platform}, {os.cpu_count()} cores, load average {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}, "
-          f"{a.repeat} runs each\n")
+          f"{a.repeat} runs each; bytecode {'cached' if 'PYTHONDONTWRITEBYTECODE' not in env() else 'not cached (PYTHONDONTWRITEBYTECODE)'}\n")
     w = max(len(n) for n, _ in rows)
     print(f"| {'command':<{w}} | best s | median s |")
     print(f"|{'-' * (w + 2)}|-------:|---------:|")
