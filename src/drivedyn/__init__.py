@@ -25,11 +25,15 @@ __all__ = [
 
 
 def __getattr__(name):
+    import importlib
+    import importlib.util
+
     module = _LAZY.get(name)
     if module is None:
+        # a submodule (`drivedyn.model.to_dict` after `import drivedyn`, as when they were imported eagerly)
+        if not name.startswith("__") and importlib.util.find_spec(f"{__name__}.{name}") is not None:
+            return importlib.import_module(f".{name}", __name__)
         raise AttributeError(f"module 'drivedyn' has no attribute {name!r}")
-    import importlib
-
     value = getattr(importlib.import_module(f".{module}", __name__), name)
     globals()[name] = value
     return value
