@@ -8,15 +8,36 @@ One way in::
     result.summary["pulleys"]["driven"]["slip"]
     result.save("out")
 """
-from ._version import __version__  # noqa: E402
+from ._version import __version__
+from .errors import DrivedynError, DrivedynWarning, ModelError, SolverError
 
-from .api import check, example_path, examples, run  # noqa: E402
-from .errors import DrivedynError, DrivedynWarning, ModelError, SolverError  # noqa: E402
-from .model import dumps, load, loads, replace, save  # noqa: E402
-from .results import Result, open_result  # noqa: E402
+# the rest is imported on first use (PEP 562), so that `drivedyn --help` and `import drivedyn.cli`
+# do not import pydantic, the model classes and numpy before a command needs them
+_LAZY = {"check": "api", "example_path": "api", "examples": "api", "run": "api",
+         "dumps": "model", "load": "model", "loads": "model", "replace": "model", "save": "model",
+         "Result": "results", "open_result": "results"}
 
 __all__ = [
     "__version__", "load", "loads", "save", "dumps", "replace", "run", "check", "examples",
     "example_path", "Result", "open_result", "DrivedynError", "ModelError", "SolverError",
     "DrivedynWarning",
 ]
+
+
+def __getattr__(name):
+    import importlib
+    import importlib.util
+
+    module = _LAZY.get(name)
+    if module is None:
+        # a submodule (`drivedyn.model.to_dict` after `import drivedyn`, as when they were imported eagerly)
+        if not name.startswith("__") and importlib.util.find_spec(f"{__name__}.{name}") is not None:
+            return importlib.import_module(f".{name}", __name__)
+        raise AttributeError(f"module 'drivedyn' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))

@@ -171,7 +171,10 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         if painters is not None:
             stack.enter_context(painters)
         # the bar appears at the first progress report, or after BAR_DELAY: a refusal found while the
-        # drive is assembled (milliseconds) is then the only line printed
+        # drive is assembled (milliseconds) is then the only line printed. xarray (a run's results,
+        # 0.3-0.5 s, no longer imported with drivedyn) is imported first, not inside that delay
+        import xarray  # noqa: F401
+
         bar = None if quiet else _LazyBar(_progress_bar(console), m.kind)
         refused = None
         try:

@@ -18,9 +18,12 @@ import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
+
+if TYPE_CHECKING:  # xarray (with pandas, 0.3-0.4 s) is imported where a Dataset is made or read
+    import xarray as xr
 
 from ._version import __version__
 from .diagnostics import Diagnostic, status_of
@@ -104,6 +107,8 @@ def number_text(v: float, unit: str = "") -> str:
 
 def open_result(outdir) -> Result:
     """Read a Result written by :meth:`Result.save`."""
+    import xarray as xr
+
     outdir = Path(outdir)
     ds = xr.load_dataset(outdir / "results.nc", engine="h5netcdf")
     doc = json.loads((outdir / "summary.json").read_text())
@@ -169,4 +174,6 @@ def dumps_json(obj, **kw) -> str:
 
 def variable(data, dims, units: str, long_name: str) -> xr.Variable:
     """Shorthand for a Dataset variable with units and long_name attrs."""
+    import xarray as xr
+
     return xr.Variable(dims, np.asarray(data), attrs={"units": units, "long_name": long_name})

@@ -60,10 +60,33 @@ def finite(x: float, shown=None) -> float:
     return x
 
 
+#: factors of the units the shipped models write, known without building the pint registry (which
+#: costs about 0.8 s, most of a ``drivedyn check``); each equals pint's factor exactly (tested in
+#: tests/api/test_bad_values.py), and a unit written as its SI target has the factor 1
+KNOWN_FACTORS = {
+    ("mm", "m"): 0.001, ("cm", "m"): 0.01, ("um", "m"): 1e-06, ("km", "m"): 1000.0,
+    ("MPa", "Pa"): 1000000.0, ("GPa", "Pa"): 1000000000.0, ("kPa", "Pa"): 1000.0,
+    ("N/mm^2", "Pa"): 1000000.0, ("MPa", "N/m^2"): 1000000.0,
+    ("kW", "W"): 1000.0, ("kN", "N"): 1000.0, ("kHz", "Hz"): 1000.0,
+    ("g", "kg"): 0.001, ("g/m", "kg/m"): 0.001, ("kg*mm^2", "kg*m^2"): 1e-06,
+    ("deg", "rad"): 0.017453292519943295, ("N*m/deg", "N*m/rad"): 57.29577951308232,
+    ("h", "s"): 3600.0, ("min", "s"): 60.0, ("ms", "s"): 0.001,
+    ("rpm", "rad/s"): 0.10471975511965977, ("rev/s", "rad/s"): 6.283185307179586,
+    ("rpm/s", "rad/s^2"): 0.10471975511965977,
+    ("N/mm", "N/m"): 1000.0, ("kN/mm", "N/m"): 1000000.0, ("N*mm", "N*m"): 0.001,
+    ("mm^2/s", "m^2/s"): 1e-06, ("N*m*s", "N*m*s/rad"): 1.0,
+}
+
+
 @functools.lru_cache(maxsize=256)
 def _factor(unit_text: str, unit: str) -> float | None:
     """SI factor of ``unit_text`` in ``unit``, or None if the conversion is not a plain factor
     (offset units such as degC) or not possible (the full path then reports why)."""
+    if unit_text == unit and unit not in ("", "1"):
+        return 1.0
+    known = KNOWN_FACTORS.get((unit_text, unit))
+    if known is not None:
+        return known
     ureg = registry()
     target = "dimensionless" if unit in ("", "1") else unit
     try:

@@ -136,3 +136,18 @@ def test_a_model_read_back_writes_back():
     for name in EXAMPLES:
         model = drivedyn.load(drivedyn.example_path(name))
         assert drivedyn.loads(drivedyn.dumps(model)) == model
+
+
+def test_the_known_unit_factors_are_pints():
+    """units.KNOWN_FACTORS (read without building the pint registry) and the identity shortcut give
+    exactly the factor pint gives, for every unit the shipped examples write."""
+    from drivedyn import units
+
+    targets = {u for _, u in units.KNOWN_FACTORS} | {
+        "N", "N*m", "N*m*s/rad", "N*m*s^2/rad^2", "N*m/rad", "N*m^2", "N*m^2*s", "N*s", "N*s/m^2",
+        "N/m", "N/m^2", "N/m^3", "W", "kg", "kg*m^2", "kg/m", "kg/m^3", "m", "m/s", "m/s^2", "m^2",
+        "rad/s", "s", "Hz", "Pa", "rad"}
+    ureg = units.registry()
+    for (text, unit), factor in list(units.KNOWN_FACTORS.items()) + [((u, u), 1.0) for u in targets]:
+        assert units._factor(text, unit) == factor
+        assert float(ureg.Quantity(1.0, text).to(unit).magnitude) == factor, (text, unit)

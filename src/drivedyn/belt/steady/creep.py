@@ -83,16 +83,20 @@ def _arc(t_in, t_out, c, mu):
 
 #: Gauss-Legendre nodes and weights on [0, 1] for the depth along a slip arc: its integrand
 #: p(T) / (1 + T/EA), T - c ~ e^(mu phi), is smooth (p ~ T or sqrt(T)); 8 nodes leave < 1e-13 m
-_GL = [(0.5 * (x + 1.0), 0.5 * w) for x, w in zip(*np.polynomial.legendre.leggauss(8))]
+#: (Python floats: the creep solver's arithmetic runs on Python floats, several times quicker than
+#: on numpy scalars and the same numbers)
+_GL = [(float(0.5 * (x + 1.0)), float(0.5 * w)) for x, w in zip(*np.polynomial.legendre.leggauss(8))]
+_GL2 = [(x, w * 2.0) for x, w in _GL]      # the weights doubled, as the integrand has them
 
 
 def _sunk_arc(t_in, k, phi, c, r, EA, c1, c2):
     """int p(T) dphi / (1 + T/EA) (m rad) over a slip arc of phi rad, T = c + (t_in - c) e^(k x)."""
     out = 0.0
-    for x, w in _GL:
-        T = c + (t_in - c) * math.exp(k * phi * x)
+    d, kp, c22, c14 = t_in - c, k * phi, c2 * c2, 4.0 * c1     # (the same operations, once)
+    for x, w2 in _GL2:
+        T = c + d * math.exp(kp * x)
         q = (T - c) / r
-        out += w * 2.0 * q / (c2 + math.sqrt(c2 * c2 + 4.0 * c1 * q)) / (1.0 + T / EA)
+        out += w2 * q / (c2 + math.sqrt(c22 + c14 * q)) / (1.0 + T / EA)
     return out * phi
 
 
@@ -195,8 +199,10 @@ def tension_offsets(d: CreepData, M, forward):
 def length_of(d: CreepData, T, c, forward):
     """Unstretched length of the belt carrying span tensions T (listed order)."""
     L = float(np.sum(d.span_length / (1 + T / d.EA)))
+    # the wraps on Python floats (the same numbers as numpy scalars give, several times quicker)
+    Tl, rho, wrap, mu, c = T.tolist(), d.rho.tolist(), d.wrap.tolist(), d.mu.tolist(), float(c)
     for j, (a, b) in enumerate(entry_exit(len(d.names), forward)):
-        L += _wrap_length(abs(d.rho[j]), d.wrap[j], T[a], T[b], c, d.mu[j], d.EA, d.c1, d.c2)
+        L += _wrap_length(abs(rho[j]), wrap[j], Tl[a], Tl[b], c, mu[j], d.EA, d.c1, d.c2)
     return L
 
 

@@ -58,7 +58,13 @@ def running(model, rest, torques=None, speed=None):
         if len(idx) == 1:
             # bracket the balance from the rest travel outwards over the stops (the ends may have
             # no steady state: a slack belt)
-            f = lambda q: float(loads([q])[0])
+            seen = {}       # brentq starts from the bracket's ends, already evaluated by the search
+
+            def f(q):
+                if q not in seen:
+                    seen[q] = float(loads([q])[0])
+                return seen[q]
+
             lo, hi = T[0].stops
             q0 = float(rest.travel[0])
             f0 = f(q0)
