@@ -190,15 +190,22 @@ def _painter_start(module: str, one_at_a_time):
 def _rehearse():
     """Write a tiny netCDF file and PNG: the first of each costs 0.2-0.3 s more than the next
     (imports, xarray's backend lookup, which imports dask.distributed, fonts, mathtext), measured."""
-    import io
     import tempfile
 
     import numpy as np
     import xarray as xr
-    from matplotlib.figure import Figure
 
     with tempfile.TemporaryDirectory() as tmp:
         xr.Dataset({"x": ("t", np.zeros(3))}).to_netcdf(Path(tmp) / "r.nc", engine="h5netcdf")
+    rehearse_png()
+
+
+def rehearse_png():
+    """Draw and write a tiny PNG: matplotlib's imports, fonts and mathtext set up for the figures."""
+    import io
+
+    from matplotlib.figure import Figure
+
     fig = Figure(figsize=(2, 2))
     ax = fig.subplots(2, 1)
     ax[0].plot([1, 2], [1, 2], label="x")

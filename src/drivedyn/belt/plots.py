@@ -605,6 +605,9 @@ def plot_all(result, outdir, workers=None, meanwhile=None, painters=None) -> lis
             import multiprocessing
             from concurrent.futures import ProcessPoolExecutor
 
+            # matplotlib loaded and its first figure's fonts and text set up once, here, before the
+            # fork: each child otherwise pays them (0.3-0.5 s) on the critical path of a short run
+            plotting.rehearse_png()
             # forked: the children inherit ds and the jobs; only file names travel back
             with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as ex:
                 pending = ex.map(_draw, range(len(jobs)))
