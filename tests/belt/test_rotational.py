@@ -365,6 +365,49 @@ def test_against_the_converged_segment_model():
     assert rot.summary["solver"]["wall_time"] < 0.1 * seg.summary["solver"]["wall_time"]
 
 
+def _three_pulleys(rpm=2000.0, dur=0.6):
+    """A crank with its 2nd order, a loaded accessory and an arm tensioner: fead-runup's belt,
+    contact and friction (the elastic-plastic law) on tensioned()'s layout."""
+    w = -rpm * math.pi / 30
+    return from_dict({
+        "kind": "belt-drive",
+        "belt": {"mass_per_length": 0.115, "axial_stiffness": 1.82e5, "axial_damping": 0.197,
+                 "bending_stiffness": 2.5e-4, "pretension": 350.0},
+        "contact": {"stiffness_linear": 9.75e7, "stiffness_quadratic": 4.54e11, "damping": 4.5e4},
+        "friction": {"coefficient": 1.0, "displacement_limit": 1e-4},
+        "simulation": {"duration": dur},
+        "output": {"interval": 2e-4, "steady_window": [dur - 0.2, dur]},
+        "pulleys": [
+            {"name": "crank", "center": [0, 0], "radius": 0.07, "speed_time": [[0, 0], [0.3, w], [dur, w]],
+             "speed_orders": [{"order": 2, "amplitude": 3.0}]},
+            {"name": "alternator", "center": [0.3, 0.0], "radius": 0.03, "inertia": 2e-3, "torque": 2.0, "drag": 0.1},
+            {"name": "tensioner", "center": [0.15, 0.15], "radius": 0.035, "inertia": 1e-4,
+             "arm": {"pivot": [0.07, 0.15], "inertia": 2e-3, "preload": 25.0, "rate": 40.0, "damping": 0.05}}]})
+
+
+def test_a_small_drive_against_the_converged_segment_model():
+    """Three pulleys and an arm, one order, at 2000 rpm: the rotational model against the segment model at
+    twice its "auto" count (within 1 % of four times it on the means, 4 % on the extremes). Measured: means
+    within 1.4 %, the arm's travel range within 4 %, but the slack-side minima 41-53 N against 187-190 N and
+    maxima 30-34 % high, with gross slip on the accessory and the tensioner that the segment model does not
+    show (docs/belt-drive.md). So the run must not read as success: model-accuracy is raised, and its
+    estimate covers each extreme's distance from the segment model's."""
+    m = _three_pulleys()
+    n = drivedyn.run(m).summary["belt"]["segments"]
+    seg = drivedyn.run(drivedyn.replace(m, {"belt.segments": 2 * n}))
+    rot = drivedyn.run(drivedyn.replace(m, {"simulation.model": "rotational"}))
+    assert seg.status == "success"
+    assert rot.status == "warning" and "model-accuracy" in [d.code for d in rot.diagnostics]
+    share = rot.summary["discretisation"]["estimate"]["share_of_half_band"]
+    for sp, v in seg.summary["spans"].items():
+        r = rot.summary["spans"][sp]
+        assert r["tension_mean"] == pytest.approx(v["tension_mean"], rel=0.02)
+        u = share * 0.5 * (r["tension_max"] - r["tension_min"])
+        assert abs(r["tension_min"] - v["tension_min"]) < u and abs(r["tension_max"] - v["tension_max"]) < u
+    a, b = rot.summary["tensioners"]["tensioner"], seg.summary["tensioners"]["tensioner"]
+    assert a["travel_max"] - a["travel_min"] == pytest.approx(b["travel_max"] - b["travel_min"], rel=0.1)
+
+
 def test_periodic_needs_the_rotational_model_and_a_runup():
     from drivedyn.errors import ModelError
 
