@@ -440,10 +440,10 @@ def extremes_estimate(result, share):
         u = share * 0.5 * (hi - lo)
         if worst is None or u / lo > worst[0]:
             worst = (u / lo, sp, where, lo, u)
-    est = {"method": f"{share:g} x each span tension's half band (max - min) / 2: the largest deviation of the "
-                     "rotational model's extremes from the segment model's (twice its \"auto\" segments) measured on "
-                     "examples/fead-runup.toml's drive (benchmarks/bench_rotational_agreement.py); the means are "
-                     "within 1 %", "share_of_half_band": share}
+    est = {"method": f"{share:g} x each span tension's half band (max - min) / 2: at least the largest deviation of "
+                     "the rotational model's extremes from the segment model's (twice its \"auto\" segments) measured "
+                     "on examples/fead-runup.toml's drive (benchmarks/bench_rotational_agreement.py) and a three-pulley "
+                     "drive (tests/belt/test_rotational.py); the means are within 2 %", "share_of_half_band": share}
     if worst is not None:
         est.update(tension_extreme_relative_largest=worst[0], where=f"{worst[1]} at {worst[2]}")
     s.setdefault("discretisation", {})["estimate"] = est
@@ -452,8 +452,9 @@ def extremes_estimate(result, share):
     if worst is not None and worst[0] > EXTREMES_LIMIT:
         rel, sp, where, lo, u = worst
         result.diagnose("model-accuracy", f"rotational model: span {sp}'s minimum {lo:.0f} N at {where} may be off by "
-                        f"+-{u:.0f} N ({100 * rel:.0f} %) against the segment model (its wraps relax over one "
-                        "passage); confirm the bands with simulation.model = \"segments\"",
+                        f"+-{u:.0f} N ({100 * rel:.0f} %) against the segment model (its wraps: creep theory relaxed "
+                        "over one passage, the bristles quasi-static); confirm the bands with simulation.model = "
+                        "\"segments\"",
                         "discretisation.estimate.tension_extreme_relative_largest", rel, EXTREMES_LIMIT, "1")
 
 
