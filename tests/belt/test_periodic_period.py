@@ -41,3 +41,19 @@ def test_a_crawling_crank_is_refused_before_any_work():
         drivedyn.run(m)
     text = str(info.value)
     assert "simulation.runup" in text and "DRIVEDYN_MAX_STEPS" in text and "\n" not in text
+
+
+def test_a_sweep_past_the_memory_limit_is_refused_before_any_work(monkeypatch, tmp_path):
+    """425 crank speeds of 384 samples (10 rpm bins): about 0.37 GB of recorded periods, past a
+    DRIVEDYN_MAX_BYTES of 0.1 GB that the time run's own estimate (17 MB) fits; it ran past the limit."""
+    from drivedyn.cli import main
+
+    monkeypatch.setenv("DRIVEDYN_MAX_BYTES", "1e8")
+    m = _periodic({"output.runup_bin": "10 rpm"})
+    with pytest.raises(drivedyn.ModelError) as info:
+        drivedyn.run(m)
+    text = str(info.value)
+    assert "simulation.runup" in text and "DRIVEDYN_MAX_BYTES" in text and "runup_bin" in text and "\n" not in text
+    path = tmp_path / "m.toml"
+    drivedyn.save(m, path)
+    assert main(["run", str(path), "-o", str(tmp_path / "out")]) == 2

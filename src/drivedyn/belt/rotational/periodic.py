@@ -22,7 +22,7 @@ import time as _time
 import numpy as np
 
 from ...errors import ModelError, Stopped, stop_reason
-from ...limits import steps_problem
+from ...limits import bytes_problem, steps_problem
 from . import _kernels as RK
 from ..geometry.drive import resolve
 from . import simulate as RT
@@ -155,8 +155,18 @@ def _sweep(drive, progress):
         raise ModelError(f"runup = \"periodic\" solves for a period of at most {MAX_PERIOD_REVS} crank revolutions; "
                          f"the excitation's orders of the crank ({orders}) do not repeat within them: use "
                          "runup = \"time\"", field="simulation.runup")
-    sysm = RT.build(drive)
     speeds = speeds_of(model, j)
+    # the bytes of the recorded periods, known before any work as a time run's are when its model is
+    # read (belt.model._cost): the recorder's doubles per sample (`o` below), about three times over
+    # once the Dataset, its derived variables and the netCDF writer hold copies
+    nk, na = len(model.pulleys), sum(p.tensioner is not None for p in model.pulleys)
+    samples = SAMPLES_PER_REV * max(revs, 2) * len(speeds)
+    problem = bytes_problem(3 * samples * 8 * (9 + 12 * nk + 2 * na), "the periodic run-up",
+                            f"{samples:.3g} samples, {SAMPLES_PER_REV * max(revs, 2)} at each of {len(speeds)} crank "
+                            "speeds: a wider output.runup_bin")
+    if problem:
+        raise ModelError(problem, field="simulation.runup")
+    sysm = RT.build(drive)
     # the steps of the at most MAX_ITER periods per speed the solutions may take: refused before any
     # work past the limit a time integration honours (a crawling crank's period is hours of steps)
     n_per = SAMPLES_PER_REV * revs
