@@ -57,3 +57,14 @@ def test_a_sweep_past_the_memory_limit_is_refused_before_any_work(monkeypatch, t
     path = tmp_path / "m.toml"
     drivedyn.save(m, path)
     assert main(["run", str(path), "-o", str(tmp_path / "out")]) == 2
+
+
+@pytest.mark.parametrize("table", [
+    [[0.0, 83.8], [4.8, -600.0]],                   # ran, swept as -800..-5730 rpm, status success
+    [[0.0, 0.0], [0.3, 83.8], [4.8, -83.8]],        # refused with "holds one speed after its spin-up"
+])
+def test_a_reversing_crank_is_refused_as_reversing(table):
+    with pytest.raises(drivedyn.ModelError) as info:
+        _periodic({"pulleys.0.speed_time": table})
+    text = str(info.value)
+    assert "pulleys[0].speed_time" in text and "reverses" in text and "spin-up" not in text and "\n" not in text

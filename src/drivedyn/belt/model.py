@@ -602,9 +602,26 @@ class Model(Spec):
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
             raise ValueError("output.steady_window ends after simulation.duration")
         self._clutch_on_driver()
+        self._reversing()
         self._cost()
         self._duty_names(names)
         return self
+
+    def _reversing(self):
+        """A periodic run-up holds the crank at speeds of one direction; a speed table that changes
+        sign turns the crank both ways, which is no run-up (it was swept as |speed| in the table's
+        last direction, or refused with a message about its spin-up)."""
+        if self.simulation.runup != "periodic":
+            return
+        for k, p in enumerate(self.pulleys):
+            w = [r[1] for r in p.speed_time or ()]
+            if w and min(w) < 0 < max(w):
+                first = next(r for r in p.speed_time if r[1] != 0)
+                turn = next(r for r in p.speed_time if r[1] * first[1] < 0)
+                raise ValueError(f"pulleys[{k}].speed_time: pulley {p.name!r} reverses (its speed changes sign: "
+                                 f"{first[1]:.4g} rad/s at {first[0]:.4g} s, {turn[1]:.4g} rad/s at {turn[0]:.4g} s): "
+                                 "runup = \"periodic\" sweeps "
+                                 "a crank turning one way; a reversing drive is integrated in time (runup = \"time\")")
 
     def _duty_names(self, names):
         if self.duty_cycle is None:
