@@ -99,3 +99,15 @@ def test_a_negative_flap_order_is_refused():
     model = drivedyn.load(drivedyn.example_path("fead-runup"))
     with pytest.raises(drivedyn.ModelError, match=r"criteria.flap_orders.*\(0, 1000\]"):
         drivedyn.replace(model, {"criteria.flap_orders": [-2.0]})
+
+
+def test_orders_all_below_the_amplitude_limit_are_said_so():
+    """criteria.flap_amplitude_min above every declared speed order left nothing judged, and the
+    verdict said "the crank declares no speed orders" (it declares two)."""
+    import drivedyn
+
+    model = drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-runup")),
+                             {"simulation.model": "rotational", "simulation.runup": "periodic",
+                              "output.runup_bin": "1000 rpm", "criteria.flap_amplitude_min": "100 rad/s"})
+    why = drivedyn.run(model).summary["criteria_skipped"]["flap_crossings"]
+    assert "weaker than criteria.flap_amplitude_min (100 rad/s)" in why

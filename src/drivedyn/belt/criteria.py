@@ -271,6 +271,9 @@ def evaluate(model, result):
                                  "; ".join(f"{x['span']} order {_o(x['order'])} at {x['rpm']:.0f} rpm "
                                            f"({x['frequency_hz']:.0f} Hz)" for x in xs[:4])
                                  + (f"; {len(xs) - 4} more" if len(xs) > 4 else ""), xs))
+        elif flapmod.excited_orders(model, driver, 0.0, c.flap_orders):
+            skipped["flap_crossings"] = (f"not judged: every speed order of the crank is weaker than "
+                                         f"criteria.flap_amplitude_min ({c.flap_amplitude_min:.4g} rad/s)")
         else:
             skipped["flap_crossings"] = "the crank declares no speed orders (criteria.flap_orders names more)"
 

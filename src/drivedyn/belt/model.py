@@ -18,7 +18,7 @@ from typing import Annotated, Literal, Optional, Union
 
 from pydantic import Field, field_validator, model_validator
 
-from ..model import Spec, check_name, quantity, table_rows
+from ..model import Spec, check_name, limit, quantity, table_rows
 
 Length = quantity("m")
 Time = quantity("s")
@@ -541,8 +541,8 @@ class DutyCycle(Spec):
 class Criteria(Spec):
     """Limits the verdict judges a belt run against (every field optional)."""
 
-    slip_max: quantity("1", gt=0) = 0.02                          # largest slip of any pulley (fraction)
-    slip_margin_min: quantity("1", ge=0) = 1.3                    # smallest slip margin of a pulley that carries torque
+    slip_max: limit("1", "a slip of 1 is a belt standing still on its pulley: it can never fail", gt=0, lt=1) = 0.02                          # largest slip of any pulley (fraction)
+    slip_margin_min: limit("1", "below 1 it accepts a wrap that slips by the capstan equation", ge=1) = 1.3                    # smallest slip margin of a pulley that carries torque
     span_tension_min: quantity("N", ge=0) | None = None   # smallest T - m v^2; default 0.1 x belt.pretension
     stop_clearance_min: quantity("1", ge=0, lt=0.5) = 0.1                 # free travel kept at each stop, fraction of stop-to-stop
     hub_load_max: quantity("N", gt=0) | None = None       # bearing limit on the peak hub load (not judged unless given)
@@ -554,7 +554,8 @@ class Criteria(Spec):
     # the belt's entry angle on a pulley from offsets and misalignment (judged when any is given):
     # Gates' limit for PK belts on grooved pulleys (chirp begins near 0.33 deg: Meckstroth et al.,
     # SAE 1999-01-1709)
-    entry_angle_max: quantity("rad", gt=0) = 0.9 * math.pi / 180
+    entry_angle_max: limit("rad", "an entry angle is less than 90 deg: a larger limit can never fail", gt=0,
+                           lt=0.5 * math.pi) = 0.9 * math.pi / 180
 
     @field_validator("flap_orders")
     @classmethod

@@ -8,14 +8,14 @@ parametric-resonance region (tongue) of the span, and not in one.
 from __future__ import annotations
 
 from ..criteria import Criterion
-from ..model import Spec, quantity
+from ..model import Spec, limit, quantity
 
 
 class Criteria(Spec):
     """Limits the verdict judges a span against (every field optional)."""
 
     critical_speed_ratio_max: quantity("1", gt=0, le=1) = 0.5    # belt speed over the span's critical speed
-    tongue_distance_min: quantity("1", ge=0) = 0.05        # distance of the speed to the nearest tongue, fraction of the speed
+    tongue_distance_min: limit("1", "0 can never fail: the distance is 0 inside a tongue", gt=0) = 0.05        # distance of the speed to the nearest tongue, fraction of the speed
 
 
 def evaluate(model, result):
