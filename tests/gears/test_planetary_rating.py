@@ -243,3 +243,18 @@ def test_stage_2_method_b_kv_with_the_reports_deviations():
     from drivedyn.gears.iso6336 import running_in
 
     assert (running_in(20.7, "Eh", 1500.0, 4.88) + running_in(20.7, "St", 700.0, 4.88)) / 2 == near(3.142, 3)
+
+
+@pytest.mark.parametrize("scale, words", [(-1e-3, "not outside its base circle"), (0.0, "not outside its base circle"),
+                                          (1e26, "transverse contact ratio of"), (0.97, "transverse contact ratio of 0.9")])
+def test_tip_diameters_the_rating_cannot_use_are_one_line(scale, words):
+    """A sun tip diameter of -1 m, 0 or 1e29 m (the fuzz's values) ended in a math domain error
+    inside ISO 6336's geometry; 3 % below the example's, the contact ratio falls under 1."""
+    import drivedyn
+
+    m = drivedyn.load(drivedyn.example_path("gears-gearbox"))
+    tips = list(m.planetary.rating.tip_diameters)
+    m = drivedyn.replace(m, {"planetary.rating.tip_diameters": [tips[0] * scale if scale > 0 else scale * 1e3] + tips[1:]})
+    with pytest.raises(ModelError) as exc:
+        drivedyn.check(m)
+    assert str(exc.value).startswith("planetary.rating.tip_diameters: ") and words in str(exc.value)

@@ -116,7 +116,26 @@ def pairs(st: StageGears, field: str = "planetary") -> tuple[Pair, Pair, dict]:
     ring = Pair(z1=zp, z2=zr, x1=st.x[1], x2=st.x[2], b=min(st.b[1], st.b[2]), da1=g["da"][1], da2=g["da"][2],
                 h_fp=(st.h_fp[1], st.h_fp[2]), rho_fp=(st.rho_fp[1], st.rho_fp[2]), E=(st.E[1], st.E[2]),
                 nu=(st.nu[1], st.nu[2]), b_each=(st.b[1], st.b[2]), internal=True, **common)
+    _check_tips(st, g, sun, ring, field)
     return sun, ring, wg
+
+
+def _check_tips(st: StageGears, g: dict, sun: Pair, ring: Pair, field: str) -> None:
+    """Tip circles that the rating's geometry can use, refused in one line otherwise (a tip inside
+    its base circle, or a contact ratio no tooth gives, failed with a math domain error)."""
+    from .rating import geometry
+
+    where = f"{field}.rating.tip_diameters" if st.tip_diameter else f"{field}.x"
+    for k, gear in enumerate(("sun", "planet", "ring")):
+        if not g["da"][k] > g["db"][k]:
+            raise ModelError(f"the {gear}'s tip diameter {g['da'][k]:.6g} mm is not outside its base circle "
+                             f"({g['db'][k]:.6g} mm): its teeth have no involute to mesh with", field=where)
+    for name, p in (("sun-planet", sun), ("ring-planet", ring)):
+        eps = geometry(p)["eps_alpha"]
+        if not 1.0 <= eps < 4.0:
+            raise ModelError(f"the tip diameters give the {name} mesh a transverse contact ratio of {eps:.4g} "
+                             "(a spur mesh has 1 to 4: below 1 the contact breaks between teeth, ISO 6336-2's "
+                             "Z_epsilon ends at 4)", field=where)
 
 
 def stiffness(p: Pair, low_load: float | None = None, blank_factor: float = 1.0):

@@ -33,14 +33,14 @@ MAX_CASES = 100_000
 CASES_VARIABLE = "DRIVEDYN_MAX_CASES"
 
 
-def max_cases() -> int:
-    """The case limit: :data:`MAX_CASES`, or the environment's ``DRIVEDYN_MAX_CASES``."""
-    import os
+def max_cases() -> float:
+    """The case limit: :data:`MAX_CASES`, or the environment's ``DRIVEDYN_MAX_CASES`` read as the other
+    limits are (limits.py: a value that is not a positive number is ignored; "inf" lifts the limit;
+    it was int(inf), an OverflowError traceback under every study command)."""
+    from ..limits import _env
 
-    try:
-        return max(1, int(float(os.environ.get(CASES_VARIABLE, MAX_CASES))))
-    except ValueError:
-        return MAX_CASES
+    v = _env(CASES_VARIABLE, MAX_CASES)
+    return float(math.floor(v)) if math.isfinite(v) and v >= 1 else (v if v > 1 else 1.0)
 
 
 def check_cases(n, what: str, fix: str = "") -> None:
@@ -48,7 +48,7 @@ def check_cases(n, what: str, fix: str = "") -> None:
     for the number; ``fix``: what to change besides the limit)."""
     limit = max_cases()
     if n > limit:
-        raise ValueError(f"{what.format(n=f'{n:.4g}')}, more than the {limit} cases a study may have "
+        raise ValueError(f"{what.format(n=f'{n:.4g}')}, more than the {limit:.6g} cases a study may have "
                          f"({fix + ', or ' if fix else ''}set {CASES_VARIABLE} to allow more)")
 
 
