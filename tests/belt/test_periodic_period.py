@@ -68,3 +68,17 @@ def test_a_reversing_crank_is_refused_as_reversing(table):
         _periodic({"pulleys.0.speed_time": table})
     text = str(info.value)
     assert "pulleys[0].speed_time" in text and "reverses" in text and "spin-up" not in text and "\n" not in text
+
+
+def test_a_drive_without_grip_ends_with_its_report(tmp_path, capfd):
+    """friction.coefficient = 1e-6: the periodic run-up ends with every span slack (status warning,
+    gross slip); the Campbell painter's wrap compliance failed with a singular matrix after the run
+    and no report was written, and the spectrum plot warned of a log axis with no positive values."""
+    from drivedyn.cli import main
+
+    code = main(["run", str(drivedyn.example_path("fead-runup")), "-o", str(tmp_path / "out"), "-q",
+                 "--set", "simulation.model=\"rotational\"", "--set", "simulation.runup=\"periodic\"",
+                 "--set", "output.runup_bin=\"1000 rpm\"", "--set", "friction.coefficient=1e-6"])
+    err = capfd.readouterr().err
+    assert code == 0 and (tmp_path / "out" / "report.html").exists() and (tmp_path / "out" / "campbell.png").exists()
+    assert "Traceback" not in err and "Warning" not in err, err[-800:]

@@ -43,6 +43,7 @@ objective = "pulleys.driven.slip"
     (OK.replace("values = [500.0, 600.0]", 'range = ["nan", 30.0]\nnum = 2'), "must be a finite number"),
     (OPT + 'constraints = [{ key = "spans.*.tension_min", max = "nan N" }]\n', "must be a finite number"),
     (OPT + 'seed = -1\n', "must lie in [0, 2^32)"),
+    (OPT + 'sense = ["maximise"]\n', "optimise.sense"),       # a list: a TypeError (unhashable) before
     (OPT + 'population = 10000000\n', "more than the"),
     (OPT + 'budget = 4\n', "less than one generation, 6 designs"),
     (OPT.replace("belt.pretension", "belt.segments").replace("range = [400.0, 600.0]", "range = [150.2, 150.8]\ninteger = true"),

@@ -231,7 +231,8 @@ class Optimise(Spec):
     @field_validator("sense", mode="before")
     @classmethod
     def _spelling(cls, v):
-        return {"minimize": "minimise", "maximize": "maximise"}.get(v, v)
+        # a list or a table is left to the Literal's one line (a dict lookup of it was a TypeError)
+        return {"minimize": "minimise", "maximize": "maximise"}.get(v, v) if isinstance(v, str) else v
 
     @property
     def sign(self) -> float:
