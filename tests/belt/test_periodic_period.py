@@ -36,7 +36,7 @@ def test_an_excitation_that_does_not_repeat_is_refused_before_any_work(changes):
 def test_a_crawling_crank_is_refused_before_any_work():
     """0.01-0.1 rpm: one period at each speed is millions of steps; the sweep ran without end, it is
     now refused against the limit time integrations honour (DRIVEDYN_MAX_STEPS)."""
-    m = _periodic({"pulleys.0.speed_time": [[0.0, -0.001], [4.8, -0.01]]})
+    m = _periodic({"pulleys.0.speed_time": [[0.0, -0.001], [4.8, -0.01]], "output.runup_bin": "0.03 rpm"})
     with pytest.raises(drivedyn.ModelError) as info:
         drivedyn.run(m)
     text = str(info.value)
@@ -82,3 +82,12 @@ def test_a_drive_without_grip_ends_with_its_report(tmp_path, capfd):
     err = capfd.readouterr().err
     assert code == 0 and (tmp_path / "out" / "report.html").exists() and (tmp_path / "out" / "campbell.png").exists()
     assert "Traceback" not in err and "Warning" not in err, err[-800:]
+
+
+@pytest.mark.parametrize("width", [1e29, "5000 rpm"])
+def test_a_bin_that_leaves_one_crank_speed_is_refused(width):
+    """1e29 rad/s bins: no bin at all (np.arange past float resolution), a traceback from min() of
+    nothing; 5000 rpm: one held speed, whose run-up tables were left out without a word."""
+    with pytest.raises(drivedyn.ModelError) as info:
+        drivedyn.run(_periodic({"output.runup_bin": width}))
+    assert str(info.value).startswith("output.runup_bin: ") and "at least two" in str(info.value)

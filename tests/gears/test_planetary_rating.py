@@ -258,3 +258,20 @@ def test_tip_diameters_the_rating_cannot_use_are_one_line(scale, words):
     with pytest.raises(ModelError) as exc:
         drivedyn.check(m)
     assert str(exc.value).startswith("planetary.rating.tip_diameters: ") and words in str(exc.value)
+
+
+@pytest.mark.parametrize("changes, words", [
+    ({"planetary.ring_planet_stiffness": 1e-29}, "planetary: the stage's load sharing cannot be solved"),
+    ({"planetary.lateral.support_stiffness": 1e29}, "planetary.lateral: the stage is not held"),
+    ({"stages.0.planet_teeth": 18}, "stages[0].centre_distance: "),
+])
+def test_stages_the_solvers_cannot_take_are_one_line_naming_the_stage(changes, words):
+    """Found by the fuzz's long run: a singular matrix (a stiffness 1e-29 N/m beside 1e9), a bare
+    ValueError (a support of 1e29 N m/rad hid the others) and a math domain error (a second stage's
+    planets halved at its given centre distance) were tracebacks under check and run."""
+    import drivedyn
+
+    m = drivedyn.replace(drivedyn.load(drivedyn.example_path("gears-gearbox")), changes)
+    with pytest.raises(ModelError) as exc:
+        drivedyn.check(m)
+    assert str(exc.value).startswith(words) and "\n" not in str(exc.value)

@@ -85,6 +85,10 @@ def working_geometry(st: StageGears, field: str = "planetary") -> dict:
                          f"{a_r:.6f} mm (more than {CENTRE_TOLERANCE:g} of it): planets and ring would interfere "
                          "(check the profile shifts)", field=f"{field}.centre_distance")
     c = math.cos(a_n)
+    for name, base in (("sun-planet", (zs + zp) * m / 2 * c), ("ring-planet", (zr - zp) * m / 2 * c)):
+        if not 0 < base < a:     # the base circles' distance past the centres': no working pressure angle
+            raise ModelError(f"{a:.6f} mm is not more than the {name} base circles' distance {base:.6f} mm: the "
+                             f"teeth ({zs}, {zp}, {zr}) cannot mesh at this centre distance", field=f"{field}.centre_distance")
     return {"a_w": a, "alpha_w_sun": math.acos((zs + zp) * m / 2 * c / a), "alpha_w_ring": math.acos((zr - zp) * m / 2 * c / a),
             "a_zero_backlash_sun": a_s, "a_zero_backlash_ring": a_r}
 
@@ -238,7 +242,7 @@ def _si(v):
     return None if v is None or (isinstance(v, float) and math.isnan(v)) else float(v)
 
 
-def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict) -> dict:
+def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict, field: str = "planetary") -> dict:
     """The summary entry (SI) of the rating of a model's planetary stage with the model's [iso] data
     ``iso``: K_gamma given or ``k_gamma``
     (the computed load sharing), the sun's torque ``torque_sun`` (N m), member ``speeds`` (rad/s)."""
@@ -264,7 +268,7 @@ def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict) -> dic
                      k_halpha=both(iso.transverse_load_factor), f_ma=iso.mesh_misalignment * 1e6,
                      f_pb=iso.pitch_deviation * 1e6, f_falpha=iso.profile_deviation * 1e6,
                      tip_relief=None if iso.tip_relief is None else iso.tip_relief * 1e6, blank_factor=iso.blank_factor,
-                     s_hmin=iso.min_safety_pitting, s_fmin=iso.min_safety_bending, field="planetary")
+                     s_hmin=iso.min_safety_pitting, s_fmin=iso.min_safety_bending, field=field)
     summary = {"K_gamma": kg, "K_gamma_source": "given" if r.load_sharing_factor is not None else "load sharing",
                "load_cycles": {k: float(v) for k, v in out["cycles"].items()}, "meshes": {}}
     for name in ("sun-planet", "ring-planet"):

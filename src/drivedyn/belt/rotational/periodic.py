@@ -52,10 +52,16 @@ def speeds_of(model, j):
                          "speed after its spin-up (no speed range to sweep)", field="simulation.runup")
     width = model.output.runup_bin or (hi - lo) / 20
     edges = np.arange(math.floor(lo / width) * width, hi + width, width)
+    if len(edges) < 2:      # a bin wider than float resolves beside the speeds (1e29 rad/s): one bin
+        edges = np.array([math.floor(lo / width) * width, math.floor(lo / width) * width + width])
     keep = (edges[1:] > lo) & (edges[:-1] < hi)
     # each bin's centre within the crank's range: a bin the range covers in part is solved at the
     # middle of that part (a bin of 250 rpm swept 0.01-0.1 rpm at 125 rpm)
     centres = 0.5 * (np.maximum(edges[:-1], lo) + np.minimum(edges[1:], hi))
+    if keep.sum() < 2:      # one held speed is no run-up: its tables would be left out without a word
+        raise ModelError(f"{width * RPM:.4g} rpm bins leave {int(keep.sum())} crank speed(s) of pulley {p.name!r}'s "
+                         f"range {lo * RPM:.4g}-{hi * RPM:.4g} rpm: a periodic run-up solves at least two (a narrower "
+                         "bin)", field="output.runup_bin")
     sign = math.copysign(1.0, max(w, key=abs))
     return sign * centres[keep]
 
