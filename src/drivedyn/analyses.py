@@ -28,6 +28,10 @@ class Analysis:
     criteria_at: str = "criteria:evaluate"   # (model, result) -> ([Criterion], {name: why not judged})
     lean_at: str = ""          # (model, keys, progress) -> Result with at least those summary keys, or None
     lean_possible_at: str = ""  # (model, keys) -> whether lean_at gives them
+    # units of the summary keys, fnmatch pattern -> unit (a dict, or a function returning one), of
+    # a run and of check's data: a study's constraint bounds are read against them
+    units_at: str = ""
+    check_units_at: str = ""
 
     def _get(self, where: str):
         module, name = where.split(":")
@@ -76,6 +80,15 @@ class Analysis:
         (no Dataset, criteria or diagnostics but the solve's), or None when only the full run gives them."""
         return self._get(self.lean_at)(model, keys, progress=progress) if self.lean_at else None
 
+    def summary_units(self, mode: str = "run") -> dict:
+        """The units of the summary keys of a ``mode`` ("run" or "check") evaluation, as fnmatch
+        pattern -> unit (the first pattern that matches a key wins; results.unit_map)."""
+        where = self.check_units_at if mode == "check" else self.units_at
+        if not where:
+            return {}
+        table = self._get(where)
+        return dict(table() if callable(table) else table)
+
     def check_data(self, model) -> dict:
         if not self.check_data_at:
             raise ModelError(f"check data (check --json, a study's mode = \"check\") is for belt-drive models "
@@ -96,10 +109,11 @@ class Analysis:
 
 ANALYSES = {a.kind: a for a in (
     Analysis("belt-drive", "drivedyn.belt", "simulate:run", "statics:report", "plots:plot_all", "simulate:warm",
-             "statics:check_data", lean_at="simulate:run_lean", lean_possible_at="simulate:lean_possible"),
-    Analysis("gear-train", "drivedyn.gears", "simulate:run", "report:report", "plots:plot_all"),
-    Analysis("span-stability", "drivedyn.span", "analysis:run", "report:report", "plots:plot_all"),
-    Analysis("toothed-mesh", "drivedyn.toothed", "analysis:run", "report:report", "plots:plot_all"),
+             "statics:check_data", lean_at="simulate:run_lean", lean_possible_at="simulate:lean_possible",
+             units_at="simulate:summary_units", check_units_at="statics:CHECK_UNITS"),
+    Analysis("gear-train", "drivedyn.gears", "simulate:run", "report:report", "plots:plot_all", units_at="simulate:UNITS"),
+    Analysis("span-stability", "drivedyn.span", "analysis:run", "report:report", "plots:plot_all", units_at="analysis:UNITS"),
+    Analysis("toothed-mesh", "drivedyn.toothed", "analysis:run", "report:report", "plots:plot_all", units_at="analysis:UNITS"),
 )}
 
 #: kind -> analysis package (for listings)

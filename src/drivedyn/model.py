@@ -101,6 +101,29 @@ def quantity(unit: str, **constraints):
     return Annotated[float, BeforeValidator(_si_validator(unit)), Field(json_schema_extra={"unit": unit}, **constraints)]
 
 
+#: pydantic's bounds as JSON Schema's keywords, and as they read in a message
+_BOUNDS = {"gt": ("exclusiveMinimum", ">", lambda x, b: x > b), "ge": ("minimum", ">=", lambda x, b: x >= b),
+           "lt": ("exclusiveMaximum", "<", lambda x, b: x < b), "le": ("maximum", "<=", lambda x, b: x <= b)}
+
+
+def limit(unit: str, why: str, **bounds):
+    """A design limit or a standard's factor: a :func:`quantity` whose bounds keep the judgement
+    conservative, refused with ``why`` beside them (docs/limits.md: a number that makes a standard's
+    formula non-conservative, or a limit that can never fail, is refused, never silently used)."""
+    shown = "" if unit in ("", "1") else f" {unit}"
+
+    def check(value: float) -> float:
+        for key, bound in bounds.items():
+            if not _BOUNDS[key][2](value, bound):
+                raise ValueError(f"must be {_BOUNDS[key][1]} {bound:.4g}{shown} ({why}), got {value:.4g}{shown}")
+        return value
+
+    from pydantic import AfterValidator
+
+    extra = {"unit": unit, **{_BOUNDS[k][0]: b for k, b in bounds.items()}}
+    return Annotated[float, BeforeValidator(_si_validator(unit)), AfterValidator(check), Field(json_schema_extra=extra)]
+
+
 def table_rows(value, units: tuple[str, str], field: str, min_rows: int = 1) -> list[list[float]]:
     """Validate a table of rows [x, y] (numbers or unit strings) into SI floats, x increasing.
 

@@ -5,7 +5,13 @@ string, or the whole file truncated or sprinkled with random bytes. ``drivedyn c
 (a valid model) or 2 with one line naming the problem, never a traceback, and refuse within a few
 seconds; ``drivedyn run`` of a shortened model may also exit 1 (a reported solve failure).
 
-The CI budget is bounded (``max_examples`` below, about 30 s in all); a long run is
+The design-loop inputs are tried apart (``design_section``, ``damaged_optimisation``,
+``hostile_environment``): criteria, ISO and planetary ratings, periodic run-ups of the rotational
+model, optimisation studies (read, and run in-process on check's data: a result or one line), and
+the environment's limits (``DRIVEDYN_MAX_STEPS``, ``DRIVEDYN_MAX_BYTES``, ``DRIVEDYN_MAX_CASES``)
+set to hostile values under every command.
+
+The CI budget is bounded (``max_examples`` below, about a minute in all); a long run is
 ``DRIVEDYN_FUZZ_EXAMPLES=5000 pytest tests/api/test_fuzz.py``; ``DRIVEDYN_FUZZ_REPORT=file.jsonl``
 appends one line per example tried (example, field, mutation, command, exit status, seconds); with
 both set, a failing example is recorded (exit "failure") and the run goes on, for the counts.
@@ -144,6 +150,19 @@ def _slider_drive() -> dict:
 # the newer sections the examples do not all reach: a slider tensioner (fead-runup has the arm,
 # the clutch, speed orders, harmonics and the accessory loads; mesh-load-l the toothed [load])
 BASES["belt-slider"] = _slider_drive()
+# a periodic run-up of the rotational model (1000 rpm bins: five crank speeds, about a second) with
+# every belt criterion given, so that each limit is mutated too
+BASES["fead-periodic"] = _merge(BASES["fead-runup"], {
+    "simulation": {"model": "rotational", "runup": "periodic"}, "output": {"runup_bin": "1000 rpm"},
+    "criteria": {"slip_max": 0.03, "slip_margin_min": 1.3, "span_tension_min": "50 N", "stop_clearance_min": 0.1,
+                 "hub_load_max": "3000 N", "flap_crossings_max": 4, "flap_speed_margin": 0.1, "flap_orders": [2.0, 6.0],
+                 "flap_amplitude_min": "0.5 rad/s", "resonance_crossings_max": 6, "entry_angle_max": "0.9 deg"}})
+#: shortened otherwise than their kind (a periodic run-up's cost is its crank speeds, not its duration)
+SHORT_FOR = {"fead-periodic": {}}
+
+
+def _short(name: str, data: dict) -> dict:
+    return _merge(data, SHORT_FOR.get(name, SHORT[data["kind"]]))
 
 
 def _study_base(name: str) -> dict:
@@ -171,7 +190,7 @@ def damaged_file(draw, for_run=False):
     name = draw(st.sampled_from(sorted(BASES)))
     data = BASES[name]
     if for_run:
-        data = _merge(data, SHORT[data["kind"]])
+        data = _short(name, data)
     how = draw(st.sampled_from(["value"] * 8 + ["truncate", "bytes"]))
     if how == "value":
         paths = list(_leaves(data))
@@ -203,7 +222,7 @@ def renamed_file(draw):
     shortened to run in a second or two (plots and report are drawn)."""
     candidates = [n for n in sorted(BASES) if list(_name_paths(BASES[n]))]
     name = draw(st.sampled_from(candidates))
-    data = _merge(BASES[name], SHORT[BASES[name]["kind"]])
+    data = _short(name, BASES[name])
     path = draw(st.sampled_from(list(_name_paths(data))))
     k = draw(st.sampled_from(NAME_MUTATIONS))
     data = copy.deepcopy(data)
@@ -224,6 +243,93 @@ def damaged_study(draw):
     else:
         _get(data, path[:-1])[path[-1]] = _mutated(_get(data, path), k)
     return name, f"{'.'.join(map(str, path))} <- {NAMES[k]}", tomli_w.dumps(data).encode("utf-8")
+
+
+#: the sections a design loop leans on, by the first key of a value's path (or any key on it)
+DESIGN = {"criteria", "iso", "planetary", "stages", "rating", "lateral"}
+DESIGN_KEYS = {"runup", "runup_bin", "speed_time", "speed_orders", "harmonics", "model", "application_factor"}
+
+
+def _design_paths(data, for_run=False):
+    paths = [p for p in _leaves(data) if p[0] in DESIGN or DESIGN_KEYS & {str(q) for q in p}]
+    return [p for p in paths if not COST & {str(q) for q in p}] if for_run else paths
+
+
+@st.composite
+def design_section(draw, for_run=False):
+    """(example, description, file bytes): one value of a criteria, ISO, planetary or periodic
+    run-up input spoiled (the design loop's inputs; check reads them all, run solves the plausible)."""
+    name = draw(st.sampled_from(sorted(n for n in BASES if _design_paths(BASES[n], for_run))))
+    data = _short(name, BASES[name]) if for_run else BASES[name]
+    path = draw(st.sampled_from(_design_paths(data, for_run)))
+    k = draw(st.sampled_from(SOLVABLE) if for_run else st.integers(0, len(MUTATIONS) - 1) | st.sampled_from(SOLVABLE))
+    data = copy.deepcopy(data)
+    if len(path) == 1:
+        data[path[0]] = _mutated(data[path[0]], k)
+    else:
+        _get(data, path[:-1])[path[-1]] = _mutated(_get(data, path), k)
+    return name, f"{'.'.join(map(str, path))} <- {NAMES[k]}", tomli_w.dumps(data).encode("utf-8")
+
+
+#: an optimisation on check's data (milliseconds per design) of the 5PK drive: small enough to run
+#: in-process whole, mutated in every value of its [optimise] and [[parameters]]
+OPTIMISE_CHECK = {
+    "kind": "study", "base": str(MODELS["belt-5pk"]), "mode": "optimise",
+    "parameters": [{"path": "belt.pretension", "range": ["200 N", "800 N"]}],
+    "optimise": {"objective": "installation.spans.driver-driven.tension", "sense": "minimise",
+                 "constraints": [{"key": "steady.slip_margin", "min": 1.5}, {"key": "steady.pulleys.*.slip_arc", "max": "3 rad"},
+                                 {"key": "steady.spans.*.tension", "min": "50 N", "max": "2 kN"}],
+                 "evaluate": "check", "budget": 10, "population": 5, "seed": 3},
+}
+OPTIMISATIONS = {"optimise-check": OPTIMISE_CHECK,
+                 **{n: d for n, d in STUDY_BASES.items() if d.get("mode") in ("optimise", "optimize")}}
+#: values an optimisation's fields are spoiled with besides MUTATIONS: the keys and units a design
+#: loop is written with when it is wrong (class 3 and 9 of the design-loop refusals)
+OPT_VALUES = ["100 kg", "3 rad", "1 %", "steady.slip_margn", "*", "runup.*", "installation.spans.*.tension",
+              "no.such.key", 1e9, 0, -1, 1.5, "nan", "maximize", "check", "run", 2 ** 32, 4]
+
+
+@st.composite
+def damaged_optimisation(draw):
+    """(study, description, file bytes): one value of an optimisation's [optimise] or [[parameters]]
+    spoiled, or a constraint added with a hostile key or bound."""
+    name = draw(st.sampled_from(sorted(OPTIMISATIONS)))
+    data = copy.deepcopy(OPTIMISATIONS[name])
+    if draw(st.booleans()):
+        extra = {"key": draw(st.sampled_from([v for v in OPT_VALUES if isinstance(v, str)]))}
+        extra[draw(st.sampled_from(["min", "max"]))] = draw(st.sampled_from(OPT_VALUES))
+        data["optimise"].setdefault("constraints", []).append(extra)
+        return name, f"constraint {extra}", tomli_w.dumps(data).encode("utf-8")
+    paths = [p for p in _leaves(data) if p[0] in ("optimise", "parameters")]
+    path = draw(st.sampled_from(paths))
+    value = draw(st.sampled_from(OPT_VALUES) | st.integers(0, len(MUTATIONS) - 1).map(lambda k: ("m", k)))
+    what = value
+    if isinstance(value, tuple):
+        value, what = _mutated(_get(data, path), value[1]), NAMES[value[1]]
+    if len(path) == 1:
+        data[path[0]] = value
+    else:
+        _get(data, path[:-1])[path[-1]] = value
+    return name, f"{'.'.join(map(str, path))} <- {what}", tomli_w.dumps(data).encode("utf-8")
+
+
+ENV = ("DRIVEDYN_MAX_STEPS", "DRIVEDYN_MAX_BYTES", "DRIVEDYN_MAX_CASES")
+ENV_VALUES = ["0", "-1", "1", "10", "1000", "1e4", "1e-300", "1e300", "nan", "inf", "-inf", "abc", "", " 5 ", "1e9"]
+
+
+@st.composite
+def hostile_environment(draw):
+    """(environment, command, case): the documented limits lowered, raised or garbled, under check,
+    run (shortened), schema or a study's dry run."""
+    env = draw(st.dictionaries(st.sampled_from(ENV), st.sampled_from(ENV_VALUES), min_size=1, max_size=3))
+    command = draw(st.sampled_from(["check", "check", "run", "schema", "study"]))
+    if command == "study":
+        name = draw(st.sampled_from(sorted(STUDY_BASES) + ["optimise-check"]))
+        data = OPTIMISE_CHECK if name == "optimise-check" else STUDY_BASES[name]
+    else:
+        name = draw(st.sampled_from(sorted(BASES)))
+        data = _short(name, BASES[name]) if command == "run" else BASES[name]
+    return env, command, (name, f"{command} under {env}", tomli_w.dumps(data).encode("utf-8"))
 
 
 class _Hang(Exception):
@@ -271,6 +377,8 @@ def _try_one(command, case, allowed, plots=False):
         path = Path(tmp) / f"{name}.toml"
         path.write_bytes(content)
         args = [command, str(path)]
+        if command == "schema":     # of the example's kind
+            args = [command, tomllib.loads(content.decode())["kind"]]
         if command == "run":
             args += ["-o", str(Path(tmp) / "out"), "-q"] + ([] if plots else ["--no-plots"])
         elif command == "study":     # listed, not run: the cases' own inputs are the other tests' job
@@ -335,6 +443,76 @@ def test_names_with_plots_and_report_never_end_in_a_traceback(case):
 @given(case=damaged_study())
 def test_study_never_ends_in_a_traceback(case):
     _try("study", case, allowed=(0, 2))
+
+
+@settings(max_examples=LONG // 2 or 40, derandomize=not LONG, **COMMON)
+@given(case=design_section())
+def test_design_inputs_check_never_end_in_a_traceback(case):
+    _try("check", case, allowed=(0, 2))
+
+
+@settings(max_examples=LONG // 10 or 8, derandomize=not LONG, **COMMON)
+@given(case=design_section(for_run=True))
+def test_design_inputs_run_never_end_in_a_traceback(case):
+    _try("run", case, allowed=(0, 1, 2))
+
+
+@settings(max_examples=LONG // 5 or 25, derandomize=not LONG, **COMMON)
+@given(case=damaged_optimisation())
+def test_an_optimisation_file_never_ends_in_a_traceback(case):
+    _try("study", case, allowed=(0, 2))
+
+
+def _in_process(cases):
+    """An optimisation's batch runner without a cluster: each design's case run here (check's data)."""
+    from drivedyn.study.cases import run_case
+
+    return {c.key: run_case(c.toml, c.key, "", "", [], None, "check", c.keys) for c in cases if c.toml is not None}
+
+
+@settings(max_examples=LONG // 10 or 6, derandomize=not LONG, **COMMON)
+@given(case=damaged_optimisation().filter(lambda c: c[0] == "optimise-check"))
+def test_an_optimisation_runs_to_a_result_or_one_line(case):
+    """The study read and its optimisation run whole (differential evolution, the judging of every
+    design, the first design's key check): an Optimum, or one line naming the field."""
+    from drivedyn.study.optimise import run_optimise
+    from drivedyn.study.spec import study_from_dict
+
+    name, what, content = case
+    t0 = time.perf_counter()
+    outcome = "result"
+    try:
+        study = study_from_dict(tomllib.loads(content.decode()), source="fuzz.toml", root=str(MODELS["belt-5pk"].parent))
+        if study.spec.eval_mode != "check" or study.spec.optimise.budget > 60:
+            outcome = "skipped"          # a run per design, or a long one: the dry run above reads it
+        else:
+            records: dict = {}
+            run_optimise(study, lambda cases, probe=False: records.update(_in_process(cases)) or records)
+    except drivedyn.ModelError as exc:
+        outcome = 2
+        assert "\n" not in str(exc), f"{name} ({what}): not one line: {exc}"
+    except Exception as exc:
+        _record(example=name, mutation=what, command="optimise", exit=type(exc).__name__, text=str(exc)[:300])
+        if not (LONG and REPORT):
+            raise
+        return
+    _record(example=name, mutation=what, command="optimise", exit=outcome, seconds=round(time.perf_counter() - t0, 3))
+
+
+@settings(max_examples=LONG // 5 or 20, derandomize=not LONG, **COMMON)
+@given(case=hostile_environment())
+def test_hostile_limits_in_the_environment_never_end_in_a_traceback(case):
+    env, command, file_case = case
+    old = {k: os.environ.get(k) for k in env}
+    os.environ.update(env)
+    try:
+        _try(command, file_case, allowed={"check": (0, 2), "run": (0, 1, 2), "schema": (0,), "study": (0, 2)}[command])
+    finally:
+        for k, v in old.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
 
 
 @pytest.mark.parametrize("text, what", [

@@ -54,3 +54,19 @@ def test_held_crank_is_modes_own_model():
     assert held.dofs == ("driven",)
     assert held.K[0, 0] == pytest.approx(free.K[1, 1]) and held.M[0, 0] == pytest.approx(free.M[1, 1])
     assert modes(m).frequencies_hz[0] == pytest.approx(math.sqrt(held.K[0, 0] / held.M[0, 0]) / (2 * math.pi))
+
+
+def test_slack_wraps_are_condensed_not_a_singular_matrix():
+    """Every span slack (a periodic run-up of fead-runup with friction.coefficient = 1e-6 ends with
+    zero mean tensions): no wrap grips, and the belt sliding round all pulleys at once is stiffened by
+    nothing. The wraps' condensation failed with a singular matrix in the Campbell painter after the
+    run had finished, and no report was written; the sliding carries no force, so it condenses."""
+    import drivedyn
+    from drivedyn.belt.steady.modes import drive_modes
+
+    m = drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-runup")), {"friction.coefficient": 1e-6})
+    slack = drive_modes(m, tensions=np.zeros(6))
+    assert len(slack.frequencies_hz) >= 1 and np.all(np.isfinite(slack.frequencies_hz))
+    # a small grip: its wrap's sliding stiffness kb L, the lowest mode's frequency as sqrt(mu)
+    f = [drive_modes(drivedyn.replace(m, {"friction.coefficient": mu})).frequencies_hz[0] for mu in (1e-6, 1e-8)]
+    assert f[1] == pytest.approx(0.1 * f[0], rel=1e-3)

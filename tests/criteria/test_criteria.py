@@ -161,3 +161,39 @@ def test_the_drivers_gross_slip_reaches_the_verdict():
     # and a drive without it passes the criterion
     ok = drivedyn.run(drivedyn.load(drivedyn.example_path("belt-accessory")))
     assert ok.summary["criteria"]["gross_slip"]["pass"] and ok.summary["criteria"]["gross_slip"]["value"] == 0
+
+
+# docs/limits.md: a number that makes a standard's formula non-conservative, or a limit that can
+# never fail, is refused (one line naming the field and why) or flagged beside the verdict
+@pytest.mark.parametrize("example, key, value, words", [
+    # a safety-factor minimum below 1 accepts what its own formula says fails (each was accepted)
+    ("belt-5pk", "criteria.slip_margin_min", 0.9, "must be >= 1 (below 1 it accepts a wrap that slips"),
+    ("mesh-load-l", "criteria.jump_margin_min", 0.5, "must be >= 1 (below 1 it accepts a torque past"),
+    ("gears-gearbox", "iso.min_safety_pitting", 0.8, "must be >= 1 (below 1 it passes a flank or root"),
+    ("gears-gearbox", "iso.min_safety_bending", 0.5, "must be >= 1"),
+    # limits that can never fail
+    ("belt-5pk", "criteria.slip_max", 1.0, "must be < 1 (a slip of 1 is a belt standing still"),
+    ("belt-5pk", "criteria.entry_angle_max", "100 deg", "must be < 1.571 rad (an entry angle is less than 90 deg"),
+    ("span-t10", "criteria.tongue_distance_min", 0.0, "must be > 0 (0 can never fail"),
+])
+def test_a_non_conservative_limit_is_refused(example, key, value, words):
+    model = drivedyn.load(drivedyn.example_path(example))
+    with pytest.raises(drivedyn.ModelError) as exc:
+        drivedyn.replace(model, {key: value})
+    assert f"{key}: {words}" in str(exc.value) and "\n" not in str(exc.value)
+
+
+def test_a_gear_check_switched_off_is_said_beside_the_verdict():
+    """criteria.separation = true and stable = false took the two checks out of the verdict without
+    a word: the verdict read pass on a train whose teeth separate and whose linear model is unstable."""
+    from types import SimpleNamespace
+
+    from drivedyn.gears.criteria import evaluate
+
+    model = drivedyn.replace(drivedyn.load(drivedyn.example_path("gears-gearbox")),
+                             {"criteria.separation": True, "criteria.stable": False})
+    summary = {"meshes": {"m": {"kv": 1.2, "force_min": -30.0}}, "floquet_growth_rate": 2.5}
+    out, skipped = evaluate(model, SimpleNamespace(summary=summary))
+    assert not [c for c in out if c.name in ("mesh_force_min", "floquet_growth_rate")]
+    assert "criteria.separation = true" in skipped["mesh_force_min"] and "the teeth separate" in skipped["mesh_force_min"]
+    assert "criteria.stable = false" in skipped["floquet_growth_rate"] and "unstable" in skipped["floquet_growth_rate"]

@@ -129,3 +129,15 @@ def test_crossings_judged_by_what_excites_the_span():
     zeta = 1.01 * max(x["modulation"] for x in par) / 4
     r2 = drivedyn.run(drivedyn.replace(m, {"criteria.flap_damping_ratio": zeta}))
     assert not [x for x in r2.summary["criteria"]["flap_crossings"]["details"] if x["kind"] == "parametric" and x["counted"]]
+
+
+def test_orders_all_below_the_amplitude_limit_are_said_so():
+    """criteria.flap_amplitude_min above every declared speed order left nothing judged, and the
+    verdict said "the crank declares no speed orders" (it declares two)."""
+    import drivedyn
+
+    model = drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-runup")),
+                             {"simulation.model": "rotational", "simulation.runup": "periodic",
+                              "output.runup_bin": "1000 rpm", "criteria.flap_amplitude_min": "100 rad/s"})
+    why = drivedyn.run(model).summary["criteria_skipped"]["flap_crossings"]
+    assert "weaker than criteria.flap_amplitude_min (100 rad/s)" in why

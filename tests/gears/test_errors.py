@@ -25,7 +25,7 @@ GOOD = drivedyn.example_path("gears-split-path").read_text()
     (('steel = "case-carburized"', 'steel = "case-carburized"\nsigma_hlim = "900 MPa"'), "give steel or sigma_hlim, not both"),
     (('steel = "case-carburized"', 'steel = "case-carburized"\nface_load_factor = 0.9'), "iso.face_load_factor: must lie in [1, 10]"),
     (('steel = "case-carburized"', 'steel = "case-carburized"\ntransverse_load_factor = 11'), "iso.transverse_load_factor"),
-    (('steel = "case-carburized"', 'steel = "case-carburized"\nmin_safety_pitting = 0'), "iso.min_safety_pitting: must be > 0"),
+    (('steel = "case-carburized"', 'steel = "case-carburized"\nmin_safety_pitting = 0'), "iso.min_safety_pitting: must be >= 1"),
     # ISO 6336-1: K_A >= 1 (0.5 raised S_H from 1.035 to 1.433 with status success)
     (('steel = "case-carburized"', 'steel = "case-carburized"\napplication_factor = 0.5'), "iso.application_factor: must lie in [1, 10]"),
     (('steel = "case-carburized"', 'steel = "case-carburized"\nflank_roughness = "-1 um"'), "iso.flank_roughness"),

@@ -387,3 +387,35 @@ def test_a_helical_stage_in_a_model_file_is_rated_and_modelled_in_its_transverse
     m = pl["rating"]["meshes"]
     assert m["sun-planet"]["working_pressure_angle"] == pytest.approx(at, abs=1e-9)
     assert m["ring-planet"]["ring"]["S_F"] is None and m["sun-planet"]["sun"]["S_H"] > 0
+
+
+@pytest.mark.parametrize("scale, words", [(-1e-3, "not outside its base circle"), (0.0, "not outside its base circle"),
+                                          (1e26, "transverse contact ratio of"), (0.97, "transverse contact ratio of 0.9")])
+def test_tip_diameters_the_rating_cannot_use_are_one_line(scale, words):
+    """A sun tip diameter of -1 m, 0 or 1e29 m (the fuzz's values) ended in a math domain error
+    inside ISO 6336's geometry; 3 % below the example's, the contact ratio falls under 1."""
+    import drivedyn
+
+    m = drivedyn.load(drivedyn.example_path("gears-gearbox"))
+    tips = list(m.planetary.rating.tip_diameters)
+    m = drivedyn.replace(m, {"planetary.rating.tip_diameters": [tips[0] * scale if scale > 0 else scale * 1e3] + tips[1:]})
+    with pytest.raises(ModelError) as exc:
+        drivedyn.check(m)
+    assert str(exc.value).startswith("planetary.rating.tip_diameters: ") and words in str(exc.value)
+
+
+@pytest.mark.parametrize("changes, words", [
+    ({"planetary.ring_planet_stiffness": 1e-29}, "planetary: the stage's load sharing cannot be solved"),
+    ({"planetary.lateral.support_stiffness": 1e29}, "planetary.lateral: the stage is not held"),
+    ({"stages.0.planet_teeth": 18}, "stages[0].centre_distance: "),
+])
+def test_stages_the_solvers_cannot_take_are_one_line_naming_the_stage(changes, words):
+    """Found by the fuzz's long run: a singular matrix (a stiffness 1e-29 N/m beside 1e9), a bare
+    ValueError (a support of 1e29 N m/rad hid the others) and a math domain error (a second stage's
+    planets halved at its given centre distance) were tracebacks under check and run."""
+    import drivedyn
+
+    m = drivedyn.replace(drivedyn.load(drivedyn.example_path("gears-gearbox")), changes)
+    with pytest.raises(ModelError) as exc:
+        drivedyn.check(m)
+    assert str(exc.value).startswith(words) and "\n" not in str(exc.value)

@@ -77,10 +77,27 @@ def test_input_errors(write_study, change, message):
         load_study(write_study(text))
 
 
-def test_a_misspelt_objective_stops_after_the_first_generation(client, write_study, tmp_path):
+def _cached_designs(out):
+    return sorted(p.name for p in (out / "cases").glob("*.json"))
+
+
+def test_a_misspelt_objective_is_refused_before_the_first_generation(client, write_study, tmp_path):
+    # the first design is evaluated alone and the keys read against its result: one design, not
+    # a generation of ten (nor two generations, scipy asking for a second before its callback)
     path = write_study(STUDY.replace("driver-driven.tension", "driver-driven.tensoin"))
-    with pytest.raises(ModelError, match="did you mean 'installation.spans.driver-driven.tension'"):
+    with pytest.raises(ModelError, match="optimise.objective: .*did you mean 'installation.spans.driver-driven.tension'"):
         run_optimisation(load_study(path), tmp_path / "out", client=client, plots=False)
+    assert len(_cached_designs(tmp_path / "out")) == 1
+
+
+def test_a_bound_whose_unit_only_a_result_tells_is_refused_at_the_first_design(client, write_study, tmp_path):
+    # a key the unit table does not list ('*.tension' is any section's): its unit comes with the
+    # first design (check's data carry their units: '100 kg' was read as 100 N)
+    path = write_study(STUDY.replace('{ key = "steady.slip_margin", min = 1.5 }',
+                                     '{ key = "*.driver-driven.tension", min = "100 kg" }'))
+    with pytest.raises(ModelError, match=r"optimise.constraints\[0\].min: '100 kg' is not compatible with 'N'"):
+        run_optimisation(load_study(path), tmp_path / "out", client=client, plots=False)
+    assert len(_cached_designs(tmp_path / "out")) == 1
 
 
 def test_dry_run_lists_the_design_variables(write_study, tmp_path, capsys):

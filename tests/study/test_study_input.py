@@ -43,10 +43,18 @@ objective = "pulleys.driven.slip"
     (OK.replace("values = [500.0, 600.0]", 'range = ["nan", 30.0]\nnum = 2'), "must be a finite number"),
     (OPT + 'constraints = [{ key = "spans.*.tension_min", max = "nan N" }]\n', "must be a finite number"),
     (OPT + 'seed = -1\n', "must lie in [0, 2^32)"),
+    (OPT + 'sense = ["maximise"]\n', "optimise.sense"),       # a list: a TypeError (unhashable) before
     (OPT + 'population = 10000000\n', "more than the"),
     (OPT + 'budget = 4\n', "less than one generation, 6 designs"),
     (OPT.replace("belt.pretension", "belt.segments").replace("range = [400.0, 600.0]", "range = [150.2, 150.8]\ninteger = true"),
      "holds no integer"),
+    # a bound in a unit other than its key's (a run's tension in N; check's in N): refused when read
+    (OPT + 'constraints = [{ key = "spans.*.tension_min", min = "100 kg" }]\n',
+     "optimise.constraints[0].min: '100 kg' is not compatible with 'N'"),
+    (OPT + 'evaluate = "check"\nconstraints = [{ key = "steady.spans.*.tension", max = "2 rad" }]\n',
+     "optimise.constraints[0].max: '2 rad' is not compatible with 'N'"),
+    (OPT + 'constraints = [{ key = "pulleys.*.slip", max = "3 m" }]\n', "the unit of 'pulleys.*.slip' is 1"),
+    (OPT + 'constraints = [{ key = "pulleys.*.slip", max = true }]\n', "must be a number or a quantity"),
 ])
 def test_bad_study_input_is_one_line_model_error(write_study, text, expect):
     path = write_study(text)
@@ -62,6 +70,20 @@ def test_cli_reports_bad_study_on_one_line(write_study, capsys):
     err = capsys.readouterr().err.strip()
     assert err.startswith("drivedyn: error:") and len(err.splitlines()) == 1
     assert cli_main(["study", str(path.with_name("missing.toml"))]) == 2
+
+
+def test_cli_refuses_a_constraint_in_the_wrong_unit_before_any_case(write_study, tmp_path, capsys):
+    path = write_study(OPT + 'constraints = [{ key = "spans.*.tension_min", min = "100 kg" }]\n')
+    assert cli_main(["study", str(path), "-o", str(tmp_path / "out"), "-q"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "optimise.constraints[0].min" in err and "kg" in err
+    assert not (tmp_path / "out").exists()
+
+
+def test_constraints_in_the_keys_units_are_read(write_study):
+    ok = OPT + ('constraints = [{ key = "spans.*.tension_min", min = "0.1 kN" }, { key = "pulleys.*.slip", max = "1 %" },'
+                ' { key = "pulleys.driven.speed_mean", min = "1500 rpm" }, { key = "no.such.key", max = 3 }]\n')
+    assert load_study(write_study(ok)).spec.optimise.constraints[0].min == "0.1 kN"
 
 
 def test_grid_design_and_units(write_study):

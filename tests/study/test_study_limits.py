@@ -122,3 +122,16 @@ def test_the_case_limit_is_raised_through_the_environment(write_study, monkeypat
         load_study(path)
     monkeypatch.setenv("DRIVEDYN_MAX_CASES", "300000")
     assert load_study(path).spec.parameters[0].num == 200000
+
+
+@pytest.mark.parametrize("value, allowed", [("inf", True), ("-inf", False), ("nan", False), ("-1", False), ("abc", False)])
+def test_a_garbled_case_limit_reads_as_the_other_limits_do(write_study, monkeypatch, value, allowed):
+    """DRIVEDYN_MAX_CASES=inf (or -inf) was int(inf): an OverflowError traceback under every study
+    command; now read as DRIVEDYN_MAX_STEPS is: inf lifts it, what is not a positive number is ignored."""
+    path = write_study('base = "{belt}"\n[[parameters]]\npath = "belt.pretension"\nrange = ["300 N", "600 N"]\nnum = 200000\n')
+    monkeypatch.setenv("DRIVEDYN_MAX_CASES", value)
+    if allowed:
+        assert load_study(path).spec.parameters[0].num == 200000
+    else:
+        with pytest.raises(drivedyn.ModelError, match="more than the 100000 cases"):
+            load_study(path)

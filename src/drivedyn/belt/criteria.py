@@ -289,6 +289,9 @@ def evaluate(model, result):
                     f"{len(rest)} crossings listed, not counted: "
                     + "; ".join(f"{x['span']} order {_o(x['order'])} at {x['rpm']:.0f} rpm ({x['kind']}: {x['note']})"
                                 for x in rest[:4]) + (f"; {len(rest) - 4} more" if len(rest) > 4 else ""))
+        elif flapmod.excited_orders(model, driver, 0.0, c.flap_orders):
+            skipped["flap_crossings"] = (f"not judged: every speed order of the crank is weaker than "
+                                         f"criteria.flap_amplitude_min ({c.flap_amplitude_min:.4g} rad/s)")
         else:
             skipped["flap_crossings"] = "the crank declares no speed orders (criteria.flap_orders names more)"
 

@@ -18,7 +18,7 @@ from typing import Annotated, Literal, Optional, Union
 
 from pydantic import Field, field_validator, model_validator
 
-from ..model import Spec, check_name, quantity, table_rows
+from ..model import Spec, check_name, limit, quantity, table_rows
 
 Length = quantity("m")
 Time = quantity("s")
@@ -687,9 +687,9 @@ class DutyCycle(Spec):
 class Criteria(Spec):
     """Limits the verdict judges a belt run against (every field optional)."""
 
-    slip_max: quantity("1", gt=0) = 0.02
+    slip_max: limit("1", "a slip of 1 is a belt standing still on its pulley: it can never fail", gt=0, lt=1) = 0.02
     """Largest slip of any pulley allowed (a fraction: 0.02 = 2 %)."""
-    slip_margin_min: quantity("1", ge=0) = 1.3
+    slip_margin_min: limit("1", "below 1 it accepts a wrap that slips by the capstan equation", ge=1) = 1.3
     """Smallest slip margin of a pulley that carries torque (the torque the wrap could carry over the torque it
     carries; docs/criteria.md)."""
     gross_slip_max: Annotated[int, Field(ge=0)] = 0
@@ -715,7 +715,8 @@ class Criteria(Spec):
     when a crossing sits near the threshold)."""
     resonance_crossings_max: Annotated[int, Field(ge=0)] | None = None
     """Crossings of the drive's rotational modes by excited orders allowed; none: listed, not judged."""
-    entry_angle_max: quantity("rad", gt=0) = 0.9 * math.pi / 180
+    entry_angle_max: limit("rad", "an entry angle is less than 90 deg: a larger limit can never fail", gt=0,
+                           lt=0.5 * math.pi) = 0.9 * math.pi / 180
     """Largest entry angle of the belt on a pulley from offsets and misalignment (judged when any is given): Gates'
     limit for PK belts on grooved pulleys, 0.9 deg (chirp begins near 0.33 deg: Meckstroth et al., SAE
     1999-01-1709)."""
@@ -779,9 +780,26 @@ class Model(Spec):
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
             raise ValueError("output.steady_window ends after simulation.duration")
         self._clutch_on_driver()
+        self._reversing()
         self._cost()
         self._duty_names(names)
         return self
+
+    def _reversing(self):
+        """A periodic run-up holds the crank at speeds of one direction; a speed table that changes
+        sign turns the crank both ways, which is no run-up (it was swept as |speed| in the table's
+        last direction, or refused with a message about its spin-up)."""
+        if self.simulation.runup != "periodic":
+            return
+        for k, p in enumerate(self.pulleys):
+            w = [r[1] for r in p.speed_time or ()]
+            if w and min(w) < 0 < max(w):
+                first = next(r for r in p.speed_time if r[1] != 0)
+                turn = next(r for r in p.speed_time if r[1] * first[1] < 0)
+                raise ValueError(f"pulleys[{k}].speed_time: pulley {p.name!r} reverses (its speed changes sign: "
+                                 f"{first[1]:.4g} rad/s at {first[0]:.4g} s, {turn[1]:.4g} rad/s at {turn[0]:.4g} s): "
+                                 "runup = \"periodic\" sweeps "
+                                 "a crank turning one way; a reversing drive is integrated in time (runup = \"time\")")
 
     def _duty_names(self, names):
         if self.duty_cycle is None:

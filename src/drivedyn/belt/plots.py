@@ -246,7 +246,10 @@ def plot_spectrum(ds, driver, ax):
     tight = int(np.argmax(ds["span_tension"].values[sel].mean(axis=0)))
     sp = str(ds["span"].values[tight])
     a_tight = amp(ds["span_tension"].values[:, tight])
-    ax[0].semilogy(fb, peaks(a_tight), color=f"C{tight % 10}", lw=0.8, label=labels[sp])
+    if np.any(peaks(a_tight) > 0):      # every span slack (no grip: a drive sliding grossly) has none
+        ax[0].semilogy(fb, peaks(a_tight), color=f"C{tight % 10}", lw=0.8, label=labels[sp])
+    else:
+        ax[0].text(0.5, 0.5, "the span tensions do not vary", transform=ax[0].transAxes, ha="center", va="center")
     ax[0].set_ylabel("tension (N)")
     ax[0].set_title("spectrum of the tight span's tension (steady window)")
     for nm in ds["pulley"].values:

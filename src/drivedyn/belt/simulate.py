@@ -22,6 +22,14 @@ def run(model, progress=None):
     return run_segments(drive, progress)
 
 
+def summary_units() -> dict:
+    """Units of a run's summary keys (fnmatch patterns, the first match wins): the segment and
+    the rotational model's."""
+    from .dynamics.outputs import ROTATIONAL_UNITS, UNITS
+
+    return {**UNITS, **ROTATIONAL_UNITS}
+
+
 def lean_possible(model, keys) -> bool:
     """Whether :func:`run_lean` gives the summary keys ``keys`` (patterns) of ``model``: a periodic
     run-up of the rotational model, the keys its run-up tables (periodic.lean_keys)."""

@@ -51,9 +51,17 @@ def evaluate(model, result):
         v, n = min((e.get("force_min", 0.0), n) for n, e in meshes.items())
         out.append(Criterion("mesh_force_min", v, 0.0, "N", "min",
                              "smallest mesh force at the operating speed (below 0: the teeth separate)", n))
+    elif meshes:      # a check switched off is said beside the verdict, never silently passed
+        v = min(e.get("force_min", 0.0) for e in meshes.values())
+        skipped["mesh_force_min"] = (f"not judged: criteria.separation = true allows loss of tooth contact "
+                                     f"(smallest mesh force {v:.4g} N{', the teeth separate' if v < 0 else ''})")
     if c.stable and s.get("floquet_growth_rate") is not None:
         out.append(Criterion("floquet_growth_rate", s["floquet_growth_rate"], 0.0, "1/s", "max",
                              "largest Floquet growth rate of the linear model at the operating speed (> 0: unstable)"))
+    elif s.get("floquet_growth_rate") is not None:
+        g = s["floquet_growth_rate"]
+        skipped["floquet_growth_rate"] = (f"not judged: criteria.stable = false (growth rate {g:.4g} 1/s"
+                                          f"{', unstable' if g > 0 else ''})")
     # ISO 6336-2/-3 safety factors (K_v from the dynamic run) against the minimums of [iso]
     for n, r in (s.get("rating") or {}).items():
         for kind, key, what in (("pitting", "S_H", "contact (pitting) safety factor S_H, ISO 6336-2"),

@@ -122,7 +122,7 @@ def add_stages(result, model, sys_=None, first=None) -> None:
     if model.stages:
         result.summary["stages"] = {}
         for k, spec in enumerate(model.stages):
-            s = tors.analyse(spec, model.iso)[0]
+            s = tors.analyse(spec, model.iso, f"stages[{k}]")[0]
             result.summary["stages"][f"stage{k + 2}"] = s
             tors.diagnose_stage(result, s, f"stages.stage{k + 2}")
     last = [model.planetary, *model.stages][-1]

@@ -414,16 +414,25 @@ class Iso(Spec):
     """Transverse load factor K_Halpha given (in [1, 10]); none: computed (ISO 6336-1)."""
     dynamic_factor: Optional[float] = None
     """Dynamic factor K_v given for the rating (in [1, 10]), instead of the run's and method B's."""
-    min_safety_pitting: float = 1.0
+    min_safety_pitting: float = Field(1.0, json_schema_extra={"minimum": 1.0})
     """Minimum safety factor against pitting S_Hmin the verdict requires (ISO 6336-2)."""
-    min_safety_bending: float = 1.0
+    min_safety_bending: float = Field(1.0, json_schema_extra={"minimum": 1.0})
     """Minimum safety factor against tooth-root bending S_Fmin the verdict requires (ISO 6336-3)."""
 
-    @field_validator("blank_factor", "min_safety_pitting", "min_safety_bending")
+    @field_validator("blank_factor")
     @classmethod
     def _pos(cls, v):
         if not v > 0:
             raise ValueError(f"must be > 0, got {v}")
+        return v
+
+    @field_validator("min_safety_pitting", "min_safety_bending")
+    @classmethod
+    def _safety(cls, v):
+        # ISO 6336-2/-3: the permissible stress is the limit over S_min; a minimum below 1 permits
+        # more than the material's endurance limit and passes a flank or root the rating says fails
+        if not v >= 1.0:
+            raise ValueError(f"must be >= 1 (below 1 it passes a flank or root past its endurance limit), got {v}")
         return v
 
     @field_validator("application_factor")

@@ -225,7 +225,12 @@ def stage_of(spec, support=None) -> Stage:
                  support=support if support is not None else {spec.fixed: "fixed"})
 
 
-def analyse(spec, iso=None) -> tuple[dict, dict]:
+#: what a stiffness matrix that double precision cannot solve says (its stiffnesses lie too far apart)
+_SPREAD = ("its stiffnesses lie too far apart for double precision (mesh stiffnesses, supports and bearings "
+           "within about 1e12 of one another solve)")
+
+
+def analyse(spec, iso=None, where: str = "planetary") -> tuple[dict, dict]:
     """Summary entry and arrays of a model's planetary stage: phasing, modes (the fixed member held),
     load sharing (the fixed member and the output held, the torque on the input); with ``lateral``
     the lateral-torsional modes and load sharing, with ``rating`` the ISO rating of both meshes
@@ -243,7 +248,12 @@ def analyse(spec, iso=None) -> tuple[dict, dict]:
     # the sun's share of the torques (T_s : T_r : T_c = 1 : z_r / z_s : -(1 + z_r / z_s), the stage in balance)
     t_sun = {"sun": spec.torque, "ring": spec.torque * st.z_sun / st.z_ring,
              "carrier": spec.torque * st.z_sun / (st.z_sun + st.z_ring)}[spec.input]
-    ls = load_sharing(held, spec.torque, spec.input)
+    try:
+        ls = load_sharing(held, spec.torque, spec.input)
+    except np.linalg.LinAlgError:      # a stiffness 1e-29 N/m beside 1e9: one line, not a traceback
+        from ..errors import ModelError
+
+        raise ModelError(f"the stage's load sharing cannot be solved: {_SPREAD}", field=where) from None
     summary = {
         "ring_teeth": st.z_ring, "planets": st.n, "planet_angles": [float(a) for a in st.planet_angles],
         "centre_distance": R, "output": output,
@@ -264,7 +274,14 @@ def analyse(spec, iso=None) -> tuple[dict, dict]:
     arrays = {"f": f[~rigid], "V": V[:, ~rigid], "names": names, "forces": ls}
     k_gamma = ls["load_sharing_factor"]
     if lat is not None:
-        lsum, larr = _lateral(spec, st, output)
+        try:
+            lsum, larr = _lateral(spec, st, output)
+        except (ValueError, np.linalg.LinAlgError) as exc:     # a support of 1e29 N m/rad hid the others
+            from ..errors import ModelError
+
+            if isinstance(exc, ModelError):
+                raise
+            raise ModelError(f"{exc} (or {_SPREAD})", field=f"{where}.lateral") from None
         summary["lateral"] = lsum
         arrays["lateral"] = larr
         k_gamma = lsum["load_sharing_factor"]
@@ -272,7 +289,7 @@ def analyse(spec, iso=None) -> tuple[dict, dict]:
         from .planetary_rating import rate_spec
 
         summary["rating"] = rate_spec(spec, iso, k_gamma, t_sun, member_speeds(st, spec.fixed, spec.input,
-                                                                               spec.rating.speed))
+                                                                               spec.rating.speed), where)
     return summary, arrays
 
 
@@ -375,9 +392,9 @@ PLANETARY_UNITS.update({k.replace("planetary.", "stages.*.", 1): v for k, v in l
 PLANETARY_UNITS.update({"gearbox.natural_frequencies_hz": "Hz", "gearbox.*": "1"})
 
 
-def report_lines(spec, iso=None) -> list[str]:
-    """The ``check`` text of a planetary stage."""
-    s, _ = analyse(spec, iso)
+def report_lines(spec, iso=None, where: str = "planetary") -> list[str]:
+    """The ``check`` text of a planetary stage (``where``: its field, for a refusal's line)."""
+    s, _ = analyse(spec, iso, where)
     out = ["", f"planetary stage: sun {spec.sun_teeth}, planets {spec.planet_teeth} x {spec.planets}, ring {s['ring_teeth']} "
                f"teeth, module {spec.module * 1e3:g} mm"
                + (f", helix {math.degrees(spec.helix_angle):g} deg" if spec.helix_angle else "")

@@ -98,6 +98,10 @@ def working_geometry(st: StageGears, field: str = "planetary") -> dict:
                          f"{a_r:.6f} mm (more than {CENTRE_TOLERANCE:g} of it): planets and ring would interfere "
                          "(check the profile shifts)", field=f"{field}.centre_distance")
     c = math.cos(a_n)
+    for name, base in (("sun-planet", (zs + zp) * m / 2 * c), ("ring-planet", (zr - zp) * m / 2 * c)):
+        if not 0 < base < a:     # the base circles' distance past the centres': no working pressure angle
+            raise ModelError(f"{a:.6f} mm is not more than the {name} base circles' distance {base:.6f} mm: the "
+                             f"teeth ({zs}, {zp}, {zr}) cannot mesh at this centre distance", field=f"{field}.centre_distance")
     return {"a_w": a, "alpha_w_sun": math.acos((zs + zp) * m / 2 * c / a), "alpha_w_ring": math.acos((zr - zp) * m / 2 * c / a),
             "a_zero_backlash_sun": a_s, "a_zero_backlash_ring": a_r}
 
@@ -130,7 +134,26 @@ def pairs(st: StageGears, field: str = "planetary") -> tuple[Pair, Pair, dict]:
                 h_fp=(st.h_fp[1], st.h_fp[2]), rho_fp=(st.rho_fp[1], st.rho_fp[2]), E=(st.E[1], st.E[2]),
                 nu=(st.nu[1], st.nu[2]), b_each=(st.b[1], st.b[2]), internal=True,
                 root_section2=st.ring_root_section, **common)
+    _check_tips(st, g, sun, ring, field)
     return sun, ring, wg
+
+
+def _check_tips(st: StageGears, g: dict, sun: Pair, ring: Pair, field: str) -> None:
+    """Tip circles that the rating's geometry can use, refused in one line otherwise (a tip inside
+    its base circle, or a contact ratio no tooth gives, failed with a math domain error)."""
+    from .rating import geometry
+
+    where = f"{field}.rating.tip_diameters" if st.tip_diameter else f"{field}.x"
+    for k, gear in enumerate(("sun", "planet", "ring")):
+        if not g["da"][k] > g["db"][k]:
+            raise ModelError(f"the {gear}'s tip diameter {g['da'][k]:.6g} mm is not outside its base circle "
+                             f"({g['db'][k]:.6g} mm): its teeth have no involute to mesh with", field=where)
+    for name, p in (("sun-planet", sun), ("ring-planet", ring)):
+        eps = geometry(p)["eps_alpha"]
+        if not 1.0 <= eps < 4.0:
+            raise ModelError(f"the tip diameters give the {name} mesh a transverse contact ratio of {eps:.4g} "
+                             "(a spur mesh has 1 to 4: below 1 the contact breaks between teeth, ISO 6336-2's "
+                             "Z_epsilon ends at 4)", field=where)
 
 
 def stiffness(p: Pair, low_load: float | None = None, blank_factor: float = 1.0):
@@ -237,7 +260,7 @@ def _si(v):
     return None if v is None or (isinstance(v, float) and math.isnan(v)) else float(v)
 
 
-def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict) -> dict:
+def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict, field: str = "planetary") -> dict:
     """The summary entry (SI) of the rating of a model's planetary stage with the model's [iso] data
     ``iso``: K_gamma given or ``k_gamma``
     (the computed load sharing), the sun's torque ``torque_sun`` (N m), member ``speeds`` (rad/s)."""
@@ -263,7 +286,7 @@ def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict) -> dic
                      k_halpha=both(iso.transverse_load_factor), f_ma=iso.mesh_misalignment * 1e6,
                      f_pb=iso.pitch_deviation * 1e6, f_falpha=iso.profile_deviation * 1e6,
                      tip_relief=None if iso.tip_relief is None else iso.tip_relief * 1e6, blank_factor=iso.blank_factor,
-                     s_hmin=iso.min_safety_pitting, s_fmin=iso.min_safety_bending, field="planetary")
+                     s_hmin=iso.min_safety_pitting, s_fmin=iso.min_safety_bending, field=field)
     summary = {"K_gamma": kg, "K_gamma_source": "given" if r.load_sharing_factor is not None else "load sharing",
                "load_cycles": {k: float(v) for k, v in out["cycles"].items()}, "meshes": {},
                # said where K_v is read: a stage's meshes are not integrated in time (a train's are)

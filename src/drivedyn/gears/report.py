@@ -67,7 +67,7 @@ def gearbox_lines(model, sys_=None) -> list[str]:
 
     out = report_lines(model.planetary, model.iso)
     for k, spec in enumerate(model.stages):
-        out += [line.replace("planetary stage:", f"stage {k + 2} (planetary):", 1) for line in report_lines(spec, model.iso)]
+        out += [line.replace("planetary stage:", f"stage {k + 2} (planetary):", 1) for line in report_lines(spec, model.iso, f"stages[{k}]")]
     last = [model.planetary, *model.stages][-1]
     if model.stages or (sys_ is not None and last.output_gear is not None):
         from .gearbox import modes as gearbox_modes

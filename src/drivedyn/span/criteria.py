@@ -8,7 +8,7 @@ parametric-resonance region (tongue) of the span, and not in one.
 from __future__ import annotations
 
 from ..criteria import Criterion
-from ..model import Spec, quantity
+from ..model import Spec, limit, quantity
 
 
 class Criteria(Spec):
@@ -17,7 +17,7 @@ class Criteria(Spec):
     critical_speed_ratio_max: quantity("1", gt=0, le=1) = 0.5
     """Largest belt speed over the span's critical speed allowed (0.5: the first natural frequency has fallen by a
     quarter there)."""
-    tongue_distance_min: quantity("1", ge=0) = 0.05
+    tongue_distance_min: limit("1", "0 can never fail: the distance is 0 inside a tongue", gt=0) = 0.05
     """Smallest distance of the operating speed to the nearest parametric-resonance region (tongue), a share of the
     speed (0: inside one)."""
 

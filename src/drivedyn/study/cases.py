@@ -243,9 +243,13 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
             import xarray as xr
 
             from ..analyses import analysis
-            from ..results import Result
+            from ..results import Result, unit_map
 
-            result = Result(model.kind, xr.Dataset(), analysis(model.kind).check_data(model))
+            a = analysis(model.kind)
+            data = a.check_data(model)
+            # with its units, so that a constraint's bound is read in them (they were missing: a
+            # bound "100 kg" on a tension was read as 100)
+            result = Result(model.kind, xr.Dataset(), data, units=unit_map(data, a.summary_units("check")))
         else:
             result = None
             if keys:

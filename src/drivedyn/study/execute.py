@@ -197,13 +197,15 @@ def run_optimisation(study, out=None, *, client=None, scheduler=None, workers=No
 
     evaluated = [0]
 
-    def execute(cases):
+    def execute(cases, probe=False):
         known = len(records)
         # a design cached as not finished runs again (its generation needs a score)
         todo = _to_run(cases, cache, series, records, retry_failed=True)
         counts["cached"] += len(records) - known
         if todo:
             _execute(study, todo, cases, cache, series, records, counts, client, None, None, None, None)
+        if probe:        # a design ahead of its generation: counted with the generation
+            return records
         evaluated[0] += len(cases)
         counts["done"] = evaluated[0]
         if progress:

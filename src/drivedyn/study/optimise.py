@@ -21,6 +21,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..errors import ModelError
 from .cases import COMPLETED, resolve
 from .design import Design, column_values, overrides_of
 from .spec import to_number
@@ -101,28 +102,40 @@ def judge(opt, record, units) -> tuple[float, bool, dict, float]:
 
 
 def _check_keys(opt, records):
-    """After the first generation: the objective and every constraint name summary keys that the
-    designs' results have (a typo would otherwise spend the whole budget on infeasible designs)."""
+    """The objective and every constraint name summary keys that the designs' results have, and
+    each constraint's bounds read in those keys' units (a typo would otherwise spend the whole
+    budget on infeasible designs; a wrong unit fail inside scipy)."""
     import difflib
-
-    from ..errors import ModelError
 
     done = [r for r in records if r.get("status") in COMPLETED]
     if not done:
         return
     keys = set().union(*(r.get("summary", {}).keys() for r in done))
+    units = {}
+    for r in done:
+        units.update(r.get("units") or {})
     for name, pattern in [("optimise.objective", opt.objective)] + [(f"optimise.constraints[{i}].key", c.key)
                                                                      for i, c in enumerate(opt.constraints)]:
         if pattern not in keys and not any(fnmatch.fnmatchcase(k, pattern) for k in keys):
             close = difflib.get_close_matches(pattern, sorted(keys), n=1)
             hint = f" (did you mean {close[0]!r}?)" if close else ""
             raise ModelError(f"no summary key {pattern!r} in the designs' results{hint}", field=name)
+    for i, c in enumerate(opt.constraints):
+        unit = next((u for k, u in units.items() if fnmatch.fnmatchcase(k, c.key)), None)
+        for side in ("min", "max"):
+            bound = getattr(c, side)
+            if bound is not None:
+                try:
+                    to_number(bound, unit or None)
+                except ModelError as exc:
+                    raise ModelError(f"{exc} (the unit of {c.key!r} is {unit})", field=f"optimise.constraints[{i}].{side}") from None
 
 
 def run_optimise(study, execute) -> Optimum:
     """Differential evolution over ``study``'s ranged parameters. ``execute(cases)`` runs the cases
     of one generation that its cache lacks (execute.run_optimisation's batch runner) and returns
-    key -> record for all of them."""
+    key -> record for all of them; ``execute(cases, probe=True)`` runs a design ahead of its
+    generation (not counted as evaluated: the generation's call returns its record again)."""
     from scipy.optimize import differential_evolution
 
     spec = study.spec
@@ -135,14 +148,39 @@ def run_optimise(study, execute) -> Optimum:
     units_seen: dict = {}
     generation = [0]
     stop = [None]
+    checked = [False]
 
     def batch(_func, population):
         pop = np.atleast_2d(np.array(list(population), dtype=float))
+        if stop[0] is not None:      # refused: scipy asks for one more generation before its callback stops it
+            return [INFEASIBLE] * len(pop)
         cols = [column_values(p, study.units[p.label], pop[:, j]) for j, p in enumerate(params)]
         design = Design(labels, False, {}, [dict(zip(labels, row)) for row in zip(*cols)])
         cases = resolve(study, design, overrides_of)
         for i, c in enumerate(cases):
             c.index = len(evaluations) + i
+        if generation[0] == 0:
+            # The summary keys a design gives are known for certain only from a design's result:
+            # they follow the model's names and the path its analysis takes (a run-up, the
+            # rotational model, clutches, a planetary stage), and a catalogue of them written
+            # beside the four analyses would be a second description that drifts from the code
+            # that writes the summaries. So the first design of the first generation is evaluated
+            # alone (check's data: milliseconds; a lean run-up: about a second; a full run: one
+            # design's time) and the objective and the constraints are read against its keys and
+            # units before the rest of the generation runs. It is a member of the generation: its
+            # record is reused, nothing runs twice. If it did not finish, the keys are read after
+            # the generation, as before.
+            first = next((c for c in cases if c.toml is not None), None)
+            if first is not None:
+                probe = execute([first], probe=True)
+                rec = probe.get(first.key)
+                if rec is not None and rec.get("status") in COMPLETED:
+                    try:
+                        _check_keys(opt, [rec])
+                    except ModelError as exc:     # scipy would wrap it: stop the optimisation, raise it then
+                        stop[0] = exc
+                        return [INFEASIBLE] * len(cases)
+                    checked[0] = True
         records = execute(cases)
         scores = []
         for c in cases:
@@ -154,7 +192,7 @@ def run_optimise(study, execute) -> Optimum:
                 best.update(score=score, case=c, objective=obj, cons=cons)
             history.append(best["objective"])
             scores.append(score)
-        if generation[0] == 0:
+        if generation[0] == 0 and not checked[0]:
             try:
                 _check_keys(opt, [e.record for e in evaluations[-len(cases):]])
             except Exception as exc:       # scipy would wrap it: stop at the generation's end, raise it then

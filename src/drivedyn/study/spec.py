@@ -33,14 +33,14 @@ MAX_CASES = 100_000
 CASES_VARIABLE = "DRIVEDYN_MAX_CASES"
 
 
-def max_cases() -> int:
-    """The case limit: :data:`MAX_CASES`, or the environment's ``DRIVEDYN_MAX_CASES``."""
-    import os
+def max_cases() -> float:
+    """The case limit: :data:`MAX_CASES`, or the environment's ``DRIVEDYN_MAX_CASES`` read as the other
+    limits are (limits.py: a value that is not a positive number is ignored; "inf" lifts the limit;
+    it was int(inf), an OverflowError traceback under every study command)."""
+    from ..limits import _env
 
-    try:
-        return max(1, int(float(os.environ.get(CASES_VARIABLE, MAX_CASES))))
-    except ValueError:
-        return MAX_CASES
+    v = _env(CASES_VARIABLE, MAX_CASES)
+    return float(math.floor(v)) if math.isfinite(v) and v >= 1 else (v if v > 1 else 1.0)
 
 
 def check_cases(n, what: str, fix: str = "") -> None:
@@ -48,7 +48,7 @@ def check_cases(n, what: str, fix: str = "") -> None:
     for the number; ``fix``: what to change besides the limit)."""
     limit = max_cases()
     if n > limit:
-        raise ValueError(f"{what.format(n=f'{n:.4g}')}, more than the {limit} cases a study may have "
+        raise ValueError(f"{what.format(n=f'{n:.4g}')}, more than the {limit:.6g} cases a study may have "
                          f"({fix + ', or ' if fix else ''}set {CASES_VARIABLE} to allow more)")
 
 
@@ -264,7 +264,8 @@ class Optimise(Spec):
     @field_validator("sense", mode="before")
     @classmethod
     def _spelling(cls, v):
-        return {"minimize": "minimise", "maximize": "maximise"}.get(v, v)
+        # a list or a table is left to the Literal's one line (a dict lookup of it was a TypeError)
+        return {"minimize": "minimise", "maximize": "maximise"}.get(v, v) if isinstance(v, str) else v
 
     @property
     def sign(self) -> float:
@@ -509,9 +510,52 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
             lo, hi = (to_number(x, unit) for x in p.range)
             if not (lo > 0 and hi > 0):
                 raise ModelError(f"{source}: parameters[{k}].range: a log scale needs positive bounds, got [{lo}, {hi}]")
+    if spec.optimise is not None:
+        _check_bounds(spec, base, source)
     if text is None:
         text = tomli_w.dumps(data)
     return Study(spec, text, path, base_path, base, units)
+
+
+def key_unit(units: dict, pattern: str) -> str | None:
+    """The unit of the summary keys that ``pattern`` (a key, or an fnmatch pattern) names, from
+    ``units`` (pattern -> unit, the first match wins, as results.unit_map): the unit of a key made
+    from the pattern by writing each wildcard as a name; None when no pattern gives one."""
+    import fnmatch
+    import re
+
+    specimen = re.sub(r"\[[^\]]*\]|[*?]", "x", pattern)
+    return next((u for pat, u in units.items() if fnmatch.fnmatchcase(specimen, pat)), None)
+
+
+def _check_bounds(spec: StudySpec, base, source: str) -> None:
+    """An optimisation's constraint bounds read in the units of the keys they bound, when the study
+    is read: "100 kg" on a tension is one line here, not a traceback after the first generation
+    (or, where the results gave no unit, a bound silently read as 100). A key whose unit the
+    analysis's unit table does not give is read against the first design's units (optimise.py)."""
+    from ..analyses import analysis
+    from ..units import to_si
+
+    table = analysis(base.kind).summary_units(spec.eval_mode)
+    for i, c in enumerate(spec.optimise.constraints):
+        unit = key_unit(table, c.key)
+        for side in ("min", "max"):
+            bound = getattr(c, side)
+            if bound is None:
+                continue
+            where = f"{source}: optimise.constraints[{i}].{side}"
+            if isinstance(bound, bool) or not isinstance(bound, (int, float, str)):
+                raise ModelError(f"{where}: must be a number or a quantity such as \"100 N\", got {bound!r}")
+            if not isinstance(bound, str):
+                continue
+            try:
+                if unit is None:
+                    to_number(bound, None)
+                else:   # "" marks a count or a name: a bound on it is a plain number
+                    to_si(bound, unit or "1")
+            except ModelError as exc:
+                what = f" (the unit of {c.key!r} is {unit or '1'})" if unit is not None else ""
+                raise ModelError(f"{where}: {exc}{what}") from None
 
 
 FILE_SUFFIXES = (".toml", ".csv", ".txt", ".json", ".nc", ".dat")

@@ -13,13 +13,13 @@ from typing import Annotated
 from pydantic import Field
 
 from ..criteria import Criterion
-from ..model import Spec, quantity
+from ..model import Spec, limit
 
 
 class Criteria(Spec):
     """Limits the verdict judges a mesh under load against (every field optional)."""
 
-    jump_margin_min: quantity("1", ge=0) = 1.5
+    jump_margin_min: limit("1", "below 1 it accepts a torque past the one that jumps the belt", ge=1) = 1.5
     """Smallest jump torque over the transmitted torque allowed."""
     teeth_in_mesh_min: Annotated[int, Field(ge=1)] = 6
     """Fewest teeth in mesh on the pulley allowed (timing-belt catalogues ask for 6)."""

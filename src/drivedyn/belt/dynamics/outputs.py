@@ -78,6 +78,8 @@ UNITS = {
     "runup.order_peaks.*.rpm": "rpm", "runup.speed_rpm": "rpm", "runup.sweep": "", "runup.span_tension_*": "N", "runup.hub_load_max.*": "N", "runup.slip.*": "1",
     "runup.arm_travel_range.*": "rad", "runup.orders": "1", "runup.crank": "",
 }
+#: the rotational model's own keys besides :data:`UNITS`
+ROTATIONAL_UNITS = {"belt.unstretched_length": "m", "discretisation.step": "s", "discretisation.fastest_mode_bound_hz": "Hz"}
 
 
 def friction_law(model) -> dict:

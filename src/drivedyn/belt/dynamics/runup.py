@@ -125,6 +125,8 @@ def runup_tables(model, t, ten, hub, speed, r, spans, pulleys, travel=None, bin_
     if not width > 0:
         return None
     edges = np.arange(math.floor(lo / width) * width, hi + width, width)
+    if len(edges) < 2:      # a bin wider than float resolves beside the speeds: one bin
+        edges = np.array([math.floor(lo / width) * width, math.floor(lo / width) * width + width])
     nb = len(edges) - 1
     # a run-down is read apart from the run-up (the drive's response differs with the sweep's
     # direction: the clutch overruns, the tensioner's friction turns): its bins follow the up

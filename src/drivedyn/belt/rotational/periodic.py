@@ -22,7 +22,7 @@ import time as _time
 import numpy as np
 
 from ...errors import ModelError, Stopped, stop_reason
-from ...limits import steps_problem
+from ...limits import bytes_problem, steps_problem
 from . import _kernels as RK
 from ..geometry.drive import resolve
 from . import simulate as RT
@@ -52,10 +52,16 @@ def speeds_of(model, j):
                          "speed after its spin-up (no speed range to sweep)", field="simulation.runup")
     width = model.output.runup_bin or (hi - lo) / 20
     edges = np.arange(math.floor(lo / width) * width, hi + width, width)
+    if len(edges) < 2:      # a bin wider than float resolves beside the speeds (1e29 rad/s): one bin
+        edges = np.array([math.floor(lo / width) * width, math.floor(lo / width) * width + width])
     keep = (edges[1:] > lo) & (edges[:-1] < hi)
     # each bin's centre within the crank's range: a bin the range covers in part is solved at the
     # middle of that part (a bin of 250 rpm swept 0.01-0.1 rpm at 125 rpm)
     centres = 0.5 * (np.maximum(edges[:-1], lo) + np.minimum(edges[1:], hi))
+    if keep.sum() < 2:      # one held speed is no run-up: its tables would be left out without a word
+        raise ModelError(f"{width * RPM:.4g} rpm bins leave {int(keep.sum())} crank speed(s) of pulley {p.name!r}'s "
+                         f"range {lo * RPM:.4g}-{hi * RPM:.4g} rpm: a periodic run-up solves at least two (a narrower "
+                         "bin)", field="output.runup_bin")
     sign = math.copysign(1.0, max(w, key=abs))
     return sign * centres[keep]
 
@@ -155,8 +161,18 @@ def _sweep(drive, progress):
         raise ModelError(f"runup = \"periodic\" solves for a period of at most {MAX_PERIOD_REVS} crank revolutions; "
                          f"the excitation's orders of the crank ({orders}) do not repeat within them: use "
                          "runup = \"time\"", field="simulation.runup")
-    sysm = RT.build(drive)
     speeds = speeds_of(model, j)
+    # the bytes of the recorded periods, known before any work as a time run's are when its model is
+    # read (belt.model._cost): the recorder's doubles per sample (`o` below), about three times over
+    # once the Dataset, its derived variables and the netCDF writer hold copies
+    nk, na = len(model.pulleys), sum(p.tensioner is not None for p in model.pulleys)
+    samples = SAMPLES_PER_REV * max(revs, 2) * len(speeds)
+    problem = bytes_problem(3 * samples * 8 * (9 + 12 * nk + 2 * na), "the periodic run-up",
+                            f"{samples:.3g} samples, {SAMPLES_PER_REV * max(revs, 2)} at each of {len(speeds)} crank "
+                            "speeds: a wider output.runup_bin")
+    if problem:
+        raise ModelError(problem, field="simulation.runup")
+    sysm = RT.build(drive)
     # the steps of the at most MAX_ITER periods per speed the solutions may take: refused before any
     # work past the limit a time integration honours (a crawling crank's period is hours of steps)
     n_per = SAMPLES_PER_REV * revs

@@ -325,7 +325,7 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_mod
     from ...model import dumps
     from ...results import Result, unit_map, variable
     from ...window import in_window, steady_window
-    from ..dynamics.outputs import UNITS, clutch_variables, friction_law, run_summary, tensioner_variables
+    from ..dynamics.outputs import ROTATIONAL_UNITS, UNITS, clutch_variables, friction_law, run_summary, tensioner_variables
 
     lay = sysm.layout
     names, spans = list(lay.names), [sp.name for sp in lay.spans]
@@ -397,8 +397,7 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_mod
     result = Result("belt-drive", ds, summary, success=not failure, message=failure)
     if ns:
         _checks(result, model, view, sel)
-    result.units = unit_map(result.summary, {**UNITS, "belt.unstretched_length": "m", "discretisation.step": "s",
-                                             "discretisation.fastest_mode_bound_hz": "Hz"})
+    result.units = unit_map(result.summary, {**UNITS, **ROTATIONAL_UNITS})
     return result
 
 

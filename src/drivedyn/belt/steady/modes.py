@@ -274,13 +274,25 @@ def _wrap_compliance(model, lay, T, G):
         ew = wrap_axial_stiffness(EA, c1, c2, max(t_wrap[j], 0.0) / r, r)
         b = math.sqrt(kb / ew)
         x = b * L
-        # coth and csch for any beta L (a long wrap: csch -> 0, each end a shear lag EA_w beta)
-        cth, csh = (1.0 / math.tanh(x), 1.0 / math.sinh(x)) if x < 300 else (1.0, 0.0)
-        Kww[2 * j:2 * j + 2, 2 * j:2 * j + 2] += ew * b * np.array([[cth, -csh], [-csh, cth]])
+        # the energy in the wrap's two motions: (u_in + u_out) / 2, the belt sliding along the whole
+        # wrap against its bristles (stiffness 2 EA_w beta tanh(beta L / 2), kb L at a short or
+        # lightly held wrap), and u_in - u_out, its stretch (EA_w beta coth(beta L / 2) / 2, EA_w / L
+        # there). Written so, no term cancels: coth - csch of a small beta L (a small mu or a
+        # slack wrap) lost every digit of the sliding stiffness
+        slide, stretch = math.tanh(0.5 * x), 1.0 / math.tanh(0.5 * x)
+        Kww[2 * j:2 * j + 2, 2 * j:2 * j + 2] += 0.5 * ew * b * (slide * np.array([[1.0, 1.0], [1.0, 1.0]])
+                                                                 + stretch * np.array([[1.0, -1.0], [-1.0, 1.0]]))
     ks = np.array([EA / sp.length for sp in lay.spans])
     Kxw = (G * ks[:, None]).T @ H
     Kww += (H * ks[:, None]).T @ H
-    C = np.linalg.solve(Kww, Kxw.T)                  # u = -C x
+    try:
+        C = np.linalg.solve(Kww, Kxw.T)              # u = -C x
+    except np.linalg.LinAlgError:
+        # no wrap grips (every span slack: each wrap's ends slide freely): the belt sliding round
+        # all pulleys at once stretches no span and is stiffened by nothing. Kxw carries no force
+        # into that motion (H maps it to zero stretch), so the least-squares solution is the
+        # condensation's exact one (it was a singular-matrix traceback after a finished run)
+        C = np.linalg.lstsq(Kww, Kxw.T, rcond=None)[0]
     return -Kxw @ C, G - H @ C
 
 
