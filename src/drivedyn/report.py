@@ -184,8 +184,10 @@ def model_note(result) -> str:
     disc = s.get("discretisation", {})
     if disc.get("model") == "rotational":
         est = disc.get("estimate", {})
-        size = (f"; its span tension bands may sit up to {est['share_of_half_band']:g} x their half band from the "
-                "segment model's (discretisation.estimate)") if "share_of_half_band" in est else ""
+        share = est.get("share_of_half_band")
+        size = ("" if share is None else
+                f"; its span tension extremes may sit {'' if share == 1 else f'{share:g} x '}their half band "
+                "(max - min) / 2 from the segment model's (discretisation.estimate; its means within 2 %)")
         return ("Model: the rotational model (one unknown per pulley, rotor and tensioner; the spans as axial springs; "
                 "each wrap's belt relaxed to its creep-theory content over one passage). Not in it: the spans' "
                 "transverse motion (flap, judged from its frequencies), the belt's axial waves and the tension "
