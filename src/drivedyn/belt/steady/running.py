@@ -69,7 +69,20 @@ def running(model, rest, torques=None, speed=None):
             q0 = float(rest.travel[0])
             f0 = f(q0)
             bracket = None
-            for step in np.geomspace(1e-4, 1.0, 25) * (hi - lo):
+            # a secant from the rest travel first (the balance is smooth there): a bracket in three
+            # solves where the outward search below takes about thirty
+            d = 1e-3 * (hi - lo)
+            try:
+                f1 = f(q0 + d) if q0 + d <= hi else None
+                if f1 is not None and f1 != f0:
+                    qs = q0 - f0 * d / (f1 - f0)
+                    w = max(0.25 * abs(qs - q0), d)
+                    a, b = max(lo, qs - w), min(hi, qs + w)
+                    if a < b and f(a) * f(b) <= 0:
+                        bracket = (a, b)
+            except ValueError:
+                bracket = None
+            for step in (np.geomspace(1e-4, 1.0, 25) * (hi - lo) if bracket is None else ()):
                 for q in (q0 + step, q0 - step):
                     if not lo <= q <= hi:
                         continue
