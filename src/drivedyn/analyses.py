@@ -59,16 +59,21 @@ class Analysis:
             meanwhile()
         return fn(result, outdir)
 
-    def painters(self):
-        """plotting.Painters forked now to write this analysis's outputs after a solve, or None
-        where its plot function does not use them (or forking is not possible)."""
+    def painters(self, model=None):
+        """plotting.Painters forked now to write this analysis's outputs after ``model``'s solve, or
+        None where its plot function does not use them, its plot module's ``painters_useful(model)``
+        says the solve is too short to hide their start, or forking is not possible."""
         import inspect
 
         from .plotting import Painters
 
         if "painters" not in inspect.signature(self._get(self.plot_at)).parameters:
             return None
-        return Painters.start(f"{self.package}.{self.plot_at.split(':')[0]}")
+        module = self.plot_at.split(":")[0]
+        useful = getattr(importlib.import_module(f"{self.package}.{module}"), "painters_useful", None)
+        if model is not None and useful is not None and not useful(model):
+            return None
+        return Painters.start(f"{self.package}.{module}")
 
     def lean_possible(self, model, keys) -> bool:
         """Whether :meth:`run_lean` computes the summary keys ``keys`` (patterns) of ``model``

@@ -63,11 +63,11 @@ def plot(result, outdir, meanwhile=None, painters=None) -> list[Path]:
     return analysis(result.kind).plot(result, outdir, meanwhile=meanwhile, painters=painters)
 
 
-def painters(kind: str):
-    """Processes forked now, before a solve of ``kind``, that load the plotting libraries while
-    it runs and then write its outputs (a ``plotting.Painters``; close it after use), or None
-    where the analysis draws in this process."""
-    return analysis(kind).painters()
+def painters(kind: str, model=None):
+    """Processes forked now, before a solve of ``kind`` (of ``model``, when given), that load the
+    plotting libraries while it runs and then write its outputs (a ``plotting.Painters``; close it
+    after use), or None where the analysis draws in this process."""
+    return analysis(kind).painters(model)
 
 
 def examples_dir() -> Path:

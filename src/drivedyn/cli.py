@@ -166,11 +166,7 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
 
     # processes that import the plotting libraries while the model is solved, then write results.nc
     # and the plots (before the progress bar: it runs a thread, and they are forked)
-    # (not for the rotational belt model: its solve takes a fraction of a second, shorter than the
-    # painters' own start, which then waits on the critical path; its figures are drawn by processes
-    # forked after the solve)
-    fast = getattr(getattr(m, "simulation", None), "model", None) == "rotational"
-    painters = api.painters(m.kind) if plots and not fast else None
+    painters = api.painters(m.kind, m) if plots else None
     with contextlib.ExitStack() as stack:
         if painters is not None:
             stack.enter_context(painters)

@@ -580,6 +580,13 @@ def _driver(result):
     return result.summary.get("driver", str(result.ds["pulley"].values[0]))
 
 
+def painters_useful(model) -> bool:
+    """Whether painters forked before ``model``'s solve pay off: not for the rotational model, whose
+    solve takes a fraction of a second, shorter than their one-at-a-time start, which then waits on
+    the critical path (its figures are drawn by processes forked after the solve: plot_all)."""
+    return model.simulation.model != "rotational"
+
+
 def plot_all(result, outdir, workers=None, meanwhile=None, painters=None) -> list[Path]:
     """Write the standard figures (and belt.gif when ``output.animation``). ``painters``
     (plotting.Painters, forked before the solve) draw them while this process runs
