@@ -47,3 +47,18 @@ def quiet():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         yield
+
+
+def assert_one_line_refusal(example, edit, expect, tmp_path, capsys):
+    """``drivedyn check`` of ``example`` with ``edit`` = (old, new) applied to its text: exit 2 and a
+    single stderr line holding ``expect``."""
+    from drivedyn.cli import main
+
+    good = drivedyn.example_path(example).read_text()
+    old, new = edit
+    assert old in good
+    f = tmp_path / "m.toml"
+    f.write_text(good.replace(old, new, 1))
+    assert main(["check", str(f)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and expect in err, err

@@ -12,6 +12,7 @@ from drivedyn.gears.gearbox import modes as gearbox_modes
 from drivedyn.gears.gearbox import stage_matrices
 from drivedyn.gears.train import assemble
 
+from .conftest import assert_one_line_refusal
 from .test_planetary_rating import CASE, RING, nrel_stage
 
 
@@ -139,16 +140,7 @@ def _lateral(model):
      "planetary.lateral.planet_bearing_stiffness"),
 ])
 def test_gearbox_bad_input_one_line_exit_2(tmp_path, capsys, edit, expect):
-    from drivedyn.cli import main
-
-    good = drivedyn.example_path("gears-gearbox").read_text()
-    old, new = edit
-    assert old in good
-    f = tmp_path / "m.toml"
-    f.write_text(good.replace(old, new, 1))
-    assert main(["check", str(f)]) == 2
-    err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and expect in err, err
+    assert_one_line_refusal("gears-gearbox", edit, expect, tmp_path, capsys)
 
 
 def test_lateral_contact_loss_is_a_diagnostic(tmp_path):

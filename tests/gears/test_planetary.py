@@ -8,6 +8,8 @@ import pytest
 
 from drivedyn.gears import planetary as pl
 
+from .conftest import assert_one_line_refusal
+
 
 def stage(n=4, z_s=24, z_p=24, **kw):
     m = 3e-3
@@ -154,17 +156,7 @@ def test_planetary_model_file_run_and_check(tmp_path):
     (('planet_mass = "0.9 kg"', ''), "planetary.planet_mass"),
 ])
 def test_planetary_bad_input_one_line_exit_2(tmp_path, capsys, edit, expect):
-    import drivedyn
-    from drivedyn.cli import main
-
-    good = drivedyn.example_path("gears-planetary").read_text()
-    old, new = edit
-    assert old in good
-    f = tmp_path / "m.toml"
-    f.write_text(good.replace(old, new, 1))
-    assert main(["check", str(f)]) == 2
-    err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and expect in err, err
+    assert_one_line_refusal("gears-planetary", edit, expect, tmp_path, capsys)
 
 
 def test_load_sharing_is_judged_and_said():
