@@ -272,6 +272,7 @@ def format_validation_error(exc: ValidationError, model_cls=None) -> str:
         # "must be > 0 m, got -27 mm": the bound in the field's SI unit, the input as written
         limit = next(iter(err["ctx"].values()))
         unit = (field_unit(model_cls, loc) or "") if model_cls is not None else ""
+        unit = "" if unit == "1" else unit        # a ratio: "must be >= 0", not ">= 0 1"
         msg = f"must be {bound} {limit:g}{' ' + unit if unit else ''}, got {err.get('input')}"
     n = len(exc.errors())
     more = f" (and {n - 1} more problem{'s' if n > 2 else ''})" if n > 1 else ""

@@ -151,3 +151,16 @@ def test_the_known_unit_factors_are_pints():
     for (text, unit), factor in list(units.KNOWN_FACTORS.items()) + [((u, u), 1.0) for u in targets]:
         assert units._factor(text, unit) == factor
         assert float(ureg.Quantity(1.0, text).to(unit).magnitude) == factor, (text, unit)
+
+
+def test_a_ratio_bound_is_not_printed_with_unit_one():
+    """A dimensionless field's bound read "must be >= 0 1, got -1" (its SI unit "1" printed)."""
+    import drivedyn
+
+    m = drivedyn.load(drivedyn.example_path("fead-runup"))
+    try:
+        drivedyn.replace(m, {"criteria.stop_clearance_min": -1})
+    except drivedyn.ModelError as exc:
+        assert str(exc).endswith("criteria.stop_clearance_min: must be >= 0, got -1"), str(exc)
+    else:
+        raise AssertionError("a negative clearance was accepted")
