@@ -49,6 +49,7 @@ class Rot(NamedTuple):
     tdx: np.ndarray          # (na, ng, nspan) direction
     tdy: np.ndarray
     tw: np.ndarray           # (na, ng, nk) wrap angle
+    ncell: np.ndarray        # per wrap: cells of its belt (elastic-plastic law; _cells_*)
 
 
 #: Gauss-Legendre nodes and weights on [0, 1] for the belt's depth along a slip arc (steady/creep.py uses
@@ -162,6 +163,8 @@ class RotState(NamedTuple):
     Tb: np.ndarray           # per wrap: the tension its belt carries, the bristles' rest (N; elastic-plastic law)
     off: np.ndarray          # per span: belt the bristles let out of the wraps into it (m, unstretched)
     eb: np.ndarray           # per wrap: the bristles' energy (J)
+    zc: np.ndarray           # (nk, ncell max): per wrap cell, its belt's bristle deflection (m, belt order positive)
+    Tc: np.ndarray           # (nk, ncell max): ... and its tension (N)
 
 
 class RotWork(NamedTuple):
@@ -191,6 +194,21 @@ class RotWork(NamedTuple):
     bm: np.ndarray           # (nk, nk) and (nk): the bristles' linear system
     bv: np.ndarray
     ex: np.ndarray           # per span: the damper's strain rate of the step (1/s)
+    Xc: np.ndarray           # (nk, ncell max): the cells' displacement per unit tension change at the wrap's
+    Yc: np.ndarray           # first (X) and last (Y) end in belt order (m/N)
+    Kc: np.ndarray           # (nk, ncell max): the cells' bristle stiffness (N/m; 0 sliding)
+    Fc: np.ndarray           # (nk, ncell max): the cells' bristle stiffness short of Delta_max (N/m)
+    cp: np.ndarray           # (ncell max) scratch
+    ca: np.ndarray           # per wrap: its ends' compliances (m/N): first end's motion = ca dT_first + cb dT_last,
+    cb: np.ndarray           # the last end's = cc dT_first + cd dT_last (forward positive)
+    cd: np.ndarray
+    Tw0: np.ndarray          # per wrap: the tension its belt holds at its first and last end (N)
+    Tw1: np.ndarray
+    ew: np.ndarray           # per wrap: its axial stiffness EA_w (N)
+    off: np.ndarray          # per span: belt the wraps let into it this step (m, unstretched)
+    m0: np.ndarray           # per wrap: its first and last end's motion this step (m, forward positive)
+    m1: np.ndarray
+    ve: np.ndarray           # per wrap: the rim's speed at the friction's radius (m/s)
 
 
 @njit(cache=True, inline="always")
@@ -263,6 +281,156 @@ def _bristles(nk, EA, L, u, T, Tb, cc, cs, bm, bv, off):
         off[j] = uo - ui
     for j in range(nk):
         T[j] = bv[j]
+
+
+@njit(cache=True, inline="always")
+def _cells_respond(nk, ncell, EA, c1, c2, m, mu, dmax, rho, om, wrap, zc, Tc, Kc, Fc, Xc, Yc, cp, ca, cb, cc, cd,
+                   Tw0, Tw1, ew):
+    """Per wrap, the elastic response of its belt's cells to tension changes at its ends: nodes at the
+    cells' centres joined by the belt (EA_w / ds, EA_w the wrap's axial stiffness with its sinking,
+    ``wrap_axial_stiffness``), each held to the rim by its bristles, K = mu (T - m v^2) / (r Delta_max)
+    ds while short of Delta_max and 0 once at it (the elastic-plastic law's tangent: a bristle at its
+    limit slides on). Solves the tridiagonal system for a unit tension change at each end (Thomas);
+    the ends' compliances, and the tensions the wrap's belt holds at its ends (Tw0, Tw1)."""
+    for k in range(nk):
+        n = ncell[k]
+        r = abs(rho[k])
+        vw = rho[k] * om[k]
+        c = m * vw * vw
+        ds = r * wrap[k] / n
+        Tbar = 0.5 * (Tc[k, 0] + Tc[k, n - 1]) - c
+        e = wrap_axial_stiffness(EA, c1, c2, Tbar / r if Tbar > 0.0 else 0.0, r)
+        ew[k] = e
+        kb = e / ds
+        for i in range(n):
+            q = Tc[k, i] - c
+            kp = mu[k] * q / (r * dmax) * ds if q > 0.0 else 0.0
+            Fc[k, i] = kp
+            Kc[k, i] = kp if abs(zc[k, i]) < dmax * (1.0 - 1e-9) else 0.0
+        Tw0[k] = Tc[k, 0] - 0.5 * Fc[k, 0] * zc[k, 0]
+        Tw1[k] = Tc[k, n - 1] + 0.5 * Fc[k, n - 1] * zc[k, n - 1]
+        reg = 1e-6 * kb
+        # Thomas: sub- and super-diagonal -kb; right-hand sides -1 at the first node (X), +1 at the last (Y)
+        for i in range(n):
+            nb = 2.0 - (1.0 if i == 0 else 0.0) - (1.0 if i == n - 1 else 0.0)
+            d = Kc[k, i] + kb * nb + reg
+            fx = -1.0 if i == 0 else 0.0
+            fy = 1.0 if i == n - 1 else 0.0
+            if i > 0:
+                d += kb * cp[i - 1]             # d - a c'_{i-1}, a = -kb
+                fx += kb * Xc[k, i - 1]
+                fy += kb * Yc[k, i - 1]
+            cp[i] = -kb / d
+            Xc[k, i] = fx / d
+            Yc[k, i] = fy / d
+        for i in range(n - 2, -1, -1):
+            Xc[k, i] -= cp[i] * Xc[k, i + 1]
+            Yc[k, i] -= cp[i] * Yc[k, i + 1]
+        ca[k] = Xc[k, 0] - 0.5 * ds / e
+        cb[k] = Yc[k, 0]
+        cc[k] = Xc[k, n - 1]
+        cd[k] = Yc[k, n - 1] + 0.5 * ds / e
+
+
+@njit(cache=True, inline="always")
+def _cells_couple(nk, EA, L, u, T, ca, cb, cc, cd, Tw0, Tw1, bm, bv, off, m0, m1):
+    """The span tensions T (in: from the spans' contents; out: with the belt the wraps let out) and
+    that belt per span, off_j = the last end's motion of wrap j less the first end's of wrap j+1,
+    T_j = T0_j - s_j off_j (s_j = EA L_j / u_j^2): a cyclic system in T, solved densely."""
+    for j in range(nk):
+        for i in range(nk):
+            bm[j, i] = 0.0
+    for j in range(nk):
+        k1 = (j + 1) % nk
+        jm = (j - 1) % nk
+        sj = EA * L[j] / (u[j] * u[j])
+        bm[j, j] += 1.0 + sj * (cd[j] - ca[k1])
+        bm[j, jm] += sj * cc[j]
+        bm[j, k1] -= sj * cb[k1]
+        bv[j] = T[j] + sj * (cc[j] * Tw0[j] + cd[j] * Tw1[j] - ca[k1] * Tw0[k1] - cb[k1] * Tw1[k1])
+    BK._small_solve(nk, bm, bv)
+    for k in range(nk):
+        jm = (k - 1) % nk
+        m0[k] = ca[k] * (bv[jm] - Tw0[k]) + cb[k] * (bv[k] - Tw1[k])
+        m1[k] = cc[k] * (bv[jm] - Tw0[k]) + cd[k] * (bv[k] - Tw1[k])
+    for j in range(nk):
+        off[j] = m1[j] - m0[(j + 1) % nk]
+    for j in range(nk):
+        T[j] = bv[j]
+
+
+@njit(cache=True, inline="always")
+def _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Kc, Fc, Tw0, Tw1, ew, eb):
+    """The cells after the wraps' ends met the span tensions T: each node moves by X dT_first + Y dT_last,
+    its tension by the mean of the belt's change on either side, its bristle by its motion, to at most
+    Delta_max (beyond, the belt slides). Returns nothing; eb: the bristles' energy per wrap (J)."""
+    for k in range(nk):
+        n = ncell[k]
+        ji = (k - 1) % nk
+        d0 = T[ji] - Tw0[k]
+        d1 = T[k] - Tw1[k]
+        ds = abs(rho[k]) * wrap[k] / n
+        kb = ew[k] / ds
+        left = d0
+        e = 0.0
+        for i in range(n):
+            di = Xc[k, i] * d0 + Yc[k, i] * d1
+            if i < n - 1:
+                right = kb * (Xc[k, i + 1] * d0 + Yc[k, i + 1] * d1 - di)
+            else:
+                right = d1
+            Tc[k, i] += 0.5 * (left + right)
+            left = right
+            zn = zc[k, i] + di
+            if zn > dmax:
+                zn = dmax
+            elif zn < -dmax:
+                zn = -dmax
+            zc[k, i] = zn
+            e += 0.5 * Fc[k, i] * zn * zn
+        eb[k] = e
+
+
+@njit(cache=True, inline="always")
+def _dir_at(a, k, jj, n, fresh, fwd):
+    """Cell jj counted from the wrap's entry in the belt's travel (fwd: belt order) of wrap k's array a:
+    fresh belt before the entry, the exit cell's value past the exit."""
+    if jj < 0:
+        return fresh
+    if jj > n - 1:
+        jj = n - 1
+    return a[k, jj] if fwd else a[k, n - 1 - jj]
+
+
+@njit(cache=True, inline="always")
+def _cells_transport(nk, ncell, rho, wrap, ve, h, T, zc, Tc, buf):
+    """The rim carries the wraps' belt: each wrap's cells move by ve h / ds, semi-Lagrangian (the cubic
+    through the four cells about where each cell's belt was: its diffusion shrinks as ds^3, where a
+    linear one's ds-wide smearing moved the three-pulley drive's slips by 0.01 points per halving), fresh
+    belt (no bristle deflection, the arriving span's tension) entering."""
+    for k in range(nk):
+        n = ncell[k]
+        ds = abs(rho[k]) * wrap[k] / n
+        phi = ve[k] * h / ds
+        if phi == 0.0:
+            continue
+        # in the belt's travel direction: index j runs from the entry (j = 0) to the exit
+        fwd = phi > 0.0
+        a = abs(phi)
+        Tf = T[(k - 1) % nk] if fwd else T[k]
+        for arr in range(2):
+            A = zc if arr == 0 else Tc
+            fresh = 0.0 if arr == 0 else Tf
+            for j in range(n):
+                x = j - a
+                i0 = int(math.floor(x))
+                f = x - i0
+                wm, w0, w1, w2, dm, d0, d1, d2 = _cubic(f)
+                v = (wm * _dir_at(A, k, i0 - 1, n, fresh, fwd) + w0 * _dir_at(A, k, i0, n, fresh, fwd)
+                     + w1 * _dir_at(A, k, i0 + 1, n, fresh, fwd) + w2 * _dir_at(A, k, i0 + 2, n, fresh, fwd))
+                buf[j] = v
+            for j in range(n):
+                A[k, j if fwd else n - 1 - j] = buf[j]
 
 
 @njit(cache=True, inline="always")
@@ -366,6 +534,9 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     u, Wc, ud, vs, rt0, rt1, Tp, ed = RS.u, RS.W, RS.ud, RS.vs, RS.t0, RS.t1, RS.Tp, RS.ed
     dmax, Tb, off, eb, cc, cs, bm, bv, exr = R.dmax, RS.Tb, RS.off, RS.eb, RW.cc, RW.cs, RW.bm, RW.bv, RW.ex
     Tm, wm = RW.Tm, RW.wm
+    ncell, zc, Tc, Kc, Fc, Xc, Yc, cpw = R.ncell, RS.zc, RS.Tc, RW.Kc, RW.Fc, RW.Xc, RW.Yc, RW.cp
+    ca, cb, ccw, cd, Tw0, Tw1, eww, offw, m0w, m1w, vew = RW.ca, RW.cb, RW.cc, RW.cd, RW.Tw0, RW.Tw1, RW.ew, RW.off, RW.m0, RW.m1, RW.ve
+    ebw = RW.cs
     om, q, qd = S.om, S.q, S.qd
     na, apul, akind, apar, atoff, atx, aty = A.na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y
     scx, scy, scvx, scvy = S.cx, S.cy, S.cvx, S.cvy
@@ -400,9 +571,10 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 ed[j] = epsd
                 exr[j] = ex
                 T[j] = EA * eps + bax * ex
-            if dmax > 0.0:         # the wraps' bristles give where the spans pull
-                _compliances(nk, EA, c1, c2, m, mu, dmax, rho, om, wrap, Tb, cc, cs)
-                _bristles(nk, EA, L, u, T, Tb, cc, cs, bm, bv, off)
+            if dmax > 0.0:         # the wraps' belt gives where the spans pull (its cells)
+                _cells_respond(nk, ncell, EA, c1, c2, m, mu, dmax, rho, om, wrap, zc, Tc, Kc, Fc, Xc, Yc, cpw, ca, cb,
+                               ccw, cd, Tw0, Tw1, eww)
+                _cells_couple(nk, EA, L, u, T, ca, cb, ccw, cd, Tw0, Tw1, bm, bv, offw, m0w, m1w)
             for j in range(nk):
                 Tj = T[j]
                 if Tj < 0.0:          # a slack span carries nothing (the belt buckles)
@@ -416,6 +588,10 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 Tx = 1.5 * Tj - 0.5 * Tp[j]
                 Tm[j] = Tx if Tx > 0.0 else 0.0
                 Tp[j] = Tj
+            if dmax > 0.0:
+                for k in range(nk):
+                    ebw[k] = eb[k]
+                _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Kc, Fc, Tw0, Tw1, eww, eb)
             for k in range(nk):
                 ji = (k - 1) % nk
                 vw = rho[k] * om[k]
@@ -455,6 +631,23 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 # relaxes to its steady value over one passage
                 r = abs(rho[k])
                 ve = vw * (1.0 - sunk_depth(((Ti if vw >= 0.0 else To) - c) / r, c1, c2) / r) if centre else vw
+                if dmax > 0.0:
+                    # the rim carries the belt in and out at its ends' strains (the wrap's EA_w);
+                    # the belt its cells let out (creep, pre-sliding, sliding) moved the spans
+                    # each end at its own depth in the groove (the wrap's EA_w linearises it between them):
+                    # the belt's centre line (friction.radius = "centre"), or its entry's (at r)
+                    ei = Ti / EA
+                    eo = To / EA
+                    pa = sunk_depth((Ti - c) / r, c1, c2)
+                    pb = sunk_depth((To - c) / r, c1, c2)
+                    pref = 0.0 if centre else (pa if vw >= 0.0 else pb)
+                    fa[k] = vw * (1.0 - (pa - pref) / r) / (1.0 + ei)
+                    fb[k] = vw * (1.0 - (pb - pref) / r) / (1.0 + eo)
+                    vew[k] = vw * (1.0 - ((pa if vw >= 0.0 else pb) - pref) / r)
+                    Wc[k] += h * (fa[k] - fb[k]) + m0w[k] - m1w[k]
+                    P_fr += (T[k] * (fb[k] * (1.0 + eo) * h + m1w[k]) - T[ji] * (fa[k] * (1.0 + ei) * h + m0w[k])) / h \
+                        - tq[k] * om[k] - (eb[k] - ebw[k]) / h
+                    continue
                 if vw >= 0.0:
                     Weq = wrap_content(r, wm[k], Ti, To, c, mu[k], EA, c1, c2)
                 else:
@@ -491,11 +684,14 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 rt0[j] = t0[j]
                 rt1[j] = t1[j]
                 u_old = u[j]
-                u[j] = u_old + h * (fb[j] - fa[k1]) - d0 - d1
+                u[j] = u_old + h * (fb[j] - fa[k1]) - d0 - d1 + offw[j]
                 Wc[j] += d0
                 Wc[k1] += d1
                 ud[j] = u_old      # (the rate once the return map has acted)
-                vs[j] = 0.5 * (fb[j] + fa[k1]) * (1.0 + eps)
+                vs[j] = 0.5 * (fb[j] + fa[k1] + (m1w[j] + m0w[k1]) / h) * (1.0 + eps) if dmax > 0.0 else \
+                    0.5 * (fb[j] + fa[k1]) * (1.0 + eps)
+            if dmax > 0.0:
+                _cells_transport(nk, ncell, rho, wrap, vew, h, Tm, zc, Tc, cpw)
             for j in range(nk):
                 u[j] += off[j]         # the return map reads the spans' tensions
             P_sl = _return_map(nk, EA, m, mu, u, vs, L, wrap, slip, h, passes) if passes > 0 else 0.0

@@ -87,7 +87,7 @@ class _Drive:
     def get(self):
         S, RS = self.S, self.RS
         return np.concatenate([S.om[self.dyn], S.omr[self.cl], S.dcp[self.cl], S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp,
-                               RS.ed, RS.Tb])
+                               RS.ed, RS.Tb, RS.zc.ravel(), RS.Tc.ravel()])
 
     def set(self, x):
         S, RS = self.S, self.RS
@@ -99,6 +99,9 @@ class _Drive:
         for arr in (S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp, RS.ed, RS.Tb):
             arr[:] = x[k:k + len(arr)]
             k += len(arr)
+        for arr in (RS.zc, RS.Tc):
+            arr.ravel()[:] = x[k:k + arr.size]
+            k += arr.size
         # the belt rolled onto the span ends is a function of the travel: no spurious transfer at
         # the next step when an iterate moves the tensioner
         RW = self.RW
@@ -117,7 +120,8 @@ class _Drive:
         return np.concatenate([sp, 1e-3 * np.ones(len(self.cl)), 1e-3 * np.ones(na), 1e-3 * (abs(w) + 1) * np.ones(na),
                                du, du, 100 * du * abs(w), 100 * vw * np.ones(R.nk),
                                sysm.rest_tension * np.ones(R.nk), 100 * du / R.L * abs(w),
-                               sysm.rest_tension * np.ones(R.nk)])
+                               sysm.rest_tension * np.ones(R.nk), R.dmax * np.ones(self.RS.zc.size) + 1e-12,
+                               sysm.rest_tension * np.ones(self.RS.Tc.size)])
 
 
 def _anderson(phi, x0, scale, tol, memory=MEMORY, max_iter=MAX_ITER):
