@@ -50,6 +50,7 @@ class Rot(NamedTuple):
     tdy: np.ndarray
     tw: np.ndarray           # (na, ng, nk) wrap angle
     ncell: np.ndarray        # per wrap: cells of its belt (elastic-plastic law; _cells_*)
+    p0: np.ndarray           # per wrap: the depth the belt's content is measured from (m; _content)
 
 
 #: Gauss-Legendre nodes and weights on [0, 1] for the belt's depth along a slip arc (steady/creep.py uses
@@ -160,11 +161,11 @@ class RotState(NamedTuple):
     t1: np.ndarray
     Tp: np.ndarray           # span tensions of the last step (N)
     ed: np.ndarray           # the span dampers' strain rate of the last step (1/s)
-    Tb: np.ndarray           # per wrap: the tension its belt carries, the bristles' rest (N; elastic-plastic law)
-    off: np.ndarray          # per span: belt the bristles let out of the wraps into it (m, unstretched)
     eb: np.ndarray           # per wrap: the bristles' energy (J)
     zc: np.ndarray           # (nk, ncell max): per wrap cell, its belt's bristle deflection (m, belt order positive)
     Tc: np.ndarray           # (nk, ncell max): ... and its tension (N)
+    wsum: np.ndarray         # per wrap: the sum of its cells' content per unit arc (``_content``)
+    dz: np.ndarray           # (nk, ncell max): the cells' last bristle increment (m): sliding on, or turning
 
 
 class RotWork(NamedTuple):
@@ -189,8 +190,6 @@ class RotWork(NamedTuple):
     acc_slip: np.ndarray     # per wrap: sliding speed (m/s) and time in gross slip (s)
     acc_gross: np.ndarray
     acc_diss: np.ndarray     # (6): axial damping, 0, 0, friction (creep and slip), tensioner, clutch
-    cc: np.ndarray           # per wrap: the bristles' compliances coth(beta L) / (EA_w beta), csch(beta L) / (EA_w beta)
-    cs: np.ndarray
     bm: np.ndarray           # (nk, nk) and (nk): the bristles' linear system
     bv: np.ndarray
     ex: np.ndarray           # per span: the damper's strain rate of the step (1/s)
@@ -201,7 +200,9 @@ class RotWork(NamedTuple):
     cp: np.ndarray           # (ncell max) scratch
     ca: np.ndarray           # per wrap: its ends' compliances (m/N): first end's motion = ca dT_first + cb dT_last,
     cb: np.ndarray           # the last end's = cc dT_first + cd dT_last (forward positive)
+    cc: np.ndarray
     cd: np.ndarray
+    eb0: np.ndarray          # per wrap: the bristles' energy before the step's update (J)
     Tw0: np.ndarray          # per wrap: the tension its belt holds at its first and last end (N)
     Tw1: np.ndarray
     ew: np.ndarray           # per wrap: its axial stiffness EA_w (N)
@@ -212,80 +213,16 @@ class RotWork(NamedTuple):
 
 
 @njit(cache=True, inline="always")
-def _lag(EA, c1, c2, mu, q, r, dmax):
-    """1 / the shear lag's length (1/m) at the wrap's tension less the belt's momentum flux q, and
-    the wrap's axial stiffness EA_w (N); a wrap without grip lets the belt through (a shear lag of
-    1000 m stands for it)."""
-    ew = wrap_axial_stiffness(EA, c1, c2, q / r, r)
-    return math.sqrt(max(mu * q / (r * dmax), 1e-6 * ew) / ew), ew
-
-
-@njit(cache=True, inline="always")
-def _compliances(nk, EA, c1, c2, m, mu, dmax, rho, om, wrap, Tb, cc, cs):
-    """Per wrap, the compliances of its bristles' shear lag (belt/steady/modes.py, ``_wrap_compliance``):
-    each stuck bit of belt is held to the rim by mu N / Delta_max, per unit length k' = mu (T - m
-    v^2) / (r Delta_max), and the belt's displacement u against the rim obeys EA_w u'' = k' u over the
-    wrap's length L = r theta (a shear lag of length 1 / beta, beta^2 = k' / EA_w, EA_w the wrap's
-    axial stiffness, ``wrap_axial_stiffness``). Its two ends, pulled by tension changes dT_in (the
-    arriving span) and dT_out (the leaving one), move by u_in = -cc dT_in + cs dT_out and u_out =
-    -cs dT_in + cc dT_out (forward positive), cc = coth(beta L) / (EA_w beta), cs = csch(beta L) /
-    (EA_w beta)."""
-    for k in range(nk):
-        r = abs(rho[k])
-        vw = rho[k] * om[k]
-        beta, ew = _lag(EA, c1, c2, mu[k], Tb[k] - m * vw * vw, r, dmax)
-        x = max(beta * r * wrap[k], 1e-6)
-        if x > 20.0:
-            ct = 1.0
-            ch = 2.0 * math.exp(-x)
-        else:
-            e2 = math.exp(-2.0 * x)
-            ct = (1.0 + e2) / (1.0 - e2)
-            ch = 2.0 * math.exp(-x) / (1.0 - e2)
-        cc[k] = ct / (ew * beta)
-        cs[k] = ch / (ew * beta)
-
-
-@njit(cache=True, inline="always")
-def _bristle_energy(k, ji, T, Tb, cc, cs):
-    """Energy of wrap k's bristles (J) under the span tensions T (complementary, linear: 1/2 dT . C dT)."""
-    a = T[ji] - Tb[k]
-    b = T[k] - Tb[k]
-    return 0.5 * (cc[k] * (a * a + b * b) - 2.0 * cs[k] * a * b)
-
-
-@njit(cache=True, inline="always")
-def _bristles(nk, EA, L, u, T, Tb, cc, cs, bm, bv, off):
-    """The span tensions T (in: without the bristles; out: with them) when the wraps' bristles let
-    belt out where the spans pull: span j holds u_j + off_j, off_j = u_out of its start pulley less
-    u_in of its end pulley (``_compliances``), and T_j = EA (L_j / (u_j + off_j) - 1) linearised in
-    off_j: T_j = T0_j - s_j off_j, s_j = EA L_j / u_j^2. A cyclic tridiagonal system in T, solved
-    densely (a few pulleys)."""
-    for j in range(nk):
-        for i in range(nk):
-            bm[j, i] = 0.0
-    for j in range(nk):
-        k1 = (j + 1) % nk
-        jm = (j - 1) % nk
-        sj = EA * L[j] / (u[j] * u[j])
-        bm[j, j] += 1.0 + sj * (cc[j] + cc[k1])
-        bm[j, jm] -= sj * cs[j]
-        bm[j, k1] -= sj * cs[k1]
-        bv[j] = T[j] + sj * ((cc[j] - cs[j]) * Tb[j] + (cc[k1] - cs[k1]) * Tb[k1])
-    BK._small_solve(nk, bm, bv)
-    for j in range(nk):
-        k1 = (j + 1) % nk
-        jm = (j - 1) % nk
-        uo = -cs[j] * (bv[jm] - Tb[j]) + cc[j] * (bv[j] - Tb[j])
-        ui = -cc[k1] * (bv[j] - Tb[k1]) + cs[k1] * (bv[k1] - Tb[k1])
-        off[j] = uo - ui
-    for j in range(nk):
-        T[j] = bv[j]
+def _content(T, c, r, p0, EA, c1, c2):
+    """Unstretched belt per unit of rim arc at tension T: its centre line at the depth p(T) of its
+    pressure (T - m v^2) / r, measured from p0 (0 with friction.radius = "centre", the rest
+    tension's depth at the contact radius), stretched by T / EA."""
+    return (1.0 - (sunk_depth((T - c) / r, c1, c2) - p0) / r) / (1.0 + T / EA)
 
 
 @njit(cache=True, inline="always")
 def _cells_respond(nk, ncell, EA, c1, c2, m, mu, dmax, rho, om, wrap, zc, Tc, Kc, Fc, Xc, Yc, cp, ca, cb, cc, cd,
-                   Tw0, Tw1, ew):
+                   Tw0, Tw1, ew, dz):
     """Per wrap, the elastic response of its belt's cells to tension changes at its ends: nodes at the
     cells' centres joined by the belt (EA_w / ds, EA_w the wrap's axial stiffness with its sinking,
     ``wrap_axial_stiffness``), each held to the rim by its bristles, K = mu (T - m v^2) / (r Delta_max)
@@ -306,7 +243,9 @@ def _cells_respond(nk, ncell, EA, c1, c2, m, mu, dmax, rho, om, wrap, zc, Tc, Kc
             q = Tc[k, i] - c
             kp = mu[k] * q / (r * dmax) * ds if q > 0.0 else 0.0
             Fc[k, i] = kp
-            Kc[k, i] = kp if abs(zc[k, i]) < dmax * (1.0 - 1e-9) else 0.0
+            # at Delta_max and pushed on outward last step: sliding, no stiffness (a bristle the step
+            # before pulled back holds again: elastic)
+            Kc[k, i] = 0.0 if abs(zc[k, i]) >= dmax * (1.0 - 1e-9) and dz[k, i] * zc[k, i] > 0.0 else kp
         Tw0[k] = Tc[k, 0] - 0.5 * Fc[k, 0] * zc[k, 0]
         Tw1[k] = Tc[k, n - 1] + 0.5 * Fc[k, n - 1] * zc[k, n - 1]
         reg = 1e-6 * kb
@@ -360,17 +299,23 @@ def _cells_couple(nk, EA, L, u, T, ca, cb, cc, cd, Tw0, Tw1, bm, bv, off, m0, m1
 
 
 @njit(cache=True, inline="always")
-def _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Kc, Fc, Tw0, Tw1, ew, eb):
+def _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Kc, Fc, Tw0, Tw1, ew, eb, m, om, p0, EA, c1, c2,
+                  m0, m1, off, wsum, dz):
     """The cells after the wraps' ends met the span tensions T: each node moves by X dT_first + Y dT_last,
     its tension by the mean of the belt's change on either side, its bristle by its motion, to at most
-    Delta_max (beyond, the belt slides). Returns nothing; eb: the bristles' energy per wrap (J)."""
+    Delta_max (beyond, the belt slides). eb: the bristles' energy per wrap (J); wsum: per wrap, the sum
+    of its cells' content per unit arc (``_content``), before (in) and after (out)."""
     for k in range(nk):
         n = ncell[k]
         ji = (k - 1) % nk
         d0 = T[ji] - Tw0[k]
         d1 = T[k] - Tw1[k]
-        ds = abs(rho[k]) * wrap[k] / n
+        r = abs(rho[k])
+        ds = r * wrap[k] / n
         kb = ew[k] / ds
+        vw = rho[k] * om[k]
+        c = m * vw * vw
+        wb = wsum[k]
         left = d0
         e = 0.0
         for i in range(n):
@@ -381,6 +326,7 @@ def _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Kc, Fc, Tw0, Tw
                 right = d1
             Tc[k, i] += 0.5 * (left + right)
             left = right
+            dz[k, i] = di
             zn = zc[k, i] + di
             if zn > dmax:
                 zn = dmax
@@ -389,6 +335,22 @@ def _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Kc, Fc, Tw0, Tw
             zc[k, i] = zn
             e += 0.5 * Fc[k, i] * zn * zn
         eb[k] = e
+        # belt conserved exactly: what the cells' stretch let out (their content's change) against the
+        # ends' motions (the bars' linearisation, EA_w at the wrap's mean tension); the rest at the exit
+        wa = 0.0
+        for i in range(n):
+            wa += _content(Tc[k, i], c, r, p0[k], EA, c1, c2)
+        wsum[k] = wa
+        res = (wb - wa) * ds - (m1[k] - m0[k])
+        if vw >= 0.0:
+            m1[k] += res
+            off[k] += res
+        else:
+            m0[k] -= res
+            off[(k - 1) % nk] += res
+        # the tensions the wrap's belt now holds at its ends: the rim carries it out at them
+        Tw0[k] = Tc[k, 0] - 0.5 * Fc[k, 0] * zc[k, 0]
+        Tw1[k] = Tc[k, n - 1] + 0.5 * Fc[k, n - 1] * zc[k, n - 1]
 
 
 @njit(cache=True, inline="always")
@@ -403,34 +365,42 @@ def _dir_at(a, k, jj, n, fresh, fwd):
 
 
 @njit(cache=True, inline="always")
-def _cells_transport(nk, ncell, rho, wrap, ve, h, T, zc, Tc, buf):
-    """The rim carries the wraps' belt: each wrap's cells move by ve h / ds, semi-Lagrangian (the cubic
-    through the four cells about where each cell's belt was: its diffusion shrinks as ds^3, where a
-    linear one's ds-wide smearing moved the three-pulley drive's slips by 0.01 points per halving), fresh
-    belt (no bristle deflection, the arriving span's tension) entering."""
-    for k in range(nk):
-        n = ncell[k]
-        ds = abs(rho[k]) * wrap[k] / n
-        phi = ve[k] * h / ds
-        if phi == 0.0:
-            continue
-        # in the belt's travel direction: index j runs from the entry (j = 0) to the exit
-        fwd = phi > 0.0
-        a = abs(phi)
-        Tf = T[(k - 1) % nk] if fwd else T[k]
-        for arr in range(2):
-            A = zc if arr == 0 else Tc
-            fresh = 0.0 if arr == 0 else Tf
-            for j in range(n):
-                x = j - a
-                i0 = int(math.floor(x))
-                f = x - i0
-                wm, w0, w1, w2, dm, d0, d1, d2 = _cubic(f)
-                v = (wm * _dir_at(A, k, i0 - 1, n, fresh, fwd) + w0 * _dir_at(A, k, i0, n, fresh, fwd)
-                     + w1 * _dir_at(A, k, i0 + 1, n, fresh, fwd) + w2 * _dir_at(A, k, i0 + 2, n, fresh, fwd))
-                buf[j] = v
-            for j in range(n):
-                A[k, j if fwd else n - 1 - j] = buf[j]
+def _cell_transport(k, n, r, ds, phi, Tf, c, p0, EA, c1, c2, zc, Tc, buf, wsum):
+    """The rim carries wrap k's cells by phi cells (signed, belt order): semi-Lagrangian, the cubic
+    through the four cells about where each cell's belt was (its diffusion shrinks as ds^3), fresh
+    belt (no bristle deflection, tension Tf) entering. Returns the unstretched belt the shift moved
+    out past the exit (m): what came in less the cells' content change (wsum[k] before, ``_content``
+    at the centrifugal tension of the step's start; after, at c), so belt is conserved."""
+    if phi == 0.0:
+        return 0.0
+    fwd = phi > 0.0
+    a = abs(phi)
+    w0c = wsum[k]
+    # every cell's belt came from a cells back: the same fraction, the same weights for all
+    i0 = int(math.floor(-a))
+    f = -a - i0
+    wm, w0, w1, w2, dm, d0, d1, d2 = _cubic(f)
+    for arr in range(2):
+        A = zc if arr == 0 else Tc
+        fresh = 0.0 if arr == 0 else Tf
+        for j in range(n):
+            i = j + i0
+            if i >= 1 and i + 2 <= n - 1:
+                if fwd:
+                    buf[j] = wm * A[k, i - 1] + w0 * A[k, i] + w1 * A[k, i + 1] + w2 * A[k, i + 2]
+                else:
+                    buf[j] = (wm * A[k, n - i] + w0 * A[k, n - 1 - i] + w1 * A[k, n - 2 - i]
+                              + w2 * A[k, n - 3 - i])
+            else:
+                buf[j] = (wm * _dir_at(A, k, i - 1, n, fresh, fwd) + w0 * _dir_at(A, k, i, n, fresh, fwd)
+                          + w1 * _dir_at(A, k, i + 1, n, fresh, fwd) + w2 * _dir_at(A, k, i + 2, n, fresh, fwd))
+        for j in range(n):
+            A[k, j if fwd else n - 1 - j] = buf[j]
+    w1c = 0.0
+    for i in range(n):
+        w1c += _content(Tc[k, i], c, r, p0, EA, c1, c2)
+    wsum[k] = w1c
+    return a * ds * _content(Tf, c, r, p0, EA, c1, c2) - (w1c - w0c) * ds
 
 
 @njit(cache=True, inline="always")
@@ -501,12 +471,12 @@ def energy(R, P, A, S, RS, RW):
         E += 0.5 * A.inertia[a] * S.qd[a] ** 2 + BK.spring_energy(A, a, S.q[a])
     geometry(R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap)
     for j in range(R.nk):
-        uj = RS.u[j] + RS.off[j]
+        uj = RS.u[j]
         eps = RW.L[j] / uj - 1.0
         if eps > 0.0:
             E += 0.5 * R.EA * eps * eps * uj
         ji = (j - 1) % R.nk
-        e_in = RW.L[ji] / (RS.u[ji] + RS.off[ji]) - 1.0
+        e_in = RW.L[ji] / RS.u[ji] - 1.0
         if e_in > 0.0:
             E += 0.5 * R.EA * e_in * e_in * RS.W[j]
         E += RS.eb[j]
@@ -532,11 +502,13 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     T, fa, fb, tq, hubx, huby, slip = RW.T, RW.a, RW.b, RW.tq, RW.hubx, RW.huby, RW.slip
     acc_T, acc_v, acc_slip, acc_gross, acc_diss = RW.acc_T, RW.acc_v, RW.acc_slip, RW.acc_gross, RW.acc_diss
     u, Wc, ud, vs, rt0, rt1, Tp, ed = RS.u, RS.W, RS.ud, RS.vs, RS.t0, RS.t1, RS.Tp, RS.ed
-    dmax, Tb, off, eb, cc, cs, bm, bv, exr = R.dmax, RS.Tb, RS.off, RS.eb, RW.cc, RW.cs, RW.bm, RW.bv, RW.ex
+    dmax, eb, bm, bv, exr = R.dmax, RS.eb, RW.bm, RW.bv, RW.ex
     Tm, wm = RW.Tm, RW.wm
-    ncell, zc, Tc, Kc, Fc, Xc, Yc, cpw = R.ncell, RS.zc, RS.Tc, RW.Kc, RW.Fc, RW.Xc, RW.Yc, RW.cp
+    ncell, zc, Tc, Kc, Fc, Xc, Yc, cpw, p0 = R.ncell, RS.zc, RS.Tc, RW.Kc, RW.Fc, RW.Xc, RW.Yc, RW.cp, R.p0
     ca, cb, ccw, cd, Tw0, Tw1, eww, offw, m0w, m1w, vew = RW.ca, RW.cb, RW.cc, RW.cd, RW.Tw0, RW.Tw1, RW.ew, RW.off, RW.m0, RW.m1, RW.ve
-    ebw = RW.cs
+    ebw = RW.eb0
+    wsw = RS.wsum
+    dzw = RS.dz
     om, q, qd = S.om, S.q, S.qd
     na, apul, akind, apar, atoff, atx, aty = A.na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y
     scx, scy, scvx, scvy = S.cx, S.cy, S.cvx, S.cvy
@@ -573,7 +545,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 T[j] = EA * eps + bax * ex
             if dmax > 0.0:         # the wraps' belt gives where the spans pull (its cells)
                 _cells_respond(nk, ncell, EA, c1, c2, m, mu, dmax, rho, om, wrap, zc, Tc, Kc, Fc, Xc, Yc, cpw, ca, cb,
-                               ccw, cd, Tw0, Tw1, eww)
+                               ccw, cd, Tw0, Tw1, eww, dzw)
                 _cells_couple(nk, EA, L, u, T, ca, cb, ccw, cd, Tw0, Tw1, bm, bv, offw, m0w, m1w)
             for j in range(nk):
                 Tj = T[j]
@@ -591,7 +563,8 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
             if dmax > 0.0:
                 for k in range(nk):
                     ebw[k] = eb[k]
-                _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Kc, Fc, Tw0, Tw1, eww, eb)
+                _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Kc, Fc, Tw0, Tw1, eww, eb, m, om, p0, EA, c1,
+                              c2, m0w, m1w, offw, wsw, dzw)
             for k in range(nk):
                 ji = (k - 1) % nk
                 vw = rho[k] * om[k]
@@ -632,18 +605,21 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 r = abs(rho[k])
                 ve = vw * (1.0 - sunk_depth(((Ti if vw >= 0.0 else To) - c) / r, c1, c2) / r) if centre else vw
                 if dmax > 0.0:
-                    # the rim carries the belt in and out at its ends' strains (the wrap's EA_w);
-                    # the belt its cells let out (creep, pre-sliding, sliding) moved the spans
-                    # each end at its own depth in the groove (the wrap's EA_w linearises it between them):
-                    # the belt's centre line (friction.radius = "centre"), or its entry's (at r)
-                    ei = Ti / EA
-                    eo = To / EA
-                    pa = sunk_depth((Ti - c) / r, c1, c2)
-                    pb = sunk_depth((To - c) / r, c1, c2)
-                    pref = 0.0 if centre else (pa if vw >= 0.0 else pb)
-                    fa[k] = vw * (1.0 - (pa - pref) / r) / (1.0 + ei)
-                    fb[k] = vw * (1.0 - (pb - pref) / r) / (1.0 + eo)
-                    vew[k] = vw * (1.0 - ((pa if vw >= 0.0 else pb) - pref) / r)
+                    # the rim carries the wrap's cells (their belt stuck to it) by vw h: fresh belt in at the
+                    # arriving span's tension, and out the content the cells' shift passed the exit: belt
+                    # is conserved step by step; the belt the cells let out (creep, pre-sliding, sliding)
+                    # has moved the spans already
+                    n = ncell[k]
+                    ds = r * wrap[k] / n
+                    Tf = T[ji] if vw >= 0.0 else T[k]
+                    gin = vw * h * _content(Tf, c, r, p0[k], EA, c1, c2)
+                    out = _cell_transport(k, n, r, ds, vw * h / ds, Tf, c, p0[k], EA, c1, c2, zc, Tc, cpw, wsw)
+                    if vw >= 0.0:
+                        fa[k] = gin / h
+                        fb[k] = out / h
+                    else:
+                        fb[k] = gin / h
+                        fa[k] = -out / h
                     Wc[k] += h * (fa[k] - fb[k]) + m0w[k] - m1w[k]
                     P_fr += (T[k] * (fb[k] * (1.0 + eo) * h + m1w[k]) - T[ji] * (fa[k] * (1.0 + ei) * h + m0w[k])) / h \
                         - tq[k] * om[k] - (eb[k] - ebw[k]) / h
@@ -662,17 +638,6 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                     fb[k] = ve / (1.0 + eo)
                     fa[k] = fb[k] + dW / h
                 Wc[k] += dW
-                if dmax > 0.0 and vw != 0.0:
-                    # the belt on the wrap carries the tension it arrived with, renewed once a
-                    # passage (r theta / v); the energy the bristles let go is friction's. Renewed
-                    # at the shear lag's rate v beta instead, the relaxation feeds energy in: with
-                    # the wraps' sinking (EA_w) fead-runup's drive held at 1062 rpm without orders
-                    # then oscillated by itself at about 60 Hz, spans 7-1235 N (at 0.3 v beta, as
-                    # at the passage rate, it holds still and the run-up's results move < 0.2 %)
-                    e0 = _bristle_energy(k, ji, T, Tb, cc, cs)
-                    Tb[k] += renew * (T[ji] - Tb[k])
-                    eb[k] = _bristle_energy(k, ji, T, Tb, cc, cs)
-                    P_fr += (e0 - eb[k]) / h
                 # friction (creep) power on the wrap: the spans' power in less the pulley's
                 P_fr += T[k] * fb[k] * (1.0 + eo) - T[ji] * fa[k] * (1.0 + ei) - tq[k] * om[k]
             for j in range(nk):
@@ -691,12 +656,16 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 vs[j] = 0.5 * (fb[j] + fa[k1] + (m1w[j] + m0w[k1]) / h) * (1.0 + eps) if dmax > 0.0 else \
                     0.5 * (fb[j] + fa[k1]) * (1.0 + eps)
             if dmax > 0.0:
-                _cells_transport(nk, ncell, rho, wrap, vew, h, Tm, zc, Tc, cpw)
-            for j in range(nk):
-                u[j] += off[j]         # the return map reads the spans' tensions
+                # the cells' belt as it now is (their wrap's arc, depth and stretch at this speed): what
+                # the exchanges above left unbooked (the arc rolled on or off as a tensioner moves, the
+                # centrifugal unloading's lift) comes from the two spans, half each: belt is conserved
+                for k in range(nk):
+                    wn = wsw[k] * abs(rho[k]) * wrap[k] / ncell[k]
+                    res = wn - Wc[k]
+                    u[(k - 1) % nk] -= 0.5 * res
+                    u[k] -= 0.5 * res
+                    Wc[k] = wn
             P_sl = _return_map(nk, EA, m, mu, u, vs, L, wrap, slip, h, passes) if passes > 0 else 0.0
-            for j in range(nk):
-                u[j] -= off[j]
             for j in range(nk):
                 ud[j] = (u[j] - ud[j]) / h
             for k in range(nk):

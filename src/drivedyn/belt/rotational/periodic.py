@@ -87,7 +87,7 @@ class _Drive:
     def get(self):
         S, RS = self.S, self.RS
         return np.concatenate([S.om[self.dyn], S.omr[self.cl], S.dcp[self.cl], S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp,
-                               RS.ed, RS.Tb, RS.zc.ravel(), RS.Tc.ravel()])
+                               RS.ed, RS.zc.ravel(), RS.Tc.ravel(), RS.wsum, RS.dz.ravel()])
 
     def set(self, x):
         S, RS = self.S, self.RS
@@ -96,10 +96,10 @@ class _Drive:
         for arr, idx in parts:
             arr[idx] = x[k:k + len(idx)]
             k += len(idx)
-        for arr in (S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp, RS.ed, RS.Tb):
+        for arr in (S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp, RS.ed):
             arr[:] = x[k:k + len(arr)]
             k += len(arr)
-        for arr in (RS.zc, RS.Tc):
+        for arr in (RS.zc, RS.Tc, RS.wsum, RS.dz):
             arr.ravel()[:] = x[k:k + arr.size]
             k += arr.size
         # the belt rolled onto the span ends is a function of the travel: no spurious transfer at
@@ -120,8 +120,9 @@ class _Drive:
         return np.concatenate([sp, 1e-3 * np.ones(len(self.cl)), 1e-3 * np.ones(na), 1e-3 * (abs(w) + 1) * np.ones(na),
                                du, du, 100 * du * abs(w), 100 * vw * np.ones(R.nk),
                                sysm.rest_tension * np.ones(R.nk), 100 * du / R.L * abs(w),
-                               sysm.rest_tension * np.ones(R.nk), R.dmax * np.ones(self.RS.zc.size) + 1e-12,
-                               sysm.rest_tension * np.ones(self.RS.Tc.size)])
+                               R.dmax * np.ones(self.RS.zc.size) + 1e-12,
+                               sysm.rest_tension * np.ones(self.RS.Tc.size), np.maximum(self.sysm.R.ncell, 1.0),
+                               R.dmax * np.ones(self.RS.dz.size) + 1e-12])
 
 
 def _anderson(phi, x0, scale, tol, memory=MEMORY, max_iter=MAX_ITER):

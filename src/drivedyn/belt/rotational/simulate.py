@@ -64,10 +64,12 @@ TABLE_POINTS = 61
 #: tables at 0.6 are as close to the step-converged ones as the first-order belt stage's at 0.3
 STEP_OMEGA = 0.6
 #: Gauss-Seidel passes of the gross-slip return map over the wraps
-SLIP_PASSES = 4
-#: the wraps' belt in cells of at most this length (m), and at least CELLS_MIN per wrap
 import os
-CELL_LENGTH = float(os.environ.get("DD_CELL", "2e-3"))
+SLIP_PASSES = int(os.environ.get("DD_PASSES", "4"))
+#: the wraps' belt (elastic-plastic law) in cells of at most this length (m), at least CELLS_MIN per
+#: wrap: against 3 mm cells fead-runup's drive held at 1875 and 4375 rpm moves its span extremes by
+#: at most ... and its slips by ... (benchmarks/bench_rotational_agreement.py --cells)
+CELL_LENGTH = 6e-3
 CELLS_MIN = 4
 
 
@@ -161,7 +163,10 @@ def build(drive) -> RotSystem:
                dx=np.array([math.cos(sp.angle) for sp in lay.spans]), dy=np.array([math.sin(sp.angle) for sp in lay.spans]),
                wrap=lay.wrap.astype(float), q0=q0, dq=dq, tL=tL, t0=t0, t1=t1, tdx=tdx, tdy=tdy, tw=tw,
                ncell=np.array([max(CELLS_MIN, math.ceil(abs(r) * w / CELL_LENGTH)) for r, w in zip(lay.rho, lay.wrap)],
-                              dtype=np.int64))
+                              dtype=np.int64),
+               p0=np.array([0.0 if model.friction.radius == "centre" else
+                            float(penetration(T_rest / abs(r), model.contact.stiffness_quadratic, model.contact.stiffness_linear))
+                            for r in lay.rho]))
     P = pulleys_record(model.pulleys, running_senses(model, drawn))
     A = arms_record(model, sense)
     # the belt's mass, lumped: each wrap's belt and a third of each adjoining span's
@@ -266,12 +271,17 @@ def new_states(sysm: RotSystem):
     c1, c2 = R.c1, R.c2
     nc = int(R.ncell.max())
     Wc = np.array([RK.wrap_content(abs(R.rho[j]), R.wrap[j], T, T, 0.0, R.mu[j], EA, c1, c2) for j in range(nk)])
+    if R.dmax > 0.0:        # the cells' belt (_kernels._content), the centrifugal tension 0 at rest
+        Wc = np.array([abs(R.rho[j]) * R.wrap[j] * (1 - (float(penetration(T / abs(R.rho[j]), c1, c2)) - R.p0[j])
+                                                     / abs(R.rho[j])) / (1 + T / EA) for j in range(nk)])
     RS = RK.RotState(u=R.L / (1 + T / EA), W=Wc, ud=z(nk), vs=z(nk), t0=z(nk), t1=z(nk), Tp=np.full(nk, T), ed=z(nk),
-                     Tb=np.full(nk, T), off=z(nk), eb=z(nk), zc=z((nk, nc)), Tc=np.full((nk, nc), T))
+                     eb=z(nk), zc=z((nk, nc)), Tc=np.full((nk, nc), T), dz=z((nk, nc)),
+                     wsum=np.array([R.ncell[j] * RK._content(T, 0.0, abs(R.rho[j]), R.p0[j], EA, c1, c2) for j in range(nk)]))
     RW = RK.RotWork(L=z(nk), Ld=z(nk), t0=z(nk), t1=z(nk), dx=z(nk), dy=z(nk), wrap=z(nk), T=z(nk), Tm=z(nk), wm=z(nk), a=z(nk), b=z(nk),
                     tq=z(nk), hubx=z(nk), huby=z(nk), slip=z(nk), acc_T=z(nk), acc_v=z(nk), acc_slip=z(nk),
-                    acc_gross=z(nk), acc_diss=z(6), cc=z(nk), cs=z(nk), bm=z((nk, nk)), bv=z(nk), ex=z(nk),
-                    Xc=z((nk, nc)), Yc=z((nk, nc)), Kc=z((nk, nc)), Fc=z((nk, nc)), cp=z(nc), ca=z(nk), cb=z(nk), cd=z(nk),
+                    acc_gross=z(nk), acc_diss=z(6), bm=z((nk, nk)), bv=z(nk), ex=z(nk),
+                    Xc=z((nk, nc)), Yc=z((nk, nc)), Kc=z((nk, nc)), Fc=z((nk, nc)), cp=z(nc), ca=z(nk), cb=z(nk), cc=z(nk),
+                    cd=z(nk), eb0=z(nk),
                     Tw0=z(nk), Tw1=z(nk), ew=z(nk), off=z(nk), m0=z(nk), m1=z(nk), ve=z(nk))
     return S, W, RS, RW
 
