@@ -141,7 +141,15 @@ def _creep_tensions(M, T0, mu, c=0.0):
     return T2 + M / R, T2
 
 
-def test_creep_and_the_capstan_limit():
+@pytest.mark.parametrize("law, share", [({}, 0.8), ({"friction.law": "elastic-plastic", "friction.displacement_limit": 1e-5}, 0.3)])
+def test_creep_and_the_capstan_limit(law, share):
+    """Adhesion (Threlfall's law: the wraps' creep-theory content) and the wraps' cells (the
+    elastic-plastic law with stiff bristles, Delta_max 0.01 mm: creep and the capstan limit from the
+    cells' friction along the arc; at the default 0.1 mm the bristles' shear lag spans most of the wrap
+    and the slip is 35 % above creep theory's, as the segment model's is) against creep theory's closed
+    forms, at `share` of the capstan's torque. Near the limit the cells' fresh belt needs Delta_max of
+    sliding before its bristles hold their full friction: at 0.8 of it their tensions sit 3 % below
+    creep theory's, outside the closed form's regime."""
     T0, mu = 400.0, 0.5
     lim = math.exp(mu * math.pi)
     v = 600 * math.pi / 30 * R
@@ -151,18 +159,20 @@ def test_creep_and_the_capstan_limit():
 
     M_max = brentq(lambda M: (_creep_tensions(M, T0, mu, c)[0] - c) / (_creep_tensions(M, T0, mu, c)[1] - c) - lim
                    if M > 0 else 1 - lim, 1.0, 2 * R * T0 * 0.999)
-    below = drivedyn.run(two_pulley(duration=0.6, rpm=600, torque=-0.8 * M_max, mu=mu, damping=0.2))
+    below = drivedyn.run(drivedyn.replace(two_pulley(duration=0.6, rpm=600, torque=-share * M_max, mu=mu, damping=0.2),
+                                          law))
     s = below.summary
     T1, T2 = max(v["tension_mean"] for v in s["spans"].values()), min(v["tension_mean"] for v in s["spans"].values())
     # at the load the driven pulley settles to (its speed-dependent load, at its creep speed)
     T1_ref, T2_ref = _creep_tensions(abs(s["pulleys"]["driven"]["torque_mean"]), T0, mu, c)
-    assert T1 == pytest.approx(T1_ref, rel=2e-3)
-    assert T2 == pytest.approx(T2_ref, rel=2e-3)
+    tol = 3e-3 if law else 2e-3          # the cells' shear lag (1 / beta = 19 mm) in 6 mm cells
+    assert T1 == pytest.approx(T1_ref, rel=tol)
+    assert T2 == pytest.approx(T2_ref, rel=tol)
     # creep: the driven pulley turns with the belt arriving at it, the slack span's strain
     assert s["pulleys"]["driven"]["slip"] == pytest.approx(1 - (EA + T2_ref) / (EA + T1_ref), rel=0.02)
     assert s["pulleys"]["driven"]["sliding_share"] == 0.0
     assert below.status == "success"
-    above = drivedyn.run(two_pulley(duration=0.6, rpm=600, torque=-1.1 * M_max, mu=mu, damping=0.2))
+    above = drivedyn.run(drivedyn.replace(two_pulley(duration=0.6, rpm=600, torque=-1.1 * M_max, mu=mu, damping=0.2), law))
     assert "gross-slip" in [d.code for d in above.diagnostics]
     assert above.summary["pulleys"]["driven"]["slip"] > 0.05
     # while it slides, the tension ratio is held at the capstan limit
@@ -317,7 +327,10 @@ def test_periodic_runup_against_long_time_integration():
     if late:
         msg = next(d.text for d in per.diagnostics if d.code == "unconverged-periodic")
         assert "1625" in msg
-    for k in (2, 8, 14):
+    # 1375, 2875 and 3375 rpm: from 3875 rpm on two responses coexist (at 3875 rpm the continuation's
+    # arm travel range 0.023 rad, the segment model's from rest 0.022, this model's from rest 0.075 with
+    # gross slip on three wraps), so a start from rest is no reference there
+    for k in (2, 8, 10):
         rpm = ru["speed_rpm"][k]
         from drivedyn.belt.rotational.periodic import SAMPLES_PER_REV
 

@@ -1,7 +1,8 @@
 """Compiled step of the rotational belt-drive model (rotational/simulate.py states the formulation).
 
 One unknown per pulley (angle, speed; a clutch rotor behind it), per tensioner (travel, rate) and
-per span and wrap (their unstretched belt contents u and W). The pulleys, clutches and tensioners
+per span and wrap (their unstretched belt contents u and W); with the elastic-plastic law each wrap's
+belt in cells the rim carries, each with its tension and bristle deflection (``_cells_*``). The pulleys, clutches and tensioners
 advance through the same stages as the segment model (``_kernels._step_pulleys``,
 ``_kernels._step_arms``): their loads, orders, clutch laws, springs, friction and stops are the
 segment model's by construction. Symplectic Euler: forces from this step's state, then speeds,
@@ -652,7 +653,10 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 u[j] = u_old + h * (fb[j] - fa[k1]) - d0 - d1 + offw[j]
                 Wc[j] += d0
                 Wc[k1] += d1
-                ud[j] = u_old      # (the rate once the return map has acted)
+                # (the rate once the return map has acted; without the belt the wraps let out, which the
+                # step's tensions took in implicitly: the damper acting on it a step late runs away at
+                # large belt.axial_damping)
+                ud[j] = u_old + offw[j] if dmax > 0.0 else u_old
                 vs[j] = 0.5 * (fb[j] + fa[k1] + (m1w[j] + m0w[k1]) / h) * (1.0 + eps) if dmax > 0.0 else \
                     0.5 * (fb[j] + fa[k1]) * (1.0 + eps)
             if dmax > 0.0:
