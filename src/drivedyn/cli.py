@@ -228,13 +228,25 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         raise typer.Exit(EXIT_CRITERIA)
 
 
+#: the widest a table is printed to a file or a pipe (columns of names whole, a long cell folded)
+PIPE_WIDTH = 180
+
+
 def _print_table(console, table):
     """A table that fits the terminal (rich folds its cells), or, written to a file or a pipe,
     keeps its columns whole at whatever width they need."""
     if console.is_terminal:
         console.print(table)
     else:
-        console.print(table, width=max(console.width, console.measure(table).maximum), crop=False)
+        # measured, and printed, beyond the console's own width (80 on a pipe), which bounds both
+        # (print's width is clamped to it); a long text cell (a verdict's where) folds at PIPE_WIDTH
+        wide = min(PIPE_WIDTH, console.measure(table, options=console.options.update_width(100_000)).maximum)
+        narrow = console.width
+        console.width = max(narrow, wide)
+        try:
+            console.print(table, crop=False)
+        finally:
+            console.width = narrow
 
 
 def _print_overview(console, result):
