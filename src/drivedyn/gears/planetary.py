@@ -109,21 +109,29 @@ def phases(st: Stage) -> tuple[np.ndarray, np.ndarray]:
 MEMBERS = ("sun", "ring", "carrier")
 
 
+def mesh_rows(st: Stage) -> tuple[np.ndarray, np.ndarray]:
+    """The rows a_n, b_n (N x (3 + N), over [sun, ring, carrier, planet 1..N]) with the mesh deflections
+    d_sn = a_n . q - e_n cos(alpha_ws) and d_rn = b_n . q - e_n cos(alpha_wr)."""
+    rbs, rbp, rbr = st.radii[:3]
+    n = st.n
+    A, B = np.zeros((n, 3 + n)), np.zeros((n, 3 + n))
+    for i in range(n):
+        A[i, 0], A[i, 2], A[i, 3 + i] = rbs, -(rbs + rbp), rbp
+        B[i, 1], B[i, 2], B[i, 3 + i] = rbr, -(rbr - rbp), -rbp
+    return A, B
+
+
 def matrices(st: Stage) -> tuple[np.ndarray, np.ndarray, list[str]]:
     """Mass and stiffness matrices over the free coordinates [sun, ring, carrier, planet 1..N]
     (fixed members removed) and the coordinate names."""
-    rbs, rbp, rbr, R = st.radii
+    R = st.radii[3]
     n = st.n
     names = [*MEMBERS, *(f"planet{i + 1}" for i in range(n))]
     M = np.diag([st.inertia_sun, st.inertia_ring, st.inertia_carrier + n * st.mass_planet * R ** 2,
                  *([st.inertia_planet] * n)])
     K = np.zeros((3 + n, 3 + n))
-    for i in range(n):
-        # d_sn = a . q, d_rn = b . q (the e_n terms are loads, not stiffness)
-        a = np.zeros(3 + n)
-        a[0], a[2], a[3 + i] = rbs, -(rbs + rbp), rbp
-        b = np.zeros(3 + n)
-        b[1], b[2], b[3 + i] = rbr, -(rbr - rbp), -rbp
+    A, B = mesh_rows(st)
+    for a, b in zip(A, B):
         K += st.k_sun_planet * np.outer(a, a) + st.k_ring_planet * np.outer(b, b)
     keep = []
     for j, m in enumerate(MEMBERS):
@@ -174,12 +182,9 @@ def load_sharing(st: Stage, torque: float, member: str = "sun") -> dict:
     # the error terms: V contains 1/2 k (a.q - e c)^2, so the load vector gains k e c a
     f = np.zeros(full)
     f[MEMBERS.index(member)] = torque
+    A, B = mesh_rows(st)
     for i in range(n):
-        a = np.zeros(full)
-        a[0], a[2], a[3 + i] = rbs, -(rbs + rbp), rbp
-        b = np.zeros(full)
-        b[1], b[2], b[3 + i] = rbr, -(rbr - rbp), -rbp
-        f += st.k_sun_planet * e[i] * c_s * a + st.k_ring_planet * e[i] * c_r * b
+        f += st.k_sun_planet * e[i] * c_s * A[i] + st.k_ring_planet * e[i] * c_r * B[i]
     keep = [MEMBERS.index(nm) if nm in MEMBERS else 3 + int(nm[6:]) - 1 for nm in names]
     q_free = np.linalg.solve(K, f[keep])
     q = np.zeros(full)
