@@ -235,11 +235,12 @@ _SPREAD = ("its stiffnesses lie too far apart for double precision (mesh stiffne
            "within about 1e12 of one another solve)")
 
 
-def analyse(spec, iso=None, where: str = "planetary") -> tuple[dict, dict]:
+def analyse(spec, iso=None, where: str = "planetary", integrate: bool = False, progress=None) -> tuple[dict, dict]:
     """Summary entry and arrays of a model's planetary stage: phasing, modes (the fixed member held),
     load sharing (the fixed member and the output held, the torque on the input); with ``lateral``
-    the lateral-torsional modes and load sharing, with ``rating`` the ISO rating of both meshes
-    (``iso``: the model's [iso] section)."""
+    the lateral-torsional modes and load sharing, with ``dynamics`` and ``integrate`` (a run, not a
+    check) the time integration's K_v (planetary_dynamics.py), with ``rating`` the ISO rating of both
+    meshes (``iso``: the model's [iso] section)."""
     lat = spec.lateral
     hold = lat.support_stiffness if lat is not None and lat.support_stiffness is not None else "fixed"
     st = stage_of(spec, support={spec.fixed: hold})
@@ -290,11 +291,19 @@ def analyse(spec, iso=None, where: str = "planetary") -> tuple[dict, dict]:
         summary["lateral"] = lsum
         arrays["lateral"] = larr
         k_gamma = lsum["load_sharing_factor"]
+    kv_run = None
+    if spec.dynamics is not None and integrate:
+        from .planetary_dynamics import run as integrate_stage
+
+        summary["dynamics"], arrays["dynamics"] = integrate_stage(spec, where, progress)
+        if spec.dynamics.rating_kv == "run":
+            kv_run = (summary["dynamics"]["kv"]["sun-planet"], summary["dynamics"]["kv"]["ring-planet"])
     if spec.rating is not None and iso is not None:
         from .planetary_rating import rate_spec
 
         summary["rating"] = rate_spec(spec, iso, k_gamma, t_sun, member_speeds(st, spec.fixed, spec.input,
-                                                                               spec.rating.speed), where)
+                                                                               spec.rating.speed), where,
+                                      kv_run=kv_run, integrated=integrate)
     return summary, arrays
 
 
@@ -381,9 +390,28 @@ def diagnose_stage(result, summary: dict, prefix: str = "planetary") -> None:
             result.diagnose("tooth-separation", f"{prefix} ({what} model): a planet's mesh force is negative "
                             f"({fmin:.4g} N) at the given torque and pin position errors: that planet's teeth would "
                             "lose contact (the linear load sharing does not hold)", where, fmin, 0.0, "N")
+    d = summary.get("dynamics")
+    if d:
+        fmin = min(d["force_min_sun_planet"] + d["force_min_ring_planet"])
+        if fmin < 0:
+            result.diagnose("tooth-separation", f"{prefix} (time integration at {d['speed']:.6g} rad/s): a mesh force "
+                            f"goes negative ({fmin:.4g} N) in the window: the teeth would separate, the linear model "
+                            "keeps them in mesh (its K_v does not hold)", f"{prefix}.dynamics.force_min_sun_planet",
+                            fmin, 0.0, "N")
+        if d["window_growth"] is not None and d["window_growth"] > 1.1:
+            result.diagnose("kv-unstable", f"{prefix} (time integration at {d['speed']:.6g} rad/s): the mesh forces "
+                            f"grow over the window (second half's range {d['window_growth']:.3g} x the first's): a "
+                            "parametric instability or a start-up transient left; K_v does not hold",
+                            f"{prefix}.dynamics.window_growth", d["window_growth"], 1.1, "1")
 
 
-PLANETARY_UNITS = {"planetary.lateral.natural_frequencies_hz": "Hz", "planetary.lateral.*_force": "N",
+PLANETARY_UNITS = {"planetary.dynamics.speed": "rad/s", "planetary.dynamics.*_hz": "Hz",
+                   "planetary.dynamics.step": "s", "planetary.dynamics.settle": "s", "planetary.dynamics.wall_time": "s",
+                   "planetary.dynamics.force_*": "N", "planetary.dynamics.damping.*": "N*s/m",
+                   "planetary.dynamics.sweep.speed_*": "rad/s", "planetary.dynamics.sweep.diverged_speeds": "rad/s",
+                   "planetary.dynamics.sweep.mesh_hz_per_rad_s": "Hz*s/rad", "planetary.dynamics.*": "1",
+                   "planetary.rating.meshes.*.K_v*": "1",
+                   "planetary.lateral.natural_frequencies_hz": "Hz", "planetary.lateral.*_force": "N",
                    "planetary.lateral.sun_displacement": "m", "planetary.lateral.*": "1",
                    "planetary.rating.meshes.*.*.sigma_*": "Pa", "planetary.rating.meshes.*.reduced_mass": "kg/m",
                    "planetary.rating.meshes.*.resonance_speed_rpm": "rpm", "planetary.rating.meshes.*.iso_c_*": "N/m^2",
@@ -421,6 +449,13 @@ def report_lines(spec, iso=None, where: str = "planetary") -> list[str]:
                 + ", ".join(f"{f:.1f} Hz {k[:5]}" for f, k in zip(la["natural_frequencies_hz"], la["mode_types"])),
                 "  load sharing (lateral-torsional): sun-planet forces " + ", ".join(f"{x:.1f}" for x in la["sun_planet_force"])
                 + f" N, K_gamma {la['load_sharing_factor']:.4f} (torsional model: {s['load_sharing_factor']:.4f})"]
+    if spec.dynamics is not None:
+        d = spec.dynamics
+        out.append(f"  time integration ([dynamics], {d.stiffness_model} mesh stiffness, damping ratio {d.damping_ratio:g}): "
+                   "`drivedyn run` integrates the torsional model for K_v of every mesh"
+                   + (" and sweeps the speed" if d.sweep else "")
+                   + ("; the rating then takes K_v from the run (below: method B)"
+                      if d.rating_kv == "run" and spec.rating is not None and spec.rating.dynamic_factors is None else ""))
     if "rating" in s:
         r = s["rating"]
         out.append(f"  ISO 6336 rating, K_gamma {r['K_gamma']:.4f} ({r['K_gamma_source']}); load cycles "

@@ -349,7 +349,7 @@ def run(spec, where: str = "planetary", progress=None) -> tuple[dict, dict]:
         "natural_frequencies_hz": [float(x) for x in freqs], "modal_damping_ratios": [float(x) for x in zeta],
     }
     arrays = {"time": np.arange(int(nw[0])) * float(h[0]), "force": out_f, "force_nominal": F,
-              "mesh_names": sys_.mesh_names}
+              "mesh_names": sys_.mesh_names, "speed": float(omega), "mesh_frequency_hz": float(fm[0])}
     if dyn.sweep:
         lo_s, hi_s = speed_range(sys_, dyn, f_top)
         speeds = np.linspace(lo_s, hi_s, dyn.count)
