@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 
+import drivedyn
 from drivedyn.gears import planetary_dynamics as pd
 from drivedyn.model import from_dict
 
@@ -213,3 +214,66 @@ def test_equally_spaced_identical_planets_have_equal_kv():
     s, _ = run(stage_model({"window_cycles": 40}, sun_teeth=25, planet_teeth=23))
     for key in ("kv_sun_planet", "kv_ring_planet"):
         assert s[key] == pytest.approx([s[key][0]] * 4, rel=2e-3)
+
+
+def test_carrier_input_loads_the_other_flanks_and_gives_the_same_quasi_static_kv():
+    # carrier in, sun out: the static forces load the other flanks; the stage is integrated as its mirror
+    # image. Far below the modes the direction of rotation does not matter: K_v as with the sun driving
+    dyn = {"speed": 20.0, "engagement": 0.2, "window_cycles": 12, "settle": 0.05}
+    sun_in = run(stage_model(dyn, sun_teeth=25, planet_teeth=23))[0]
+    w_c = 20.0 / (1 + 71 / 25)                    # the same mesh frequency: carrier speed w_s / (1 + z_r / z_s)
+    carrier_in = run(stage_model({**dyn, "speed": w_c}, sun_teeth=25, planet_teeth=23, input="carrier",
+                                 torque=300.0 * (1 + 71 / 25)))[0]
+    assert not sun_in["other_flanks"] and carrier_in["other_flanks"]
+    assert carrier_in["mesh_frequency_hz"] == pytest.approx(sun_in["mesh_frequency_hz"], rel=1e-12)
+    assert carrier_in["force_nominal_sun_planet"] == pytest.approx(sun_in["force_nominal_sun_planet"], rel=1e-9)
+    for key in ("kv_sun_planet", "kv_ring_planet"):
+        assert carrier_in[key] == pytest.approx(sun_in[key], rel=2e-3)
+    const = run(stage_model({**dyn, "speed": w_c, "stiffness_model": "constant", "engagement": 0.0}, sun_teeth=25, planet_teeth=23,
+                            input="carrier", torque=300.0 * (1 + 71 / 25)))[0]
+    assert const["kv_sun_planet"] + const["kv_ring_planet"] == pytest.approx([1.0] * 8, abs=1e-9)
+
+
+def _alone_with_dynamics(rating_kv="run"):
+    """Stage 1 of examples/gears-gearbox.toml alone, K_v not given, integrated at its rating's speed."""
+    good = drivedyn.load(drivedyn.example_path("gears-gearbox"))
+    rating = good.planetary.rating.model_copy(update={"dynamic_factors": None})
+    stage = good.planetary.model_copy(update={"output_gear": None, "output_shaft_stiffness": None, "rating": rating})
+    m = good.model_copy(update={"gears": [], "meshes": [], "drive": None, "planetary": stage, "stages": []})
+    return drivedyn.replace(m, {"planetary.dynamics": {"rating_kv": rating_kv}})
+
+
+def test_the_rating_takes_kv_from_the_run():
+    # K_Hbeta, K_Halpha and K_gamma given: sigma_H goes with sqrt(K_v) and sigma_F with K_v (ISO 6336-2/-3),
+    # so the rating with the run's K_v is the method B rating scaled by the ratio of the two
+    run_ = drivedyn.run(_alone_with_dynamics("run")).summary["planetary"]
+    mb = drivedyn.run(_alone_with_dynamics("method-b")).summary["planetary"]
+    assert "dynamics" in run_ and "dynamics" in mb
+    for mesh, key in (("sun-planet", "sun-planet"), ("ring-planet", "ring-planet")):
+        e, b = run_["rating"]["meshes"][mesh], mb["rating"]["meshes"][mesh]
+        kv = max(run_["dynamics"]["kv"][key], 1.0)
+        assert e["K_v_source"] == "time integration" and b["K_v_source"] == "ISO 6336-1 method B"
+        assert e["K_v"] == pytest.approx(kv, rel=1e-12) and e["K_v_method_b"] == pytest.approx(b["K_v"], rel=1e-12)
+        for gear in (e["pinion"], e["wheel"]):
+            assert e[gear]["sigma_H"] == pytest.approx(b[gear]["sigma_H"] * math.sqrt(kv / b["K_v"]), rel=1e-9)
+            if e[gear]["sigma_F"] is not None:
+                assert e[gear]["sigma_F"] == pytest.approx(b[gear]["sigma_F"] * kv / b["K_v"], rel=1e-9)
+    assert run_["rating"]["K_v_note"].startswith("from the time integration")
+    assert "rating_kv" in mb["rating"]["K_v_note"]
+    # a check does not integrate: it says the run will, and rates with method B
+    text = drivedyn.check(_alone_with_dynamics("run"))
+    assert "`drivedyn run` integrates the torsional model" in text and "ISO 6336-1 method B" in text
+
+
+@pytest.mark.parametrize("edit, expect", [
+    (('torque = "500 N*m"', 'torque = "500 N*m"\n[planetary.rating]\nface_width = "30 mm"\nspeed = "1000 rpm"'),
+     "dynamics.speed: the rating takes K_v from the run at its own speed"),
+    (('speed = "1500 rpm"                   # the sun (input)', ''), "dynamics.speed: give the input member's speed"),
+    (('stiffness_model = "cai"', 'stiffness_model = "potential-energy"'), "planetary.dynamics.stiffness_model"),
+    (("damping_ratio = 0.05", "damping_ratio = 1.5"), "planetary.dynamics.damping_ratio: must lie in [0, 1)"),
+    (("sweep = true ", "count = 1\nsweep = true "), "count must lie in 2..10000"),
+])
+def test_dynamics_bad_input_one_line_exit_2(tmp_path, capsys, edit, expect):
+    from .conftest import assert_one_line_refusal
+
+    assert_one_line_refusal("gears-planetary", edit, expect, tmp_path, capsys)
