@@ -87,6 +87,9 @@ class Gear(Spec):
     """This gear's flank roughness R_z (ISO 6336-2 Z_R); none: iso's."""
     root_roughness: Optional[quantity("m", gt=0)] = None
     """This gear's root roughness R_z (ISO 6336-3 Y_RrelT); none: iso's."""
+    yield_strength: quantity("Pa", gt=0) | None = None
+    """This gear's yield strength R_p0.2, for the relative notch sensitivity Y_deltarelT of a through-hardened gear
+    (ISO 6336-3); none: its steel's, else iso's."""
 
     @field_validator("name")
     @classmethod
@@ -532,6 +535,9 @@ class PlanetaryRating(Spec):
     """Root roughness R_z of sun, planet and ring; none: iso's."""
     root_radius: tuple[float, float, float] = (0.25, 0.25, 0.25)
     """Root radii rho_fP / m of the racks of sun, planet and ring."""
+    yield_strength: dict[Literal["sun", "planet", "ring"], Stress] = Field(default_factory=dict)
+    """Yield strength R_p0.2 per gear (keys sun, planet, ring), for the relative notch sensitivity Y_deltarelT of
+    a through-hardened gear (ISO 6336-3); a gear not named: its steel's, else iso's."""
     ring_root_section: tuple[Length, Length, Length] | None = None
     """The ring's root section at its 60 deg tangent (ISO 6336-3, internal gears), from its tooth form: chord s_Fn,
     fillet radius rho_F, diameter d_sFn; none: the ring's root is not rated."""

@@ -275,6 +275,9 @@ def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict, field:
             mats[k] = replace(mats[k], sigma_hlim=r.sigma_hlim[k] / 1e6)
         if r.sigma_flim is not None:
             mats[k] = replace(mats[k], sigma_flim=r.sigma_flim[k] / 1e6)
+        gear = ("sun", "planet", "ring")[k]
+        if gear in r.yield_strength:
+            mats[k] = replace(mats[k], yield_strength=r.yield_strength[gear] / 1e6)
     mats = tuple(mats)
     rpm = 30.0 / math.pi
     rz_f = tuple(x * 1e6 for x in r.flank_roughness) if r.flank_roughness else (iso.flank_roughness * 1e6,) * 3
