@@ -117,21 +117,31 @@ def add_stages(result, model, sys_=None, first=None, progress=None) -> None:
     diagnostics, their arrays for the plots (each stage's planet forces and modes, and its time
     integration's), and with more than one stage or a train driven, the gearbox's modes (gearbox.py;
     ``sys_`` the assembled train, if any). ``first``: stage 1's (summary, arrays), when already analysed."""
-    summary, arrays = first if first is not None else tors.analyse(model.planetary, model.iso, integrate=True,
-                                                                    progress=progress)
+    summary, arrays = first if first is not None else analyse_stage(model.planetary, model.iso, "planetary", progress)
     result.summary["planetary"] = summary
     tors.diagnose_stage(result, summary, "planetary")
     stage_arrays(result, "planetary", arrays, loads=not result.ds.attrs.get("planetary_only"))
     if model.stages:
         result.summary["stages"] = {}
         for k, spec in enumerate(model.stages):
-            s, a = tors.analyse(spec, model.iso, f"stages[{k}]", integrate=True, progress=progress)
+            s, a = analyse_stage(spec, model.iso, f"stages[{k}]", progress)
             result.summary["stages"][f"stage{k + 2}"] = s
             tors.diagnose_stage(result, s, f"stages.stage{k + 2}")
             stage_arrays(result, f"stage{k + 2}", a)
     last = [model.planetary, *model.stages][-1]
     if model.stages or (sys_ is not None and last.output_gear is not None):
         result.summary["gearbox"] = modes(model, sys_ if last.output_gear is not None else None)
+
+
+def analyse_stage(spec, iso, where: str, progress=None) -> tuple[dict, dict]:
+    """planetary.analyse of a stage in a run: with [dynamics], integrated in time first
+    (planetary_dynamics.run), its K_v then in the summary and the rating."""
+    dyn = None
+    if spec.dynamics is not None:
+        from .planetary_dynamics import run as integrate
+
+        dyn = integrate(spec, where, progress)
+    return tors.analyse(spec, iso, where, dynamics=dyn)
 
 
 def stage_arrays(result, label: str, a: dict, loads: bool = True) -> None:
@@ -176,7 +186,7 @@ def run_stage(model, progress=None):
 
     if progress:
         progress(0.0, "planetary stage")
-    summary, a = tors.analyse(model.planetary, model.iso, integrate=True, progress=progress)
+    summary, a = analyse_stage(model.planetary, model.iso, "planetary", progress)
     ds = xr.Dataset(
         {"natural_frequency": variable(a["f"], ("mode",), "Hz", "natural frequency of the stage (fixed member held)"),
          "mode_shape": variable(a["V"], ("coordinate", "mode"), "1", "mass-normalised mode shape (rotations)"),

@@ -235,12 +235,12 @@ _SPREAD = ("its stiffnesses lie too far apart for double precision (mesh stiffne
            "within about 1e12 of one another solve)")
 
 
-def analyse(spec, iso=None, where: str = "planetary", integrate: bool = False, progress=None) -> tuple[dict, dict]:
+def analyse(spec, iso=None, where: str = "planetary", dynamics: tuple | None = None) -> tuple[dict, dict]:
     """Summary entry and arrays of a model's planetary stage: phasing, modes (the fixed member held),
     load sharing (the fixed member and the output held, the torque on the input); with ``lateral``
-    the lateral-torsional modes and load sharing, with ``dynamics`` and ``integrate`` (a run, not a
-    check) the time integration's K_v (planetary_dynamics.py), with ``rating`` the ISO rating of both
-    meshes (``iso``: the model's [iso] section)."""
+    the lateral-torsional modes and load sharing, with ``dynamics`` (the summary and arrays of the
+    stage's time integration, planetary_dynamics.run: a run, not a check) its K_v, with ``rating`` the
+    ISO rating of both meshes (``iso``: the model's [iso] section)."""
     lat = spec.lateral
     hold = lat.support_stiffness if lat is not None and lat.support_stiffness is not None else "fixed"
     st = stage_of(spec, support={spec.fixed: hold})
@@ -292,10 +292,9 @@ def analyse(spec, iso=None, where: str = "planetary", integrate: bool = False, p
         arrays["lateral"] = larr
         k_gamma = lsum["load_sharing_factor"]
     kv_run = None
-    if spec.dynamics is not None and integrate:
-        from .planetary_dynamics import run as integrate_stage
-
-        summary["dynamics"], arrays["dynamics"] = integrate_stage(spec, where, progress)
+    integrate = dynamics is not None
+    if integrate:
+        summary["dynamics"], arrays["dynamics"] = dynamics
         if spec.dynamics.rating_kv == "run":
             kv_run = (summary["dynamics"]["kv"]["sun-planet"], summary["dynamics"]["kv"]["ring-planet"])
     if spec.rating is not None and iso is not None:

@@ -196,11 +196,21 @@ class StageSystem:
         return q
 
 
+@dataclass(frozen=True)
+class _Shape:
+    """What ``stiffness.build`` reads of a mesh's stiffness spec (as model.Stiffness, without importing
+    the model file's module: it imports this package's modules back)."""
+
+    model: str
+    mean: float
+    engagement: float
+    single: None = None
+    double: None = None
+
+
 def system(spec, where: str = "planetary", omega_low: float | None = None) -> StageSystem:
     """The StageSystem of a model's stage with its ``dynamics`` data; ``omega_low`` the lowest input speed
     that will be run (sizes the stiffness tables)."""
-    from .model import Stiffness
-
     dyn = spec.dynamics
     lat = spec.lateral
     hold = lat.support_stiffness if lat is not None and lat.support_stiffness is not None else "fixed"
@@ -254,7 +264,7 @@ def system(spec, where: str = "planetary", omega_low: float | None = None) -> St
     n_tab = int(min(max(stiffness.N_TABLE, math.ceil(64 * t_mesh * f_hi)), 2 ** 18))
     for k, geo, m_a, m_b, name in ((st.k_sun_planet, sun_geo, m_eq["sun"], m_p, "sun_planet_stiffness"),
                                    (st.k_ring_planet, ring_geo, m_p, m_eq["ring"], "ring_planet_stiffness")):
-        spec_k = Stiffness(model=dyn.stiffness_model, mean=k, engagement=dyn.engagement)
+        spec_k = _Shape(model=dyn.stiffness_model, mean=k, engagement=dyn.engagement)
         try:
             tab = stiffness.build(geo, spec_k, 0.0, 0.0, b=1.0, n_table=n_tab)
         except ValueError as exc:
