@@ -266,7 +266,7 @@ def test_the_rating_takes_kv_from_the_run():
 
 
 @pytest.mark.parametrize("edit, expect", [
-    (('torque = "500 N*m"', 'torque = "500 N*m"\n[planetary.rating]\nface_width = "30 mm"\nspeed = "1000 rpm"'),
+    (('sweep = true ', 'rating_kv = "run"\n[planetary.rating]\nface_width = "30 mm"\nspeed = "1000 rpm"\n# '),
      "dynamics.speed: the rating takes K_v from the run at its own speed"),
     (('speed = "1500 rpm"                   # the sun (input)', ''), "dynamics.speed: give the input member's speed"),
     (('stiffness_model = "cai"', 'stiffness_model = "potential-energy"'), "planetary.dynamics.stiffness_model"),
