@@ -397,12 +397,16 @@ def _stage_tables(label: str, pl: dict, units: dict, prefix: str) -> list[dict]:
     dyn = pl.get("dynamics")
     if dyn:
         n = len(dyn["kv_sun_planet"])
-        rows = [[mesh, *(f"{k:.4f}" for k in dyn[key]), f"{max(dyn[key]):.4f}"]
-                for mesh, key in (("sun-planet", "kv_sun_planet"), ("ring-planet", "kv_ring_planet"))]
+        rows = [[f"{mesh}: {what}", *(f"{k:.4f}" for k in dyn[key + mesh.replace("-", "_")]),
+                 f"{max(dyn[key + mesh.replace('-', '_')]):.4f}"]
+                for mesh in ("sun-planet", "ring-planet")
+                for what, key in (("K_v", "kv_"), ("load shift", "load_sharing_quasi_static_"))
+                if key + mesh.replace("-", "_") in dyn]
         sw = dyn.get("sweep")
         note = (f"at {dyn['speed'] * 30 / math.pi:.6g} rpm of the input member (mesh frequency "
                 f"{dyn['mesh_frequency_hz']:.1f} Hz), {dyn['stiffness_model']} mesh stiffness; K_v = largest mesh force "
-                "over the window / static force")
+                "over the window / largest quasi-static force (the static forces with the instant's mesh stiffnesses); "
+                "load shift = largest quasi-static force / the mean over the planets (a time-varying K_gamma)")
         if sw and sw["kv_max"]["sun-planet"] is not None:
             note += (f"; sweep {sw['speed_min'] * 30 / math.pi:.4g}-{sw['speed_max'] * 30 / math.pi:.4g} rpm: largest K_v "
                      f"{sw['kv_max']['sun-planet']:.3f} (sun-planet, {sw['speed_at_kv_max']['sun-planet'] * 30 / math.pi:.0f} "

@@ -166,6 +166,9 @@ def stage_arrays(result, label: str, a: dict, loads: bool = True) -> None:
         ds = ds.assign_coords({mesh: d["mesh_names"], time_: (time_, d["time"], {"units": "s", "long_name": "time in the window"})})
         ds[f"{label}_dynamics_force"] = variable(d["force"], (time_, mesh), "N",
                                                  "mesh force over the window at the operating speed (time integration)")
+        ds[f"{label}_dynamics_force_quasi_static"] = variable(
+            d["force_quasi_static"], (time_, mesh), "N",
+            "quasi-static mesh force over the window (the static forces with the instant's mesh stiffnesses)")
         ds[f"{label}_dynamics_force_nominal"] = variable(d["force_nominal"], (mesh,), "N",
                                                          "static mesh force, mean stiffnesses")
         ds.attrs[f"{label}_dynamics_mesh_frequency_hz"] = float(d["mesh_frequency_hz"])

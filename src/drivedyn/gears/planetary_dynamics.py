@@ -31,10 +31,19 @@ flanks (the carrier or the ring driving the sun) is integrated as its mirror ima
 torque and pin error negated), which loads the flanks above; the stiffness shapes are symmetric in
 their contact (s -> eps - s), so running a mesh backwards changes nothing else.
 
-K_v of a mesh is as a train's (``simulate``, ``sweep``): the largest mesh force over the window
-(``window_cycles`` mesh periods after ``settle``), started in static equilibrium at the start
-position, over its nominal force, the static force with the mean stiffnesses (the load sharing with
-the pin errors).
+K_v of a mesh separates the dynamic response from the quasi-static shift of load between the planets
+(a stage of several planets is statically indeterminate: with the sun held on its axis, a planet whose
+meshes are momentarily stiffer takes more of the torque). At every step of the window (``window_cycles``
+mesh periods after ``settle``, started in static equilibrium at the start position) the quasi-static
+mesh forces are the static solution with that instant's mesh stiffnesses (a linear solve); then
+
+    K_v                  = largest mesh force / largest quasi-static force of that mesh
+    quasi-static share   = largest over the window of (quasi-static force / mean quasi-static force of the
+                           planets' meshes of that kind): a time-varying K_gamma (with the pin errors)
+
+so K_v tends to 1 far below the modes with a smooth stiffness, and for one planet (the quasi-static force
+constant) it is a train's K_v. The largest force over the static force with the mean stiffnesses (K_v
+before the separation) is reported too, as ``force_max_over_nominal_*``.
 """
 from __future__ import annotations
 
@@ -120,15 +129,15 @@ class StageSystem:
     """The stage's arrays for the kernels (SI; coordinates as ``planetary.matrices``)."""
 
     names: list
-    M: np.ndarray            # diagonal inertias (n)
-    k_support: np.ndarray    # torsional support of each coordinate (n)
+    M: np.ndarray            # diagonal masses (n): inertias, or masses and J / r^2 of the lateral model
+    K_const: np.ndarray      # constant stiffness matrix (n x n): supports, and the lateral model's bearings and pins
     G: np.ndarray            # mesh rows (m x n): sun-planet 1..N, then ring-planet 1..N
     H: np.ndarray            # mesh position rows (m x n)
     offset: np.ndarray       # m
     phase: np.ndarray        # m
     tables: list             # stiffness.MeshTable, sun-planet then ring-planet
     damping: np.ndarray      # m
-    torque: np.ndarray       # n (constant torques, balanced)
+    load: np.ndarray         # n (constant generalised forces, balanced: torques, the constant springs' offsets)
     phi: np.ndarray          # n, speeds per unit input speed
     mirrored: bool
     mesh_names: list
@@ -146,7 +155,7 @@ class StageSystem:
 
     def stiffness(self, k_mesh=None) -> np.ndarray:
         k = self.k_mean() if k_mesh is None else np.asarray(k_mesh)
-        return (self.G.T * k) @ self.G + np.diag(self.k_support)
+        return (self.G.T * k) @ self.G + self.K_const
 
     def mesh_frequency(self, omega_in: float) -> float:
         """Mesh frequency (Hz) at input speed ``omega_in``: z_s |w_s - w_c| / 2 pi."""
@@ -170,7 +179,7 @@ class StageSystem:
         (default the means)."""
         k = self.k_mean() if k_mesh is None else np.asarray(k_mesh)
         K = self.stiffness(k)
-        f = self.torque - self.G.T @ (k * self.offset)
+        f = self.load - self.G.T @ (k * self.offset)
         q = np.linalg.lstsq(K, f, rcond=None)[0]
         # the torques are balanced: remove the rigid-body rotation (M-orthogonal), which no spring feels
         phi, M = self.phi, self.M
@@ -253,10 +262,10 @@ def system(spec, where: str = "planetary", omega_low: float | None = None) -> St
             "ring": st.inertia_ring / rbr ** 2 if "ring" in names else math.inf}
     m_p = st.inertia_planet / rbp ** 2
     tables, damping = [], []
-    tmp = StageSystem(names=names, M=np.diag(M).copy(), k_support=ksup, G=G, H=H, offset=offset, phase=phase,
+    tmp = StageSystem(names=names, M=np.diag(M).copy(), K_const=np.diag(ksup), G=G, H=H, offset=offset, phase=phase,
                       tables=[stiffness.MeshTable(*(None,) * 7, mean=k) for k in
                               [st.k_sun_planet] * N + [st.k_ring_planet] * N],
-                      damping=np.zeros(2 * N), torque=torque, phi=phi, mirrored=False, mesh_names=[], u_rs=u_rs,
+                      damping=np.zeros(2 * N), load=torque, phi=phi, mirrored=False, mesh_names=[], u_rs=u_rs,
                       z_sun=zs, planets=N)
     f_hi = 1.3 * tmp.modes()[0].max(initial=1.0)
     w_low = omega_low if omega_low is not None else (dyn.speed or spec.rating.speed)
@@ -272,22 +281,24 @@ def system(spec, where: str = "planetary", omega_low: float | None = None) -> St
         tables += [tab] * N
         m_red = m_a * m_b / (m_a + m_b) if math.isfinite(m_a) and math.isfinite(m_b) else min(m_a, m_b)
         damping += [2 * dyn.damping_ratio * math.sqrt(tab.mean * m_red)] * N
-    sys_ = StageSystem(names=names, M=np.diag(M).copy(), k_support=ksup, G=G, H=H, offset=offset, phase=phase,
-                       tables=tables, damping=np.array(damping), torque=torque, phi=phi, mirrored=False,
+    sys_ = StageSystem(names=names, M=np.diag(M).copy(), K_const=np.diag(ksup), G=G, H=H, offset=offset, phase=phase,
+                       tables=tables, damping=np.array(damping), load=torque, phi=phi, mirrored=False,
                        mesh_names=[f"sun-planet{i + 1}" for i in range(N)] + [f"ring-planet{i + 1}" for i in range(N)],
                        u_rs=u_rs, z_sun=zs, planets=N, contact_ratio=(sun_geo.contact_ratio, ring_geo.contact_ratio))
     _, f = sys_.static()
     if f[:N].sum() < 0:
         # the other flanks carry the load: integrate the mirror image (module docstring)
-        sys_.torque, sys_.phi, sys_.offset, sys_.mirrored = -torque, -phi, -offset, True
+        sys_.load, sys_.phi, sys_.offset, sys_.mirrored = -torque, -phi, -offset, True
     return sys_
 
 
 def params(sys_: StageSystem) -> tuple:
     """The kernel parameter tuple (order: see ``_stage_kernels``)."""
-    return (1.0 / sys_.M, sys_.torque.astype(float), sys_.k_support.astype(float), np.ascontiguousarray(sys_.G),
-            sys_.offset.astype(float), np.ascontiguousarray(sys_.H), sys_.phase.astype(float), sys_.kt,
-            sys_.damping.astype(float))
+    w = sys_.M * sys_.phi
+    s_reg = float(np.diag(sys_.stiffness()).mean() / (w @ w))
+    return (1.0 / sys_.M, sys_.load.astype(float), np.ascontiguousarray(sys_.K_const, dtype=float),
+            np.ascontiguousarray(sys_.G), sys_.offset.astype(float), np.ascontiguousarray(sys_.H),
+            sys_.phase.astype(float), sys_.kt, sys_.damping.astype(float), w.astype(float), s_reg)
 
 
 def _timing(sys_: StageSystem, dyn, speeds, f_hi, settle):
@@ -331,18 +342,26 @@ def run(spec, where: str = "planetary", progress=None) -> tuple[dict, dict]:
     m = 2 * N
     fm, h, ns, nw = _timing(sys_, dyn, [omega], f_hi, settle)
     y = np.concatenate([q0, sys_.phi * omega])
-    fmax, fmin, fmean, halves = np.zeros(m), np.zeros(m), np.zeros(m), np.zeros((m, 4))
-    out_f = np.zeros((int(nw[0]), m))
+    fmax, fmin, fmean, halves, qs = np.zeros(m), np.zeros(m), np.zeros(m), np.zeros((m, 4)), np.zeros((m, 4))
+    out_f, out_q = np.zeros((int(nw[0]), m)), np.zeros((int(nw[0]), m))
     if progress:
         progress(0.1, "planetary stage: time integration")
-    kern.run(y, float(h[0]), int(ns[0]), int(nw[0]), params(sys_), fmax, fmin, fmean, halves, out_f)
+    kern.run(y, float(h[0]), int(ns[0]), int(nw[0]), params(sys_), fmax, fmin, fmean, halves, qs, out_f, out_q)
     if not np.all(np.isfinite(fmax)):
         raise ModelError("the stage's time integration diverged (the state stopped being finite): a step too large "
                          "for its modes, or a parametric instability of the linear model; give a smaller "
                          "dynamics.step", field=f"{where}.dynamics")
-    kv = fmax / F
+    kv = fmax / qs[:, 0]
+    shift = qs[:, 0] / F
     with np.errstate(divide="ignore", invalid="ignore"):
         growth = (halves[:, 2] - halves[:, 3]) / (halves[:, 0] - halves[:, 1])
+
+    def per(x):
+        return [float(v) for v in x[:N]], [float(v) for v in x[N:]]
+
+    def both(x):
+        return {"sun-planet": float(x[:N].max()), "ring-planet": float(x[N:].max())}
+
     summary = {
         "model": "torsional (Lin & Parker 1999, rotational part) with time-varying mesh stiffness",
         "stiffness_model": dyn.stiffness_model, "speed": float(omega), "mesh_frequency_hz": float(fm[0]),
@@ -350,31 +369,38 @@ def run(spec, where: str = "planetary", progress=None) -> tuple[dict, dict]:
         "damping": {"sun-planet": float(sys_.damping[0]), "ring-planet": float(sys_.damping[N])},
         "contact_ratio": {"sun-planet": float(sys_.contact_ratio[0]), "ring-planet": float(sys_.contact_ratio[1])},
         "phase_ring_vs_sun_mesh": float(sys_.u_rs), "other_flanks": bool(sys_.mirrored),
-        "force_nominal_sun_planet": [float(x) for x in F[:N]], "force_nominal_ring_planet": [float(x) for x in F[N:]],
-        "force_max_sun_planet": [float(x) for x in fmax[:N]], "force_max_ring_planet": [float(x) for x in fmax[N:]],
-        "force_min_sun_planet": [float(x) for x in fmin[:N]], "force_min_ring_planet": [float(x) for x in fmin[N:]],
-        "kv_sun_planet": [float(x) for x in kv[:N]], "kv_ring_planet": [float(x) for x in kv[N:]],
-        "kv": {"sun-planet": float(kv[:N].max()), "ring-planet": float(kv[N:].max())},
+        "force_nominal_sun_planet": per(F)[0], "force_nominal_ring_planet": per(F)[1],
+        "force_max_sun_planet": per(fmax)[0], "force_max_ring_planet": per(fmax)[1],
+        "force_min_sun_planet": per(fmin)[0], "force_min_ring_planet": per(fmin)[1],
+        "force_quasi_static_max_sun_planet": per(qs[:, 0])[0], "force_quasi_static_max_ring_planet": per(qs[:, 0])[1],
+        "force_quasi_static_min_sun_planet": per(qs[:, 1])[0], "force_quasi_static_min_ring_planet": per(qs[:, 1])[1],
+        "kv_sun_planet": per(kv)[0], "kv_ring_planet": per(kv)[1], "kv": both(kv),
+        "load_sharing_quasi_static_sun_planet": per(qs[:, 2])[0],
+        "load_sharing_quasi_static_ring_planet": per(qs[:, 2])[1],
+        "load_sharing_factor_quasi_static": both(qs[:, 2]),
+        "force_max_over_nominal_sun_planet": per(fmax / F)[0], "force_max_over_nominal_ring_planet": per(fmax / F)[1],
+        "quasi_static_max_over_nominal": both(shift),
+        "force_over_quasi_static_max": both(qs[:, 3]),
         "window_growth": float(np.nanmax(growth)) if np.isfinite(growth).any() else None,
         "natural_frequencies_hz": [float(x) for x in freqs], "modal_damping_ratios": [float(x) for x in zeta],
     }
-    arrays = {"time": np.arange(int(nw[0])) * float(h[0]), "force": out_f, "force_nominal": F,
-              "mesh_names": sys_.mesh_names, "speed": float(omega), "mesh_frequency_hz": float(fm[0])}
+    arrays = {"time": np.arange(int(nw[0])) * float(h[0]), "force": out_f, "force_quasi_static": out_q,
+              "force_nominal": F, "mesh_names": sys_.mesh_names, "speed": float(omega), "mesh_frequency_hz": float(fm[0])}
     if dyn.sweep:
         lo_s, hi_s = speed_range(sys_, dyn, f_top)
         speeds = np.linspace(lo_s, hi_s, dyn.count)
         _, hs, nss, nws = _timing(sys_, dyn, speeds, f_hi, settle)
         ns_ = len(speeds)
         smax, smin, smean = np.zeros((ns_, m)), np.zeros((ns_, m)), np.zeros((ns_, m))
-        shalves = np.zeros((ns_, m, 4))
+        shalves, sqs = np.zeros((ns_, m, 4)), np.zeros((ns_, m, 4))
         chunk = max(8, -(-ns_ // 10))
         for a in range(0, ns_, chunk):
             b = min(ns_, a + chunk)
             if progress:
                 progress(0.2 + 0.7 * a / ns_, f"planetary sweep: {a} of {ns_} speeds")
             kern.sweep(speeds[a:b], sys_.phi, q0, p, hs[a:b], nss[a:b], nws[a:b], smax[a:b], smin[a:b], smean[a:b],
-                       shalves[a:b])
-        kvs = smax / F
+                       shalves[a:b], sqs[a:b])
+        kvs = smax / sqs[:, :, 0]
         ok = np.isfinite(kvs).all(axis=1)
         summary["sweep"] = {
             "speed_min": float(speeds[0]), "speed_max": float(speeds[-1]), "count": ns_,
@@ -387,5 +413,6 @@ def run(spec, where: str = "planetary", progress=None) -> tuple[dict, dict]:
         }
         arrays["sweep_speed"] = speeds
         arrays["kv_sweep"] = kvs
+        arrays["load_sharing_sweep"] = sqs[:, :, 2]
     summary["wall_time"] = time.perf_counter() - t0
     return summary, arrays

@@ -301,8 +301,9 @@ def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict, field:
                 + ("; the stage's time integration gives its own in dynamics.kv" if dyn is not None and integrated else ""))
     elif kv_run is not None:
         source = "time integration"
-        note = ("from the time integration (the torsional model with time-varying mesh stiffness, the largest "
-                "over the planets; dynamics.kv); ISO 6336-1 method B beside it (K_v_method_b)")
+        note = ("from the time integration (the stage's model with time-varying mesh stiffness: the largest mesh "
+                "force over the largest quasi-static one, the largest over the planets; dynamics.kv); ISO 6336-1 "
+                "method B beside it (K_v_method_b)")
     else:
         source = "ISO 6336-1 method B"
         why = ("dynamics.rating_kv = \"method-b\"" if dyn is not None and integrated else

@@ -305,12 +305,16 @@ def plot_stage_kv(ds, label, axes):
     mesh = [str(m) for m in ds[f"{label}_mesh"].values]
     t = ds[f"{label}_dynamics_time"].values
     F = ds[f"{label}_dynamics_force"].values / ds[f"{label}_dynamics_force_nominal"].values
+    # K_v: the largest force over the largest quasi-static force (the load shift between the planets apart)
+    qs = f"{label}_dynamics_force_quasi_static"
+    kv = (ds[f"{label}_dynamics_force"].values.max(axis=0) / ds[qs].values.max(axis=0) if qs in ds
+          else F.max(axis=0))
     shown = t <= 4.0 / ds.attrs[f"{label}_dynamics_mesh_frequency_hz"]        # four mesh periods; K_v over all
     arts = []
     n = len(mesh) // 2
     for j, m in enumerate(mesh):
         arts.append(axes[0].plot(t[shown] * 1e3, F[shown, j], f"C{j % n}", ls="-" if j < n else "--", lw=0.9,
-                                 label=f"{m}: K_v {F[:, j].max():.3f}")[0])
+                                 label=f"{m}: K_v {kv[j]:.3f}")[0])
     rpm = ds.attrs[f"{label}_dynamics_speed"] * 30 / math.pi
     axes[0].set(xlabel="time in the window (ms), four mesh periods", ylabel="F / F_static",
                 title=f"{label}: mesh forces at {rpm:.0f} rpm (solid sun-planet, dashed ring-planet)")
