@@ -412,7 +412,8 @@ def _stage_tables(label: str, pl: dict, units: dict, prefix: str) -> list[dict]:
                      f"{sw['kv_max']['sun-planet']:.3f} (sun-planet, {sw['speed_at_kv_max']['sun-planet'] * 30 / math.pi:.0f} "
                      f"rpm), {sw['kv_max']['ring-planet']:.3f} (ring-planet, "
                      f"{sw['speed_at_kv_max']['ring-planet'] * 30 / math.pi:.0f} rpm)")
-        out.append({"title": f"{label}: K_v from the time integration (torsional model)",
+        kind = "lateral-torsional" if dyn.get("model", "").startswith("lateral") else "torsional"
+        out.append({"title": f"{label}: K_v from the time integration ({kind} model)",
                     "head": ["mesh", *(f"planet {i + 1}" for i in range(n)), "largest"], "rows": rows,
                     "note": note + f"; every value: {prefix}dynamics.* in summary.json"})
     if pl.get("natural_frequencies_hz"):

@@ -315,6 +315,97 @@ def test_nrel_stage_one_alone_kv_tends_to_one_below_its_modes():
     assert min(steps["kv"].values()) > 1.2
 
 
+LATERAL = {"sun_mass": 0.5, "ring_mass": 5.0, "carrier_mass": 3.0, "planet_bearing_stiffness": 5e8,
+           "sun_bearing_stiffness": 0.0}
+
+
+def test_lateral_three_planets_floating_sun_share_equally_at_every_instant():
+    # a floating sun on three planets is statically determinate: its two translations and its rotation
+    # balance the three sun-planet forces, whose lines of action are 120 deg apart, so each carries
+    # T / (3 r_bs) whatever the pin errors and the instant's mesh stiffnesses; each planet's moment balance
+    # (its pin carries no moment) makes its ring force equal to its sun force. So the quasi-static shares are
+    # 1 at every instant and, far below the modes, the largest force is the static one (K_v -> 1); the
+    # torsional model (sun held on its axis) shifts load between the planets instead
+    rbs = 0.5 * 25 * M * math.cos(ALPHA)
+    dyn = {"speed": 5.0, "engagement": 0.2, "window_cycles": 12, "settle": 0.2}
+    lat = run(stage_model({**dyn, "model": "lateral"}, sun_teeth=25, planet_teeth=23, planets=3,
+                          position_errors=[5e-6, 0.0, 0.0], lateral=LATERAL))[0]
+    tor = run(stage_model(dyn, sun_teeth=25, planet_teeth=23, planets=3, position_errors=[5e-6, 0.0, 0.0],
+                          lateral=LATERAL))[0]
+    print(lat["kv"], lat["force_max_over_nominal_sun_planet"], tor["load_sharing_factor_quasi_static"])
+    assert lat["model"].startswith("lateral-torsional") and tor["model"].startswith("torsional")
+    for mesh in ("sun_planet", "ring_planet"):
+        assert lat[f"force_nominal_{mesh}"] == pytest.approx([300.0 / (3 * rbs)] * 3, rel=1e-9)
+        assert lat[f"load_sharing_quasi_static_{mesh}"] == pytest.approx([1.0] * 3, abs=1e-9)
+        assert lat[f"force_quasi_static_max_{mesh}"] == pytest.approx([300.0 / (3 * rbs)] * 3, rel=1e-9)
+        assert lat[f"kv_{mesh}"] == pytest.approx([1.0] * 3, abs=2e-4)
+        assert lat[f"force_max_over_nominal_{mesh}"] == pytest.approx([1.0] * 3, abs=2e-4)
+    assert tor["load_sharing_factor_quasi_static"]["sun-planet"] > 1.3
+
+
+def test_lateral_constant_stiffness_is_the_static_lateral_load_sharing():
+    # constant mesh stiffnesses, four planets, a floating sun and a pin error: the run turns rigidly at
+    # the static deflection of the lateral-torsional model (Lin & Parker's load sharing, the output held:
+    # planetary_lateral), its forces constant (K_v = 1); the opposite planet shares the error
+    from drivedyn.gears import planetary as tors
+    from drivedyn.gears import planetary_lateral as pl
+
+    m = stage_model({"stiffness_model": "constant", "model": "lateral"}, sun_teeth=25, planet_teeth=23,
+                    position_errors=[8e-6, 0.0, 0.0, 0.0], lateral=LATERAL)
+    s, _ = run(m)
+    st = tors.stage_of(m.planetary)
+    ref = pl.load_sharing(tors.lateral_stage(m.planetary, st, {"ring": "fixed", "carrier": "fixed"}), 300.0, "sun")
+    print(s["force_nominal_sun_planet"], ref["sun_planet_force"])
+    for mesh in ("sun_planet", "ring_planet"):
+        assert s[f"force_nominal_{mesh}"] == pytest.approx(ref[f"{mesh}_force"], rel=1e-9)
+        assert s[f"force_max_{mesh}"] == pytest.approx(ref[f"{mesh}_force"], rel=1e-9)
+        assert s[f"kv_{mesh}"] == pytest.approx([1.0] * 4, abs=1e-9)
+    f = np.array(s["force_nominal_sun_planet"])
+    assert f[0] == pytest.approx(f[2], rel=1e-9) and f[1] == pytest.approx(f[3], rel=1e-9) and f[1] > 1.3 * f[0]
+
+
+def test_lateral_sweep_peaks_at_the_translational_mode():
+    # sequential phasing with z_s - 1 = 24 a multiple of N = 4: the fundamental mesh harmonic drives the
+    # translational modes (Parker, J. Sound Vib. 236 (2000) 561-573); the lateral model's K_v sweep peaks
+    # where the mesh frequency meets the lowest translational mode, which the torsional model has not
+    from drivedyn.gears import planetary as tors
+    from drivedyn.gears import planetary_lateral as pl
+
+    base = stage_model({"model": "lateral"}, sun_teeth=25, planet_teeth=23, lateral=LATERAL)
+    st = tors.stage_of(base.planetary)
+    f, _, _, kinds = pl.modes(tors.lateral_stage(base.planetary, st, {"ring": "fixed"}))
+    trans = [fi for fi, k in zip(f, kinds) if k == "translational"]
+    per = 25 * (1 - 1 / (1 + 71 / 25)) / (2 * math.pi)
+    dyn = {"sweep": True, "engagement": 0.2, "count": 41, "speed_min": 0.86 * trans[0] / per,
+           "speed_max": 1.17 * trans[0] / per}
+    peaks, top = [], []
+    for model in ("lateral", "torsional"):
+        _, a = run(stage_model({**dyn, "model": model}, sun_teeth=25, planet_teeth=23, lateral=LATERAL))
+        kv = a["kv_sweep"]
+        f_mesh = a["sweep_speed"] * per
+        peaks.append([f_mesh[np.argmax(kv[:, :4].max(axis=1))], f_mesh[np.argmax(kv[:, 4:].max(axis=1))]])
+        top.append(kv.max())
+    print(trans[:2], peaks, top)
+    assert trans[0] == pytest.approx(trans[1], rel=1e-9)          # a pair, as Lin & Parker find
+    assert peaks[0] == pytest.approx([trans[0]] * 2, rel=0.008)
+    assert top[0] > 3.0 and top[1] < 1.5
+
+
+def test_lateral_run_of_one_stage_writes_its_plots(tmp_path):
+    # a single stage with [lateral] integrated in its lateral-torsional model: the overview names the model
+    # and the plots are written (the lateral load sharing's arrays are no stage of their own)
+    m = drivedyn.load(drivedyn.example_path("gears-planetary"))
+    m = drivedyn.replace(m, {"planetary.dynamics": {"model": "lateral", "speed": 50 * math.pi},
+                             "planetary.lateral": {"sun_mass": 0.6, "ring_mass": 6.0, "carrier_mass": 4.0,
+                                                   "planet_bearing_stiffness": 6e8, "sun_bearing_stiffness": 0.0}})
+    res = drivedyn.run(m)
+    assert res.summary["planetary"]["dynamics"]["model"].startswith("lateral-torsional")
+    from drivedyn.api import plot
+
+    names = sorted(p.name for p in plot(res, tmp_path))
+    assert names == ["gears-planetary-kv.png", "gears-planetary.png"]
+
+
 @pytest.mark.parametrize("edit, expect", [
     (('sweep = true ', 'rating_kv = "run"\n[planetary.rating]\nface_width = "30 mm"\nspeed = "1000 rpm"\n# '),
      "dynamics.speed: the rating takes K_v from the run at its own speed"),
@@ -322,6 +413,8 @@ def test_nrel_stage_one_alone_kv_tends_to_one_below_its_modes():
     (('stiffness_model = "cai"', 'stiffness_model = "potential-energy"'), "planetary.dynamics.stiffness_model"),
     (("damping_ratio = 0.05", "damping_ratio = 1.5"), "planetary.dynamics.damping_ratio: must lie in [0, 1)"),
     (("sweep = true ", "count = 1\nsweep = true "), "count must lie in 2..10000"),
+    (('stiffness_model = "cai"', 'model = "lateral"\nstiffness_model = "cai"'),
+     "dynamics.model: \"lateral\" integrates the lateral-torsional model: give [lateral]"),
 ])
 def test_dynamics_bad_input_one_line_exit_2(tmp_path, capsys, edit, expect):
     from .conftest import assert_one_line_refusal

@@ -586,6 +586,9 @@ class PlanetaryDynamics(Spec):
 
     speed: quantity("rad/s", gt=0) | None = None
     """Speed of the input member; none: rating.speed."""
+    model: Literal["torsional", "lateral"] = "torsional"
+    """The stage model integrated: "torsional" (rotations, the sun held on its axis) or "lateral" (the
+    lateral-torsional model of [lateral]: translations on the bearings too, a floating sun; Lin & Parker 1999)."""
     stiffness_model: Literal["cai", "rectangular", "constant"] = "cai"
     """Shape of each mesh's time-varying stiffness about its mean (the stage's sun_planet_stiffness and
     ring_planet_stiffness), as for a gear train's mesh: "cai", "rectangular" or "constant"."""
@@ -761,6 +764,9 @@ class Planetary(Spec):
         if self.fixed == self.input:
             raise ValueError(f"input and fixed are both {self.fixed!r}: the torque would go to ground")
         dyn = self.dynamics
+        if dyn is not None and dyn.model == "lateral" and self.lateral is None:
+            raise ValueError("dynamics.model: \"lateral\" integrates the lateral-torsional model: give [lateral] "
+                             "(masses and bearing stiffnesses)")
         if dyn is not None and dyn.speed is None and self.rating is None:
             raise ValueError("dynamics.speed: give the input member's speed (or [rating] with its speed)")
         if dyn is not None and self.rating is not None and dyn.speed is not None and dyn.rating_kv == "run" \

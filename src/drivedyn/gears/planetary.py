@@ -451,7 +451,8 @@ def report_lines(spec, iso=None, where: str = "planetary") -> list[str]:
     if spec.dynamics is not None:
         d = spec.dynamics
         out.append(f"  time integration ([dynamics], {d.stiffness_model} mesh stiffness, damping ratio {d.damping_ratio:g}): "
-                   "`drivedyn run` integrates the torsional model for K_v of every mesh"
+                   + ("`drivedyn run` integrates the lateral-torsional model" if d.model == "lateral"
+                      else "`drivedyn run` integrates the torsional model") + " for K_v of every mesh"
                    + (" and sweeps the speed" if d.sweep else "")
                    + ("; the rating then takes K_v from the run (below: method B)"
                       if d.rating_kv == "run" and spec.rating is not None and spec.rating.dynamic_factors is None else ""))

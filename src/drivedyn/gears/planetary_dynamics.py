@@ -7,7 +7,9 @@ J. Vib. Acoust. 121 (1999) 316-321), with each mean mesh stiffness replaced by t
 a gear train's mesh (``stiffness.build``: Cai's parabola, the rectangular wave or a constant, about
 the stage's given mean) and viscous mesh damping c = 2 zeta sqrt(k m_a m_b / (m_a + m_b)), m = J / r_b^2
 of the mesh's two gears (as a train's mesh; a held member's m infinite). The lateral (translational)
-degrees of freedom are not integrated: K_v is that of the torsional model.
+degrees of freedom are integrated with ``model = "lateral"``: the lateral-torsional model of
+``planetary_lateral`` (Lin & Parker's coordinates, the pin errors in the pins' springs, the carrier's
+rotation terms left out, the mesh positions from the rotations; ``_lateral_arrays``).
 
 Mesh positions (mesh periods, frac taken), in the carrier's frame as the planets' positions dictate:
 
@@ -56,6 +58,10 @@ import numpy as np
 from ..errors import ModelError
 from . import planetary as tors
 from . import stiffness
+
+MODEL_TEXT = {"torsional": "torsional (Lin & Parker 1999, rotational part) with time-varying mesh stiffness",
+              "lateral": "lateral-torsional (Lin & Parker 1999, without the carrier's rotation terms) with "
+                         "time-varying mesh stiffness"}
 
 
 @dataclass(frozen=True)
@@ -145,6 +151,7 @@ class StageSystem:
     z_sun: int
     planets: int
     contact_ratio: tuple = (math.nan, math.nan)     # sun-planet, ring-planet
+    model: str = "torsional"                         # or "lateral"
 
     @property
     def kt(self) -> np.ndarray:
@@ -256,16 +263,23 @@ def system(spec, where: str = "planetary", omega_low: float | None = None) -> St
     torque = np.zeros(n)
     torque[names.index(spec.input)] = spec.torque
     torque[names.index(output)] = -spec.torque * phi[names.index(spec.input)] / phi[names.index(output)]
+    held = {m: m not in names for m in tors.MEMBERS}
+    masses, K_const, load = np.diag(M).copy(), np.diag(ksup), torque
+    if dyn.model == "lateral":
+        # the lateral-torsional model: the pin errors act in the pins' springs, not in the meshes
+        names, masses, K_const, pins, G, H, phi, load = _lateral_arrays(spec, st, hold, output)
+        load = load + pins
+        offset = np.zeros(2 * N)
     # tables: at least N_TABLE points a period; a cell shorter than 1/64 of the highest mode's period
     # at the lowest speed run (a stiffness jump stays a jump for the dynamics), as a train's tables
-    m_eq = {"sun": st.inertia_sun / rbs ** 2 if "sun" in names else math.inf,       # a held member: infinite
-            "ring": st.inertia_ring / rbr ** 2 if "ring" in names else math.inf}
+    m_eq = {"sun": st.inertia_sun / rbs ** 2 if not held["sun"] else math.inf,       # a held member: infinite
+            "ring": st.inertia_ring / rbr ** 2 if not held["ring"] else math.inf}
     m_p = st.inertia_planet / rbp ** 2
     tables, damping = [], []
-    tmp = StageSystem(names=names, M=np.diag(M).copy(), K_const=np.diag(ksup), G=G, H=H, offset=offset, phase=phase,
+    tmp = StageSystem(names=names, M=masses, K_const=K_const, G=G, H=H, offset=offset, phase=phase,
                       tables=[stiffness.MeshTable(*(None,) * 7, mean=k) for k in
                               [st.k_sun_planet] * N + [st.k_ring_planet] * N],
-                      damping=np.zeros(2 * N), load=torque, phi=phi, mirrored=False, mesh_names=[], u_rs=u_rs,
+                      damping=np.zeros(2 * N), load=load, phi=phi, mirrored=False, mesh_names=[], u_rs=u_rs,
                       z_sun=zs, planets=N)
     f_hi = 1.3 * tmp.modes()[0].max(initial=1.0)
     w_low = omega_low if omega_low is not None else (dyn.speed or spec.rating.speed)
@@ -281,16 +295,64 @@ def system(spec, where: str = "planetary", omega_low: float | None = None) -> St
         tables += [tab] * N
         m_red = m_a * m_b / (m_a + m_b) if math.isfinite(m_a) and math.isfinite(m_b) else min(m_a, m_b)
         damping += [2 * dyn.damping_ratio * math.sqrt(tab.mean * m_red)] * N
-    sys_ = StageSystem(names=names, M=np.diag(M).copy(), K_const=np.diag(ksup), G=G, H=H, offset=offset, phase=phase,
-                       tables=tables, damping=np.array(damping), load=torque, phi=phi, mirrored=False,
+    sys_ = StageSystem(names=names, M=masses, K_const=K_const, G=G, H=H, offset=offset, phase=phase,
+                       tables=tables, damping=np.array(damping), load=load, phi=phi, mirrored=False,
                        mesh_names=[f"sun-planet{i + 1}" for i in range(N)] + [f"ring-planet{i + 1}" for i in range(N)],
-                       u_rs=u_rs, z_sun=zs, planets=N, contact_ratio=(sun_geo.contact_ratio, ring_geo.contact_ratio))
+                       u_rs=u_rs, z_sun=zs, planets=N, contact_ratio=(sun_geo.contact_ratio, ring_geo.contact_ratio),
+                       model=dyn.model)
     _, f = sys_.static()
     if f[:N].sum() < 0:
         # the other flanks carry the load: integrate the mirror image (module docstring)
-        sys_.load, sys_.phi, sys_.offset, sys_.mirrored = -torque, -phi, -offset, True
+        sys_.load, sys_.phi, sys_.offset, sys_.mirrored = -load, -phi, -offset, True
     return sys_
 
+
+def _lateral_arrays(spec, st, hold, output):
+    """The lateral-torsional model's arrays (``planetary_lateral``: Lin & Parker 1999, the carrier's
+    rotation terms left out) over its kept coordinates: names, masses, the constant stiffness matrix (pins,
+    bearings, the held member's support), the load of the constant springs' offsets (the pin errors), the
+    mesh rows G (sun-planet 1..N, then ring-planet 1..N), the mesh position rows H, the rigid-body motion
+    phi per unit input speed, and the torques' generalised forces per unit torque on the input."""
+    from . import planetary_lateral as pl
+
+    lst = tors.lateral_stage(spec, st, {spec.fixed: hold})
+    M, _, names = pl.matrices(lst)
+    keep = pl._kept(lst)
+    N = st.n
+    size = 9 + 3 * N
+    K_const, load = np.zeros((size, size)), np.zeros(size)
+    G = np.zeros((2 * N, size))
+    for kind, who, k, g, off in pl._springs(lst):
+        if kind == "sun-planet":
+            G[who] = g
+        elif kind == "ring-planet":
+            G[N + who] = g
+        else:
+            K_const += k * np.outer(g, g)
+            load -= k * off * g                     # 1/2 k (g.q + off)^2 loads the coordinates by -k off g
+    rbs, rbp, rbr, R = st.radii
+    r = {"sun": rbs, "ring": rbr, "carrier": R}
+    col = {nm: i for i, nm in enumerate(pl.coordinate_names(N))}
+    H = np.zeros((2 * N, size))
+    H[:N, col["sun.u"]] = st.z_sun / rbs
+    H[:N, col["carrier.u"]] = -st.z_sun / R
+    for i in range(N):
+        H[N + i, col[f"planet{i + 1}.u"]] = -st.z_planet / rbp
+        H[N + i, col["carrier.u"]] = st.z_planet / R
+    w = tors.member_speeds(st, spec.fixed, spec.input, 1.0)
+    wp = w["carrier"] - rbs / rbp * (w["sun"] - w["carrier"])
+    phi = np.zeros(size)
+    for m_ in tors.MEMBERS:
+        phi[col[f"{m_}.u"]] = r[m_] * w[m_]
+    for i in range(N):
+        phi[col[f"planet{i + 1}.eta"]] = R * w["carrier"]
+        phi[col[f"planet{i + 1}.u"]] = rbp * wp
+    torque = np.zeros(size)
+    torque[col[f"{spec.input}.u"]] = spec.torque / r[spec.input]
+    # the output's torque balances the input's power: T_out w_out = -T_in w_in, generalised force T / r
+    torque[col[f"{output}.u"]] = -spec.torque * w[spec.input] / w[output] / r[output]
+    return (names, np.diag(M).copy(), K_const[np.ix_(keep, keep)], load[keep], G[:, keep], H[:, keep],
+            phi[keep], torque[keep])
 
 def params(sys_: StageSystem) -> tuple:
     """The kernel parameter tuple (order: see ``_stage_kernels``)."""
@@ -363,7 +425,7 @@ def run(spec, where: str = "planetary", progress=None) -> tuple[dict, dict]:
         return {"sun-planet": float(x[:N].max()), "ring-planet": float(x[N:].max())}
 
     summary = {
-        "model": "torsional (Lin & Parker 1999, rotational part) with time-varying mesh stiffness",
+        "model": MODEL_TEXT[sys_.model],
         "stiffness_model": dyn.stiffness_model, "speed": float(omega), "mesh_frequency_hz": float(fm[0]),
         "step": float(h[0]), "settle": float(ns[0] * h[0]), "window_cycles": dyn.window_cycles,
         "damping": {"sun-planet": float(sys_.damping[0]), "ring-planet": float(sys_.damping[N])},

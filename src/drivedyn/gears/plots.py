@@ -339,6 +339,8 @@ def plot_stage_kv(ds, label, axes):
 
 def _stage_plots(ds, save) -> None:
     for label in _stage_labels(ds, "_sun_planet_force"):
+        if f"{label}_planet" not in ds.coords:     # a single stage's lateral load sharing (lateral_...): no stage
+            continue
         fig, ax = _figure(1, 2, (10, 4))
         plot_stage_loads(ds, label, ax[0])
         save(fig, label)
