@@ -228,13 +228,25 @@ def run(model: Path = typer.Argument(..., help="Model file (TOML)."),
         raise typer.Exit(EXIT_CRITERIA)
 
 
+#: the widest a table is printed to a file or a pipe (columns of names whole, a long cell folded)
+PIPE_WIDTH = 180
+
+
 def _print_table(console, table):
     """A table that fits the terminal (rich folds its cells), or, written to a file or a pipe,
     keeps its columns whole at whatever width they need."""
     if console.is_terminal:
         console.print(table)
     else:
-        console.print(table, width=max(console.width, console.measure(table).maximum), crop=False)
+        # measured, and printed, beyond the console's own width (80 on a pipe), which bounds both
+        # (print's width is clamped to it); a long text cell (a verdict's where) folds at PIPE_WIDTH
+        wide = min(PIPE_WIDTH, console.measure(table, options=console.options.update_width(100_000)).maximum)
+        narrow = console.width
+        console.width = max(narrow, wide)
+        try:
+            console.print(table, crop=False)
+        finally:
+            console.width = narrow
 
 
 def _print_overview(console, result):
@@ -249,7 +261,7 @@ def _print_overview(console, result):
     if v["rows"]:
         t = Table(title=f"verdict: [{style}]{v['verdict']}[/{style}]", title_justify="left")
         for h in v["head"][:-1]:
-            t.add_column(h, justify="right" if h in ("value", "limit") else "left")
+            t.add_column(h, justify="right" if h in ("value", "limit") else "left", overflow="fold")
         for r in v["rows"]:
             cells = [escape(str(c)) for c in r[:-1]]
             cells[4] = f"[green]{cells[4]}[/green]" if r[4] == "pass" else f"[red]{cells[4]}[/red]"
@@ -268,7 +280,7 @@ def _print_overview(console, result):
             continue
         t = Table(title=escape(tb["title"]), title_justify="left")
         for h in tb["head"]:
-            t.add_column(escape(h))
+            t.add_column(escape(h), overflow="fold")     # a narrow terminal folds a name, not cuts it
         for r in tb["rows"]:
             t.add_row(*[escape(str(c)) for c in r])
         _print_table(console, t)
@@ -288,9 +300,9 @@ def _print_summary(console, result):
     from .outputs import shorten
 
     table = Table(title="summary (SI units)", show_header=True)
-    table.add_column("key")
-    table.add_column("value", justify="right")
-    table.add_column("unit")
+    table.add_column("key", overflow="fold")
+    table.add_column("value", justify="right", overflow="fold")
+    table.add_column("unit", overflow="fold")
     for k, v in flatten(result.summary).items():
         # names are data: no rich markup read from them, and a very long one shortened (the terminal
         # wraps a cell in a time that grows with the square of its length); summary.json has them whole

@@ -394,6 +394,28 @@ def _stage_tables(label: str, pl: dict, units: dict, prefix: str) -> list[dict]:
                     + (f", {rt['K_v_note'].split(':')[0]}" if rt.get("K_v_note") else "")
                     + f"; required S_H {rt['S_H_min_required']:g}, S_F {rt['S_F_min_required']:g}; every factor: "
                     f"{prefix}rating.* in summary.json"})
+    dyn = pl.get("dynamics")
+    if dyn:
+        n = len(dyn["kv_sun_planet"])
+        rows = [[f"{mesh}: {what}", *(f"{k:.4f}" for k in dyn[key + mesh.replace("-", "_")]),
+                 f"{max(dyn[key + mesh.replace('-', '_')]):.4f}"]
+                for mesh in ("sun-planet", "ring-planet")
+                for what, key in (("K_v", "kv_"), ("load shift", "load_sharing_quasi_static_"))
+                if key + mesh.replace("-", "_") in dyn]
+        sw = dyn.get("sweep")
+        note = (f"at {dyn['speed'] * 30 / math.pi:.6g} rpm of the input member (mesh frequency "
+                f"{dyn['mesh_frequency_hz']:.1f} Hz), {dyn['stiffness_model']} mesh stiffness; K_v = largest mesh force "
+                "over the window / largest quasi-static force (the static forces with the instant's mesh stiffnesses); "
+                "load shift = largest quasi-static force / the mean over the planets (a time-varying K_gamma)")
+        if sw and sw["kv_max"]["sun-planet"] is not None:
+            note += (f"; sweep {sw['speed_min'] * 30 / math.pi:.4g}-{sw['speed_max'] * 30 / math.pi:.4g} rpm: largest K_v "
+                     f"{sw['kv_max']['sun-planet']:.3f} (sun-planet, {sw['speed_at_kv_max']['sun-planet'] * 30 / math.pi:.0f} "
+                     f"rpm), {sw['kv_max']['ring-planet']:.3f} (ring-planet, "
+                     f"{sw['speed_at_kv_max']['ring-planet'] * 30 / math.pi:.0f} rpm)")
+        kind = "lateral-torsional" if dyn.get("model", "").startswith("lateral") else "torsional"
+        out.append({"title": f"{label}: K_v from the time integration ({kind} model)",
+                    "head": ["mesh", *(f"planet {i + 1}" for i in range(n)), "largest"], "rows": rows,
+                    "note": note + f"; every value: {prefix}dynamics.* in summary.json"})
     if pl.get("natural_frequencies_hz"):
         types = pl.get("mode_types") or [""] * len(pl["natural_frequencies_hz"])
         out.append({"title": f"{label}: modes (lumped torsional model)", "head": ["mode", "frequency (Hz)", "type"],

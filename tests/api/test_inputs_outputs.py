@@ -112,6 +112,42 @@ def test_run_prints_its_findings_on_stdout(tmp_path):
     assert "verdict:" not in err
 
 
+def test_piped_tables_keep_their_names_whole(tmp_path):
+    """Written to a file or a pipe, rich sizes a console at 80 columns and cut every table's names to
+    8 characters ("tensio…", "(compr…") and folded its numbers ("762 .." over "5018"); the tables
+    are printed at the width their columns need now (a long cell folds at cli.PIPE_WIDTH)."""
+    from drivedyn.cli import PIPE_WIDTH
+
+    names = ("crankshaft_main_pulley", "alternator_with_clutch")
+    d = short_belt(**{"pulleys.0.name": names[0], "pulleys.1.name": names[1]})
+    code, err, out, _ = cli("run", write(tmp_path, d), "-o", tmp_path / "out", "-q", "--no-plots")
+    assert code == 0, err
+    rows = [ln for ln in out.splitlines() if ln.startswith("\u2502")]      # table rows
+    assert rows and not any("\u2026" in ln for ln in rows)
+    for nm in names:
+        assert any(f"\u2502 {nm} " in ln for ln in rows), nm          # a whole name in its own cell
+    assert f"{names[0]}-{names[1]}" in out                               # a span's name, whole
+    assert max(len(ln) for ln in out.splitlines() if ln[:1] in "\u250f\u2502\u2514") <= PIPE_WIDTH
+
+
+def test_a_narrow_terminal_folds_names_not_cuts_them(tmp_path):
+    """In a terminal of 60 columns the tables fold a long name over lines (rich's default cut it to
+    "alternat…")."""
+    from rich.console import Console
+
+    from drivedyn.cli import _print_overview
+
+    names = ("crankshaft_main_pulley", "alternator_with_clutch")
+    d = short_belt(**{"pulleys.0.name": names[0], "pulleys.1.name": names[1]})
+    result = drivedyn.run(drivedyn.load(write(tmp_path, d)))
+    buf = io.StringIO()
+    _print_overview(Console(file=buf, width=60, force_terminal=True, color_system=None), result)
+    text = buf.getvalue()
+    assert "\u2026" not in text
+    joined = "".join(ln.split("\u2502")[1].strip() if ln.count("\u2502") > 2 else "" for ln in text.splitlines())
+    assert all(nm in joined for nm in names)         # each name whole once its folded pieces are joined
+
+
 def test_file_and_netcdf_names():
     from drivedyn.outputs import file_stem, nc_name
 

@@ -21,6 +21,7 @@ and prints it rounded. K_v = 1.0053 is used here for the sun-planet mesh.
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from drivedyn.errors import ModelError
@@ -419,3 +420,31 @@ def test_stages_the_solvers_cannot_take_are_one_line_naming_the_stage(changes, w
     with pytest.raises(ModelError) as exc:
         drivedyn.check(m)
     assert str(exc.value).startswith(words) and "\n" not in str(exc.value)
+
+
+def _y_delta_iso(yield_strength, q_s):
+    """ISO 6336-3:2006 Y_deltarelT of a through-hardened steel: slip-layer thickness rho' interpolated in
+    R_p0.2 (500, 600, 800, 1000 N/mm^2: 0.0281, 0.0194, 0.0064, 0.0014 mm), X* = (1 + 2 q_s) / 5."""
+    rho = float(np.interp(yield_strength, [500, 600, 800, 1000], [0.0281, 0.0194, 0.0064, 0.0014]))
+    return (1 + math.sqrt(rho * (1 + 2 * q_s) / 5)) / (1 + math.sqrt(rho * 1.2))
+
+
+def test_yield_strength_per_gear():
+    # stage 2 of the gearbox example alone: its ring's R_p0.2 given per gear (1000 N/mm^2, the report's)
+    # or the through-hardened steel's of the table (900): the ring's S_F goes with Y_deltarelT, whose
+    # notch parameter q_s = s_Fn / (2 rho_F) comes from the given root section (56.76, 8.78 mm)
+    import drivedyn
+
+    good = drivedyn.load(drivedyn.example_path("gears-gearbox"))
+    stage = good.stages[0].model_copy(update={"output_gear": None, "output_shaft_stiffness": None})
+    alone = good.model_copy(update={"gears": [], "meshes": [], "drive": None, "planetary": stage, "stages": []})
+    assert alone.planetary.rating.yield_strength == {"ring": 1000e6}
+    default = drivedyn.replace(alone, {"planetary.rating.yield_strength": {}})
+    sf = [drivedyn.run(m).summary["planetary"]["rating"]["meshes"]["ring-planet"] for m in (alone, default)]
+    q_s = 56.76 / (2 * 8.78)
+    expect = _y_delta_iso(1000.0, q_s) / _y_delta_iso(900.0, q_s)
+    assert sf[0]["ring"]["S_F"] / sf[1]["ring"]["S_F"] == pytest.approx(expect, rel=1e-12)
+    assert _y_delta_iso(1000.0, q_s) == pytest.approx(1.0045, abs=5e-5)          # the report's Y_deltarelT
+    # the case-carburized sun and planets are not touched (their Y_deltarelT has no yield strength in it)
+    assert sf[0]["planet"]["S_F"] == sf[1]["planet"]["S_F"]
+    assert drivedyn.loads(drivedyn.dumps(alone)) == alone

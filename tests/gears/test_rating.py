@@ -146,6 +146,29 @@ def test_steel_table_sets_the_limits():
     assert e2["pinion_rating"]["sigma_Hlim"] == 1500e6 and e2["wheel_rating"]["sigma_Hlim"] == 740e6
 
 
+def test_yield_strength_per_gear_reaches_the_notch_sensitivity():
+    # a through-hardened wheel with its own R_p0.2 (600 N/mm^2) instead of the steel's 900: its root's S_F goes
+    # with ISO 6336-3's Y_deltarelT (slip-layer thickness rho' interpolated in R_p0.2, X* = (1 + 2 q_s) / 5);
+    # the case-carburized pinion is not touched
+    import numpy as np
+
+    import drivedyn
+    from drivedyn.gears.rating import rate_mesh
+    from drivedyn.gears.train import assemble
+
+    def y_delta(ys, q_s):
+        rho = float(np.interp(ys, [500, 600, 800, 1000], [0.0281, 0.0194, 0.0064, 0.0014]))
+        return (1 + math.sqrt(rho * (1 + 2 * q_s) / 5)) / (1 + math.sqrt(rho * 1.2))
+
+    base = drivedyn.replace(seed_model(), {"gears.gear2.steel": "through-hardened"})
+    own = drivedyn.replace(base, {"gears.gear2.yield_strength": 600e6})
+    r0, r1 = (rate_mesh(m, assemble(m), 0, 1.2) for m in (base, own))
+    q_s = r0.wheel["q_s"]
+    assert r1.wheel["S_F"] / r0.wheel["S_F"] == pytest.approx(y_delta(600, q_s) / y_delta(900, q_s), rel=1e-12)
+    assert r1.pinion["S_F"] == r0.pinion["S_F"]
+    assert drivedyn.loads(drivedyn.dumps(own)) == own
+
+
 def _generated_fillet(z, x, m, alpha, h_fp, rho_fp):
     """(s_Fn, rho_F) where the fillet that the basic rack's tip rounding generates on a spur gear has its
     tangent at 30 deg to the tooth centre line: the rounding's centre rolled with the rack (pitch line

@@ -112,22 +112,72 @@ def output_speed(spec) -> float:
     return spec.rating.speed / abs(tors._speed_ratio(st, spec.input, output))
 
 
-def add_stages(result, model, sys_=None, first=None) -> None:
+def add_stages(result, model, sys_=None, first=None, progress=None) -> None:
     """The summaries of a model's planetary stages (``planetary``, then ``stages.stage2``, ...), their
-    diagnostics, and with more than one stage or a train driven, the gearbox's modes
-    (gearbox.py; ``sys_`` the assembled train, if any)."""
-    summary = first if first is not None else tors.analyse(model.planetary, model.iso)[0]
+    diagnostics, their arrays for the plots (each stage's planet forces and modes, and its time
+    integration's), and with more than one stage or a train driven, the gearbox's modes (gearbox.py;
+    ``sys_`` the assembled train, if any). ``first``: stage 1's (summary, arrays), when already analysed."""
+    summary, arrays = first if first is not None else analyse_stage(model.planetary, model.iso, "planetary", progress)
     result.summary["planetary"] = summary
     tors.diagnose_stage(result, summary, "planetary")
+    stage_arrays(result, "planetary", arrays, loads=not result.ds.attrs.get("planetary_only"))
     if model.stages:
         result.summary["stages"] = {}
         for k, spec in enumerate(model.stages):
-            s = tors.analyse(spec, model.iso, f"stages[{k}]")[0]
+            s, a = analyse_stage(spec, model.iso, f"stages[{k}]", progress)
             result.summary["stages"][f"stage{k + 2}"] = s
             tors.diagnose_stage(result, s, f"stages.stage{k + 2}")
+            stage_arrays(result, f"stage{k + 2}", a)
     last = [model.planetary, *model.stages][-1]
     if model.stages or (sys_ is not None and last.output_gear is not None):
         result.summary["gearbox"] = modes(model, sys_ if last.output_gear is not None else None)
+
+
+def analyse_stage(spec, iso, where: str, progress=None) -> tuple[dict, dict]:
+    """planetary.analyse of a stage in a run: with [dynamics], integrated in time first
+    (planetary_dynamics.run), its K_v then in the summary and the rating."""
+    dyn = None
+    if spec.dynamics is not None:
+        from .planetary_dynamics import run as integrate
+
+        dyn = integrate(spec, where, progress)
+    return tors.analyse(spec, iso, where, dynamics=dyn)
+
+
+def stage_arrays(result, label: str, a: dict, loads: bool = True) -> None:
+    """A stage's arrays into the Result's Dataset, named ``<label>_...`` (the plots read them): with
+    ``loads`` its static planet forces and natural frequencies, and its time integration's mesh forces
+    over the window and K_v sweep when it was integrated."""
+    from ..results import variable
+
+    ds = result.ds
+    if loads:
+        planet = f"{label}_planet"
+        ds[f"{label}_sun_planet_force"] = variable(a["forces"]["sun_planet_force"], (planet,), "N",
+                                                   "static sun-planet mesh force")
+        ds[f"{label}_ring_planet_force"] = variable(a["forces"]["ring_planet_force"], (planet,), "N",
+                                                    "static ring-planet mesh force")
+        ds[f"{label}_natural_frequency"] = variable(a["f"], (f"{label}_mode",), "Hz",
+                                                    "natural frequency of the stage (fixed member held)")
+        ds = ds.assign_coords({planet: np.arange(1, len(a["forces"]["share"]) + 1)})
+    d = a.get("dynamics")
+    if d is not None:
+        mesh, time_ = f"{label}_mesh", f"{label}_dynamics_time"
+        ds = ds.assign_coords({mesh: d["mesh_names"], time_: (time_, d["time"], {"units": "s", "long_name": "time in the window"})})
+        ds[f"{label}_dynamics_force"] = variable(d["force"], (time_, mesh), "N",
+                                                 "mesh force over the window at the operating speed (time integration)")
+        ds[f"{label}_dynamics_force_quasi_static"] = variable(
+            d["force_quasi_static"], (time_, mesh), "N",
+            "quasi-static mesh force over the window (the static forces with the instant's mesh stiffnesses)")
+        ds[f"{label}_dynamics_force_nominal"] = variable(d["force_nominal"], (mesh,), "N",
+                                                         "static mesh force, mean stiffnesses")
+        ds.attrs[f"{label}_dynamics_mesh_frequency_hz"] = float(d["mesh_frequency_hz"])
+        ds.attrs[f"{label}_dynamics_speed"] = float(d["speed"])
+        if "kv_sweep" in d:
+            sp = f"{label}_sweep_speed"
+            ds = ds.assign_coords({sp: (sp, d["sweep_speed"], {"units": "rad/s", "long_name": "input member speed"})})
+            ds[f"{label}_kv_sweep"] = variable(d["kv_sweep"], (sp, mesh), "1", "K_v against the input member's speed")
+    result.ds = ds
 
 
 def run_stage(model, progress=None):
@@ -139,7 +189,7 @@ def run_stage(model, progress=None):
 
     if progress:
         progress(0.0, "planetary stage")
-    summary, a = tors.analyse(model.planetary, model.iso)
+    summary, a = analyse_stage(model.planetary, model.iso, "planetary", progress)
     ds = xr.Dataset(
         {"natural_frequency": variable(a["f"], ("mode",), "Hz", "natural frequency of the stage (fixed member held)"),
          "mode_shape": variable(a["V"], ("coordinate", "mode"), "1", "mass-normalised mode shape (rotations)"),
@@ -156,7 +206,7 @@ def run_stage(model, progress=None):
         ds["lateral_sun_planet_force"] = variable(la["forces"]["sun_planet_force"], ("planet",), "N",
                                                   "static sun-planet mesh force, lateral-torsional model")
     r = Result(kind="gear-train", ds=ds, summary={})
-    add_stages(r, model, None, first=summary)
+    add_stages(r, model, None, first=(summary, a), progress=progress)
     r.units = unit_map(r.summary, tors.PLANETARY_UNITS)
     if progress:
         progress(1.0, "done")

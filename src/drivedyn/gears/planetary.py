@@ -109,21 +109,29 @@ def phases(st: Stage) -> tuple[np.ndarray, np.ndarray]:
 MEMBERS = ("sun", "ring", "carrier")
 
 
+def mesh_rows(st: Stage) -> tuple[np.ndarray, np.ndarray]:
+    """The rows a_n, b_n (N x (3 + N), over [sun, ring, carrier, planet 1..N]) with the mesh deflections
+    d_sn = a_n . q - e_n cos(alpha_ws) and d_rn = b_n . q - e_n cos(alpha_wr)."""
+    rbs, rbp, rbr = st.radii[:3]
+    n = st.n
+    A, B = np.zeros((n, 3 + n)), np.zeros((n, 3 + n))
+    for i in range(n):
+        A[i, 0], A[i, 2], A[i, 3 + i] = rbs, -(rbs + rbp), rbp
+        B[i, 1], B[i, 2], B[i, 3 + i] = rbr, -(rbr - rbp), -rbp
+    return A, B
+
+
 def matrices(st: Stage) -> tuple[np.ndarray, np.ndarray, list[str]]:
     """Mass and stiffness matrices over the free coordinates [sun, ring, carrier, planet 1..N]
     (fixed members removed) and the coordinate names."""
-    rbs, rbp, rbr, R = st.radii
+    R = st.radii[3]
     n = st.n
     names = [*MEMBERS, *(f"planet{i + 1}" for i in range(n))]
     M = np.diag([st.inertia_sun, st.inertia_ring, st.inertia_carrier + n * st.mass_planet * R ** 2,
                  *([st.inertia_planet] * n)])
     K = np.zeros((3 + n, 3 + n))
-    for i in range(n):
-        # d_sn = a . q, d_rn = b . q (the e_n terms are loads, not stiffness)
-        a = np.zeros(3 + n)
-        a[0], a[2], a[3 + i] = rbs, -(rbs + rbp), rbp
-        b = np.zeros(3 + n)
-        b[1], b[2], b[3 + i] = rbr, -(rbr - rbp), -rbp
+    A, B = mesh_rows(st)
+    for a, b in zip(A, B):
         K += st.k_sun_planet * np.outer(a, a) + st.k_ring_planet * np.outer(b, b)
     keep = []
     for j, m in enumerate(MEMBERS):
@@ -174,12 +182,9 @@ def load_sharing(st: Stage, torque: float, member: str = "sun") -> dict:
     # the error terms: V contains 1/2 k (a.q - e c)^2, so the load vector gains k e c a
     f = np.zeros(full)
     f[MEMBERS.index(member)] = torque
+    A, B = mesh_rows(st)
     for i in range(n):
-        a = np.zeros(full)
-        a[0], a[2], a[3 + i] = rbs, -(rbs + rbp), rbp
-        b = np.zeros(full)
-        b[1], b[2], b[3 + i] = rbr, -(rbr - rbp), -rbp
-        f += st.k_sun_planet * e[i] * c_s * a + st.k_ring_planet * e[i] * c_r * b
+        f += st.k_sun_planet * e[i] * c_s * A[i] + st.k_ring_planet * e[i] * c_r * B[i]
     keep = [MEMBERS.index(nm) if nm in MEMBERS else 3 + int(nm[6:]) - 1 for nm in names]
     q_free = np.linalg.solve(K, f[keep])
     q = np.zeros(full)
@@ -230,11 +235,12 @@ _SPREAD = ("its stiffnesses lie too far apart for double precision (mesh stiffne
            "within about 1e12 of one another solve)")
 
 
-def analyse(spec, iso=None, where: str = "planetary") -> tuple[dict, dict]:
+def analyse(spec, iso=None, where: str = "planetary", dynamics: tuple | None = None) -> tuple[dict, dict]:
     """Summary entry and arrays of a model's planetary stage: phasing, modes (the fixed member held),
     load sharing (the fixed member and the output held, the torque on the input); with ``lateral``
-    the lateral-torsional modes and load sharing, with ``rating`` the ISO rating of both meshes
-    (``iso``: the model's [iso] section)."""
+    the lateral-torsional modes and load sharing, with ``dynamics`` (the summary and arrays of the
+    stage's time integration, planetary_dynamics.run: a run, not a check) its K_v, with ``rating`` the
+    ISO rating of both meshes (``iso``: the model's [iso] section)."""
     lat = spec.lateral
     hold = lat.support_stiffness if lat is not None and lat.support_stiffness is not None else "fixed"
     st = stage_of(spec, support={spec.fixed: hold})
@@ -285,11 +291,18 @@ def analyse(spec, iso=None, where: str = "planetary") -> tuple[dict, dict]:
         summary["lateral"] = lsum
         arrays["lateral"] = larr
         k_gamma = lsum["load_sharing_factor"]
+    kv_run = None
+    integrate = dynamics is not None
+    if integrate:
+        summary["dynamics"], arrays["dynamics"] = dynamics
+        if spec.dynamics.rating_kv == "run":
+            kv_run = (summary["dynamics"]["kv"]["sun-planet"], summary["dynamics"]["kv"]["ring-planet"])
     if spec.rating is not None and iso is not None:
         from .planetary_rating import rate_spec
 
         summary["rating"] = rate_spec(spec, iso, k_gamma, t_sun, member_speeds(st, spec.fixed, spec.input,
-                                                                               spec.rating.speed), where)
+                                                                               spec.rating.speed), where,
+                                      kv_run=kv_run, integrated=integrate)
     return summary, arrays
 
 
@@ -376,9 +389,28 @@ def diagnose_stage(result, summary: dict, prefix: str = "planetary") -> None:
             result.diagnose("tooth-separation", f"{prefix} ({what} model): a planet's mesh force is negative "
                             f"({fmin:.4g} N) at the given torque and pin position errors: that planet's teeth would "
                             "lose contact (the linear load sharing does not hold)", where, fmin, 0.0, "N")
+    d = summary.get("dynamics")
+    if d:
+        fmin = min(d["force_min_sun_planet"] + d["force_min_ring_planet"])
+        if fmin < 0:
+            result.diagnose("tooth-separation", f"{prefix} (time integration at {d['speed']:.6g} rad/s): a mesh force "
+                            f"goes negative ({fmin:.4g} N) in the window: the teeth would separate, the linear model "
+                            "keeps them in mesh (its K_v does not hold)", f"{prefix}.dynamics.force_min_sun_planet",
+                            fmin, 0.0, "N")
+        if d["window_growth"] is not None and d["window_growth"] > 1.1:
+            result.diagnose("kv-unstable", f"{prefix} (time integration at {d['speed']:.6g} rad/s): the mesh forces "
+                            f"grow over the window (second half's range {d['window_growth']:.3g} x the first's): a "
+                            "parametric instability or a start-up transient left; K_v does not hold",
+                            f"{prefix}.dynamics.window_growth", d["window_growth"], 1.1, "1")
 
 
-PLANETARY_UNITS = {"planetary.lateral.natural_frequencies_hz": "Hz", "planetary.lateral.*_force": "N",
+PLANETARY_UNITS = {"planetary.dynamics.speed": "rad/s", "planetary.dynamics.*_hz": "Hz",
+                   "planetary.dynamics.step": "s", "planetary.dynamics.settle": "s", "planetary.dynamics.wall_time": "s",
+                   "planetary.dynamics.force_*": "N", "planetary.dynamics.damping.*": "N*s/m",
+                   "planetary.dynamics.sweep.speed_*": "rad/s", "planetary.dynamics.sweep.diverged_speeds": "rad/s",
+                   "planetary.dynamics.sweep.mesh_hz_per_rad_s": "Hz*s/rad", "planetary.dynamics.*": "1",
+                   "planetary.rating.meshes.*.K_v*": "1",
+                   "planetary.lateral.natural_frequencies_hz": "Hz", "planetary.lateral.*_force": "N",
                    "planetary.lateral.sun_displacement": "m", "planetary.lateral.*": "1",
                    "planetary.rating.meshes.*.*.sigma_*": "Pa", "planetary.rating.meshes.*.reduced_mass": "kg/m",
                    "planetary.rating.meshes.*.resonance_speed_rpm": "rpm", "planetary.rating.meshes.*.iso_c_*": "N/m^2",
@@ -416,6 +448,14 @@ def report_lines(spec, iso=None, where: str = "planetary") -> list[str]:
                 + ", ".join(f"{f:.1f} Hz {k[:5]}" for f, k in zip(la["natural_frequencies_hz"], la["mode_types"])),
                 "  load sharing (lateral-torsional): sun-planet forces " + ", ".join(f"{x:.1f}" for x in la["sun_planet_force"])
                 + f" N, K_gamma {la['load_sharing_factor']:.4f} (torsional model: {s['load_sharing_factor']:.4f})"]
+    if spec.dynamics is not None:
+        d = spec.dynamics
+        out.append(f"  time integration ([dynamics], {d.stiffness_model} mesh stiffness, damping ratio {d.damping_ratio:g}): "
+                   + ("`drivedyn run` integrates the lateral-torsional model" if d.model == "lateral"
+                      else "`drivedyn run` integrates the torsional model") + " for K_v of every mesh"
+                   + (" and sweeps the speed" if d.sweep else "")
+                   + ("; the rating then takes K_v from the run (below: method B)"
+                      if d.rating_kv == "run" and spec.rating is not None and spec.rating.dynamic_factors is None else ""))
     if "rating" in s:
         r = s["rating"]
         out.append(f"  ISO 6336 rating, K_gamma {r['K_gamma']:.4f} ({r['K_gamma_source']}); load cycles "

@@ -260,10 +260,13 @@ def _si(v):
     return None if v is None or (isinstance(v, float) and math.isnan(v)) else float(v)
 
 
-def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict, field: str = "planetary") -> dict:
+def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict, field: str = "planetary",
+              kv_run: tuple | None = None, integrated: bool = False) -> dict:
     """The summary entry (SI) of the rating of a model's planetary stage with the model's [iso] data
     ``iso``: K_gamma given or ``k_gamma``
-    (the computed load sharing), the sun's torque ``torque_sun`` (N m), member ``speeds`` (rad/s)."""
+    (the computed load sharing), the sun's torque ``torque_sun`` (N m), member ``speeds`` (rad/s); K_v
+    given, else ``kv_run`` (sun-planet, ring-planet: the time integration's), else ISO method B.
+    ``integrated``: the stage was integrated in time if it has [dynamics] (a run, not a check)."""
     r = spec.rating
     st = gears_of_spec(spec)
     mats = [_material(s, iso, r.ring_hardness if k == 2 else None) for k, s in enumerate(r.steels or (None,) * 3)]
@@ -272,6 +275,9 @@ def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict, field:
             mats[k] = replace(mats[k], sigma_hlim=r.sigma_hlim[k] / 1e6)
         if r.sigma_flim is not None:
             mats[k] = replace(mats[k], sigma_flim=r.sigma_flim[k] / 1e6)
+        gear = ("sun", "planet", "ring")[k]
+        if gear in r.yield_strength:
+            mats[k] = replace(mats[k], yield_strength=r.yield_strength[gear] / 1e6)
     mats = tuple(mats)
     rpm = 30.0 / math.pi
     rz_f = tuple(x * 1e6 for x in r.flank_roughness) if r.flank_roughness else (iso.flank_roughness * 1e6,) * 3
@@ -279,7 +285,8 @@ def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict, field:
     kg = r.load_sharing_factor if r.load_sharing_factor is not None else max(k_gamma, 1.0)
     both = lambda v: None if v is None else (v, v)      # noqa: E731
     out = rate_stage(st, mats, planets=spec.planets, torque_sun=abs(torque_sun),
-                     speed_sun_rel=abs(speeds["sun"] - speeds["carrier"]) * rpm, k_gamma=kg, kv=r.dynamic_factors,
+                     speed_sun_rel=abs(speeds["sun"] - speeds["carrier"]) * rpm, k_gamma=kg,
+                     kv=r.dynamic_factors or (None if kv_run is None else tuple(max(k, 1.0) for k in kv_run)),
                      ka=iso.application_factor, life_hours=iso.life / 3600.0, nu40=iso.lubricant_viscosity * 1e6,
                      rz_flank=rz_f, rz_root=rz_r,
                      k_hbeta=tuple(r.face_load_factors) if r.face_load_factors else both(iso.face_load_factor),
@@ -287,18 +294,34 @@ def rate_spec(spec, iso, k_gamma: float, torque_sun: float, speeds: dict, field:
                      f_pb=iso.pitch_deviation * 1e6, f_falpha=iso.profile_deviation * 1e6,
                      tip_relief=None if iso.tip_relief is None else iso.tip_relief * 1e6, blank_factor=iso.blank_factor,
                      s_hmin=iso.min_safety_pitting, s_fmin=iso.min_safety_bending, field=field)
+    dyn = spec.dynamics
+    if r.dynamic_factors:
+        source = "given"
+        note = ("not from a time integration: given (rating.dynamic_factors)"
+                + ("; the stage's time integration gives its own in dynamics.kv" if dyn is not None and integrated else ""))
+    elif kv_run is not None:
+        source = "time integration"
+        note = ("from the time integration (the stage's model with time-varying mesh stiffness: the largest mesh "
+                "force over the largest quasi-static one, the largest over the planets; dynamics.kv); ISO 6336-1 "
+                "method B beside it (K_v_method_b)")
+    else:
+        source = "ISO 6336-1 method B"
+        why = ("dynamics.rating_kv = \"method-b\"" if dyn is not None and integrated else
+               "not integrated by a check: `drivedyn run` integrates it" if dyn is not None else
+               "the planetary stage is not integrated in time (give [dynamics])")
+        note = f"not from a time integration ({why}): ISO 6336-1 method B with the planetary reduced masses"
     summary = {"K_gamma": kg, "K_gamma_source": "given" if r.load_sharing_factor is not None else "load sharing",
                "load_cycles": {k: float(v) for k, v in out["cycles"].items()}, "meshes": {},
-               # said where K_v is read: a stage's meshes are not integrated in time (a train's are)
-               "K_v_note": "not from a time integration (the planetary stage is not integrated in time): "
-                           + ("given" if r.dynamic_factors else "ISO 6336-1 method B with the planetary reduced masses")}
+               # said where K_v is read: given, from the stage's time integration, or method B
+               "K_v_note": note}
     for name in ("sun-planet", "ring-planet"):
         rt = out[name]
         f = rt.factors
         e = {"pinion": rt.geometry["pinion"], "wheel": rt.geometry["wheel"],
              "working_pressure_angle": rt.geometry["alpha_wt"], "contact_ratio": rt.geometry["eps_alpha"],
              "overlap_ratio": rt.geometry["eps_beta"],
-             "K_v": f["K_v"], "K_v_method_b": f["K_v_method_b"], "K_v_source": "given" if r.dynamic_factors else "ISO 6336-1 method B",
+             "K_v": f["K_v"], "K_v_method_b": f["K_v_method_b"], "K_v_source": source,
+             "K_v_run": None if kv_run is None else float(kv_run[0 if name == "sun-planet" else 1]),
              "reduced_mass": f["m_red"] * 1e3, "resonance_speed_rpm": f["n_E1"],
              "iso_c_single": f["c_single"] * 1e9, "iso_c_gamma": f["c_gamma_alpha"] * 1e9}
         for key in ("K_A", "K_gamma", "K_Hbeta", "K_Fbeta", "K_Halpha", "K_Falpha", "Z_H", "Z_eps", "Z_beta", "Y_beta",

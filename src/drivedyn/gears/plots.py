@@ -3,7 +3,8 @@
 Each ``plot_*`` takes the Result's Dataset and an optional Axes and returns the artists drawn;
 ``plot_all`` writes the PNG files: stiffness (seed fig. 5 and roll angle with contact zones),
 torsional vibration (fig. 7), K_v in time (fig. 8), forces/DTE/load sharing, spectrum in mesh
-orders, and, after a sweep, K_v against speed with ISO method B and a Campbell diagram.
+orders, and, after a sweep, K_v against speed with ISO method B and a Campbell diagram; for planetary
+stages their planet loads and modes and, when integrated, their mesh forces and K_v sweep.
 """
 from __future__ import annotations
 
@@ -279,6 +280,76 @@ def plot_planetary_modes(ds, ax=None):
     return [art]
 
 
+def _stage_labels(ds, suffix: str) -> list[str]:
+    """The planetary stages ("planetary", "stage2", ...) with a ``<label><suffix>`` variable in ``ds``."""
+    return [str(k)[:-len(suffix)] for k in ds.data_vars if str(k).endswith(suffix)]
+
+
+def plot_stage_loads(ds, label, axes):
+    """A gearbox stage's static planet forces and natural frequencies (2 axes)."""
+    p = ds[f"{label}_planet"].values
+    arts = [axes[0].bar(p - 0.18, ds[f"{label}_sun_planet_force"].values, 0.36, label="sun-planet"),
+            axes[0].bar(p + 0.18, ds[f"{label}_ring_planet_force"].values, 0.36, label="ring-planet")]
+    axes[0].axhline(0.0, color="k", lw=0.6)
+    axes[0].set(xlabel="planet", ylabel="static mesh force (N)", xticks=p, title=f"{label}: load sharing")
+    axes[0].legend()
+    f = ds[f"{label}_natural_frequency"].values
+    arts.append(axes[1].stem(np.arange(1, len(f) + 1), f))
+    axes[1].set(xlabel="mode", ylabel="natural frequency (Hz)", title=f"{label}: modes (torsional model)")
+    return arts
+
+
+def plot_stage_kv(ds, label, axes):
+    """A planetary stage's time integration: every mesh's force over the nominal in the window at the
+    operating speed, and (after a sweep) the largest K_v over the planets of each mesh against speed."""
+    mesh = [str(m) for m in ds[f"{label}_mesh"].values]
+    t = ds[f"{label}_dynamics_time"].values
+    F = ds[f"{label}_dynamics_force"].values / ds[f"{label}_dynamics_force_nominal"].values
+    # K_v: the largest force over the largest quasi-static force (the load shift between the planets apart)
+    qs = f"{label}_dynamics_force_quasi_static"
+    kv = (ds[f"{label}_dynamics_force"].values.max(axis=0) / ds[qs].values.max(axis=0) if qs in ds
+          else F.max(axis=0))
+    shown = t <= 4.0 / ds.attrs[f"{label}_dynamics_mesh_frequency_hz"]        # four mesh periods; K_v over all
+    arts = []
+    n = len(mesh) // 2
+    for j, m in enumerate(mesh):
+        arts.append(axes[0].plot(t[shown] * 1e3, F[shown, j], f"C{j % n}", ls="-" if j < n else "--", lw=0.9,
+                                 label=f"{m}: K_v {kv[j]:.3f}")[0])
+    rpm = ds.attrs[f"{label}_dynamics_speed"] * 30 / math.pi
+    axes[0].set(xlabel="time in the window (ms), four mesh periods", ylabel="F / F_static",
+                title=f"{label}: mesh forces at {rpm:.0f} rpm (solid sun-planet, dashed ring-planet)")
+    axes[0].legend(loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8, frameon=False)
+    axes[0].grid(alpha=0.3)
+    if f"{label}_kv_sweep" in ds:
+        w = ds[f"{label}_sweep_speed"].values * 30 / math.pi
+        kv = ds[f"{label}_kv_sweep"].values
+        for j, m in ((0, "sun-planet"), (1, "ring-planet")):
+            k = kv[:, j * n:(j + 1) * n]
+            arts.append(axes[1].plot(w, k.max(axis=1), f"C{j}", lw=1.2, label=f"{m}, largest over the planets")[0])
+            arts.append(axes[1].fill_between(w, k.min(axis=1), k.max(axis=1), color=f"C{j}", alpha=0.15, lw=0))
+        axes[1].axvline(rpm, color="k", lw=0.8, ls=":")
+        axes[1].set(xlabel="input member speed (rpm); dotted: the operating speed", ylabel="K_v",
+                    title=f"{label}: K_v against speed (band: spread over the planets)")
+        axes[1].legend(loc="upper left", fontsize=8)
+        axes[1].grid(alpha=0.3)
+    else:
+        axes[1].set_axis_off()
+    return arts
+
+
+def _stage_plots(ds, save) -> None:
+    for label in _stage_labels(ds, "_sun_planet_force"):
+        if f"{label}_planet" not in ds.coords:     # a single stage's lateral load sharing (lateral_...): no stage
+            continue
+        fig, ax = _figure(1, 2, (10, 4))
+        plot_stage_loads(ds, label, ax[0])
+        save(fig, label)
+    for label in _stage_labels(ds, "_dynamics_force"):
+        fig, ax = _figure(2, 1, (9, 7.5))
+        plot_stage_kv(ds, label, ax[:, 0])
+        save(fig, f"{label}-kv")
+
+
 def plot_all(result, outdir) -> list[Path]:
     """Write the standard PNGs into ``outdir`` (a warned or failed run says so on each); their paths."""
     from .. import plotting
@@ -295,6 +366,7 @@ def plot_all(result, outdir) -> list[Path]:
         plot_planet_loads(ds, ax[0, 0])
         plot_planetary_modes(ds, ax[0, 1])
         save(fig, "planetary")
+        _stage_plots(ds, save)
         return files
 
     fig, ax = _figure(2, 1, (8, 7.5))
@@ -320,4 +392,5 @@ def plot_all(result, outdir) -> list[Path]:
     fig, ax = _figure()
     plot_campbell(ds, ax[0, 0])
     save(fig, "campbell")
+    _stage_plots(ds, save)
     return files

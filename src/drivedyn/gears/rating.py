@@ -27,7 +27,7 @@ section (s_Fn, rho_F, d_sFn) is given (_root_internal says why it is not built);
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 
 from .geometry import inv
 
@@ -474,14 +474,19 @@ def _running_class(mats) -> str:
 
 
 def material_of(model, gear) -> Material:
-    """The material of one gear: its own ``steel``, else the model's ``iso`` section."""
+    """The material of one gear: its own ``steel``, else the model's ``iso`` section; its own
+    ``yield_strength`` before either's."""
     iso = model.iso
     name = gear.steel or iso.steel
     if name is not None:
         s = STEELS[name]
-        return Material(s["class"], s["sigma_hlim"], s["sigma_flim"], s["yield_strength"])
-    return Material(iso.material, iso.sigma_hlim / 1e6, iso.sigma_flim / 1e6,
-                    None if iso.yield_strength is None else iso.yield_strength / 1e6)
+        mat = Material(s["class"], s["sigma_hlim"], s["sigma_flim"], s["yield_strength"])
+    else:
+        mat = Material(iso.material, iso.sigma_hlim / 1e6, iso.sigma_flim / 1e6,
+                       None if iso.yield_strength is None else iso.yield_strength / 1e6)
+    if getattr(gear, "yield_strength", None) is not None:
+        mat = replace(mat, yield_strength=gear.yield_strength / 1e6)
+    return mat
 
 
 def rate_mesh(model, sys_, j: int, kv: float) -> Rating:
