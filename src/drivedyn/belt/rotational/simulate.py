@@ -70,8 +70,7 @@ TABLE_POINTS = 61
 #: tables at 0.6 are as close to the step-converged ones as the first-order belt stage's at 0.3
 STEP_OMEGA = 0.6
 #: Gauss-Seidel passes of the gross-slip return map over the wraps
-import os
-SLIP_PASSES = int(os.environ.get("DD_PASSES", "4"))
+SLIP_PASSES = 4
 #: the wraps' belt (elastic-plastic law) in cells of at most this length (m), at least CELLS_MIN per
 #: wrap: against 3 mm cells, fead-runup's drive held at 1875 and 4375 rpm (orders 2 and 4) moves its
 #: span tension extremes by at most 2.2 %, its slips by 0.0013 points and the arm's travel range by
