@@ -210,7 +210,6 @@ class RotWork(NamedTuple):
     off: np.ndarray          # per span: belt the wraps let into it this step (m, unstretched)
     m0: np.ndarray           # per wrap: its first and last end's motion this step (m, forward positive)
     m1: np.ndarray
-    ve: np.ndarray           # per wrap: the rim's speed at the friction's radius (m/s)
 
 
 @njit(cache=True, inline="always")
@@ -360,8 +359,7 @@ def _dir_at(a, k, jj, n, fresh, fwd):
     fresh belt before the entry, the exit cell's value past the exit."""
     if jj < 0:
         return fresh
-    if jj > n - 1:
-        jj = n - 1
+    jj = min(jj, n - 1)
     return a[k, jj] if fwd else a[k, n - 1 - jj]
 
 
@@ -380,7 +378,7 @@ def _cell_transport(k, n, r, ds, phi, Tf, c, p0, EA, c1, c2, zc, Tc, buf, wsum):
     # every cell's belt came from a cells back: the same fraction, the same weights for all
     i0 = int(math.floor(-a))
     f = -a - i0
-    wm, w0, w1, w2, dm, d0, d1, d2 = _cubic(f)
+    wm, w0, w1, w2 = _cubic(f)[:4]
     for arr in range(2):
         A = zc if arr == 0 else Tc
         fresh = 0.0 if arr == 0 else Tf
@@ -506,7 +504,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     dmax, eb, bm, bv, exr = R.dmax, RS.eb, RW.bm, RW.bv, RW.ex
     Tm, wm = RW.Tm, RW.wm
     ncell, zc, Tc, Kc, Fc, Xc, Yc, cpw, p0 = R.ncell, RS.zc, RS.Tc, RW.Kc, RW.Fc, RW.Xc, RW.Yc, RW.cp, R.p0
-    ca, cb, ccw, cd, Tw0, Tw1, eww, offw, m0w, m1w, vew = RW.ca, RW.cb, RW.cc, RW.cd, RW.Tw0, RW.Tw1, RW.ew, RW.off, RW.m0, RW.m1, RW.ve
+    ca, cb, ccw, cd, Tw0, Tw1, eww, offw, m0w, m1w = RW.ca, RW.cb, RW.cc, RW.cd, RW.Tw0, RW.Tw1, RW.ew, RW.off, RW.m0, RW.m1
     ebw = RW.eb0
     wsw = RS.wsum
     dzw = RS.dz

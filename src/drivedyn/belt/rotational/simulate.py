@@ -288,7 +288,7 @@ def new_states(sysm: RotSystem):
                     acc_gross=z(nk), acc_diss=z(6), bm=z((nk, nk)), bv=z(nk), ex=z(nk),
                     Xc=z((nk, nc)), Yc=z((nk, nc)), Kc=z((nk, nc)), Fc=z((nk, nc)), cp=z(nc), ca=z(nk), cb=z(nk), cc=z(nk),
                     cd=z(nk), eb0=z(nk),
-                    Tw0=z(nk), Tw1=z(nk), ew=z(nk), off=z(nk), m0=z(nk), m1=z(nk), ve=z(nk))
+                    Tw0=z(nk), Tw1=z(nk), ew=z(nk), off=z(nk), m0=z(nk), m1=z(nk))
     return S, W, RS, RW
 
 
