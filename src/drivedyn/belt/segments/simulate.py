@@ -91,12 +91,12 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     saved = [a.copy() for a in saved_parts]
     r_min = float(np.min(sysm.pulleys.r))
 
-    lin = True if B.implicit else None       # the implicit scheme's compile-time switch
-    step = _compiled(K.step_chunk, (1, 0.0, h, B, C, P, A, S, W, lin))
+    records = (B, C, P, A, S, W, *K.scheme(B), K.scratch(B, P))    # (step_chunk, once per run)
+    step = _compiled(K._advance, (1, 0.0, h, *records))
     hstep = [h]
 
     def advance(nsteps, t):
-        return step(nsteps, t, hstep[0], B, C, P, A, S, W, lin)
+        return step(nsteps, t, hstep[0], *records)
 
     # the implicit scheme's step control: checkpoints every 10 ms; a run that goes unstable (a
     # segment turning far faster than any pulley, or a blow-up) goes back two checkpoints and
