@@ -271,7 +271,7 @@ def _joint(i, k, hl, h, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, eax, eb, l
     return fd * num, bb[i] * dw * dw
 
 
-@njit(**STAGE)
+@njit(**STAGE_PY)
 def _joint_forces(n, eax, eb, hl, turn, linear, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx,
                   jdy, h, inv_m, inv_i, jmk, jmi):
     """``joint_forces`` on plain arrays: the compiled loop sees arrays, not records, so that it
@@ -340,8 +340,16 @@ def _joint_forces(n, eax, eb, hl, turn, linear, x, y, c, s, vx, vy, w, phi, kax,
     return pax, pb
 
 
-@njit(cache=True, inline="always")
 def joint_forces(B, S, W, h):
+    """``_joint_forces_of`` called from Python: through the plain arrays, whose compiled wrapper is
+    cheap (a record's unboxes each of its arrays: 0.9 s of a first run's compile)."""
+    return _joint_forces(B.n, B.eax, B.eb, B.hl, B.turn, B.linear, S.x, S.y, S.c, S.s, S.vx, S.vy, S.w, S.phi,
+                         B.kax, B.bax, B.kb, B.bb, W.fx, W.fy, W.mz, W.jfk, W.jdx, W.jdy, h, B.inv_m, B.inv_i,
+                         W.jmk, W.jmi)
+
+
+@njit(cache=True, inline="always")
+def _joint_forces_of(B, S, W, h):
     """Elastic + damping forces of all joints into W.fx, W.fy, W.mz (overwritten).
 
     Stores per joint the gap vector (jdx, jdy) and jfk with force vector = jfk * d (tension
@@ -365,7 +373,7 @@ def static_forces(B, Ct, P, S, W):
     """Generalised forces -dE/dq of the belt at rest (S with zero velocities, so that no damper
     acts): joints, contact normal force (the integrators' ``normal_force``), gravity, into W.fx,
     W.fy, W.mz (used by equilibrium.relax)."""
-    joint_forces(B, S, W, 0.0)
+    _joint_forces_of(B, S, W, 0.0)
     for i in range(B.n):
         for j in range(P.nk):
             rx = S.x[i] - S.cx[j]
@@ -1800,7 +1808,7 @@ def rhs(t, yv, dy, B, Ct, P, W, z):
     e0 = np.zeros(0)
     S = State(x, y, phi, np.cos(phi), np.sin(phi), vx, vy, w, th, om, z, P.cx, P.cy, np.zeros(nk), np.zeros(nk), e0, e0,
               np.zeros(nk), np.zeros(nk), np.zeros(nk), np.zeros(nk))
-    pax, pb = joint_forces(B, S, W, 0.0)
+    pax, pb = _joint_forces_of(B, S, W, 0.0)
     pcd = 0.0
     pfr = 0.0
     for j in range(nk):
