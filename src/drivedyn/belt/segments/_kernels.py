@@ -368,7 +368,7 @@ def _joint_forces_of(B, S, W, h):
                          W.jmk, W.jmi)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def static_forces(B, Ct, P, S, W):
     """Generalised forces -dE/dq of the belt at rest (S with zero velocities, so that no damper
     acts): joints, contact normal force (the integrators' ``normal_force``), gravity, into W.fx,
@@ -483,7 +483,7 @@ def _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb):
     return -1, 0.0, 0.0, 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jdx, jdy, turn, m, ieff, sig, gam,
               geo, kap, kat, knx, kny, dmat, omat, emat, dinv, ymat, xmat):
     """Factor the chain matrix at the current angles (joint tangent stiffnesses at the current
@@ -1742,7 +1742,7 @@ def _probe(n, nk, S, P, W):
     W.probe[5] = wc
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def energy(B, Ct, P, A, S):
     """Kinetic + potential energy (J): belt, dynamic pulleys, joints, bending, contact, gravity.
     The segments' rotational inertia is the one the integrator uses (times B.iscale)."""
@@ -1783,7 +1783,7 @@ def energy(B, Ct, P, A, S):
 
 # ---- explicit right-hand side and RKF45 -----------------------------------------------------
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def rhs(t, yv, dy, B, Ct, P, W, z):
     """Explicit right-hand side of the seed's equations of motion (eqs. 21-22) for RKF45.
 
@@ -1875,7 +1875,7 @@ _B4 = np.array([25 / 216, 0, 1408 / 2565, 2197 / 4104, -1 / 5, 0])
 _B5 = np.array([16 / 135, 0, 6656 / 12825, 28561 / 56430, -9 / 50, 2 / 55])
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def rkf45_chunk(t, t_end, h, yv, rtol, atol, max_steps, B, Ct, P, W, Wst, z):
     """Adaptive RKF45 from t to t_end (advancing with the 4th-order solution, error from the
     embedded 5th). The first stage writes W, the others the scratch Wst; W's accumulators get

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import time as _time
+from contextlib import contextmanager
 
 import numpy as np
 import xarray as xr
@@ -92,7 +93,8 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     r_min = float(np.min(sysm.pulleys.r))
 
     records = (B, C, P, A, S, W, *K.scheme(B), K.scratch(B, P))    # (step_chunk, once per run)
-    step = _compiled(K._advance, (1, 0.0, h, *records))
+    with compile_note(progress, integrator(sysm.model)):
+        step = _compiled(K._advance, (1, 0.0, h, *records))
     hstep = [h]
 
     def advance(nsteps, t):
@@ -178,6 +180,35 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
                 W.lin_cnt[0] = 0
                 rec.speed_reductions += 1
     return nsamples, ""
+
+
+#: seconds numba takes to compile each scheme's kernels on their first use (empty cache; 2-core
+#: AMD EPYC, measured): the progress line says so meanwhile
+COMPILE_SECONDS = {"implicit": 20, "semi-implicit": 10, "rkf45": 7}
+
+
+@contextmanager
+def compile_note(progress, method):
+    """Within it, numba's first compile (a kernel not in its cache) is said on the progress line,
+    so that a first run does not sit at 0 % without a word."""
+    if progress is None:
+        yield
+        return
+    from numba.core import event
+
+    class Note(event.Listener):
+        said = False
+
+        def on_start(self, ev):
+            if not self.said:
+                self.said = True
+                progress(0.0, f"compiling the {method} kernels (first use, about {COMPILE_SECONDS[method]} s)")
+
+        def on_end(self, ev):
+            pass
+
+    with event.install_listener("numba:compile", Note()):
+        yield
 
 
 def _compiled(dispatcher, args):
