@@ -7,6 +7,7 @@ import numpy as np
 
 from ...errors import ModelError
 from . import _kernels as K
+from .compiled import compile_note, compiled
 from ..dynamics import _bodies as BK
 from .state import clear_accumulators, new_work
 
@@ -56,12 +57,10 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
         rec.fx[k], rec.fy[k], rec.fn[k], rec.ft[k], rec.ftension[k] = y[0:n], y[n:2 * n], W.seg_n, W.seg_t, ten
         rec.nf += 1
 
-    from .simulate import _compiled, compile_note
-
     with compile_note(progress, "rkf45"):
         E0 = energy()
-        rhs = _compiled(K.rhs, (0.0, y, np.zeros_like(y), B, C, P, W, z))
-        chunk = _compiled(K.rkf45_chunk, (0.0, 0.0, 1e-6, y, 1e-6, 1e-9, 1, B, C, P, W, Wst, z))
+        rhs = compiled(K.rhs, (0.0, y, np.zeros_like(y), B, C, P, W, z))
+        chunk = compiled(K.rkf45_chunk, (0.0, 0.0, 1e-6, y, 1e-6, 1e-9, 1, B, C, P, W, Wst, z))
     capture(0.0)
     t, h, steps, work = 0.0, min(sysm.step, interval), 0, 0.0
     rec.rejected, rec.rhs = 0, 0

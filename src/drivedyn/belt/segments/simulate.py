@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 import time as _time
-from contextlib import contextmanager
 
 import numpy as np
 import xarray as xr
@@ -14,6 +13,7 @@ from ...model import dumps
 from ...results import Result, unit_map, variable
 from ...window import in_window, steady_window
 from . import _kernels as K
+from .compiled import compile_note, compiled
 from .state import clear_accumulators, new_state, new_work
 from .system import TURN_PER_STEP, BeltSystem, build, stability_limit
 from ..geometry.drive import resolve
@@ -94,7 +94,7 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
 
     records = (B, C, P, A, S, W, *K.scheme(B), K.scratch(B, P))    # (step_chunk, once per run)
     with compile_note(progress, integrator(sysm.model)):
-        step = _compiled(K._advance, (1, 0.0, h, *records))
+        step = compiled(K._advance, (1, 0.0, h, *records))
     hstep = [h]
 
     def advance(nsteps, t):
@@ -180,47 +180,6 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
                 W.lin_cnt[0] = 0
                 rec.speed_reductions += 1
     return nsamples, ""
-
-
-#: seconds numba takes to compile each scheme's kernels on their first use (empty cache; 2-core
-#: AMD EPYC, measured): the progress line says so meanwhile
-COMPILE_SECONDS = {"implicit": 20, "semi-implicit": 10, "rkf45": 7}
-
-
-@contextmanager
-def compile_note(progress, method):
-    """Within it, numba's first compile (a kernel not in its cache) is said on the progress line,
-    so that a first run does not sit at 0 % without a word."""
-    if progress is None:
-        yield
-        return
-    from numba.core import event
-
-    class Note(event.Listener):
-        said = False
-
-        def on_start(self, ev):
-            if not self.said:
-                self.said = True
-                progress(0.0, f"compiling the {method} kernels (first use, about {COMPILE_SECONDS[method]} s)")
-
-        def on_end(self, ev):
-            pass
-
-    with event.install_listener("numba:compile", Note()):
-        yield
-
-
-def _compiled(dispatcher, args):
-    """The compiled entry of ``dispatcher`` for these argument types: calling it skips numba's
-    type dispatch, which for the kernel's records costs about 28 us a call against 15 (one call per
-    output sample). The dispatcher itself when numba's internals differ."""
-    try:
-        dispatcher.compile(tuple(dispatcher.typeof_pyval(a) for a in args))
-        sig = tuple(dispatcher.typeof_pyval(a) for a in args)
-        return dispatcher.overloads[sig].entry_point
-    except Exception:   # an internal API that moved: the ordinary call still works
-        return dispatcher
 
 
 def _first_runaway(advance, t, nsteps, h, state, sysm):
