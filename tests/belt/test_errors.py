@@ -73,7 +73,7 @@ def _raising_after(real, calls):
 def test_a_division_by_zero_in_the_step_keeps_results(model_factory, monkeypatch, tmp_path):
     from drivedyn.belt.segments import _kernels as K
 
-    monkeypatch.setattr(K, "step_chunk", _raising_after(K.step_chunk, 20))
+    monkeypatch.setattr(K, "_advance", _raising_after(K._advance, 20))
     m = model_factory(simulation__duration=0.05, simulation__method="semi-implicit")
     with pytest.raises(drivedyn.SolverError, match=r"diverged after t = .* division by zero") as info:
         drivedyn.run(m)

@@ -385,7 +385,7 @@ def test_which_pulleys_join_the_chain_solve():
         sysm = system.build(drivedyn.replace(base, {"friction.law": law}))
         B, C, P, A = sysm.groups
         S = system.new_state(sysm)
-        got = K._implicit_pulleys(h, B, C, P, S)
+        got = K._implicit_pulleys(h, B, C, P, S, np.zeros(P.nk, dtype=np.bool_))
         for j, p in enumerate(base.pulleys):
             dynamic = P.mode[j] == 0 and P.cl_kind[j] == 0
             if law == "threlfall" or not dynamic:
@@ -399,7 +399,7 @@ def test_which_pulleys_join_the_chain_solve():
             assert stiff > 0 and got[j] == (ratio > K.PULLEY_IMPLICIT), p.name
             assert not got[j], (p.name, ratio)          # fead-runup's pulleys: all explicit
             light = P._replace(inv_i=P.inv_i * (100 * K.PULLEY_IMPLICIT / ratio))
-            assert K._implicit_pulleys(h, B, C, light, S)[j], p.name
+            assert K._implicit_pulleys(h, B, C, light, S, np.zeros(P.nk, dtype=np.bool_))[j], p.name
 
 
 def test_explicit_pulleys_follow_the_belt_at_a_large_step():

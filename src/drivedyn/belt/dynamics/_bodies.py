@@ -437,48 +437,50 @@ def _step_pulleys(t, h, tq_belt, hubx, huby, P, S, W):
             om_new = wm1 + _orders(j, thm[j], wm1, so_off, so_order, so_amp, so_ang, so_phase)
             Mext = 0.0
             acc_pin[j] += h * (-Mb) * om[j]
-        elif cl_kind[j] == 0:
-            Mext = _torque(j, t, th[j], om[j], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
-                           tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
-            acc_pin[j] += h * Mext * om[j]
-            om_new = om[j] + h * (Mext + Mb) * pinv_i[j]
         else:
-            # an accessory rotor behind a clutch: the loads act on it, at its angle and speed
-            Mext = _torque(j, t, thr[j], omr[j], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
+            # the loads act on the pulley, or on the accessory rotor behind its clutch, at its angle
+            # and speed (one call of the inlined _torque: each one is compiled anew)
+            rotor = cl_kind[j] != 0
+            thj = thr[j] if rotor else th[j]
+            omj = omr[j] if rotor else om[j]
+            Mext = _torque(j, t, thj, omj, tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
                            tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
-            acc_pin[j] += h * Mext * omr[j]
-            sj = cl_s[j]
-            ir = cl_ir[j]
-            if cl_kind[j] == 1:
-                # one-way clutch: locked exactly when, free, the pulley would pass the rotor in
-                # the drive sense (then the clutch torque drives the rotor: it is >= 0)
-                wp = om[j] + h * Mb * pinv_i[j]
-                wr = omr[j] + h * Mext / ir
-                if sj * (wp - wr) > 0.0:
-                    ip_ = 1.0 / pinv_i[j]
-                    dw = om[j] - omr[j]
-                    diss_cl += 0.5 * ip_ * ir / (ip_ + ir) * dw * dw     # engagement: the relative kinetic energy
-                    wr = (ip_ * om[j] + ir * omr[j] + h * (Mb + Mext)) / (ip_ + ir)
-                    wp = wr
+            acc_pin[j] += h * Mext * omj
+            if not rotor:
+                om_new = om[j] + h * (Mext + Mb) * pinv_i[j]
             else:
-                # decoupler: the spring's wind-up dcp >= 0 carries k dcp + c (rate) to the rotor;
-                # the clutch in series lets the rotor overrun (wind-up held at 0)
-                rel = sj * (om[j] - omr[j])
-                Ts = cl_k[j] * dcp[j] + cl_c[j] * rel if (dcp[j] > 0.0 or rel > 0.0) else 0.0
-                if Ts < 0.0:
-                    Ts = 0.0
-                if Ts > 0.0:
-                    diss_cl += h * cl_c[j] * rel * rel
-                wp = om[j] + h * (Mb - sj * Ts) * pinv_i[j]
-                wr = omr[j] + h * (Mext + sj * Ts) / ir
-                d_new = dcp[j] + h * sj * (wp - wr)
-                if d_new < 0.0:
-                    diss_cl += 0.5 * cl_k[j] * dcp[j] * dcp[j]     # unwound through the clutch
-                    d_new = 0.0
-                dcp[j] = d_new
-            om_new = wp
-            omr[j] = wr
-            thr[j] += h * wr
+                sj = cl_s[j]
+                ir = cl_ir[j]
+                if cl_kind[j] == 1:
+                    # one-way clutch: locked exactly when, free, the pulley would pass the rotor in
+                    # the drive sense (then the clutch torque drives the rotor: it is >= 0)
+                    wp = om[j] + h * Mb * pinv_i[j]
+                    wr = omr[j] + h * Mext / ir
+                    if sj * (wp - wr) > 0.0:
+                        ip_ = 1.0 / pinv_i[j]
+                        dw = om[j] - omr[j]
+                        diss_cl += 0.5 * ip_ * ir / (ip_ + ir) * dw * dw     # engagement: the relative kinetic energy
+                        wr = (ip_ * om[j] + ir * omr[j] + h * (Mb + Mext)) / (ip_ + ir)
+                        wp = wr
+                else:
+                    # decoupler: the spring's wind-up dcp >= 0 carries k dcp + c (rate) to the rotor;
+                    # the clutch in series lets the rotor overrun (wind-up held at 0)
+                    rel = sj * (om[j] - omr[j])
+                    Ts = cl_k[j] * dcp[j] + cl_c[j] * rel if (dcp[j] > 0.0 or rel > 0.0) else 0.0
+                    if Ts < 0.0:
+                        Ts = 0.0
+                    if Ts > 0.0:
+                        diss_cl += h * cl_c[j] * rel * rel
+                    wp = om[j] + h * (Mb - sj * Ts) * pinv_i[j]
+                    wr = omr[j] + h * (Mext + sj * Ts) / ir
+                    d_new = dcp[j] + h * sj * (wp - wr)
+                    if d_new < 0.0:
+                        diss_cl += 0.5 * cl_k[j] * dcp[j] * dcp[j]     # unwound through the clutch
+                        d_new = 0.0
+                    dcp[j] = d_new
+                om_new = wp
+                omr[j] = wr
+                thr[j] += h * wr
         acc_tq_ext[j] += h * Mext
         acc_tq_belt[j] += h * Mb
         acc_hubx[j] += h * hubx[j]

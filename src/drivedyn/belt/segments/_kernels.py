@@ -62,7 +62,7 @@ stick and slip by an active set solved in a small space over the factored matrix
 with the segments they anchor. Agrees with the semi-implicit scheme at about ten times its step
 (docs/belt-drive.md, tests/belt/test_implicit.py).
 
-A step of ``step_chunk`` (its time loop ``_advance``) in stages, each an inlined function:
+A step of ``step_chunk`` (its time loop ``_advance``) in stages, each a compiled function (``STAGE``):
 
   both schemes    ``_joint_forces``      the joints' elastic and damping forces and moments
   semi-implicit   ``_contacts_semi``     per segment, at its new velocity under the joints and
@@ -84,9 +84,10 @@ A step of ``step_chunk`` (its time loop ``_advance``) in stages, each an inlined
                   ``_step_arms``         tensioners (they move their pulleys' centres)
                   ``_accumulate``        the step's share of the output accumulators
 
-``_advance`` is compiled without numba's reference counting (it allocates nothing; ``step_chunk``
-gives it its scratch, ``Scratch``): an array an inlined stage takes, or a record's field it reads,
-otherwise costs an atomic reference-count pair per call, half of a semi-implicit step (measured).
+``_advance`` and its stages are compiled without numba's reference counting (they allocate nothing;
+``scratch`` makes their scratch, ``Scratch``, once per run): an array a stage takes, or a record's
+field it reads, otherwise costs an atomic reference-count pair per call, half of a semi-implicit
+step (measured).
 """
 import math
 from typing import NamedTuple
@@ -96,6 +97,18 @@ from numba import njit
 
 from ..dynamics._bodies import (FAST, State, _small_solve, _step_arms, _step_pulleys, _torque, external_torque, prescribed_speed, smoothstep, solve_threlfall, spring_energy, threlfall)
 from . import _chain
+
+
+# A stage of the time loop (``_advance``) is a function of its own, compiled once, not inlined into
+# the loop as numba IR: numba copies an inlined function's IR at a cost that grows with its size
+# times its blocks, and then compiles one giant function (the implicit kernel: 48 s cold against
+# 21 s as stages, 2-core AMD EPYC; LLVM inlines the smaller stages, the others are a call per step).
+# Compiled as the loop is (no fast-math, numpy's error model, no reference counting: a stage
+# allocates nothing), so every number is the same to the bit, the steps as fast, and without the
+# wrappers a function called from Python needs (a record's wrapper unboxes each of its arrays:
+# 1.6 s of compile for the loop's arguments alone).
+STAGE = {"cache": True, "_nrt": False, "error_model": "numpy", "no_cpython_wrapper": True, "no_cfunc_wrapper": True}
+STAGE_PY = {**STAGE, "no_cpython_wrapper": False}     # a stage the tests also call from Python
 
 
 # friction law ids (Contact.law)
@@ -258,13 +271,12 @@ def _joint(i, k, hl, h, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, eax, eb, l
     return fd * num, bb[i] * dw * dw
 
 
-@njit(cache=True, fastmath=FAST, inline="always")
+@njit(**STAGE_PY)
 def _joint_forces(n, eax, eb, hl, turn, linear, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy, mz, jfk, jdx,
                   jdy, h, inv_m, inv_i, jmk, jmi):
     """``joint_forces`` on plain arrays: the compiled loop sees arrays, not records, so that it
-    vectorises. Inlined (numba IR) into its callers: as a separate compiled function, called
-    from ``step_chunk`` loaded from numba's cache, the step ran 30-45 % slower depending on what
-    else had been loaded before it (measured, AMD EPYC: 4.0-4.5 against 2.95-3.05 us per step)."""
+    vectorises. A stage (``STAGE``): compiled with reference counting, as a separate function
+    it made the step 30-45 % slower (4.0-4.5 against 2.95-3.05 us per step, AMD EPYC)."""
     # two passes without scattered writes (so that the loops vectorise): the joints, then each
     # segment sums its two joints. Joint 0 closes the loop, where phi jumps by the total turn.
     pax, pb = _joint(0, n - 1, hl, h, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, eax, eb, linear, inv_m, inv_i,
@@ -328,8 +340,16 @@ def _joint_forces(n, eax, eb, hl, turn, linear, x, y, c, s, vx, vy, w, phi, kax,
     return pax, pb
 
 
-@njit(cache=True, inline="always")
 def joint_forces(B, S, W, h):
+    """``_joint_forces_of`` called from Python: through the plain arrays, whose compiled wrapper is
+    cheap (a record's unboxes each of its arrays: 0.9 s of a first run's compile)."""
+    return _joint_forces(B.n, B.eax, B.eb, B.hl, B.turn, B.linear, S.x, S.y, S.c, S.s, S.vx, S.vy, S.w, S.phi,
+                         B.kax, B.bax, B.kb, B.bb, W.fx, W.fy, W.mz, W.jfk, W.jdx, W.jdy, h, B.inv_m, B.inv_i,
+                         W.jmk, W.jmi)
+
+
+@njit(cache=True, inline="always")
+def _joint_forces_of(B, S, W, h):
     """Elastic + damping forces of all joints into W.fx, W.fy, W.mz (overwritten).
 
     Stores per joint the gap vector (jdx, jdy) and jfk with force vector = jfk * d (tension
@@ -348,12 +368,12 @@ def joint_forces(B, S, W, h):
                          W.jmk, W.jmi)
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def static_forces(B, Ct, P, S, W):
     """Generalised forces -dE/dq of the belt at rest (S with zero velocities, so that no damper
     acts): joints, contact normal force (the integrators' ``normal_force``), gravity, into W.fx,
     W.fy, W.mz (used by equilibrium.relax)."""
-    joint_forces(B, S, W, 0.0)
+    _joint_forces_of(B, S, W, 0.0)
     for i in range(B.n):
         for j in range(P.nk):
             rx = S.x[i] - S.cx[j]
@@ -463,7 +483,7 @@ def _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb):
     return -1, 0.0, 0.0, 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True)
 def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jdx, jdy, turn, m, ieff, sig, gam,
               geo, kap, kat, knx, kny, dmat, omat, emat, dinv, ymat, xmat):
     """Factor the chain matrix at the current angles (joint tangent stiffnesses at the current
@@ -495,7 +515,7 @@ def _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jd
     return max(1, min(1000, int(REFACTOR_ANGLE / (h * wmax + 1e-300))))
 
 
-@njit(cache=True, inline="always", fastmath=FAST)
+@njit(**STAGE_PY)
 def _joint_transport(n, h, hl, linear, eax, kax, bax, c, s, w, jdx, jdy, fx, fy, mz):
     """Stage (implicit scheme): the joints' share of A acting on the gap's acceleration, not on its
     linear part alone. A's joint term sig G^T G reads the velocity change G dv of a joint's two
@@ -527,7 +547,7 @@ def _joint_transport(n, h, hl, linear, eax, kax, bax, c, s, w, jdx, jdy, fx, fy,
         mz[k] += ay * gx - ax * gy
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _velocity_change(n, nk, nC, ipl, dom, qv, cseg, zslot, lin_u, zc, yx, yy, yz, fx, fy, mz):
     """Stage (implicit scheme, chain solve): the step's acceleration (fx, fy, mz) = A_f^-1 F from the
     base solve y, the implicit pulleys' speed changes dom over their columns U_k (lin_u) and the
@@ -553,7 +573,7 @@ def _velocity_change(n, nk, nC, ipl, dom, qv, cseg, zslot, lin_u, zc, yx, yy, yz
             mz[i] += p0 * zc[sd, i, 2] + p1 * zc[sd + 1, i, 2]
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _accumulate(h, hl, x, y, c, s, vx, vy, jfk, jdx, jdy, seg_n, seg_t, W, pax, pb, pcd, pfr, diss_cl):
     """Stage: the step's share of the accumulators: mid-span tension and belt speed (following the
     joint nearest each span's midpoint as the belt moves), tracked segments, dissipation."""
@@ -614,7 +634,7 @@ def _accumulate(h, hl, x, y, c, s, vx, vy, jfk, jdx, jdy, seg_n, seg_t, W, pax, 
 (I_J, I_LIST, I_SLOT, I_PEND, NSI) = range(5)
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _spin_damper(n, h, hl, spin_lim, ieff, w, jfk, jdx, jdy, seg_n, spd, cs, mz, pb):
     """Stage (implicit scheme): SPIN_ZETA's damper on segments whose neighbours two either side were
     free at the last step, where their rate departs from the neighbours' by spin_lim (SPIN_LIMIT).
@@ -647,7 +667,7 @@ def _spin_damper(n, h, hl, spin_lim, ieff, w, jfk, jdx, jdy, seg_n, spd, cs, mz,
     return pb
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _contacts(n, nk, h, hvb, g, m, c1, c2, bc, pmax, centre, x, y, vx, vy, pcx, pcy, pvx, pvy, pr, cand_j, cand_skip,
               stk, z, fy, si, sc):
     """Stage (implicit scheme), gravity and contact: per segment the pulley it touches, its normal
@@ -732,7 +752,7 @@ def _pressed(j, sc, i):
     return j >= 0 and sc[i, C_N] > 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _friction(n, h, Ct, om, stk, z, fkap, fx, fy, mz, si, sc):
     """Stage (implicit scheme), friction: by its state at the last step, a contact segment is
     anchored to the pulley surface (in A) or slides with mu N against its slip (explicit); the
@@ -768,7 +788,7 @@ def _friction(n, h, Ct, om, stk, z, fkap, fx, fy, mz, si, sc):
     return cchg
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _factored_state(n, h, si, sc, fkap, fnx, fny, fca, far, kat, zslot):
     """Stage (implicit scheme): the contact and friction state A is about to be factored with
     (contact coefficients, normals, anchor slopes and arms); empties the cache of columns."""
@@ -787,7 +807,7 @@ def _factored_state(n, h, si, sc, fkap, fnx, fny, fca, far, kat, zslot):
         zslot[i] = -1
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _pulley_columns(n, nk, nc, far, fca, fnx, fny, si, ipl, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r, lin_u, lin_g):
     """Stage (implicit scheme, after a factorisation): each implicit pulley's anchors
     g_k = sum fca r tau_f (r: each anchor's factored arm) and their columns U_k = A_f^-1 g_k
@@ -823,7 +843,7 @@ def _pulley_columns(n, nk, nc, far, fca, fnx, fny, si, ipl, ux, uy, uz, lin_dinv
                     lin_g[jj, kk] += gx * lin_u[kk, i, 0] + gy * lin_u[kk, i, 1]
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, pr, fkap, fnx, fny, fca, far, si, cseg, sc, yx, yy, yz, s0,
                 gyv, ipl, lin_dinv, lin_y, lin_x, lin_r):
     """Stage (implicit scheme, chain solve): y = A_f^-1 F_base, F_base the forces with every contact
@@ -886,7 +906,7 @@ def _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, pr, fkap, fnx, fny, fca, fa
     return npend
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _join(n, nC, npend, si, cseg, zslot, zc, lin_cnt, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r):
     """Stage (implicit scheme, active set): the segments in si[:, I_PEND] join C, their columns
     Z = A_f^-1 [e_x e_y] solved unless cached. Returns (members, whether C or the cache is full:
@@ -922,7 +942,7 @@ def _join(n, nC, npend, si, cseg, zslot, zc, lin_cnt, ux, uy, uz, lin_dinv, lin_
     return nC, False
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _corrections(nC, vx, vy, om, pvx, pvy, fnx, fny, fca, far, si, sc, cseg, cpar):
     """Stage (implicit scheme, active set): each member's force correction (its state now less its
     factored state), affine in its velocity change and its pulley's: phi_c = a + B dv_c + e dw_j,
@@ -988,7 +1008,7 @@ def _corrections(nC, vx, vy, om, pvx, pvy, fnx, fny, fca, far, si, sc, cseg, cpa
         cpar[p, 10] = ga
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _small_system(h, nk, nC, pinv_i, mext, zslot, zc, lin_u, lin_g, si, cseg, cpar, qm, qv, yx, yy, s0, gyv,
                   ipl, dom, lin_cnt):
     """Stage (implicit scheme, active set): the members' force corrections and the implicit
@@ -1059,7 +1079,7 @@ def _small_system(h, nk, nC, pinv_i, mext, zslot, zc, lin_u, lin_g, si, cseg, cp
     lin_cnt[3] += 1
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _check(h, nk, nc, nC, npend, npass, Ct, vx, vy, om, pvx, pvy, fnx, fny, fca, far, stk, z, zslot,
            zc, lin_u, lin_stat, si, sc, cseg, yx, yy, qv, dom, ipl):
     """Stage (implicit scheme, active set): every contact segment at the velocity pass npass
@@ -1142,7 +1162,7 @@ def _check(h, nk, nc, nC, npend, npass, Ct, vx, vy, om, pvx, pvy, fnx, fny, fca,
     return changed, npend
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _update_implicit(n, h, Ct, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, fx, fy, mz, seg_n, seg_t,
                      seg_p, stk, z, fkap, fnx, fny, si, sc, dom, tq_belt, hub):
     """Stage (implicit scheme): each segment takes its velocity change (fx, fy, mz from
@@ -1225,7 +1245,7 @@ def _update_implicit(n, h, Ct, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, fx, fy,
 (Q_RX, Q_RY, Q_D2, Q_PVX, Q_PVY, Q_R, Q_OM, Q_ON, Q_N, Q_NX, Q_NY, Q_ARM, Q_WS, Q_T, Q_PC, Q_PF, NQ) = range(17)
 
 
-@njit(cache=True, inline="always")
+@njit(**STAGE)
 def _contacts_semi(n, nk, h, hg, hvb, hm_, hi_, fx, fy, mz, Ct, S, pr, cand_j, cand_skip, seg_n, seg_t, seg_p, sj, sq,
                    tq_belt, hubx, huby):
     """Stage (semi-implicit scheme): each segment's contact and friction at its new velocity under
@@ -1418,8 +1438,8 @@ class Scratch(NamedTuple):
 PULLEY_IMPLICIT = 0.5
 
 
-@njit(cache=True)
-def _implicit_pulleys(h, B, Ct, P, S):
+@njit(cache=True, inline="always")
+def _implicit_pulleys(h, B, Ct, P, S, ipl):
     """Which dynamic pulleys (no clutch) the implicit scheme solves with the chain. Under
     Threlfall's law all: a stuck segment's anchor is a stiff viscous slope (mu N / Delta_v), which
     an explicit pulley would not follow. Under the elastic-plastic law the anchors are the
@@ -1430,8 +1450,8 @@ def _implicit_pulleys(h, B, Ct, P, S):
     orders, 333 segments, 0.016 rad per step on the alternator: 1.2-1.3x faster at 1000 and 5000
     rpm, 1.5-1.6x at 3000, bands within 1 % of the implicit pulleys'; benchmarks/bench_fead_schemes.py)."""
     nk = P.nk
-    ipl = np.zeros(nk, dtype=np.bool_)
     for j in range(nk):
+        ipl[j] = False
         if P.mode[j] != 0 or P.cl_kind[j] != 0:
             continue
         if Ct.law != LAW_ELASTIC_PLASTIC:
@@ -1450,10 +1470,10 @@ def _implicit_pulleys(h, B, Ct, P, S):
     return ipl
 
 
-@njit(cache=True)
-def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
+def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None, X=None):
     """Advance ``nsteps`` steps from time t (semi-implicit Euler, or the implicit scheme with
-    ``lin`` = True and ``B.implicit``); returns the new time.
+    ``lin`` = True and ``B.implicit``); returns the new time. X: the run's ``scratch`` (made here
+    when not given).
 
     Accumulates into W (added h * value, the caller divides by the interval): acc_tq_ext[j]
     applied torque, acc_tq_belt[j] belt torque on the pulley, acc_hubx/y[j] belt force on the
@@ -1464,42 +1484,59 @@ def step_chunk(nsteps, t, h, B, Ct, P, A, S, W, lin=None):
     in S (cx, cy, cvx, cvy); contact and friction act on the velocity relative to the centre.
     The stages of a step: see the module's doc.
     """
-    # lin: None for the semi-implicit scheme, True for the implicit one (B.implicit): its type
-    # prunes the implicit scheme's branch at compile time, so that the semi-implicit kernel does
-    # not compile it (cold start 38 s against 17 s with it compiled in, measured)
-    implicit = B.implicit
-    if implicit != (lin is not None):
+    if B.implicit != (lin is not None):
         raise ValueError("step_chunk: lin must be given for the implicit scheme only")
+    return _advance(nsteps, t, h, B, Ct, P, A, S, W, *scheme(B), scratch(B, P) if X is None else X)
+
+
+def scheme(B):
+    """``_advance``'s arguments (lin, semi) for this belt's scheme: None for the scheme not run.
+    numba drops a branch on ``arg is not None`` at compile time only where arg is None, so the
+    kernel of each scheme is compiled without the other's stages (implicit: 21 against 48 s of
+    compile with the semi-implicit stages and every stage inlined, 2-core AMD EPYC)."""
+    return (True, None) if B.implicit else (None, True)
+
+
+def scratch(B, P):
+    """The ``Scratch`` of a run of this belt (``_advance`` allocates nothing); one serves every chunk."""
     n, nk = B.n, P.nk
-    ni = n if implicit else 0
-    nci = CMAX if implicit else 0
-    msz = 2 * nci + nk if implicit else 0
-    ipl = _implicit_pulleys(h, B, Ct, P, S) if implicit else np.zeros(nk, dtype=np.bool_)
+    ni = n if B.implicit else 0
+    nci = CMAX if B.implicit else 0
+    msz = 2 * nci + nk if B.implicit else 0
     f = np.zeros
-    ieff = B.inertia * B.iscale      # the segments' rotational inertia as integrated (see system.py)
-    X = Scratch(f((ni, NSC)), np.full((ni, NSI), -1, dtype=np.int64), f(ni), f(ni), f(ni), f(ni), f(ni), f(ni), f(ni),
-                f(ni), f(ni), B.inv_m.copy(), B.inv_i.copy(), f(n), f(n), h * B.inv_m, h / ieff,
-                ieff, np.zeros(nci, dtype=np.int64), f((nci, 11)), f((msz, msz)), f(msz), f(nk),
-                f(nk), f(nk), f(nk), ipl, f(nk), f((2, nk)), f(nk), np.zeros(n - ni, dtype=np.int64),
-                f((NQ, n - ni)))
-    t = _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X)
-    W.tq_belt[:] = X.tq_belt
-    W.hubx[:] = X.hub[0]
-    W.huby[:] = X.hub[1]
-    W.energy[0] = energy(B, Ct, P, A, S)   # here, not by a second call from Python (12 us per call)
-    _probe(n, nk, S, P, W)
-    return t
+    return Scratch(f((ni, NSC)), np.full((ni, NSI), -1, dtype=np.int64), f(ni), f(ni), f(ni), f(ni), f(ni), f(ni),
+                   f(ni), f(ni), f(ni), f(n), f(n), f(n), f(n), f(n), f(n), f(n), np.zeros(nci, dtype=np.int64),
+                   f((nci, 11)), f((msz, msz)), f(msz), f(nk), f(nk), f(nk), f(nk), np.zeros(nk, dtype=np.bool_),
+                   f(nk), f((2, nk)), f(nk), np.zeros(n - ni, dtype=np.int64), f((NQ, n - ni)))
 
 
-# Compiled without numba's reference counting (_nrt=False: it allocates nothing, ``step_chunk``
-# gives it its scratch): each array an inlined stage takes, or a record's field it reads, in the
+# the stages of ``_bodies`` that the rotational model's loop inlines, compiled as stages here
+@njit(**STAGE)
+def _pulleys_stage(t, h, tq_belt, hubx, huby, P, S, W):
+    return _step_pulleys(t, h, tq_belt, hubx, huby, P, S, W)
+
+
+@njit(**STAGE)
+def _arms_stage(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cvx, cvy, hubx, huby, h):
+    return _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cvx, cvy, hubx, huby, h)
+
+
+@njit(**STAGE)
+def _torque_stage(j, t, th, om, tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
+                  tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase):
+    return _torque(j, t, th, om, tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
+                   tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
+
+
+# Compiled without numba's reference counting (_nrt=False: it allocates nothing, ``scratch``
+# makes its scratch once per run): each array a stage takes, or a record's field it reads, in the
 # time loop otherwise costs an atomic reference-count pair, which was half of the semi-implicit
 # step (6.3 against 3.4 us at 150 segments, measured with numba's atomicity switched off)
 # and with numpy's error model: a float division by zero gives inf or nan (which the health probe
 # reports as a state that ran away) rather than a test and a raise per division, which kept the
 # stages' loops from vectorising
-@njit(cache=True, _nrt=False, error_model="numpy")
-def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
+@njit(cache=True, _nrt=False, error_model="numpy", no_cfunc_wrapper=True)
+def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, semi, X):
     """The time loop of ``step_chunk``, in stages (the module's doc)."""
     # every array of the records and the scratch taken out once, before the loops
     n, nk, hl, g, eax, eb, linear, turn = B.n, P.nk, B.hl, B.g, B.eax, B.eb, B.linear, B.turn
@@ -1527,8 +1564,27 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
     hubx = hub[0]
     huby = hub[1]
     implicit = B.implicit
+    # the scratch as step_chunk allocated it per chunk before it served a whole run (the active
+    # set, for one, starts empty), and the chunk's constants (the step h can change between chunks)
+    for a in (sc, cpar, qm, hub, sq):
+        a[...] = 0.0
+    for b in (spd, cs, kat, yx, yy, yz, ux, uy, uz, jmk, jmi, qv, s0, gyv, dom, mext, tq_belt, wsave):
+        b[...] = 0.0
+    si[...] = -1
+    cseg[...] = 0
+    sj[...] = 0
+    for i in range(n):
+        inv_m[i] = B.inv_m[i]
+        inv_i[i] = B.inv_i[i]
+        ieff[i] = B.inertia[i] * B.iscale   # the segments' rotational inertia as integrated (see system.py)
+        hm_[i] = h * B.inv_m[i]
+        hi_[i] = h / ieff[i]
+    for j in range(nk):
+        ipl[j] = False
+    if lin is not None:
+        _implicit_pulleys(h, B, Ct, P, S, ipl)
     hj = 0.0 if implicit else h       # the implicit scheme's dampers are in the chain matrix
-    nC = 0                            # members of the active set C
+    nC = np.int64(0)                  # members of the active set C (int64 throughout: one signature of its stages)
     # the spin damper acts above this second difference of the rates (the alternating pattern
     # of amplitude W has a second difference of 4 W)
     spin_lim = 0.0
@@ -1578,7 +1634,7 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
             cchg = _friction(n, h, Ct, om, stk, z, fkap, fx, fy, mz, si, sc)
             for j in range(nk):
                 if ipl[j]:
-                    mext[j] = _torque(j, t, th[j], om[j], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
+                    mext[j] = _torque_stage(j, t, th[j], om[j], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
                                       tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
             # The step's linear system, its stick-slip active set solved in a small space (CMAX,
             # ZMAX above). One banded solve per step gives y = A_f^-1 F_base (_base_solve). A
@@ -1591,8 +1647,8 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
             # segments have turned (REFACTOR_ANGLE), or C outgrows its cache.
             need = lin_cnt[0] <= 0 or cchg
             base = True
-            npass = 0
-            npend = 0
+            npass = np.int64(0)
+            npend = np.int64(0)
             while True:
                 if need:
                     _factored_state(n, h, si, sc, fkap, fnx, fny, fca, far, kat, zslot)
@@ -1633,21 +1689,26 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, X):
             for j in range(nk):
                 if not ipl[j]:
                     om[j] = wsave[j]
-        else:
-            # (a call of more than 30 arguments compiles as *args, which numba does not inline)
+        if semi is not None:
             pcd, pfr = _contacts_semi(n, nk, h, hg, hvb, hm_, hi_, fx, fy, mz, Ct, S, pr, cand_j, cand_skip, seg_n,
                                       seg_t, seg_p, sj, sq, tq_belt, hubx, huby)
         # pulleys, then tensioners, under this step's belt torques and hub forces
         for j in range(nk):
             pul_dw[j] = om[j]
-        diss_cl = _step_pulleys(t, h, tq_belt, hubx, huby, P, S, W)
+        diss_cl = _pulleys_stage(t, h, tq_belt, hubx, huby, P, S, W)
         for j in range(nk):
             pul_dw[j] = om[j] - pul_dw[j]
         if na > 0:     # tensioners, under this step's hub forces; they move the centres
-            acc_diss[4] += h * _step_arms(na, a_pulley, a_kind, a_par, a_toff, a_tx, a_ty, S_q, S_qd, pcx, pcy, pvx,
+            acc_diss[4] += h * _arms_stage(na, a_pulley, a_kind, a_par, a_toff, a_tx, a_ty, S_q, S_qd, pcx, pcy, pvx,
                                           pvy, hubx, huby, h)
         _accumulate(h, hl, x, y, c, s, vx, vy, jfk, jdx, jdy, seg_n, seg_t, W, pax, pb, pcd, pfr, diss_cl)
         t += h
+    for j in range(nk):
+        W.tq_belt[j] = tq_belt[j]
+        W.hubx[j] = hubx[j]
+        W.huby[j] = huby[j]
+    W.energy[0] = energy(B, Ct, P, A, S)   # here, not by a second call from Python (12 us per call)
+    _probe(n, nk, S, P, W)
     return t
 
 
@@ -1681,7 +1742,7 @@ def _probe(n, nk, S, P, W):
     W.probe[5] = wc
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def energy(B, Ct, P, A, S):
     """Kinetic + potential energy (J): belt, dynamic pulleys, joints, bending, contact, gravity.
     The segments' rotational inertia is the one the integrator uses (times B.iscale)."""
@@ -1722,7 +1783,7 @@ def energy(B, Ct, P, A, S):
 
 # ---- explicit right-hand side and RKF45 -----------------------------------------------------
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def rhs(t, yv, dy, B, Ct, P, W, z):
     """Explicit right-hand side of the seed's equations of motion (eqs. 21-22) for RKF45.
 
@@ -1747,7 +1808,7 @@ def rhs(t, yv, dy, B, Ct, P, W, z):
     e0 = np.zeros(0)
     S = State(x, y, phi, np.cos(phi), np.sin(phi), vx, vy, w, th, om, z, P.cx, P.cy, np.zeros(nk), np.zeros(nk), e0, e0,
               np.zeros(nk), np.zeros(nk), np.zeros(nk), np.zeros(nk))
-    pax, pb = joint_forces(B, S, W, 0.0)
+    pax, pb = _joint_forces_of(B, S, W, 0.0)
     pcd = 0.0
     pfr = 0.0
     for j in range(nk):
@@ -1814,7 +1875,7 @@ _B4 = np.array([25 / 216, 0, 1408 / 2565, 2197 / 4104, -1 / 5, 0])
 _B5 = np.array([16 / 135, 0, 6656 / 12825, 28561 / 56430, -9 / 50, 2 / 55])
 
 
-@njit(cache=True)
+@njit(cache=True, no_cfunc_wrapper=True)
 def rkf45_chunk(t, t_end, h, yv, rtol, atol, max_steps, B, Ct, P, W, Wst, z):
     """Adaptive RKF45 from t to t_end (advancing with the 4th-order solution, error from the
     embedded 5th). The first stage writes W, the others the scratch Wst; W's accumulators get

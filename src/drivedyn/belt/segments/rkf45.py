@@ -7,11 +7,17 @@ import numpy as np
 
 from ...errors import ModelError
 from . import _kernels as K
+from .compiled import compile_note, compiled
 from ..dynamics import _bodies as BK
 from .state import clear_accumulators, new_work
 
 
-def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_steps_per_sample=2_000_000):
+#: steps rkf45 takes within one output interval before it gives up (system.build refuses a model whose
+#: friction law needs more)
+MAX_STEPS_PER_SAMPLE = 2_000_000
+
+
+def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_steps_per_sample=MAX_STEPS_PER_SAMPLE):
     model = sysm.model
     if model.friction.law != "threlfall":
         # the elastic-plastic state z is reset when a segment leaves contact and clipped at
@@ -39,7 +45,7 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
 
     def snapshot(t):
         """Instantaneous element forces at the current state (one extra RHS call)."""
-        K.rhs(t, y, np.zeros_like(y), B, C, P, W, z)
+        rhs(t, y, np.zeros_like(y), B, C, P, W, z)
         return W.jfk * np.hypot(W.jdx, W.jdy)
 
     def capture(t):
@@ -51,7 +57,10 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
         rec.fx[k], rec.fy[k], rec.fn[k], rec.ft[k], rec.ftension[k] = y[0:n], y[n:2 * n], W.seg_n, W.seg_t, ten
         rec.nf += 1
 
-    E0 = energy()
+    with compile_note(progress, "rkf45"):
+        E0 = energy()
+        rhs = compiled(K.rhs, (0.0, y, np.zeros_like(y), B, C, P, W, z))
+        chunk = compiled(K.rkf45_chunk, (0.0, 0.0, 1e-6, y, 1e-6, 1e-9, 1, B, C, P, W, Wst, z))
     capture(0.0)
     t, h, steps, work = 0.0, min(sysm.step, interval), 0, 0.0
     rec.rejected, rec.rhs = 0, 0
@@ -59,8 +68,8 @@ def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_st
     for k in range(nsamples):
         clear_accumulators(W)
         t_end = (k + 1) * interval
-        t, h, a, r = K.rkf45_chunk(t, t_end, h, y, model.simulation.rtol, model.simulation.atol,
-                                    max_steps_per_sample, B, C, P, W, Wst, z)
+        t, h, a, r = chunk(t, t_end, h, y, float(model.simulation.rtol), float(model.simulation.atol),
+                           max_steps_per_sample, B, C, P, W, Wst, z)
         steps += a
         rec.rejected += r
         rec.rhs += 6 * (a + r) + 1           # six stages per attempt, one snapshot per sample

@@ -13,6 +13,7 @@ from ...model import dumps
 from ...results import Result, unit_map, variable
 from ...window import in_window, steady_window
 from . import _kernels as K
+from .compiled import compile_note, compiled
 from .state import clear_accumulators, new_state, new_work
 from .system import TURN_PER_STEP, BeltSystem, build, stability_limit
 from ..geometry.drive import resolve
@@ -91,12 +92,13 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     saved = [a.copy() for a in saved_parts]
     r_min = float(np.min(sysm.pulleys.r))
 
-    lin = True if B.implicit else None       # the implicit scheme's compile-time switch
-    step = _compiled(K.step_chunk, (1, 0.0, h, B, C, P, A, S, W, lin))
+    records = (B, C, P, A, S, W, *K.scheme(B), K.scratch(B, P))    # (step_chunk, once per run)
+    with compile_note(progress, integrator(sysm.model)):
+        step = compiled(K._advance, (1, 0.0, h, *records))
     hstep = [h]
 
     def advance(nsteps, t):
-        return step(nsteps, t, hstep[0], B, C, P, A, S, W, lin)
+        return step(nsteps, t, hstep[0], *records)
 
     # the implicit scheme's step control: checkpoints every 10 ms; a run that goes unstable (a
     # segment turning far faster than any pulley, or a blow-up) goes back two checkpoints and
@@ -178,18 +180,6 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
                 W.lin_cnt[0] = 0
                 rec.speed_reductions += 1
     return nsamples, ""
-
-
-def _compiled(dispatcher, args):
-    """The compiled entry of ``dispatcher`` for these argument types: calling it skips numba's
-    type dispatch, which for the kernel's records costs about 28 us a call against 15 (one call per
-    output sample). The dispatcher itself when numba's internals differ."""
-    try:
-        dispatcher.compile(tuple(dispatcher.typeof_pyval(a) for a in args))
-        sig = tuple(dispatcher.typeof_pyval(a) for a in args)
-        return dispatcher.overloads[sig].entry_point
-    except Exception:   # an internal API that moved: the ordinary call still works
-        return dispatcher
 
 
 def _first_runaway(advance, t, nsteps, h, state, sysm):

@@ -186,6 +186,16 @@ def _build(model, drive, settle: bool) -> BeltSystem:
                                  f"{model.simulation.duration:g} s, more than the {max_steps():.3g} a run may take: use "
                                  "the implicit or semi-implicit scheme, or a larger friction.velocity_threshold "
                                  "(or set DRIVEDYN_MAX_STEPS)", field="simulation.method")
+            from .rkf45 import MAX_STEPS_PER_SAMPLE
+
+            per_sample = min(model.output.interval, model.simulation.duration) / h_f
+            if per_sample > MAX_STEPS_PER_SAMPLE:
+                # (else it ran for minutes, at 0 % on the progress line, before it gave up)
+                raise ModelError(f"rkf45 is explicit: the friction law's slope (mu N / velocity_threshold) limits its "
+                                 f"step to about {h_f:.2g} s, {per_sample:.2g} steps per output interval of "
+                                 f"{model.output.interval:g} s, more than the {MAX_STEPS_PER_SAMPLE:.3g} it takes "
+                                 "before it gives up: use the implicit or semi-implicit scheme, or a larger "
+                                 "friction.velocity_threshold", field="simulation.method")
     if not steps <= max_steps():
         raise ModelError(f"{steps:.3g} integration steps of {step:.3g} s (stable step {limit:.3g} s) for "
                          f"{model.simulation.duration:g} s, more than the {max_steps():.3g} a run may take: a shorter "
