@@ -125,7 +125,7 @@ class _LazyBar:
                 self.bar.start()
                 # until the first report: numba compiles the kernels on their first use only
                 self.task = self.bar.add_task(self.kind, total=1.0,
-                                              info="preparing (a first run compiles the kernels: 1-3 minutes)")
+                                              info="preparing (a first run compiles the kernels: up to a minute)")
 
     def update(self, frac, info=""):
         self._start()
