@@ -475,7 +475,7 @@ def test_the_wraps_cells_conserve_the_belt():
     z = np.zeros
     o = [z(n), *(z((n, nk)) for _ in range(11)), z((n, na)), z((n, na)), z((n, nk)), z(n), z(n), z((n, 6))]
     total0 = RS.u.sum() + RS.W.sum()
-    steps = int(round(0.4 / n / sysm.step))
+    steps = round(0.4 / n / sysm.step)
     for k in range(n):
         RK.run_samples(k, k + 1, steps, k * steps * sysm.step, sysm.step, R, sysm.P, sysm.A, S, W, RS, RW,
                        RT.SLIP_PASSES, False, *o)
