@@ -299,12 +299,12 @@ def _cells_couple(nk, EA, L, u, T, ca, cb, cc, cd, Tw0, Tw1, bm, bv, off, m0, m1
 
 
 @njit(cache=True, inline="always")
-def _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Kc, Fc, Tw0, Tw1, ew, eb, m, om, p0, EA, c1, c2,
-                  m0, m1, off, wsum, dz):
+def _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Fc, Tw0, Tw1, ew, eb, dz):
     """The cells after the wraps' ends met the span tensions T: each node moves by X dT_first + Y dT_last,
     its tension by the mean of the belt's change on either side, its bristle by its motion, to at most
-    Delta_max (beyond, the belt slides). eb: the bristles' energy per wrap (J); wsum: per wrap, the sum
-    of its cells' content per unit arc (``_content``), before (in) and after (out)."""
+    Delta_max (beyond, the belt slides). eb: the bristles' energy per wrap (J). What the stretch changed
+    in the cells' content beyond the ends' motions (the bars' linearisation) the transport books at the
+    exit (``_cell_transport``)."""
     for k in range(nk):
         n = ncell[k]
         ji = (k - 1) % nk
@@ -313,9 +313,6 @@ def _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Kc, Fc, Tw0, Tw
         r = abs(rho[k])
         ds = r * wrap[k] / n
         kb = ew[k] / ds
-        vw = rho[k] * om[k]
-        c = m * vw * vw
-        wb = wsum[k]
         left = d0
         e = 0.0
         for i in range(n):
@@ -335,19 +332,6 @@ def _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Kc, Fc, Tw0, Tw
             zc[k, i] = zn
             e += 0.5 * Fc[k, i] * zn * zn
         eb[k] = e
-        # belt conserved exactly: what the cells' stretch let out (their content's change) against the
-        # ends' motions (the bars' linearisation, EA_w at the wrap's mean tension); the rest at the exit
-        wa = 0.0
-        for i in range(n):
-            wa += _content(Tc[k, i], c, r, p0[k], EA, c1, c2)
-        wsum[k] = wa
-        res = (wb - wa) * ds - (m1[k] - m0[k])
-        if vw >= 0.0:
-            m1[k] += res
-            off[k] += res
-        else:
-            m0[k] -= res
-            off[(k - 1) % nk] += res
         # the tensions the wrap's belt now holds at its ends: the rim carries it out at them
         Tw0[k] = Tc[k, 0] - 0.5 * Fc[k, 0] * zc[k, 0]
         Tw1[k] = Tc[k, n - 1] + 0.5 * Fc[k, n - 1] * zc[k, n - 1]
@@ -364,15 +348,15 @@ def _dir_at(a, k, jj, n, fresh, fwd):
 
 
 @njit(cache=True, inline="always")
-def _cell_transport(k, n, r, ds, phi, Tf, c, p0, EA, c1, c2, zc, Tc, buf, wsum):
+def _cell_transport(k, n, r, ds, phi, Tf, c, p0, EA, c1, c2, zc, Tc, buf, wsum, let_out):
     """The rim carries wrap k's cells by phi cells (signed, belt order): semi-Lagrangian, the cubic
     through the four cells about where each cell's belt was (its diffusion shrinks as ds^3), fresh
-    belt (no bristle deflection, tension Tf) entering. Returns the unstretched belt the shift moved
-    out past the exit (m): what came in less the cells' content change (wsum[k] before, ``_content``
-    at the centrifugal tension of the step's start; after, at c), so belt is conserved."""
-    if phi == 0.0:
-        return 0.0
-    fwd = phi > 0.0
+    belt (no bristle deflection, tension Tf) entering. Returns the unstretched belt that left past the
+    exit (m): what came in less the cells' content change since the last step's shift (wsum[k], at the
+    centrifugal tension then; now at c) less what the ends' motions let out already (let_out), so belt
+    is conserved exactly: the shift's, the stretch's beyond its linearisation and the speed's lift of
+    the belt in the groove."""
+    fwd = phi >= 0.0
     a = abs(phi)
     w0c = wsum[k]
     # every cell's belt came from a cells back: the same fraction, the same weights for all
@@ -399,7 +383,7 @@ def _cell_transport(k, n, r, ds, phi, Tf, c, p0, EA, c1, c2, zc, Tc, buf, wsum):
     for i in range(n):
         w1c += _content(Tc[k, i], c, r, p0, EA, c1, c2)
     wsum[k] = w1c
-    return a * ds * _content(Tf, c, r, p0, EA, c1, c2) - (w1c - w0c) * ds
+    return a * ds * _content(Tf, c, r, p0, EA, c1, c2) - (w1c - w0c) * ds - let_out
 
 
 @njit(cache=True, inline="always")
@@ -562,8 +546,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
             if dmax > 0.0:
                 for k in range(nk):
                     ebw[k] = eb[k]
-                _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Kc, Fc, Tw0, Tw1, eww, eb, m, om, p0, EA, c1,
-                              c2, m0w, m1w, offw, wsw, dzw)
+                _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Fc, Tw0, Tw1, eww, eb, dzw)
             for k in range(nk):
                 ji = (k - 1) % nk
                 vw = rho[k] * om[k]
@@ -612,7 +595,8 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                     ds = r * wrap[k] / n
                     Tf = T[ji] if vw >= 0.0 else T[k]
                     gin = vw * h * _content(Tf, c, r, p0[k], EA, c1, c2)
-                    out = _cell_transport(k, n, r, ds, vw * h / ds, Tf, c, p0[k], EA, c1, c2, zc, Tc, cpw, wsw)
+                    out = _cell_transport(k, n, r, ds, vw * h / ds, Tf, c, p0[k], EA, c1, c2, zc, Tc, cpw, wsw,
+                                          m1w[k] - m0w[k])
                     if vw >= 0.0:
                         fa[k] = gin / h
                         fb[k] = out / h
