@@ -239,9 +239,10 @@ def _cells_respond(nk, ncell, EA, c1, c2, m, mu, dmax, rho, om, wrap, zc, Tc, Kc
         e = wrap_axial_stiffness(EA, c1, c2, Tbar / r if Tbar > 0.0 else 0.0, r)
         ew[k] = e
         kb = e / ds
+        kq = mu[k] * ds / (r * dmax)
         for i in range(n):
             q = Tc[k, i] - c
-            kp = mu[k] * q / (r * dmax) * ds if q > 0.0 else 0.0
+            kp = kq * q if q > 0.0 else 0.0
             Fc[k, i] = kp
             # at Delta_max and pushed on outward last step: sliding, no stiffness (a bristle the step
             # before pulled back holds again: elastic)
@@ -259,9 +260,10 @@ def _cells_respond(nk, ncell, EA, c1, c2, m, mu, dmax, rho, om, wrap, zc, Tc, Kc
                 d += kb * cp[i - 1]             # d - a c'_{i-1}, a = -kb
                 fx += kb * Xc[k, i - 1]
                 fy += kb * Yc[k, i - 1]
-            cp[i] = -kb / d
-            Xc[k, i] = fx / d
-            Yc[k, i] = fy / d
+            d = 1.0 / d
+            cp[i] = -kb * d
+            Xc[k, i] = fx * d
+            Yc[k, i] = fy * d
         for i in range(n - 2, -1, -1):
             Xc[k, i] -= cp[i] * Xc[k, i + 1]
             Yc[k, i] -= cp[i] * Yc[k, i + 1]
