@@ -32,6 +32,20 @@ def _table(value, units, field):
     return table_rows(value, units, field, min_rows=2)
 
 
+def _engagement(v):
+    """A tooth pair's stiffness ramp, in mesh periods: [0, 0.45] (Stiffness and PlanetaryDynamics)."""
+    if not 0.0 <= v <= 0.45:
+        raise ValueError(f"must lie in [0, 0.45] mesh periods, got {v}")
+    return v
+
+
+def _unit_interval(v):
+    """A ratio in [0, 1) (none passes)."""
+    if v is not None and not 0.0 <= v < 1.0:
+        raise ValueError(f"must lie in [0, 1), got {v}")
+    return v
+
+
 class Gear(Spec):
     """A spur or helical gear: tooth data (basic rack in modules, normal section), blank and external torque."""
 
@@ -175,12 +189,7 @@ class Stiffness(Spec):
     """Duration, in mesh periods, over which a tooth pair's stiffness ramps in and out (smoothstep; 0: a step; at most
     0.45)."""
 
-    @field_validator("engagement")
-    @classmethod
-    def _eng(cls, v):
-        if not 0.0 <= v <= 0.45:
-            raise ValueError(f"must lie in [0, 0.45] mesh periods, got {v}")
-        return v
+    _eng = field_validator("engagement")(classmethod(lambda cls, v: _engagement(v)))
 
     @model_validator(mode="after")
     def _given(self):
@@ -229,12 +238,7 @@ class Mesh(Spec):
     def _n(cls, v):
         return _name(v)
 
-    @field_validator("friction", "damping_ratio")
-    @classmethod
-    def _unit_interval(cls, v):
-        if v is not None and not 0.0 <= v < 1.0:
-            raise ValueError(f"must lie in [0, 1), got {v}")
-        return v
+    _unit = field_validator("friction", "damping_ratio")(classmethod(lambda cls, v: _unit_interval(v)))
 
     @field_validator("phase")
     @classmethod
@@ -625,19 +629,9 @@ class PlanetaryDynamics(Spec):
     count: int = 100
     """Number of speeds of the sweep (2..10000)."""
 
-    @field_validator("engagement")
-    @classmethod
-    def _eng(cls, v):
-        if not 0.0 <= v <= 0.45:
-            raise ValueError(f"must lie in [0, 0.45] mesh periods, got {v}")
-        return v
+    _eng = field_validator("engagement")(classmethod(lambda cls, v: _engagement(v)))
 
-    @field_validator("damping_ratio")
-    @classmethod
-    def _zeta(cls, v):
-        if not 0.0 <= v < 1.0:
-            raise ValueError(f"must lie in [0, 1), got {v}")
-        return v
+    _zeta = field_validator("damping_ratio")(classmethod(lambda cls, v: _unit_interval(v)))
 
     @model_validator(mode="after")
     def _counts(self):
