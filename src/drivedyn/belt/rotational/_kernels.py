@@ -583,11 +583,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 Ti, To = Tm[ji], Tm[k]
                 ei = Ti / EA
                 eo = To / EA
-                # the belt arrives in adhesion: it moves with the pulley at the friction's radius
-                # (r, or r - p(T_in)) at the strain of the span it comes from; the wrap's content
-                # relaxes to its steady value over one passage
                 r = abs(rho[k])
-                ve = vw * (1.0 - sunk_depth(((Ti if vw >= 0.0 else To) - c) / r, c1, c2) / r) if centre else vw
                 if dmax > 0.0:
                     # the rim carries the wrap's cells (their belt stuck to it) by vw h: fresh belt in at the
                     # arriving span's tension, and out the content the cells' shift passed the exit: belt
@@ -609,6 +605,10 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                     P_fr += (T[k] * (fb[k] * (1.0 + eo) * h + m1w[k]) - T[ji] * (fa[k] * (1.0 + ei) * h + m0w[k])) / h \
                         - tq[k] * om[k] - (eb[k] - ebw[k]) / h
                     continue
+                # the belt arrives in adhesion: it moves with the pulley at the friction's radius
+                # (r, or r - p(T_in)) at the strain of the span it comes from; the wrap's content
+                # relaxes to its steady value over one passage
+                ve = vw * (1.0 - sunk_depth(((Ti if vw >= 0.0 else To) - c) / r, c1, c2) / r) if centre else vw
                 if vw >= 0.0:
                     Weq = wrap_content(r, wm[k], Ti, To, c, mu[k], EA, c1, c2)
                 else:
