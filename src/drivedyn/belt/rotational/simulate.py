@@ -276,13 +276,14 @@ def new_states(sysm: RotSystem):
     EA = R.EA
     c1, c2 = R.c1, R.c2
     nc = int(R.ncell.max())
-    Wc = np.array([RK.wrap_content(abs(R.rho[j]), R.wrap[j], T, T, 0.0, R.mu[j], EA, c1, c2) for j in range(nk)])
-    if R.dmax > 0.0:        # the cells' belt (_kernels._content), the centrifugal tension 0 at rest
-        Wc = np.array([abs(R.rho[j]) * R.wrap[j] * (1 - (float(penetration(T / abs(R.rho[j]), c1, c2)) - R.p0[j])
-                                                     / abs(R.rho[j])) / (1 + T / EA) for j in range(nk)])
+    # the cells' content per unit arc summed (_kernels._content; the centrifugal tension 0 at rest)
+    wsum = np.array([R.ncell[j] * RK._content(T, 0.0, abs(R.rho[j]), R.p0[j], EA, c1, c2) for j in range(nk)])
+    if R.dmax > 0.0:        # the wraps' belt is their cells'
+        Wc = wsum * np.abs(R.rho) * R.wrap / R.ncell
+    else:
+        Wc = np.array([RK.wrap_content(abs(R.rho[j]), R.wrap[j], T, T, 0.0, R.mu[j], EA, c1, c2) for j in range(nk)])
     RS = RK.RotState(u=R.L / (1 + T / EA), W=Wc, ud=z(nk), vs=z(nk), t0=z(nk), t1=z(nk), Tp=np.full(nk, T), ed=z(nk),
-                     eb=z(nk), zc=z((nk, nc)), Tc=np.full((nk, nc), T), dz=z((nk, nc)),
-                     wsum=np.array([R.ncell[j] * RK._content(T, 0.0, abs(R.rho[j]), R.p0[j], EA, c1, c2) for j in range(nk)]))
+                     eb=z(nk), zc=z((nk, nc)), Tc=np.full((nk, nc), T), dz=z((nk, nc)), wsum=wsum)
     RW = RK.RotWork(L=z(nk), Ld=z(nk), t0=z(nk), t1=z(nk), dx=z(nk), dy=z(nk), wrap=z(nk), T=z(nk), Tm=z(nk), wm=z(nk), a=z(nk), b=z(nk),
                     tq=z(nk), hubx=z(nk), huby=z(nk), slip=z(nk), acc_T=z(nk), acc_v=z(nk), acc_slip=z(nk),
                     acc_gross=z(nk), acc_diss=z(6), bm=z((nk, nk)), bv=z(nk), ex=z(nk),
