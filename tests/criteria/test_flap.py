@@ -60,7 +60,9 @@ def test_bending_at_rest_is_the_pinned_beam():
 
 
 def test_beyond_critical_speed_has_no_frequency():
-    assert flapmod.span_frequencies(10.0, 0.1, 0.3, 0.0, 20.0) == [0.0, 0.0]
+    # T = 10 N < m V^2 = 40 N; below it the same span has its string frequency
+    assert flapmod.span_frequencies([10.0, 10.0], 0.1, 0.3, 0.0, [20.0, 0.0]).tolist() == \
+        [[0.0, 0.0], pytest.approx([math.sqrt(100.0) / 0.6, 2 * math.sqrt(100.0) / 0.6])]
 
 
 def test_crossing_placed_at_3000_rpm_is_listed():

@@ -41,15 +41,38 @@ def moving_string_frequency(T, m, L, V, n=1):
 
 
 def _galerkin(T, m, L, EI, V, J):
+    """The Galerkin system's stiffness diagonal k (..., J) and gyroscopic matrix G (..., J, J) for
+    tensions T and speeds V (scalars or arrays of one shape)."""
+    T, V = np.asarray(T, float)[..., None], np.asarray(V, float)[..., None]
     j = np.arange(1, J + 1)
-    k = j * np.pi / L
-    K = np.diag(k ** 2 * (T - V ** 2 * m) + EI * k ** 4)
+    kj = j * np.pi / L
+    k = kj ** 2 * (T - V ** 2 * m) + EI * kj ** 4
     # G_ij = (2/L) 2 V m int_0^L sin(i pi x/L) d/dx sin(j pi x/L) dx  (Galerkin of 2 V rhoA y_xt)
     i_, j_ = np.meshgrid(j, j, indexing="ij")
     odd = (i_ + j_) % 2 == 1
     with np.errstate(divide="ignore", invalid="ignore"):
-        G = np.where(odd, 8.0 * V * m * i_ * j_ / (L * (i_ ** 2 - j_ ** 2)), 0.0)
-    return K, G
+        g = np.where(odd, 8.0 * m * i_ * j_ / (L * (i_ ** 2 - j_ ** 2)), 0.0)
+    return k, V[..., None] * g
+
+
+def moving_beam_spectrum(T, m, L, EI, V, modes=3, terms=GALERKIN_TERMS):
+    """First ``modes`` natural frequencies (Hz) of the moving tensioned beam (seed eq. 1) for arrays
+    of tensions T and speeds V (one shape): an array of that shape + (modes,), NaN where the span
+    is at or above its critical speed."""
+    k, G = _galerkin(T, m, L, EI, V, terms)
+    ok = k.min(axis=-1) > 0
+    # m q'' + G q' + K q = 0 with K = diag(k) and G skew: in y = (W q, q'), W = sqrt(K / m), it reads
+    # y' = S y with S = [[0, W], [-W, -G / m]] skew-symmetric, whose eigenvalues +-i w make w^2 a double
+    # eigenvalue of the symmetric S^T S (a symmetric solve: a quarter of the general one's time)
+    J = terms
+    W = np.sqrt(np.where(ok[..., None], k, 1.0) / m)[..., None] * np.eye(J)
+    S = np.zeros(k.shape[:-1] + (2 * J, 2 * J))
+    S[..., :J, J:] = W
+    S[..., J:, :J] = -W
+    S[..., J:, J:] = -G / m
+    w2 = np.linalg.eigvalsh(np.swapaxes(S, -1, -2) @ S)
+    f = np.sqrt(np.clip(w2, 0.0, None))[..., ::2][..., :modes] / (2.0 * np.pi)
+    return np.where(ok[..., None], f, np.nan)
 
 
 def moving_beam_frequencies(T, m, L, EI, V, modes=3, terms=GALERKIN_TERMS):
@@ -57,16 +80,12 @@ def moving_beam_frequencies(T, m, L, EI, V, modes=3, terms=GALERKIN_TERMS):
 
     Raises ModelError if the span has diverged (some stiffness not positive definite).
     """
-    K, G = _galerkin(T, m, L, EI, V, terms)
-    if np.linalg.eigvalsh(K).min() <= 0:
+    f = moving_beam_spectrum(float(T), m, L, EI, float(V), modes, terms)
+    if np.isnan(f).any():
         raise ModelError(f"{V:.4g} m/s is at or above the critical speed of the span "
                          f"({np.sqrt((T + np.pi ** 2 * EI / L ** 2) / m):.4g} m/s): it has no natural frequency",
                          field="speed")
-    J = len(K)
-    A = np.block([[np.zeros((J, J)), np.eye(J)], [-K / m, -G / m]])
-    lam = np.linalg.eigvals(A)
-    w = np.sort(np.abs(lam.imag[lam.imag > 0]))
-    return w[:modes] / (2.0 * np.pi)
+    return f
 
 
 def span_frequencies(T, m, L, EI, V, modes=3):

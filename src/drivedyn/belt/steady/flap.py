@@ -2,7 +2,7 @@
 tension and belt speed, and where the crank's orders cross them.
 
 Each span is taken as the axially moving, tensioned beam of the span analysis
-(``drivedyn.span.frequencies.moving_beam_frequencies``: pinned ends, length L between its
+(``drivedyn.span.frequencies.moving_beam_spectrum``: pinned ends, length L between its
 tangent points in the drawn layout, tension T, mass per metre m, bending stiffness EI, belt
 speed V), whose first frequency without bending is the moving string's
 
@@ -21,19 +21,17 @@ import math
 
 import numpy as np
 
-from ...span.frequencies import moving_beam_frequencies
+from ...span.frequencies import moving_beam_spectrum
 
 RPM = 30 / math.pi
 MODES = 2
 
 
-def span_frequencies(T, m, L, EI, V, modes=MODES) -> list[float]:
-    """First ``modes`` flap frequencies (Hz) of a span; 0 where the span has no stiffness left
-    (T <= m V^2: at or above its critical speed)."""
-    try:
-        return [float(f) for f in moving_beam_frequencies(float(T), m, L, EI, float(V), modes)]
-    except Exception:          # at or beyond the critical speed: no natural frequency
-        return [0.0] * modes
+def span_frequencies(T, m, L, EI, V, modes=MODES) -> np.ndarray:
+    """First ``modes`` flap frequencies (Hz) of a span at tensions T and belt speeds V (arrays of one
+    length): shape (len, modes); 0 where the span has no stiffness left (T <= m V^2: at or above its
+    critical speed)."""
+    return np.nan_to_num(moving_beam_spectrum(np.asarray(T, float), m, L, EI, np.asarray(V, float), modes), nan=0.0)
 
 
 def flap(model, ds, summary) -> dict:
@@ -63,7 +61,7 @@ def flap(model, ds, summary) -> dict:
     for sp in lay.spans:
         if sp.name not in tension:
             continue
-        fs = np.array([span_frequencies(T, m, sp.length, EI, v) for T, v in zip(tension[sp.name], V)])
+        fs = span_frequencies(tension[sp.name], m, sp.length, EI, V)
         out["spans"][sp.name] = {"length": sp.length, **{f"f{n + 1}": fs[:, n].tolist() for n in range(MODES)}}
     return out
 
