@@ -22,9 +22,9 @@ def clutch_variables(ds, model, sysm, rec, ns, interval):
     omr = rec.omr[:ns, sel]
     prev = np.vstack([np.zeros((1, len(sel))), omr[:-1]])
     tc = (P.cl_ir[sel] * (omr - prev) / interval - rec.tq_ext[:ns, sel]) * P.cl_s[sel]
-    ds["rotor_speed"] = variable(omr, ("time", "clutch"), "rad/s", "accessory rotor speed behind the clutch")
-    ds["clutch_torque"] = variable(tc, ("time", "clutch"), "N m", "torque the clutch passes to the rotor, in its drive "
-                                   "sense (interval mean; >= 0 for an overrunning clutch)")
+    ds.update({"rotor_speed": variable(omr, ("time", "clutch"), "rad/s", "accessory rotor speed behind the clutch"),
+               "clutch_torque": variable(tc, ("time", "clutch"), "N m", "torque the clutch passes to the rotor, in its "
+                                         "drive sense (interval mean; >= 0 for an overrunning clutch)")})
 
 
 def tensioner_variables(ds, model, sysm, rec, ns):
@@ -36,14 +36,16 @@ def tensioner_variables(ds, model, sysm, rec, ns):
             continue
         ds.coords[dim] = [model.pulleys[A.pulley[a]].name for a in sel]
         q, qd = rec.q[:ns, sel], rec.qd[:ns, sel]
-        if kind == 0:
+        if kind == 0:      # (one update: each assignment aligns the whole dataset again)
             psi = A.psi0[sel] + A.sgn[sel] * q
-            ds["arm_angle"] = variable(psi, ("time", dim), "rad", "tensioner arm angle about its pivot (counter-clockwise from x)")
-            ds["arm_travel"] = variable(q, ("time", dim), "rad", "arm travel from the drawn position, into the belt positive")
-            ds["arm_speed"] = variable(qd, ("time", dim), "rad/s", "arm travel rate")
+            ds.update({
+                "arm_angle": variable(psi, ("time", dim), "rad", "tensioner arm angle about its pivot (counter-clockwise from x)"),
+                "arm_travel": variable(q, ("time", dim), "rad", "arm travel from the drawn position, into the belt positive"),
+                "arm_speed": variable(qd, ("time", dim), "rad/s", "arm travel rate")})
         else:
-            ds["slider_travel"] = variable(q, ("time", dim), "m", "slider travel from the drawn position, into the belt positive")
-            ds["slider_speed"] = variable(qd, ("time", dim), "m/s", "slider travel rate")
+            ds.update({
+                "slider_travel": variable(q, ("time", dim), "m", "slider travel from the drawn position, into the belt positive"),
+                "slider_speed": variable(qd, ("time", dim), "m/s", "slider travel rate")})
 
 
 #: units of the summary keys (results.unit_map: first matching pattern wins; "1" for ratios)

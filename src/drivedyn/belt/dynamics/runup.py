@@ -93,12 +93,10 @@ def add_runup(ds, model, bin_width=None, up_only=False) -> dict:
     if tables is None:
         return {}
     out, variables, coords = tables
-    ds["crank_rpm"] = variables.pop("crank_rpm")
     ds.attrs["runup_crank"] = out["crank"]
-    for name, var in coords.items():
-        ds.coords[name] = var
-    for name, var in variables.items():
-        ds[name] = var
+    # one update: each assignment aligns the whole dataset again (2 ms apiece)
+    ds.coords.update(coords)
+    ds.update(variables)
     return {"runup": out}
 
 
