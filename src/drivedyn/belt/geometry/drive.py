@@ -54,9 +54,17 @@ class Drive:
         return rest_state(self.model, self.installed_length, self.layout, list(self.senses))
 
 
+_last: list = []      # the last model resolved and its Drive (models are frozen)
+
+
 def resolve(model) -> Drive:
-    """The :class:`Drive` of ``model`` (a Drive is returned as it is)."""
+    """The :class:`Drive` of ``model`` (a Drive is returned as it is). The last model's Drive is
+    kept, so that a run's dynamics and its modes share one rest state (10-20 ms each)."""
     if isinstance(model, Drive):
         return model
+    if _last and _last[0] is model:
+        return _last[1]
     idx = tuple(tensioner.indices(model))
-    return Drive(model, compute_layout(model), idx, tuple(tensioner.senses(model)) if idx else ())
+    drive = Drive(model, compute_layout(model), idx, tuple(tensioner.senses(model)) if idx else ())
+    _last[:] = [model, drive]
+    return drive
