@@ -486,3 +486,37 @@ def test_the_wraps_cells_conserve_the_belt():
         r, c = abs(R.rho[k]), R.m * (R.rho[k] * S.om[k]) ** 2
         cells = sum(RK._content(T, c, r, R.p0[k], R.EA, R.c1, R.c2) for T in RS.Tc[k, :R.ncell[k]])
         assert RS.W[k] == pytest.approx(cells * r * RW.wrap[k] / R.ncell[k], rel=1e-12)
+
+
+@pytest.mark.parametrize("ground", [0.07, 0.0, 1e8])
+def test_the_cells_end_responses_solve_their_stiffness(ground):
+    """The cells' responses to a unit pull at either end (found by shooting from the far end, without
+    a tridiagonal solve) against a dense solve of the same stiffness: bristles about 0.07 of the belt's
+    cell stiffness, every bristle sliding (0: only the belt and the regularisation hold), and bristles
+    1e8 times stiffer, whose shooting would overflow over 60 cells (it grows 1e5-fold per cell) and is rescaled on the way."""
+    from drivedyn.belt.rotational import _kernels as RK
+
+    nk, n = 1, 60
+    EA, c1, c2, m, dmax, r, wrap = 1.2e5, 0.0, 2e6, 0.115, 2e-4, 0.07, 3.0
+    rng = np.random.default_rng(3)
+    Tc = (400.0 + 300.0 * rng.random(n))[None, :]
+    zc = np.zeros((nk, n))
+    ds = r * wrap / n
+    e = RK.wrap_axial_stiffness(EA, c1, c2, 0.5 * (Tc[0, 0] + Tc[0, -1]) / r, r)
+    mu = ground * (e / ds) * r * dmax / (ds * 500.0) if ground else 0.0     # K = mu q ds / (r dmax) at q ~ 500 / r
+    arrays = [np.zeros((nk, n)) for _ in range(5)]
+    Kc, Fc, Xc, Yc, dz = arrays
+    cp = np.zeros(n)
+    ca, cb, cc, cd, Tw0, Tw1, ew = (np.zeros(nk) for _ in range(7))
+    RK._cells_respond(nk, np.array([n]), EA, c1, c2, m, np.array([mu]), dmax, np.array([r]), np.zeros(nk),
+                      np.array([wrap]), zc, Tc, Kc, Fc, Xc, Yc, cp, ca, cb, cc, cd, Tw0, Tw1, ew, dz)
+    kb = ew[0] / ds
+    A = np.diag(Kc[0] + 1e-6 * kb + kb * np.r_[1.0, np.full(n - 2, 2.0), 1.0]) \
+        - kb * (np.eye(n, k=1) + np.eye(n, k=-1))
+    f = np.zeros((n, 2))
+    f[0, 0], f[-1, 1] = -1.0, 1.0
+    ref = np.linalg.solve(A, f)
+    scale = np.abs(ref).max(axis=0)
+    assert np.abs(Xc[0] - ref[:, 0]).max() < 1e-9 * scale[0]
+    assert np.abs(Yc[0] - ref[:, 1]).max() < 1e-9 * scale[1]
+    assert ca[0] == pytest.approx(ref[0, 0] - 0.5 * ds / ew[0], rel=1e-9)
