@@ -466,3 +466,15 @@ def test_the_long_fuzz_runs_findings_end_in_one_line(tmp_path):
     d["iso"]["flank_roughness"] = 0.0
     code, err, out, _ = cli("check", str(write(tmp_path, d, "g.toml")))
     assert code == 2 and "flank_roughness" in one_line(err)
+
+
+def test_summary_units_take_the_first_pattern_that_matches():
+    """The units of a summary's dotted keys: the first of the fnmatch patterns in their order that
+    matches a key (one regex of them all), no unit where none does."""
+    from drivedyn.results import unit_map
+
+    patterns = {"spans.*.tension_*": "N", "spans.*": "1", "power.efficiency": "1", "power.*": "W"}
+    summary = {"spans": {"a-b": {"tension_min": 1.0, "speed_mean": 2.0}}, "power": {"efficiency": 0.9, "loss": 3.0},
+               "solver": {"steps": 10}}
+    assert unit_map(summary, patterns) == {"spans.a-b.tension_min": "N", "spans.a-b.speed_mean": "1",
+                                           "power.efficiency": "1", "power.loss": "W"}
