@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
-from scipy.optimize import brentq
 
+from ..._brent import brentq
 from ...errors import ModelError
 from .layout import Layout, layout_from
 

@@ -19,8 +19,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
+from ..._brent import brentq
 from ...errors import ModelError
 from . import tensioner as TN
 from .catalogue import effective_diameters, effective_drive_length, length_offset

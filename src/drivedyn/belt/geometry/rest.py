@@ -5,8 +5,8 @@ starts from it and the modes are taken about it."""
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import brentq, root
 
+from ..._brent import brentq
 from ...errors import ModelError
 from . import tensioner as TN
 from .layout import Layout, compute_layout
@@ -68,6 +68,9 @@ def rest_state(model, L0: float, drawn: Layout | None = None, sense=None):
                              "its stops (spring against belt tension)", field=f"pulleys.{idx[0]}.tensioner")
         qv = np.array([brentq(f, lo, hi, xtol=1e-13)])
     else:
+        # (two or more tensioners only: check's import stays light)
+        from scipy.optimize import root
+
         sol = root(loads, np.zeros(len(idx)), method="hybr")
         if not sol.success:
             raise ModelError(f"no static equilibrium of the tensioners found ({sol.message})", field="pulleys")

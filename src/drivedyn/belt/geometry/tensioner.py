@@ -21,8 +21,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq, root
 
+from ..._brent import brentq
 from ...errors import ModelError
 from ...tables import table
 from .placement import initial_state
@@ -167,6 +167,9 @@ def equilibrium(model, drawn=None, sense=None) -> Equilibrium:
                             if slack else "the spring pushes the tensioner onto its stop into the belt")
         qv = np.array([brentq(f, qmin[0], qmax[0], xtol=1e-12)])
     else:
+        # (two or more tensioners only: check's import stays light)
+        from scipy.optimize import root
+
         sol = root(lambda qv: loads(qv, t_cont), np.zeros(len(idx)), method="hybr")
         qv = sol.x
         if not sol.success:

@@ -30,8 +30,8 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
+from ..._brent import brentq
 from ...errors import ModelError
 from ...tables import table
 from ..geometry.layout import Layout, compute_layout

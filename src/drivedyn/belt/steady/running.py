@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq, root
 
+from ..._brent import brentq
 from ...errors import ModelError
 from ..geometry.layout import compute_layout
 from ..geometry.tensioner import moved_to, spring_load, centre, indices, senses
@@ -99,6 +99,9 @@ def running(model, rest, torques=None, speed=None):
                 return None
             qv = np.array([brentq(f, *bracket, xtol=1e-10)])
         else:
+            # (two or more tensioners only: check's import stays light)
+            from scipy.optimize import root
+
             sol = root(loads, np.array(rest.travel, float), method="hybr")
             if not sol.success:
                 return None
