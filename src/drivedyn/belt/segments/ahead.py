@@ -53,8 +53,8 @@ def start(module: str, name: str, args) -> Ahead | None:
     if os.environ.get("DRIVEDYN_COMPILE_AHEAD", "1") == "0":
         return None
     dispatcher = getattr(importlib.import_module(module), name)
-    if cached(dispatcher, _types(dispatcher, args)):
-        return None
+    if not hasattr(dispatcher, "typeof_pyval") or cached(dispatcher, _types(dispatcher, args)):
+        return None        # (not a numba kernel: a test's stand-in)
     try:
         # a fresh interpreter (not a fork: this process may hold threads and LLVM's state); it
         # needs the arguments' types only, but the arrays themselves pickle in a few kB
