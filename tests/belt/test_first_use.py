@@ -1,14 +1,18 @@
 """A run's first use of the segment model's kernels: each scheme compiles its own stages only, the
 progress line says while numba compiles, and rkf45 refuses at once a friction law it cannot step
 through within an output interval."""
+import importlib
+import os
 import re
+import subprocess
+import sys
 
 import pytest
 from numba import njit
 
 import drivedyn
 from drivedyn.belt.segments import _kernels as K
-from drivedyn.belt.segments import system
+from drivedyn.belt.segments import ahead, simulate, system
 from drivedyn.belt.segments.state import new_state, new_work
 
 
@@ -57,3 +61,31 @@ def test_rkf45_refuses_a_friction_law_too_stiff_for_an_output_interval(model_fac
                                                   r"than the 2e\+06 it takes before it gives up") as info:
         drivedyn.run(m)
     assert info.value.field == "simulation.method"
+
+
+def test_a_run_compiles_its_time_loop_ahead_for_the_types_it_calls_it_with(model_factory, monkeypatch):
+    # the second process compiles _advance while the belt settles; for other types it would be
+    # compiled twice (once there, once here)
+    started, used = [], []
+    monkeypatch.setattr(ahead, "start", lambda module, name, args: started.append((module, name, args)))
+    compiled = simulate.compiled
+    monkeypatch.setattr(simulate, "compiled", lambda d, args: used.append(args) or compiled(d, args))
+    drivedyn.run(model_factory(simulation__duration=2e-3, belt__segments=60))
+    (module, name, args), = started
+    assert getattr(importlib.import_module(module), name) is K._advance
+    assert [K._advance.typeof_pyval(a) for a in args] == [K._advance.typeof_pyval(a) for a in used[0]]
+
+
+def test_a_kernel_compiled_ahead_is_loaded_from_the_cache_not_compiled_again(tmp_path):
+    code = """
+from numba import types
+from drivedyn.belt.dynamics import _bodies as BK
+from drivedyn.belt.segments import ahead
+job = ahead.start(BK.__name__, "threlfall", (0.5, 1.0))
+assert job is not None and job.wait()
+assert ahead.cached(BK.threlfall, (types.float64, types.float64))
+assert ahead.start(BK.__name__, "threlfall", (0.5, 1.0)) is None      # nothing left to do
+assert BK.threlfall(0.5, 1.0) == 0.6875
+assert not BK.threlfall.stats.cache_misses, BK.threlfall.stats        # loaded, not compiled here
+"""
+    subprocess.run([sys.executable, "-c", code], env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}, check=True)

@@ -17,8 +17,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import optimize
 
+from .._roots import find_root
 from ..errors import ModelError
 
 GALERKIN_TERMS = 24
@@ -149,7 +149,7 @@ def tension_from_frequency(f, m, L, EI=0.0, V=0.0, n=1):
     t_hi = max(string_tension(f, m, L, n), t_min) * 2 + 1.0
     while g(t_hi) < 0:
         t_hi *= 2
-    return optimize.brentq(g, t_min, t_hi, xtol=1e-10, rtol=1e-13)
+    return find_root(g, t_min, t_hi, xtol=1e-10, rtol=1e-13)
 
 
 def estimate_tension(f, m, L, EI=0.0, V=0.0, n=1, sigma_f=0.0, sigma_L=0.0, sigma_m=0.0, sigma_EI=0.0):

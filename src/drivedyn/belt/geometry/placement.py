@@ -17,8 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
-from scipy.optimize import brentq
 
+from ..._roots import find_root
 from ...errors import ModelError
 from .layout import Layout, layout_from
 
@@ -190,7 +190,7 @@ def _bracketed_root(f, guess):
     for _ in range(20):
         flo, fhi = f(lo), f(hi)
         if flo < 0 < fhi:
-            return brentq(f, lo, hi, xtol=1e-13 * guess)
+            return find_root(f, lo, hi, xtol=1e-13 * guess)
         if flo >= 0:
             lo *= 0.97
         if fhi <= 0:
@@ -266,7 +266,7 @@ def initial_state(model, layout: Layout) -> InitialState:
                 break
             lo, hi = lo / 5, hi * 2
         try:
-            T = brentq(resid_T, lo, hi, xtol=1e-9 * T_guess)
+            T = find_root(resid_T, lo, hi, xtol=1e-9 * T_guess)
         except ValueError:
             raise ModelError("cannot place the belt on the layout at this length (too short to wrap?)", field="belt.length") from None
     if belt.length is None and l * n < 0.5 * layout.length:

@@ -19,8 +19,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
+from ..._roots import find_root
 from ...errors import ModelError
 from . import tensioner as TN
 from .catalogue import effective_diameters, effective_drive_length, length_offset
@@ -131,7 +131,7 @@ def _table(model, j, s, d_eff, offset) -> PositionTable:
                 continue
             raise ModelError(f"pulley {p.name!r}: the tensioner's travel does not cover the belt's tolerance "
                              f"(belt.length_tolerance +- {tol * 1e3:.1f} mm): for the {name} row {why}", field=field)
-        rel = brentq(lambda x: rebl(x) - target, 0.0, load_stop, xtol=1e-12)
+        rel = find_root(lambda x: rebl(x) - target, 0.0, load_stop, xtol=1e-12)
         rows.append(row(name, rel))
     mean = rows[ROWS.index("mean")]
     h = 1e-5

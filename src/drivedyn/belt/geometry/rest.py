@@ -5,8 +5,8 @@ starts from it and the modes are taken about it."""
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import brentq, root
 
+from ..._roots import find_root
 from ...errors import ModelError
 from . import tensioner as TN
 from .layout import Layout, compute_layout
@@ -38,7 +38,7 @@ def _tension_at(model, lay: Layout, L0: float) -> float:
         hi *= 2
         if hi > 1e3 * model.belt.axial_stiffness:
             raise ModelError("no belt tension holds this installation (belt length?)", field="belt")
-    return brentq(f, 0.0, hi, xtol=1e-10, rtol=1e-13)
+    return find_root(f, 0.0, hi, xtol=1e-10, rtol=1e-13)
 
 
 def rest_state(model, L0: float, drawn: Layout | None = None, sense=None):
@@ -66,8 +66,11 @@ def rest_state(model, L0: float, drawn: Layout | None = None, sense=None):
         if f(lo) < 0 or f(hi) > 0:
             raise ModelError(f"pulley {model.pulleys[idx[0]].name!r}: no static equilibrium of the tensioner between "
                              "its stops (spring against belt tension)", field=f"pulleys.{idx[0]}.tensioner")
-        qv = np.array([brentq(f, lo, hi, xtol=1e-13)])
+        qv = np.array([find_root(f, lo, hi, xtol=1e-13)])
     else:
+        # (two or more tensioners only: check's import stays light)
+        from scipy.optimize import root
+
         sol = root(loads, np.zeros(len(idx)), method="hybr")
         if not sol.success:
             raise ModelError(f"no static equilibrium of the tensioners found ({sol.message})", field="pulleys")

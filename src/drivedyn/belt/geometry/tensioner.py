@@ -21,8 +21,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq, root
 
+from ..._roots import find_root
 from ...errors import ModelError
 from ...tables import table
 from .placement import initial_state
@@ -165,8 +165,11 @@ def equilibrium(model, drawn=None, sense=None) -> Equilibrium:
             slack = t_cont(None, compute_layout(moved_to(model, centres([qmax[0]]), L0_chain))) <= 0
             _no_equilibrium(model, idx[0], qmax[0], "the belt is slack at the stop: the tensioner cannot reach it"
                             if slack else "the spring pushes the tensioner onto its stop into the belt")
-        qv = np.array([brentq(f, qmin[0], qmax[0], xtol=1e-12)])
+        qv = np.array([find_root(f, qmin[0], qmax[0], xtol=1e-12)])
     else:
+        # (two or more tensioners only: check's import stays light)
+        from scipy.optimize import root
+
         sol = root(lambda qv: loads(qv, t_cont), np.zeros(len(idx)), method="hybr")
         qv = sol.x
         if not sol.success:

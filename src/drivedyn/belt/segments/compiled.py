@@ -11,10 +11,15 @@ COMPILE_SECONDS = {"implicit": 20, "semi-implicit": 10, "rkf45": 7}
 
 
 @contextmanager
-def compile_note(progress, method):
+def compile_note(progress, method, now=False):
     """Within it, numba's first compile (a kernel not in its cache) is said on the progress line,
-    so that a first run does not sit at 0 % without a word."""
+    so that a first run does not sit at 0 % without a word; ``now``: said at once (a second
+    process compiles them, ahead.py)."""
     if progress is None:
+        yield
+        return
+    if now:
+        progress(0.0, f"compiling the {method} kernels (first use, about {COMPILE_SECONDS[method]} s)")
         yield
         return
     from numba.core import event

@@ -17,8 +17,6 @@ semi-implicit step leaves the state exactly in place.
 from __future__ import annotations
 
 import numpy as np
-from scipy import sparse
-from scipy.sparse.linalg import spsolve
 
 from . import _kernels as K
 from .state import new_state, new_work
@@ -60,6 +58,8 @@ def potential(sysm, q: np.ndarray) -> float:
 def _hessian(sysm, q, scale):
     """Banded Hessian by central differences of the forces, perturbing segments three apart at once
     (their neighbourhoods i-1..i+1 do not overlap; the n mod 3 last segments get their own sweeps)."""
+    from scipy import sparse
+
     n = sysm.n
     color = np.arange(n) % 3
     if n % 3:
@@ -85,6 +85,10 @@ def _hessian(sysm, q, scale):
 def relax(sysm, x, y, phi):
     """Static equilibrium nearest the placement (x, y, phi): returns (x, y, phi, residual force
     share, iterations), or None when Newton does not converge (the placement is then kept)."""
+    # (scipy.sparse imported here: check builds the system without settling it)
+    from scipy import sparse
+    from scipy.sparse.linalg import spsolve
+
     l, T0 = sysm.init.seg_length, sysm.init.tension
     scale = np.array([l, l, 1.0])
     q = np.stack([x, y, phi], axis=1).astype(float)

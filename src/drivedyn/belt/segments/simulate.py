@@ -13,6 +13,7 @@ from ...model import dumps
 from ...results import Result, unit_map, variable
 from ...window import in_window, steady_window
 from . import _kernels as K
+from . import ahead as _ahead
 from .compiled import compile_note, compiled
 from .state import clear_accumulators, new_state, new_work
 from .system import TURN_PER_STEP, BeltSystem, build, stability_limit
@@ -62,7 +63,20 @@ class _Recorder:
         self.nf = 0
 
 
-def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsamples, steps_per_sample, h, frame_every):
+def _loop_args(sysm: BeltSystem, h, S, W):
+    """The time loop's (``_kernels._advance``) arguments for one step of h from state S."""
+    B, C, P, A = sysm.groups
+    return (1, 0.0, h, B, C, P, A, S, W, *K.scheme(B), K.scratch(B, P))
+
+
+def _compile_ahead(sysm: BeltSystem):
+    """The time loop compiled in a second process while the belt settles (ahead.py), or None."""
+    S = new_state(sysm)
+    return _ahead.start(K.__name__, "_advance", _loop_args(sysm, sysm.step, S, new_work(sysm, S)))
+
+
+def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsamples, steps_per_sample, h, frame_every,
+                             ahead=None):
     B, C, P, A = sysm.groups
     S = new_state(sysm)
     W = new_work(sysm, S)
@@ -92,8 +106,10 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     saved = [a.copy() for a in saved_parts]
     r_min = float(np.min(sysm.pulleys.r))
 
-    records = (B, C, P, A, S, W, *K.scheme(B), K.scratch(B, P))    # (step_chunk, once per run)
-    with compile_note(progress, integrator(sysm.model)):
+    records = _loop_args(sysm, h, S, W)[3:]    # (step_chunk, once per run)
+    with compile_note(progress, integrator(sysm.model), now=ahead is not None):
+        if ahead is not None:
+            ahead.wait()         # then loaded from numba's cache (or compiled here if that failed)
         step = compiled(K._advance, (1, 0.0, h, *records))
     hstep = [h]
 
@@ -235,7 +251,22 @@ def run(drive, progress=None) -> Result:
     """Integrate ``drive`` (geometry.drive.Drive, or a model) with the segment model."""
     drive = resolve(drive)
     model = drive.model
-    sysm = build(drive)
+    ahead = []        # the time loop compiling in a second process (the first system built starts it)
+
+    def before_settle(sysm):
+        if not ahead:
+            ahead.append(_compile_ahead(sysm))
+
+    try:
+        sysm = build(drive, before_settle=None if integrator(model) == "rkf45" else before_settle)
+        return _run(drive, sysm, progress, ahead[0] if ahead else None)
+    finally:
+        if ahead and ahead[0] is not None:
+            ahead[0].close()
+
+
+def _run(drive, sysm, progress, ahead) -> Result:
+    model = drive.model
     sim = model.simulation
     if sim.step is None:     # the step the model sets (a given one was checked with the model)
         from ...limits import steps_problem
@@ -263,7 +294,8 @@ def run(drive, progress=None) -> Result:
     h = interval / steps_per_sample
     try:
         if integrator(model) != "rkf45":
-            done, failure = _integrate_semi_implicit(sysm, progress, rec, nsamples, steps_per_sample, h, frame_every)
+            done, failure = _integrate_semi_implicit(sysm, progress, rec, nsamples, steps_per_sample, h, frame_every,
+                                                     ahead)
             nsteps = rec.steps_done
             h = getattr(rec, "h_final", h)
         else:

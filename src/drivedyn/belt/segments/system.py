@@ -69,7 +69,7 @@ class BeltSystem:
 SETTLE_TOL = 1e-3
 
 
-def build(drive, settle: bool = True) -> BeltSystem:
+def build(drive, settle: bool = True, before_settle=None) -> BeltSystem:
     """The kernels' arrays for ``drive`` (geometry.drive.Drive; a model is resolved first).
     ``settle``: start the belt from its static equilibrium (equilibrium.relax, 0.2-1.5 s);
     ``check`` needs only the placement's tension and penetration. With tensioners, the belt is
@@ -80,11 +80,12 @@ def build(drive, settle: bool = True) -> BeltSystem:
     the belt's depth in the grooves included), and the chain is placed so that it settles to the
     pretension (the settled chain carries up to a few percent less than its placement: chord sag
     and the segments' seating; one corrected placement takes that out). ``belt.segments = "auto"``
-    is resolved first (geometry/segment_count.py)."""
+    is resolved first (geometry/segment_count.py). ``before_settle(sysm)`` is called with each
+    system built, before its belt is settled (a run compiles its time loop ahead meanwhile)."""
     drive = resolve(drive)
     model = drive.resolved
     if drive.tensioners:
-        return _build(model, drive, settle)
+        return _build(model, drive, settle, before_settle)
     target = model.belt.pretension
     placed = model
     if target is None:
@@ -97,9 +98,10 @@ def build(drive, settle: bool = True) -> BeltSystem:
                              field="belt.length")
         target = float(np.mean(T))
         placed = _with_pretension(model, target)
-    sysm = _build(placed, drive, settle)
+    sysm = _build(placed, drive, settle, before_settle)
     if settle and abs(settled_tension(sysm) / target - 1) > SETTLE_TOL:
-        sysm = _build(_with_pretension(model, target * target / settled_tension(sysm)), drive, settle)
+        sysm = _build(_with_pretension(model, target * target / settled_tension(sysm)), drive, settle,
+                      before_settle)
     if settle:
         sysm.init = dataclasses.replace(sysm.init, tension=settled_tension(sysm))
     return sysm
@@ -117,7 +119,7 @@ def settled_tension(sysm) -> float:
     return float(np.mean(W.jfk * np.hypot(W.jdx, W.jdy)))
 
 
-def _build(model, drive, settle: bool) -> BeltSystem:
+def _build(model, drive, settle: bool, before_settle=None) -> BeltSystem:
     """The system of ``model`` (the belt placed by its pretension or length; the pulleys as
     drawn); ``drive.resolved``, the user's model, is what the system reports."""
     drawn = drive.resolved
@@ -202,6 +204,8 @@ def _build(model, drive, settle: bool) -> BeltSystem:
                          "duration, or check the belt's stiffness and damping values and the contact stiffness "
                          "(or set DRIVEDYN_MAX_STEPS)", field="simulation")
     sysm = BeltSystem(drawn, layout, init, B, C, P, A, span_mid, span_geo, track, step, limit, rest)
+    if before_settle is not None:
+        before_settle(sysm)
     # start from the chain's static equilibrium, so that a drive at rest stays at rest
     eq = relax(sysm, init.x, init.y, init.phi) if settle else None
     if eq is not None:

@@ -30,8 +30,8 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
+from ..._roots import find_root
 from ...errors import ModelError
 from ...tables import table
 from ..geometry.layout import Layout, compute_layout
@@ -219,7 +219,7 @@ def tensions(d: CreepData, M, c, forward):
         hi *= 2
         if hi > 1e3 * d.EA:
             raise ModelError("no belt tension holds this installation (belt length?)", field="belt")
-    t0 = brentq(f, lo, hi, xtol=1e-10 * hi, rtol=1e-13)
+    t0 = find_root(f, lo, hi, xtol=1e-10 * hi, rtol=1e-13)
     return t0 + off
 
 
@@ -252,7 +252,7 @@ def margins(d: CreepData, M, c, forward, max_factor=1e3):
     for j in range(nk):
         if M[j] == 0:
             continue
-        g = lambda lam: min(fill(lam)[j], 10.0) - 1.0   # finite: brentq on a slack jump
+        g = lambda lam: min(fill(lam)[j], 10.0) - 1.0   # finite: the root finder on a slack jump
         hi = 1.0
         while g(hi) < 0 and hi < max_factor:
             hi *= 2
@@ -260,7 +260,7 @@ def margins(d: CreepData, M, c, forward, max_factor=1e3):
             continue
         lo = 0.0 if hi == 1.0 else hi / 2
         # a load multiplier to 1e-5 (printed to four digits)
-        out[j] = lo if g(lo) >= 0 else brentq(g, lo, hi, xtol=1e-6, rtol=1e-5)
+        out[j] = lo if g(lo) >= 0 else find_root(g, lo, hi, xtol=1e-6, rtol=1e-5)
     return out
 
 
@@ -321,7 +321,7 @@ def _steady_speed(model, d: CreepData, T, prescribed):
         if g0 == 0 and x0 != 0:
             roots.append(x0)
         elif g0 * g1 < 0:
-            roots.append(brentq(g, x0, x1, xtol=1e-12))
+            roots.append(find_root(g, x0, x1, xtol=1e-12))
     stable = [x for x in roots if g(x + 1e-6 * max(abs(x), 1)) < g(x - 1e-6 * max(abs(x), 1))]
     if stable:
         return max(stable, key=abs)

@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import brentq, root
 
+from ..._roots import find_root
 from ...errors import ModelError
 from ..geometry.layout import compute_layout
 from ..geometry.tensioner import moved_to, spring_load, centre, indices, senses
@@ -58,7 +58,7 @@ def running(model, rest, torques=None, speed=None):
         if len(idx) == 1:
             # bracket the balance from the rest travel outwards over the stops (the ends may have
             # no steady state: a slack belt)
-            seen = {}       # brentq starts from the bracket's ends, already evaluated by the search
+            seen = {}       # the root finder starts from the bracket's ends, already evaluated by the search
 
             def f(q):
                 if q not in seen:
@@ -97,8 +97,11 @@ def running(model, rest, torques=None, speed=None):
                     break
             if bracket is None:
                 return None
-            qv = np.array([brentq(f, *bracket, xtol=1e-10)])
+            qv = np.array([find_root(f, *bracket, xtol=1e-10)])
         else:
+            # (two or more tensioners only: check's import stays light)
+            from scipy.optimize import root
+
             sol = root(loads, np.array(rest.travel, float), method="hybr")
             if not sol.success:
                 return None

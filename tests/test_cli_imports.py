@@ -1,0 +1,25 @@
+"""What `drivedyn check` and `import drivedyn.cli` import, in a fresh interpreter: not the modules
+a check does not use (scipy.optimize's import was a quarter of check's wall time)."""
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+HEAVY = ("scipy.optimize", "scipy.sparse", "xarray", "matplotlib", "numba")
+
+
+def _imported_after(code: str) -> set[str]:
+    probe = f"{code}\nimport json, sys\nprint(json.dumps([m for m in {HEAVY!r} if m in sys.modules]))"
+    out = subprocess.run([sys.executable, "-c", probe], cwd=ROOT, capture_output=True, text=True, check=True).stdout
+    return set(json.loads(out.splitlines()[-1]))
+
+
+def test_import_of_the_cli_imports_no_numerics():
+    assert _imported_after("import drivedyn.cli") == set()
+
+
+def test_check_imports_neither_scipy_optimize_nor_sparse():
+    # (numba stays: the belt's placement walks its path in a compiled kernel)
+    code = "from drivedyn.cli import main\nmain(['check', 'examples/fead-runup.toml'])"
+    assert _imported_after(code) == {"numba"}
