@@ -393,7 +393,7 @@ def _cell_transport(k, n, r, ds, phi, Tf, c, p0, EA, c1, c2, zc, Tc, buf, wsum, 
     fx = math.floor(x)
     b0 = int(fx)
     wm, w0, w1, w2 = _cubic(x - fx)[:4]
-    # cells whose four points are all inside the wrap (a plain loop that LLVM vectorises)
+    # cells whose four points are all inside the wrap: a plain loop, without the ends' tests
     jlo = min(max(1 - b0, 0), n)
     jhi = max(min(n - 2 - b0, n), jlo)
     for arr in range(2):
@@ -501,8 +501,8 @@ def energy(R, P, A, S, RS, RW):
 # compiled without numba's reference counting (it allocates nothing): each array a stage inlined in
 # the step loop takes, or a record's field it reads (the segment model's _step_pulleys reads about
 # forty), otherwise costs an atomic reference-count pair per step. Fast-math without its no-NaN and
-# no-infinity assumptions (a run that diverges must still show it): reassociated sums and reciprocals
-# let LLVM vectorise the cells' loops, 15 % of the step
+# no-infinity assumptions (a run that diverges must still show it): reassociated sums and reciprocals,
+# 11-15 % of the step
 @njit(cache=True, _nrt=False, fastmath={"nsz", "arcp", "contract", "afn", "reassoc"})
 def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy, out_t, out_th, out_om, out_tq, out_tb,
                 out_hx, out_hy, out_pin, out_T, out_v, out_slip, out_gross, out_q, out_qd, out_omr, out_E,
