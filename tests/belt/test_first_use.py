@@ -14,7 +14,7 @@ from numba.core.registry import CPUDispatcher as Dispatcher
 import drivedyn
 from drivedyn.belt.dynamics._bodies import State, Work
 from drivedyn.belt.segments import _kernels as K
-from drivedyn.belt.segments import ahead, simulate, system
+from drivedyn.belt.segments import ahead, simulate, system, tail
 from drivedyn.belt.segments.state import new_state, new_work
 
 
@@ -98,6 +98,17 @@ assert not BK.threlfall.stats.cache_misses, BK.threlfall.stats        # loaded, 
     subprocess.run([sys.executable, "-c", code], env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}, check=True)
 
 
+@pytest.mark.parametrize("method", ["implicit", "semi-implicit"])
+def test_the_loops_last_stages_are_compiled_here_for_the_types_the_loop_calls_them_with(model_factory, method):
+    # a first run compiles them here (tail.py) while the second process compiles the loop: for
+    # other types each would compile twice (_check did, for the literal 0 the loop passed it)
+    _, args = _fresh_loop(model_factory(simulation__method=method, belt__segments=60))
+    jobs = tail.stages(args[2], *args[3:9], args[-1])
+    assert len(jobs) == (14 if method == "implicit" else 4)
+    for stage, a in jobs:
+        assert stage.signatures == [tail.signature(stage, a)], stage.py_func.__name__
+
+
 def test_the_loop_passes_its_stages_arrays_not_the_state_and_work_records(model_factory):
     # the pulleys' stage, the accumulators and the energy took the records whole: 839, 500 and
     # 670 arguments once flattened, which LLVM's passes over the loop paid for
@@ -123,3 +134,17 @@ def test_energy_and_the_static_forces_compile_once_for_python_and_the_loop(model
     assert len(K._energy.signatures) == 1
     assert len(K._joint_forces.signatures) == 1
     assert not isinstance(K.energy, Dispatcher) and not isinstance(K.static_forces, Dispatcher)
+
+
+def test_stages_compile_from_the_last_back_until_one_is_cached(tmp_path):
+    code = """
+from drivedyn.belt.dynamics import _bodies as BK
+from drivedyn.belt.segments import tail
+jobs = [(BK.smoothstep, (0.5,)), (BK.threlfall, (0.5, 1.0))]
+assert tail.compile_back(jobs, lambda: False) == []                  # the second process is done
+assert tail.compile_back(jobs[1:], lambda: True) == ["threlfall"]
+assert tail.compile_back(jobs, lambda: True) == []                   # threlfall cached: met there
+BK.threlfall.overloads.clear()
+assert tail.compile_back(jobs[:1], lambda: True) == ["smoothstep"]
+"""
+    subprocess.run([sys.executable, "-c", code], env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}, check=True)
