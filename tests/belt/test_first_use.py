@@ -8,17 +8,19 @@ import subprocess
 import sys
 
 import pytest
-from numba import njit
+from numba import njit, types
+from numba.core.registry import CPUDispatcher as Dispatcher
 
 import drivedyn
+from drivedyn.belt.dynamics._bodies import State, Work
 from drivedyn.belt.segments import _kernels as K
-from drivedyn.belt.segments import ahead, simulate, system
+from drivedyn.belt.segments import ahead, simulate, system, tail
 from drivedyn.belt.segments.state import new_state, new_work
 
 
-def _stages_compiled_in(model):
-    """The kernel stages the time loop of ``model``'s scheme links, from a copy of ``_advance``
-    compiled afresh (not from numba's cache; the stages themselves may come from it)."""
+def _fresh_loop(model):
+    """A copy of ``_advance`` compiled afresh for ``model`` (not from numba's cache; the stages
+    themselves may come from it): its compile result and its arguments."""
     sysm = system.build(model)
     B, C, P, A = sysm.groups
     S = new_state(sysm)
@@ -26,7 +28,12 @@ def _stages_compiled_in(model):
     args = (1, 0.0, sysm.step, B, C, P, A, S, W, *K.scheme(B), K.scratch(B, P))
     fresh = njit(_nrt=False, error_model="numpy", no_cpython_wrapper=True, no_cfunc_wrapper=True)(K._advance.py_func)
     fresh.compile(tuple(fresh.typeof_pyval(a) for a in args))
-    ir = next(iter(fresh.overloads.values())).library.get_llvm_str()
+    return next(iter(fresh.overloads.values())), args
+
+
+def _stages_compiled_in(model):
+    """The kernel stages the time loop of ``model``'s scheme links."""
+    ir = _fresh_loop(model)[0].library.get_llvm_str()
     return {name for name in ("_contacts_semi", "_base_solve", "_check", "_refactor") if re.search(rf"\d{name}B", ir)}
 
 
@@ -87,5 +94,57 @@ assert ahead.cached(BK.threlfall, (types.float64, types.float64))
 assert ahead.start(BK.__name__, "threlfall", (0.5, 1.0)) is None      # nothing left to do
 assert BK.threlfall(0.5, 1.0) == 0.6875
 assert not BK.threlfall.stats.cache_misses, BK.threlfall.stats        # loaded, not compiled here
+"""
+    subprocess.run([sys.executable, "-c", code], env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}, check=True)
+
+
+@pytest.mark.parametrize("method", ["implicit", "semi-implicit"])
+def test_the_loops_last_stages_are_compiled_here_for_the_types_the_loop_calls_them_with(model_factory, method):
+    # a first run compiles them here (tail.py) while the second process compiles the loop: for
+    # other types each would compile twice (_check did, for the literal 0 the loop passed it)
+    _, args = _fresh_loop(model_factory(simulation__method=method, belt__segments=60))
+    jobs = tail.stages(args[2], *args[3:9], args[-1])
+    assert len(jobs) == (14 if method == "implicit" else 4)
+    for stage, a in jobs:
+        assert stage.signatures == [tail.signature(stage, a)], stage.py_func.__name__
+
+
+def test_the_loop_passes_its_stages_arrays_not_the_state_and_work_records(model_factory):
+    # the pulleys' stage, the accumulators and the energy took the records whole: 839, 500 and
+    # 670 arguments once flattened, which LLVM's passes over the loop paid for
+    cres, _ = _fresh_loop(model_factory(belt__segments=60))
+    flat = {}
+    for stage in (K._pulleys_stage, K._accumulate, K._energy):
+        (sig,) = stage.signatures
+        assert not any(getattr(t, "instance_class", None) in (State, Work) for t in sig)
+        flat[stage.py_func.__name__] = len(K._advance.targetctx.get_arg_packer(sig).argument_types)
+    assert flat["_step_pulleys_on"] < 400 and flat["_accumulate"] < 200 and flat["_energy"] < 320, flat
+    # and the loop keeps no array of the records in a local name (a stack slot each, which LLVM's
+    # SROA split: 1.3 s of its compile)
+    # (numba's names: "x.1" another version of x, "$..." a temporary, "f_v3_..." one of an inlined f's)
+    arrays = {v for v, t in cres.type_annotation.typemap.items()
+              if isinstance(t, types.Array) and not any(c in v for c in "$.") and not re.search(r"_v\d+_", v)}
+    assert arrays <= {"hubx", "huby", "a", "b"}, sorted(arrays)     # (a, b: the scratch zeroed)
+
+
+def test_energy_and_the_static_forces_compile_once_for_python_and_the_loop(model_factory):
+    # called from Python through their arrays: the records' wrappers (energy 4.5 s of a first run's
+    # compile, static_forces 3.7 s) are gone, and the loop reuses the same compiled stage
+    drivedyn.run(model_factory(simulation__duration=2e-3, belt__segments=60))
+    assert len(K._energy.signatures) == 1
+    assert len(K._joint_forces.signatures) == 1
+    assert not isinstance(K.energy, Dispatcher) and not isinstance(K.static_forces, Dispatcher)
+
+
+def test_stages_compile_from_the_last_back_until_one_is_cached(tmp_path):
+    code = """
+from drivedyn.belt.dynamics import _bodies as BK
+from drivedyn.belt.segments import tail
+jobs = [(BK.smoothstep, (0.5,)), (BK.threlfall, (0.5, 1.0))]
+assert tail.compile_back(jobs, lambda: False) == []                  # the second process is done
+assert tail.compile_back(jobs[1:], lambda: True) == ["threlfall"]
+assert tail.compile_back(jobs, lambda: True) == []                   # threlfall cached: met there
+BK.threlfall.overloads.clear()
+assert tail.compile_back(jobs[:1], lambda: True) == ["smoothstep"]
 """
     subprocess.run([sys.executable, "-c", code], env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}, check=True)

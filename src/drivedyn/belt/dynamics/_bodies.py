@@ -322,22 +322,28 @@ def _spring_load(a, q, par, tab_off, tab_x, tab_y):
 @njit(cache=True)
 def spring_energy(A, a, q):
     """Potential of the spring and stops at travel q (J): -integral of the spring load from 0."""
-    o0 = A.tab_off[a]
-    o1 = A.tab_off[a + 1]
+    return _spring_energy(a, q, A.tab_off, A.tab_x, A.tab_y, A.preload, A.rate, A.qmin, A.qmax, A.kstop)
+
+
+@njit(cache=True, inline="always")
+def _spring_energy(a, q, tab_off, tab_x, tab_y, preload, rate, qmin, qmax, kstop):
+    """``spring_energy`` on the arrays it reads (the segment model's energy stage inlines it)."""
+    o0 = tab_off[a]
+    o1 = tab_off[a + 1]
     if o1 > o0:
         # exact for the piecewise-linear table: trapezoids between its breakpoints inside [0, q]
         lo = min(0.0, q)
         hi = max(0.0, q)
         xp = lo
-        yp = table(A.tab_x, A.tab_y, o0, o1, lo, True)
+        yp = table(tab_x, tab_y, o0, o1, lo, True)
         W = 0.0
         for k in range(o0, o1 + 1):
-            xk = A.tab_x[k] if k < o1 else hi
+            xk = tab_x[k] if k < o1 else hi
             if xk <= lo:
                 continue
             if xk > hi:
                 xk = hi
-            yk = table(A.tab_x, A.tab_y, o0, o1, xk, True)
+            yk = table(tab_x, tab_y, o0, o1, xk, True)
             W += 0.5 * (yp + yk) * (xk - xp)
             xp = xk
             yp = yk
@@ -345,11 +351,11 @@ def spring_energy(A, a, q):
                 break
         E = -W if q >= 0.0 else W
     else:
-        E = -(A.preload[a] * q - 0.5 * A.rate[a] * q * q)
-    if q < A.qmin[a]:
-        E += 0.5 * A.kstop[a] * (A.qmin[a] - q) ** 2
-    elif q > A.qmax[a]:
-        E += 0.5 * A.kstop[a] * (q - A.qmax[a]) ** 2
+        E = -(preload[a] * q - 0.5 * rate[a] * q * q)
+    if q < qmin[a]:
+        E += 0.5 * kstop[a] * (qmin[a] - q) ** 2
+    elif q > qmax[a]:
+        E += 0.5 * kstop[a] * (q - qmax[a]) ** 2
     return E
 
 
@@ -417,9 +423,17 @@ def _step_pulleys(t, h, tq_belt, hubx, huby, P, S, W):
     solve bounded) and hub force of this step: prescribed speeds with their engine orders, dynamic
     pulleys under their loads, clutch and decoupler rotors. Adds to W's accumulators; returns the
     energy the clutches dissipated."""
+    return _step_pulleys_on(t, h, tq_belt, hubx, huby, P, S.th, S.om, S.thm, S.thr, S.omr, S.dcp,
+                            W.acc_pin, W.acc_tq_ext, W.acc_tq_belt, W.acc_hubx, W.acc_huby)
+
+
+@njit(cache=True, inline="always")
+def _step_pulleys_on(t, h, tq_belt, hubx, huby, P, th, om, thm, thr, omr, dcp,
+                     acc_pin, acc_tq_ext, acc_tq_belt, acc_hubx, acc_huby):
+    """``_step_pulleys`` on the arrays of S and W it reads: the segment model's stage takes these
+    alone (its records passed whole flattened to 839 arguments a call, which LLVM's passes over
+    the time loop paid for)."""
     nk, pmode, pinv_i = P.nk, P.mode, P.inv_i
-    th, om, thm, thr, omr, dcp = S.th, S.om, S.thm, S.thr, S.omr, S.dcp
-    acc_pin, acc_tq_ext, acc_tq_belt, acc_hubx, acc_huby = W.acc_pin, W.acc_tq_ext, W.acc_tq_belt, W.acc_hubx, W.acc_huby
     tq_const, tq_visc, hm_off, hm_order, hm_amp, hm_phase = P.tq_const, P.tq_visc, P.hm_off, P.hm_order, P.hm_amp, P.hm_phase
     tt_off, tt_x, tt_y, ts_off, ts_x, ts_y = P.tt_off, P.tt_x, P.tt_y, P.ts_off, P.ts_x, P.ts_y
     sp_off, sp_x, sp_y = P.sp_off, P.sp_x, P.sp_y

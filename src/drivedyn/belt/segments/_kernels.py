@@ -95,7 +95,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from ..dynamics._bodies import (FAST, State, _small_solve, _step_arms, _step_pulleys, _torque, external_torque, prescribed_speed, smoothstep, solve_threlfall, spring_energy, threlfall)
+from ..dynamics._bodies import (FAST, State, _small_solve, _spring_energy, _step_arms, _step_pulleys_on, _torque, external_torque, prescribed_speed, smoothstep, solve_threlfall, threlfall)
 from . import _chain
 
 
@@ -368,24 +368,30 @@ def _joint_forces_of(B, S, W, h):
                          W.jmk, W.jmi)
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
 def static_forces(B, Ct, P, S, W):
     """Generalised forces -dE/dq of the belt at rest (S with zero velocities, so that no damper
     acts): joints, contact normal force (the integrators' ``normal_force``), gravity, into W.fx,
-    W.fy, W.mz (used by equilibrium.relax)."""
-    _joint_forces_of(B, S, W, 0.0)
-    for i in range(B.n):
-        for j in range(P.nk):
-            rx = S.x[i] - S.cx[j]
-            ry = S.y[i] - S.cy[j]
+    W.fy, W.mz (used by equilibrium.relax). Through the plain arrays, as ``joint_forces`` (the
+    records' compiled wrapper and flattened arguments: 3.7 s of a first run's compile)."""
+    joint_forces(B, S, W, 0.0)
+    _static_contacts(B.n, P.nk, B.m, B.g, S.x, S.y, S.cx, S.cy, P.r, Ct.c1, Ct.c2, Ct.bc, Ct.pmax, W.fx, W.fy)
+
+
+@njit(cache=True, no_cfunc_wrapper=True)
+def _static_contacts(n, nk, m, g, x, y, pcx, pcy, pr, c1, c2, bc, pmax, fx, fy):
+    """``static_forces``' contact normal forces and gravity, added to fx, fy."""
+    for i in range(n):
+        for j in range(nk):
+            rx = x[i] - pcx[j]
+            ry = y[i] - pcy[j]
             d2 = rx * rx + ry * ry
-            if d2 >= P.r[j] * P.r[j]:
+            if d2 >= pr[j] * pr[j]:
                 continue
             dist = math.sqrt(d2)
-            N, _ = normal_force(Ct.c1[i], Ct.c2[i], Ct.bc[i], Ct.pmax, P.r[j] - dist, 0.0, 0.0)
-            W.fx[i] += N * rx / dist
-            W.fy[i] += N * ry / dist
-        W.fy[i] -= B.m[i] * B.g
+            N, _ = normal_force(c1[i], c2[i], bc[i], pmax, pr[j] - dist, 0.0, 0.0)
+            fx[i] += N * rx / dist
+            fy[i] += N * ry / dist
+        fy[i] -= m[i] * g
 
 
 # ---- tensioners ------------------------------------------------------------------------------
@@ -574,12 +580,11 @@ def _velocity_change(n, nk, nC, ipl, dom, qv, cseg, zslot, lin_u, zc, yx, yy, yz
 
 
 @njit(**STAGE)
-def _accumulate(h, hl, x, y, c, s, vx, vy, jfk, jdx, jdy, seg_n, seg_t, W, pax, pb, pcd, pfr, diss_cl):
+def _accumulate(h, hl, x, y, c, s, vx, vy, jfk, jdx, jdy, seg_n, seg_t, span_geo, span_joint, track_seg, acc_span,
+                acc_track, acc_diss, pax, pb, pcd, pfr, diss_cl):
     """Stage: the step's share of the accumulators: mid-span tension and belt speed (following the
     joint nearest each span's midpoint as the belt moves), tracked segments, dissipation."""
     n = x.shape[0]
-    span_geo, span_joint, track_seg = W.span_geo, W.span_joint, W.track
-    acc_span, acc_track, acc_diss = W.acc_span, W.acc_track, W.acc_diss
     nspan = span_geo.shape[0]
     ntrack = track_seg.shape[0]
     # mid-span tension: follow the joint nearest each span's midpoint as the belt moves
@@ -1510,22 +1515,13 @@ def scratch(B, P):
                    f(nk), f((2, nk)), f(nk), np.zeros(n - ni, dtype=np.int64), f((NQ, n - ni)))
 
 
-# the stages of ``_bodies`` that the rotational model's loop inlines, compiled as stages here
-@njit(**STAGE)
-def _pulleys_stage(t, h, tq_belt, hubx, huby, P, S, W):
-    return _step_pulleys(t, h, tq_belt, hubx, huby, P, S, W)
-
-
-@njit(**STAGE)
-def _arms_stage(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cvx, cvy, hubx, huby, h):
-    return _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cvx, cvy, hubx, huby, h)
-
-
-@njit(**STAGE)
-def _torque_stage(j, t, th, om, tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
-                  tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase):
-    return _torque(j, t, th, om, tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
-                   tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
+# the stages of ``_bodies`` that the rotational model's loop inlines, compiled as stages here from
+# their own code: a stage that called them inlined copied their IR first (numba's inlining, 1.3 s
+# of the pulleys' 2.5 s compile); ``_step_pulleys_on`` takes the arrays of S and W it reads, not
+# the records (see ``_advance``)
+_pulleys_stage = njit(**STAGE)(_step_pulleys_on.py_func)
+_arms_stage = njit(**STAGE)(_step_arms.py_func)
+_torque_stage = njit(**STAGE)(_torque.py_func)
 
 
 # Compiled without numba's reference counting (_nrt=False: it allocates nothing, ``scratch``
@@ -1538,75 +1534,57 @@ def _torque_stage(j, t, th, om, tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_
 @njit(cache=True, _nrt=False, error_model="numpy", no_cfunc_wrapper=True)
 def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, semi, X):
     """The time loop of ``step_chunk``, in stages (the module's doc)."""
-    # every array of the records and the scratch taken out once, before the loops
+    # the records' arrays read where they are used (S.x, X.sc), not taken out into local names:
+    # numba gives each local array a stack slot that LLVM's SROA then splits, 1.3 s of this
+    # function's compile (5.7 -> 4.3 s without its Python wrapper); the loads are the same
     n, nk, hl, g, eax, eb, linear, turn = B.n, P.nk, B.hl, B.g, B.eax, B.eb, B.linear, B.turn
-    x, y, phi, c, s, vx, vy, w, th, om, z = S.x, S.y, S.phi, S.c, S.s, S.vx, S.vy, S.w, S.th, S.om, S.z
-    c1, c2, bc, mu, pmax, law, dv, dmax, centre = Ct
-    kax, bax, kb, bb = B.kax, B.bax, B.kb, B.bb
-    pcx, pcy, pvx, pvy, pr = S.cx, S.cy, S.cvx, S.cvy, P.r
-    fx, fy, mz, jfk, jdx, jdy, seg_n, seg_t, seg_p = W.fx, W.fy, W.mz, W.jfk, W.jdx, W.jdy, W.seg_n, W.seg_t, W.seg_p
-    acc_diss, pinv_i = W.acc_diss, P.inv_i
-    lin_d, lin_o, lin_e, lin_dinv, lin_y, lin_x, lin_r = W.lin_d, W.lin_o, W.lin_e, W.lin_dinv, W.lin_y, W.lin_x, W.lin_r
-    lin_sig, lin_gam, lin_cnt, lin_stat, m_, lin_geo = W.lin_sig, W.lin_gam, W.lin_cnt, W.lin_stat, B.m, W.lin_geo
-    fkap, fnx, fny, fca, far, stk = W.lin_fk, W.lin_fnx, W.lin_fny, W.lin_fa, W.lin_far, W.lin_st
-    zslot, zc, lin_g, lin_u = W.lin_zslot, W.lin_zc, W.lin_g, W.lin_u
-    cand_j, cand_skip = W.cand_j, W.cand_skip
-    tq_const, tq_visc, hm_off, hm_order, hm_amp, hm_phase = P.tq_const, P.tq_visc, P.hm_off, P.hm_order, P.hm_amp, P.hm_phase
-    tt_off, tt_x, tt_y, ts_off, ts_x, ts_y = P.tt_off, P.tt_x, P.tt_y, P.ts_off, P.ts_x, P.ts_y
-    tq_drag, w_drag, tq_quad, tq_pow, w_cut = P.tq_drag, P.w_drag, P.tq_quad, P.tq_pow, P.w_cut
-    na, a_pulley, a_kind, a_par, a_toff, a_tx, a_ty = A.na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y
-    S_q, S_qd = S.q, S.qd
-    sc, si, spd, cs, kat, yx, yy, yz, ux, uy, uz = X.sc, X.si, X.spd, X.cs, X.kat, X.yx, X.yy, X.yz, X.ux, X.uy, X.uz
-    inv_m, inv_i, jmk, jmi, hm_, hi_, ieff = X.inv_m, X.inv_i, X.jmk, X.jmi, X.hm, X.hi, X.ieff
-    cseg, cpar, qm, qv, s0, gyv, dom, mext, ipl = X.cseg, X.cpar, X.qm, X.qv, X.s0, X.gyv, X.dom, X.mext, X.ipl
-    tq_belt, hub, wsave, pul_dw = X.tq_belt, X.hub, X.wsave, W.pul_dw
-    sj, sq = X.sj, X.sq
-    hubx = hub[0]
-    huby = hub[1]
-    implicit = B.implicit
+    na = A.na
+    hubx = X.hub[0]
+    huby = X.hub[1]
     # the scratch as step_chunk allocated it per chunk before it served a whole run (the active
     # set, for one, starts empty), and the chunk's constants (the step h can change between chunks)
-    for a in (sc, cpar, qm, hub, sq):
+    for a in (X.sc, X.cpar, X.qm, X.hub, X.sq):
         a[...] = 0.0
-    for b in (spd, cs, kat, yx, yy, yz, ux, uy, uz, jmk, jmi, qv, s0, gyv, dom, mext, tq_belt, wsave):
+    for b in (X.spd, X.cs, X.kat, X.yx, X.yy, X.yz, X.ux, X.uy, X.uz, X.jmk, X.jmi, X.qv, X.s0, X.gyv, X.dom, X.mext,
+              X.tq_belt, X.wsave):
         b[...] = 0.0
-    si[...] = -1
-    cseg[...] = 0
-    sj[...] = 0
+    X.si[...] = -1
+    X.cseg[...] = 0
+    X.sj[...] = 0
     for i in range(n):
-        inv_m[i] = B.inv_m[i]
-        inv_i[i] = B.inv_i[i]
-        ieff[i] = B.inertia[i] * B.iscale   # the segments' rotational inertia as integrated (see system.py)
-        hm_[i] = h * B.inv_m[i]
-        hi_[i] = h / ieff[i]
+        X.inv_m[i] = B.inv_m[i]
+        X.inv_i[i] = B.inv_i[i]
+        X.ieff[i] = B.inertia[i] * B.iscale   # the segments' rotational inertia as integrated (see system.py)
+        X.hm[i] = h * B.inv_m[i]
+        X.hi[i] = h / X.ieff[i]
     for j in range(nk):
-        ipl[j] = False
+        X.ipl[j] = False
     if lin is not None:
-        _implicit_pulleys(h, B, Ct, P, S, ipl)
-    hj = 0.0 if implicit else h       # the implicit scheme's dampers are in the chain matrix
+        _implicit_pulleys(h, B, Ct, P, S, X.ipl)
+    hj = 0.0 if B.implicit else h       # the implicit scheme's dampers are in the chain matrix
     nC = np.int64(0)                  # members of the active set C (int64 throughout: one signature of its stages)
     # the spin damper acts above this second difference of the rates (the alternating pattern
     # of amplitude W has a second difference of 4 W)
     spin_lim = 0.0
     for j in range(nk):
-        spin_lim = max(spin_lim, abs(om[j]))
+        spin_lim = max(spin_lim, abs(S.om[j]))
     spin_lim = 4.0 * SPIN_LIMIT * max(spin_lim, 10.0)
     hg = h * g
     # contact candidates (_contact_candidate): the speed bound of this chunk, per step
     vmax = 0.0
     for i in range(n):
-        vmax = max(vmax, vx[i] * vx[i] + vy[i] * vy[i])
+        vmax = max(vmax, S.vx[i] * S.vx[i] + S.vy[i] * S.vy[i])
     pvmax = 0.0
     for j in range(nk):
-        pvmax = max(pvmax, pvx[j] * pvx[j] + pvy[j] * pvy[j])
+        pvmax = max(pvmax, S.cvx[j] * S.cvx[j] + S.cvy[j] * S.cvy[j])
     hvb = h * (2.0 * math.sqrt(vmax) + 2.0 * math.sqrt(pvmax) + 1.0)
     for _ in range(nsteps):
-        pax, pb = _joint_forces(n, eax, eb, hl, turn, linear, x, y, c, s, vx, vy, w, phi, kax, bax, kb, bb, fx, fy,
-                                mz, jfk, jdx, jdy, hj, inv_m, inv_i, jmk, jmi)
+        pax, pb = _joint_forces(n, eax, eb, hl, turn, linear, S.x, S.y, S.c, S.s, S.vx, S.vy, S.w, S.phi, B.kax, B.bax,
+                                B.kb, B.bb, W.fx, W.fy, W.mz, W.jfk, W.jdx, W.jdy, hj, X.inv_m, X.inv_i, X.jmk, X.jmi)
         pcd = 0.0
         pfr = 0.0
         for j in range(nk):
-            tq_belt[j] = 0.0
+            X.tq_belt[j] = 0.0
             hubx[j] = 0.0
             huby[j] = 0.0
         if lin is not None:
@@ -1624,18 +1602,20 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, semi, X):
             # held at 1000 rpm at 19.2 us read span minima 5 % off with it, within 0.5 % of the
             # implicit pulleys' result with the extrapolation.
             for j in range(nk):
-                if not ipl[j]:
-                    wsave[j] = om[j]
-                    om[j] += pul_dw[j]
-            _joint_transport(n, h, hl, linear, eax, kax, bax, c, s, w, jdx, jdy, fx, fy, mz)
-            pb = _spin_damper(n, h, hl, spin_lim, ieff, w, jfk, jdx, jdy, seg_n, spd, cs, mz, pb)
-            nc, pcd = _contacts(n, nk, h, hvb, g, m_, c1, c2, bc, pmax, centre, x, y, vx, vy, pcx, pcy, pvx, pvy, pr, cand_j,
-                                cand_skip, stk, z, fy, si, sc)
-            cchg = _friction(n, h, Ct, om, stk, z, fkap, fx, fy, mz, si, sc)
+                if not X.ipl[j]:
+                    X.wsave[j] = S.om[j]
+                    S.om[j] += W.pul_dw[j]
+            _joint_transport(n, h, hl, linear, eax, B.kax, B.bax, S.c, S.s, S.w, W.jdx, W.jdy, W.fx, W.fy, W.mz)
+            pb = _spin_damper(n, h, hl, spin_lim, X.ieff, S.w, W.jfk, W.jdx, W.jdy, W.seg_n, X.spd, X.cs, W.mz, pb)
+            nc, pcd = _contacts(n, nk, h, hvb, g, B.m, Ct.c1, Ct.c2, Ct.bc, Ct.pmax, Ct.centre, S.x, S.y, S.vx,
+                                S.vy, S.cx, S.cy, S.cvx, S.cvy, P.r, W.cand_j, W.cand_skip, W.lin_st, S.z, W.fy,
+                                X.si, X.sc)
+            cchg = _friction(n, h, Ct, S.om, W.lin_st, S.z, W.lin_fk, W.fx, W.fy, W.mz, X.si, X.sc)
             for j in range(nk):
-                if ipl[j]:
-                    mext[j] = _torque_stage(j, t, th[j], om[j], tq_const, tq_visc, tq_drag, w_drag, tq_quad, tq_pow, w_cut,
-                                      tt_off, tt_x, tt_y, ts_off, ts_x, ts_y, hm_off, hm_order, hm_amp, hm_phase)
+                if X.ipl[j]:
+                    X.mext[j] = _torque_stage(j, t, S.th[j], S.om[j], P.tq_const, P.tq_visc, P.tq_drag, P.w_drag,
+                                              P.tq_quad, P.tq_pow, P.w_cut, P.tt_off, P.tt_x, P.tt_y, P.ts_off, P.ts_x,
+                                              P.ts_y, P.hm_off, P.hm_order, P.hm_amp, P.hm_phase)
             # The step's linear system, its stick-slip active set solved in a small space (CMAX,
             # ZMAX above). One banded solve per step gives y = A_f^-1 F_base (_base_solve). A
             # segment whose state differs from the factored one (set C) adds a force correction
@@ -1645,69 +1625,77 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, semi, X):
             # letting go, slips turning) at O(|C| + nk) each; a segment that changes joins C. The
             # chain matrix is refactored at the current state when the contact set changes, the
             # segments have turned (REFACTOR_ANGLE), or C outgrows its cache.
-            need = lin_cnt[0] <= 0 or cchg
+            need = W.lin_cnt[0] <= 0 or cchg
             base = True
             npass = np.int64(0)
             npend = np.int64(0)
             while True:
                 if need:
-                    _factored_state(n, h, si, sc, fkap, fnx, fny, fca, far, kat, zslot)
-                    lin_cnt[2] = 0
-                    lin_cnt[0] = _refactor(n, h, hl, eax, eb, linear, kax, bax, kb, bb, c, s, w, phi, jfk, jdx, jdy,
-                                           turn, m_, ieff, lin_sig, lin_gam, lin_geo, fkap, kat, fnx, fny, lin_d,
-                                           lin_o, lin_e, lin_dinv, lin_y, lin_x)
-                    lin_cnt[1] += 1
-                    _pulley_columns(n, nk, nc, far, fca, fnx, fny, si, ipl, ux, uy, uz, lin_dinv, lin_y, lin_x, lin_r,
-                                    lin_u, lin_g)
+                    _factored_state(n, h, X.si, X.sc, W.lin_fk, W.lin_fnx, W.lin_fny, W.lin_fa, W.lin_far, X.kat,
+                                    W.lin_zslot)
+                    W.lin_cnt[2] = 0
+                    W.lin_cnt[0] = _refactor(n, h, hl, eax, eb, linear, B.kax, B.bax, B.kb, B.bb, S.c, S.s, S.w, S.phi,
+                                             W.jfk, W.jdx, W.jdy, turn, B.m, X.ieff, W.lin_sig, W.lin_gam, W.lin_geo,
+                                             W.lin_fk, X.kat, W.lin_fnx, W.lin_fny, W.lin_d, W.lin_o, W.lin_e,
+                                             W.lin_dinv, W.lin_y, W.lin_x)
+                    W.lin_cnt[1] += 1
+                    _pulley_columns(n, nk, nc, W.lin_far, W.lin_fa, W.lin_fnx, W.lin_fny, X.si, X.ipl, X.ux, X.uy,
+                                    X.uz, W.lin_dinv, W.lin_y, W.lin_x, W.lin_r, W.lin_u, W.lin_g)
                     need = False
                     base = True
                 if base:
-                    npend = _base_solve(n, nk, nc, nC, vx, vy, om, pvx, pvy, pr, fkap, fnx, fny, fca, far, si, cseg, sc,
-                                        yx, yy, yz, s0, gyv, ipl, lin_dinv, lin_y, lin_x, lin_r)
+                    npend = _base_solve(n, nk, nc, nC, S.vx, S.vy, S.om, S.cvx, S.cvy, P.r, W.lin_fk, W.lin_fnx,
+                                        W.lin_fny, W.lin_fa, W.lin_far, X.si, X.cseg, X.sc, X.yx, X.yy, X.yz, X.s0,
+                                        X.gyv, X.ipl, W.lin_dinv, W.lin_y, W.lin_x, W.lin_r)
                     nC = 0
                     base = False
-                nC, over = _join(n, nC, npend, si, cseg, zslot, zc, lin_cnt, ux, uy, uz, lin_dinv, lin_y, lin_x,
-                                 lin_r)
-                npend = 0
+                nC, over = _join(n, nC, npend, X.si, X.cseg, W.lin_zslot, W.lin_zc, W.lin_cnt, X.ux, X.uy, X.uz,
+                                 W.lin_dinv, W.lin_y, W.lin_x, W.lin_r)
+                npend = np.int64(0)         # (not the literal 0: _check compiled for one signature, tail.py)
                 if over:
                     need = True
                     continue
-                _corrections(nC, vx, vy, om, pvx, pvy, fnx, fny, fca, far, si, sc, cseg, cpar)
-                _small_system(h, nk, nC, pinv_i, mext, zslot, zc, lin_u, lin_g, si, cseg, cpar, qm, qv, yx, yy,
-                              s0, gyv, ipl, dom, lin_cnt)
-                changed, npend = _check(h, nk, nc, nC, npend, npass, Ct, vx, vy, om, pvx, pvy, fnx, fny,
-                                        fca, far, stk, z, zslot, zc, lin_u, lin_stat, si, sc, cseg, yx, yy, qv, dom,
-                                        ipl)
+                _corrections(nC, S.vx, S.vy, S.om, S.cvx, S.cvy, W.lin_fnx, W.lin_fny, W.lin_fa, W.lin_far, X.si, X.sc,
+                             X.cseg, X.cpar)
+                _small_system(h, nk, nC, P.inv_i, X.mext, W.lin_zslot, W.lin_zc, W.lin_u, W.lin_g, X.si, X.cseg,
+                              X.cpar, X.qm, X.qv, X.yx, X.yy, X.s0, X.gyv, X.ipl, X.dom, W.lin_cnt)
+                changed, npend = _check(h, nk, nc, nC, npend, npass, Ct, S.vx, S.vy, S.om, S.cvx, S.cvy, W.lin_fnx,
+                                        W.lin_fny, W.lin_fa, W.lin_far, W.lin_st, S.z, W.lin_zslot, W.lin_zc, W.lin_u,
+                                        W.lin_stat, X.si, X.sc, X.cseg, X.yx, X.yy, X.qv, X.dom, X.ipl)
                 npass += 1
                 if not changed:
                     break
-            _velocity_change(n, nk, nC, ipl, dom, qv, cseg, zslot, lin_u, zc, yx, yy, yz, fx, fy, mz)
-            lin_cnt[0] -= 1
-            pfr, pcd_ = _update_implicit(n, h, Ct, x, y, phi, c, s, vx, vy, w, om, pvx, pvy, fx, fy, mz,
-                                         seg_n, seg_t, seg_p, stk, z, fkap, fnx, fny, si, sc, dom, tq_belt, hub)
+            _velocity_change(n, nk, nC, X.ipl, X.dom, X.qv, X.cseg, W.lin_zslot, W.lin_u, W.lin_zc, X.yx, X.yy, X.yz,
+                             W.fx, W.fy, W.mz)
+            W.lin_cnt[0] -= 1
+            pfr, pcd_ = _update_implicit(n, h, Ct, S.x, S.y, S.phi, S.c, S.s, S.vx, S.vy, S.w, S.om, S.cvx, S.cvy,
+                                         W.fx, W.fy, W.mz, W.seg_n, W.seg_t, W.seg_p, W.lin_st, S.z, W.lin_fk,
+                                         W.lin_fnx, W.lin_fny, X.si, X.sc, X.dom, X.tq_belt, X.hub)
             pcd += pcd_
             for j in range(nk):
-                if not ipl[j]:
-                    om[j] = wsave[j]
+                if not X.ipl[j]:
+                    S.om[j] = X.wsave[j]
         if semi is not None:
-            pcd, pfr = _contacts_semi(n, nk, h, hg, hvb, hm_, hi_, fx, fy, mz, Ct, S, pr, cand_j, cand_skip, seg_n,
-                                      seg_t, seg_p, sj, sq, tq_belt, hubx, huby)
+            pcd, pfr = _contacts_semi(n, nk, h, hg, hvb, X.hm, X.hi, W.fx, W.fy, W.mz, Ct, S, P.r, W.cand_j,
+                                      W.cand_skip, W.seg_n, W.seg_t, W.seg_p, X.sj, X.sq, X.tq_belt, hubx, huby)
         # pulleys, then tensioners, under this step's belt torques and hub forces
         for j in range(nk):
-            pul_dw[j] = om[j]
-        diss_cl = _pulleys_stage(t, h, tq_belt, hubx, huby, P, S, W)
+            W.pul_dw[j] = S.om[j]
+        diss_cl = _pulleys_stage(t, h, X.tq_belt, hubx, huby, P, S.th, S.om, S.thm, S.thr, S.omr, S.dcp, W.acc_pin,
+                                 W.acc_tq_ext, W.acc_tq_belt, W.acc_hubx, W.acc_huby)
         for j in range(nk):
-            pul_dw[j] = om[j] - pul_dw[j]
+            W.pul_dw[j] = S.om[j] - W.pul_dw[j]
         if na > 0:     # tensioners, under this step's hub forces; they move the centres
-            acc_diss[4] += h * _arms_stage(na, a_pulley, a_kind, a_par, a_toff, a_tx, a_ty, S_q, S_qd, pcx, pcy, pvx,
-                                          pvy, hubx, huby, h)
-        _accumulate(h, hl, x, y, c, s, vx, vy, jfk, jdx, jdy, seg_n, seg_t, W, pax, pb, pcd, pfr, diss_cl)
+            W.acc_diss[4] += h * _arms_stage(na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y, S.q, S.qd, S.cx,
+                                             S.cy, S.cvx, S.cvy, hubx, huby, h)
+        _accumulate(h, hl, S.x, S.y, S.c, S.s, S.vx, S.vy, W.jfk, W.jdx, W.jdy, W.seg_n, W.seg_t, W.span_geo,
+                    W.span_joint, W.track, W.acc_span, W.acc_track, W.acc_diss, pax, pb, pcd, pfr, diss_cl)
         t += h
     for j in range(nk):
-        W.tq_belt[j] = tq_belt[j]
+        W.tq_belt[j] = X.tq_belt[j]
         W.hubx[j] = hubx[j]
         W.huby[j] = huby[j]
-    W.energy[0] = energy(B, Ct, P, A, S)   # here, not by a second call from Python (12 us per call)
+    W.energy[0] = _energy_of(B, Ct, P, A, S)   # here, not by a second call from Python (12 us per call)
     _probe(n, nk, S, P, W)
     return t
 
@@ -1742,42 +1730,60 @@ def _probe(n, nk, S, P, W):
     W.probe[5] = wc
 
 
-@njit(cache=True, no_cfunc_wrapper=True)
 def energy(B, Ct, P, A, S):
     """Kinetic + potential energy (J): belt, dynamic pulleys, joints, bending, contact, gravity.
-    The segments' rotational inertia is the one the integrator uses (times B.iscale)."""
-    n = B.n
-    eax = B.eax
-    eb = B.eb
-    hl = B.hl
-    x, y, phi, c, s, vx, vy, w = S.x, S.y, S.phi, S.c, S.s, S.vx, S.vy, S.w
+    The segments' rotational inertia is the one the integrator uses (times B.iscale). Called from
+    Python through the arrays (``_energy``), whose compiled wrapper is cheap (the records' was
+    most of 4.5 s of a first run's compile)."""
+    return _energy(B.n, B.eax, B.eb, B.hl, B.turn, B.g, B.iscale, B.m, B.inertia, B.kax, B.kb, S.x, S.y, S.phi, S.c,
+                   S.s, S.vx, S.vy, S.w, Ct, P.nk, S.cx, S.cy, P.r, P.mode, P.inertia, S.om, P.cl_kind, P.cl_ir, P.cl_k,
+                   S.omr, S.dcp, A.na, A.inertia, A.tab_off, A.tab_x, A.tab_y, A.preload, A.rate, A.qmin, A.qmax,
+                   A.kstop, S.q, S.qd)
+
+
+@njit(cache=True, inline="always")
+def _energy_of(B, Ct, P, A, S):
+    """``energy`` in a kernel: the same stage, for the same argument types (compiled once)."""
+    return _energy(B.n, B.eax, B.eb, B.hl, B.turn, B.g, B.iscale, B.m, B.inertia, B.kax, B.kb, S.x, S.y, S.phi, S.c,
+                   S.s, S.vx, S.vy, S.w, Ct, P.nk, S.cx, S.cy, P.r, P.mode, P.inertia, S.om, P.cl_kind, P.cl_ir, P.cl_k,
+                   S.omr, S.dcp, A.na, A.inertia, A.tab_off, A.tab_x, A.tab_y, A.preload, A.rate, A.qmin, A.qmax,
+                   A.kstop, S.q, S.qd)
+
+
+@njit(cache=True, no_cfunc_wrapper=True)
+def _energy(n, eax, eb, hl, turn, g, iscale, m, inertia, kax, kb, x, y, phi, c, s, vx, vy, w, Ct, nk, pcx, pcy, pr,
+            pmode, pinertia, om, cl_kind, cl_ir, cl_k, omr, dcp, na, a_inertia, tab_off, tab_x, tab_y, preload, rate,
+            qmin, qmax, kstop, q, qd):
+    """``energy`` on the arrays it reads: the time loop calls it with these alone (the records
+    passed whole flattened to 670 arguments)."""
     E = 0.0
     for i in range(n):
-        E += 0.5 * B.m[i] * (vx[i] * vx[i] + vy[i] * vy[i]) + 0.5 * (B.inertia[i] * B.iscale) * w[i] * w[i] \
-            + B.m[i] * B.g * y[i]
+        E += 0.5 * m[i] * (vx[i] * vx[i] + vy[i] * vy[i]) + 0.5 * (inertia[i] * iscale) * w[i] * w[i] \
+            + m[i] * g * y[i]
         k = i - 1 if i > 0 else n - 1
         dx = (x[i] - hl * c[i]) - (x[k] + hl * c[k])
         dy = (y[i] - hl * s[i]) - (y[k] + hl * s[k])
         dl = math.sqrt(dx * dx + dy * dy)
-        E += B.kax[i] * dl ** (eax + 1.0) / (eax + 1.0)
+        E += kax[i] * dl ** (eax + 1.0) / (eax + 1.0)
         dphi = phi[i] - phi[k]
         if i == 0:
-            dphi += B.turn
-        E += B.kb[i] * abs(dphi) ** (eb + 1.0) / (eb + 1.0)
-        for j in range(P.nk):
-            rx = x[i] - S.cx[j]
-            ry = y[i] - S.cy[j]
-            p = P.r[j] - math.sqrt(rx * rx + ry * ry)
+            dphi += turn
+        E += kb[i] * abs(dphi) ** (eb + 1.0) / (eb + 1.0)
+        for j in range(nk):
+            rx = x[i] - pcx[j]
+            ry = y[i] - pcy[j]
+            p = pr[j] - math.sqrt(rx * rx + ry * ry)
             if p > 0.0:
                 E += contact_energy(Ct, i, p)
-    for j in range(P.nk):
-        if P.mode[j] == 0:
-            E += 0.5 * P.inertia[j] * S.om[j] * S.om[j]
-    for j in range(P.nk):   # accessory rotors behind clutches, decoupler springs
-        if P.cl_kind[j] > 0:
-            E += 0.5 * P.cl_ir[j] * S.omr[j] * S.omr[j] + 0.5 * P.cl_k[j] * S.dcp[j] * S.dcp[j]
-    for a in range(A.na):   # arm or slider: kinetic (pulley mass included), spring and stops
-        E += 0.5 * A.inertia[a] * S.qd[a] * S.qd[a] + spring_energy(A, a, S.q[a])
+    for j in range(nk):
+        if pmode[j] == 0:
+            E += 0.5 * pinertia[j] * om[j] * om[j]
+    for j in range(nk):   # accessory rotors behind clutches, decoupler springs
+        if cl_kind[j] > 0:
+            E += 0.5 * cl_ir[j] * omr[j] * omr[j] + 0.5 * cl_k[j] * dcp[j] * dcp[j]
+    for a in range(na):   # arm or slider: kinetic (pulley mass included), spring and stops
+        E += 0.5 * a_inertia[a] * qd[a] * qd[a] + _spring_energy(a, q[a], tab_off, tab_x, tab_y, preload, rate, qmin,
+                                                                 qmax, kstop)
     return E
 
 

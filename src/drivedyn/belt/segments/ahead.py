@@ -20,6 +20,10 @@ class Ahead:
     def __init__(self, proc):
         self.proc = proc
 
+    def busy(self) -> bool:
+        """Whether the second process still runs."""
+        return self.proc.poll() is None
+
     def wait(self) -> bool:
         """Until the second process ends; True if it compiled the kernel into the cache."""
         return self.proc.wait() == 0

@@ -14,6 +14,7 @@ from ...results import Result, unit_map, variable
 from ...window import in_window, steady_window
 from . import _kernels as K
 from . import ahead as _ahead
+from . import tail as _tail
 from .compiled import compile_note, compiled
 from .state import clear_accumulators, new_state, new_work
 from .system import TURN_PER_STEP, BeltSystem, build, stability_limit
@@ -109,6 +110,8 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     records = _loop_args(sysm, h, S, W)[3:]    # (step_chunk, once per run)
     with compile_note(progress, integrator(sysm.model), now=ahead is not None):
         if ahead is not None:
+            # the loop's last stages compiled here meanwhile, from the last back (tail.py)
+            _tail.compile_back(_tail.stages(h, *records[:6], records[-1]), ahead.busy)
             ahead.wait()         # then loaded from numba's cache (or compiled here if that failed)
         step = compiled(K._advance, (1, 0.0, h, *records))
     hstep = [h]
