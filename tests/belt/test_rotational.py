@@ -319,12 +319,13 @@ def test_periodic_runup_against_long_time_integration():
     per = drivedyn.run(_fead(**{"simulation.runup": "periodic", **no_harm}))
     ru = per.summary["runup"]
     assert len(ru["speed_rpm"]) == 17 and ru["method"] == "periodic"
-    # every speed settles within its 60 periods but 1625 rpm, where the crank's belt slides over its whole
-    # wrap for part of each period and the response keeps a slow modulation of about 0.5 N (the time
-    # integration held there shows it too), and 4625 rpm (residual 5e-4 after 60 periods, still falling):
-    # reported, not read as periodic solutions
+    # every speed settles within its 60 periods but where a wrap's belt slides over it for part of each
+    # period: 1625 rpm (the crank's; the response keeps a slow modulation of about 0.5 N, which the time
+    # integration held there shows too) and, at times, one speed from 3625 rpm up (gross slip on three
+    # wraps; which one moves with the last digits of the rest state: 4375 or 4625 rpm, residual 5e-4
+    # after 60 periods, still falling): reported, not read as periodic solutions
     late = [ru["speed_rpm"][i] for i, r in enumerate(ru["periodic_residual"]) if not r < 1e-4]
-    assert set(late) <= {1625.0, 4625.0}
+    assert len(late) <= 2 and all(n == 1625.0 or n >= 3625.0 for n in late), late
     if late:
         msg = next(d.text for d in per.diagnostics if d.code == "unconverged-periodic")
         assert f"{len(late)} of 17 speeds" in msg

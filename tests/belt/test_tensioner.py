@@ -199,11 +199,13 @@ def test_bad_tensioner_input_is_one_line(change, words):
 
 
 def test_spring_table_matches_preload_and_rate_and_keeps_energy():
-    # the table of the linear spring gives the same equilibrium; a stiffening table keeps the
-    # energy balance (its potential is the table's exact integral) while the arm swings
+    # the table of the linear spring gives the same equilibrium (to 1e-10 rad: the belt's moment on the
+    # arm comes from the rest tension, itself a root found to 1e-10 N, so the two equilibria's roots sit
+    # a few 1e-12 rad apart); a stiffening table keeps the energy balance (its potential is the table's
+    # exact integral) while the arm swings
     lin = build(accessory(arm={}), settle=False).rest
     tab = build(accessory(arm={"spring_table": [["-0.5 rad", "34 N*m"], ["0.5 rad", "14 N*m"]]}), settle=False).rest
-    assert tab.travel[0] == pytest.approx(lin.travel[0], abs=1e-12)
+    assert tab.travel[0] == pytest.approx(lin.travel[0], abs=1e-10)
     m = accessory(arm={"spring_table": [[-0.5, 40.0], [-0.01, 24.4], [0.0, 24.0], [0.01, 23.2], [0.5, 0.0]],
                        "damping": "0.02 N*m*s/rad"}, simulation={"duration": 0.2})
     d = to_dict(m)
