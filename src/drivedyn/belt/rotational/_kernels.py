@@ -475,6 +475,13 @@ def _return_map(nk, EA, m, mu, u, vs, L, wrap, slip, h, passes):
 def energy(R, P, A, S, RS, RW):
     """Mechanical energy (J): pulleys, rotors and arms; tensioner springs; the spans' and the
     wraps' strain energy (a wrap at its arriving span's strain)."""
+    geometry(R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap)
+    return _energy_at(R, P, A, S, RS, RW)
+
+
+@njit(cache=True, inline="always")
+def _energy_at(R, P, A, S, RS, RW):
+    """``energy`` with RW's geometry already that of the state (as the step leaves it)."""
     E = 0.0
     for k in range(R.nk):
         E += 0.5 * P.inertia[k] * S.om[k] ** 2
@@ -484,7 +491,6 @@ def energy(R, P, A, S, RS, RW):
                 E += 0.5 * P.cl_k[k] * S.dcp[k] ** 2
     for a in range(A.na):
         E += 0.5 * A.inertia[a] * S.qd[a] ** 2 + BK.spring_energy(A, a, S.q[a])
-    geometry(R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap)
     for j in range(R.nk):
         uj = RS.u[j]
         eps = RW.L[j] / uj - 1.0
@@ -720,6 +726,6 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
         for i in range(6):
             out_diss[ks, i] = (out_diss[ks - 1, i] if ks > 0 else 0.0) + RW.acc_diss[i]
         out_work[ks] = work
-        if with_energy:
-            out_E[ks] = energy(R, P, A, S, RS, RW)
+        if with_energy:      # (the step left RW's geometry that of this state)
+            out_E[ks] = _energy_at(R, P, A, S, RS, RW)
     return t
