@@ -46,6 +46,18 @@ def _unit_interval(v):
     return v
 
 
+def _sweep_ranges(spec):
+    """A K_v sweep's counts and speeds in range (Sweep and PlanetaryDynamics): each count is one
+    settle + window run, cycles x steps set its length."""
+    if not 2 <= spec.count <= 10_000:
+        raise ValueError(f"count must lie in 2..10000, got {spec.count}")
+    if not (2 <= spec.window_cycles <= 10_000 and 16 <= spec.steps_per_cycle <= 10_000):
+        raise ValueError("window_cycles must lie in 2..10000 and steps_per_cycle in 16..10000")
+    if spec.speed_min is not None and spec.speed_max is not None and not spec.speed_max > spec.speed_min:
+        raise ValueError("speed_max must be > speed_min")
+    return spec
+
+
 class Gear(Spec):
     """A spur or helical gear: tooth data (basic rack in modules, normal section), blank and external torque."""
 
@@ -362,16 +374,7 @@ class Sweep(Spec):
     steps_per_cycle: int = 64
     """RK4 steps per mesh period at least (16..10000)."""
 
-    @model_validator(mode="after")
-    def _range(self):
-        # upper bounds: each count is one settle + window run; cycles x steps set its length
-        if not 2 <= self.count <= 10_000:
-            raise ValueError(f"count must lie in 2..10000, got {self.count}")
-        if not (2 <= self.window_cycles <= 10_000 and 16 <= self.steps_per_cycle <= 10_000):
-            raise ValueError("window_cycles must lie in 2..10000 and steps_per_cycle in 16..10000")
-        if self.speed_min is not None and self.speed_max is not None and not self.speed_max > self.speed_min:
-            raise ValueError("speed_max must be > speed_min")
-        return self
+    _range = model_validator(mode="after")(lambda self: _sweep_ranges(self))
 
 
 class Iso(Spec):
@@ -633,15 +636,7 @@ class PlanetaryDynamics(Spec):
 
     _zeta = field_validator("damping_ratio")(classmethod(lambda cls, v: _unit_interval(v)))
 
-    @model_validator(mode="after")
-    def _counts(self):
-        if not 2 <= self.count <= 10_000:
-            raise ValueError(f"count must lie in 2..10000, got {self.count}")
-        if not (2 <= self.window_cycles <= 10_000 and 16 <= self.steps_per_cycle <= 10_000):
-            raise ValueError("window_cycles must lie in 2..10000 and steps_per_cycle in 16..10000")
-        if self.speed_min is not None and self.speed_max is not None and not self.speed_max > self.speed_min:
-            raise ValueError("speed_max must be > speed_min")
-        return self
+    _counts = model_validator(mode="after")(lambda self: _sweep_ranges(self))
 
 
 class Planetary(Spec):
