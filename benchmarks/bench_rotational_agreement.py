@@ -6,6 +6,9 @@ segment model").
    every span's tension minimum / mean / maximum, every pulley's slip, the arm's travel range.
 2. The whole run-up (800 -> 5000 rpm, 250 rpm bins): every bin's span tension minimum and maximum,
    slip and arm travel range; the rotational model integrated in time and periodic.
+3. With --arm-sweep, the three-pulley drive of tests/belt/test_rotational.py driven at its arm's mode
+   (the 6th order, 0.3 rad/s, 1800-2300 rpm): each span's half band and the share of it the rotational
+   model's extremes sit from the segment model's (simulate.ARM_SPAN_SHARE).
 
 The reference is the segment model at `--factor` times its "auto" count (2: within 0.8 % of 4x on the
 held drive at 3000 rpm, docs/belt-drive.md). Deviations are relative (tensions, travel) or in
@@ -109,6 +112,51 @@ def compare_runup(ref, rot, label):
     return over, cells
 
 
+def three_pulleys(rpm: float):
+    """The three-pulley drive of tests/belt/test_rotational.py (crank, alternator, arm tensioner) driven
+    with the 6th order at 0.3 rad/s, across its arm's mode (200 Hz)."""
+    from drivedyn.model import from_dict
+
+    w = -rpm * math.pi / 30
+    return from_dict({
+        "kind": "belt-drive",
+        "belt": {"mass_per_length": 0.115, "axial_stiffness": 1.82e5, "axial_damping": 0.197,
+                 "bending_stiffness": 2.5e-4, "pretension": 350.0},
+        "contact": {"stiffness_linear": 9.75e7, "stiffness_quadratic": 4.54e11, "damping": 4.5e4},
+        "friction": {"coefficient": 1.0, "displacement_limit": 1e-4},
+        "simulation": {"duration": 0.6},
+        "output": {"interval": 2e-4, "steady_window": [0.4, 0.6]},
+        "pulleys": [
+            {"name": "crank", "center": [0, 0], "radius": 0.07, "speed_time": [[0, 0], [0.3, w], [0.6, w]],
+             "speed_orders": [{"order": 6, "amplitude": 0.3}]},
+            {"name": "alternator", "center": [0.3, 0.0], "radius": 0.03, "inertia": 2e-3, "torque": 2.0, "drag": 0.1},
+            {"name": "tensioner", "center": [0.15, 0.15], "radius": 0.035, "inertia": 1e-4,
+             "arm": {"pivot": [0.07, 0.15], "inertia": 2e-3, "preload": 25.0, "rate": 40.0, "damping": 0.05}}]})
+
+
+def arm_sweep(factor: int):
+    print(f"\nthree-pulley drive, 6th order across the arm's mode: half bands (N), rotational / segments at "
+          f"{factor} x auto, and the share of the rotational half band its extremes sit off")
+    print("| crank rpm | crank-alternator | alternator-tensioner | tensioner-crank | arm travel (mrad) |")
+    print("|---|---|---|---|---|")
+    n = None
+    for rpm in range(1800, 2301, 50):
+        m = three_pulleys(float(rpm))
+        n = n or factor * drivedyn.run(drivedyn.replace(m, {"simulation.duration": 0.01, "output.steady_window": None})
+                                       ).summary["belt"]["segments"]
+        seg = drivedyn.run(drivedyn.replace(m, {"belt.segments": n})).summary
+        rot = drivedyn.run(drivedyn.replace(m, {"simulation.model": "rotational"})).summary
+        cells = []
+        for sp, b in seg["spans"].items():
+            a = rot["spans"][sp]
+            half = 0.5 * (a["tension_max"] - a["tension_min"])
+            share = max(abs(a["tension_min"] - b["tension_min"]), abs(a["tension_max"] - b["tension_max"])) / half
+            cells.append(f"{half:.1f} / {0.5 * (b['tension_max'] - b['tension_min']):.1f} ({share:.2f})")
+        ta, tb = rot["tensioners"]["tensioner"], seg["tensioners"]["tensioner"]
+        print(f"| {rpm} | " + " | ".join(cells) + f" | {1e3 * (ta['travel_max'] - ta['travel_min']):.2f} / "
+              f"{1e3 * (tb['travel_max'] - tb['travel_min']):.2f} |", flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--factor", type=int, default=2, help="segments: this times the 'auto' count")
@@ -116,7 +164,11 @@ def main():
     ap.add_argument("--skip-runup", action="store_true")
     ap.add_argument("--skip-held", action="store_true")
     ap.add_argument("--json", help="write every row here")
+    ap.add_argument("--arm-sweep", action="store_true", help="only the three-pulley drive across its arm's mode")
     a = ap.parse_args()
+    if a.arm_sweep:
+        arm_sweep(a.factor)
+        return
     out = {"held": {}, "runup": {}}
     m0 = held(1000.0, 150)
     for mm in (drivedyn.replace(m0, {"simulation.duration": 0.01, "output.steady_window": None}),
