@@ -123,7 +123,7 @@ def test_check_walks_the_path_as_a_run_does(name, monkeypatch):
     tensioner's equilibrium, 60 walks each), interpreted and compiled, to the bit: check prints the
     numbers a run starts from."""
     from drivedyn.belt.geometry import placement
-    from drivedyn.belt.segments.system import build
+    from drivedyn.belt.segments.system import placed
 
     walks, walk = [], placement._walk
 
@@ -132,7 +132,7 @@ def test_check_walks_the_path_as_a_run_does(name, monkeypatch):
         return walk(path, n, l, g)
 
     monkeypatch.setattr(placement, "_walk", record)
-    build(drivedyn.load(drivedyn.example_path(name)), settle=False)
+    placed(drivedyn.load(drivedyn.example_path(name)))
     assert len(walks) >= 8
     for w in walks:
         _same_walk(*w)
