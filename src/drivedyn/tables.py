@@ -3,9 +3,11 @@
 Tables of several objects are flattened into one (xs, ys) pair of arrays with offsets: rows
 off[j] .. off[j+1]-1 belong to object j. Time tables are held beyond their ends (ramps, steps);
 speed tables are extrapolated linearly (loads proportional to speed).
+
+Plain Python: the kernels compile :func:`table` themselves (njit, inlined), so that check reads a
+tensioner's spring table without importing numba.
 """
 import numpy as np
-from numba import njit
 
 
 def flatten(tables):
@@ -20,7 +22,6 @@ def flatten(tables):
     return off, np.array(xs, float), np.array(ys, float)
 
 
-@njit(cache=True, inline="always")
 def table(xs, ys, o0, o1, x, extrapolate):
     """y(x) from rows o0..o1-1 (x increasing); 0 for an empty table, held or extrapolated
     linearly beyond the ends."""

@@ -10,7 +10,7 @@ from scipy.optimize import curve_fit
 
 import drivedyn
 from drivedyn.belt.segments import _kernels as K
-from drivedyn.belt.segments import system
+from drivedyn.belt.segments import state, system
 
 from .conftest import seed_5pk
 
@@ -23,8 +23,8 @@ def _ring(monkeypatch, zeta):
     m = seed_5pk(**{"simulation.rotation_scaling": False, "gravity": 0.0})
     sysm = system.build(m)
     B, C, P, A = sysm.groups
-    S = system.new_state(sysm)
-    W = system.new_work(sysm, S)
+    S = state.new_state(sysm)
+    W = state.new_work(sysm, S)
     sel = np.where((S.x > 0.12) & (S.x < 0.40) & (S.y > 0))[0]
     sign = np.where(sel % 2 == 0, 1.0, -1.0)
     S.w[sel] += 50.0 * sign

@@ -10,7 +10,7 @@ import drivedyn
 from drivedyn.belt.segments import _chain
 from drivedyn.belt.segments import _kernels as K
 from drivedyn.belt.dynamics import _bodies as BK
-from drivedyn.belt.segments import system
+from drivedyn.belt.segments import state, system
 
 from .conftest import seed_5pk
 
@@ -62,8 +62,8 @@ def test_small_space_active_set_matches_refactoring_at_each_change():
     sysm = system.build(m)
     B, C, P, A = sysm.groups
     h = sysm.step
-    S0 = system.new_state(sysm)
-    W0 = system.new_work(sysm, S0)
+    S0 = state.new_state(sysm)
+    W0 = state.new_work(sysm, S0)
     t0 = K.step_chunk(int(0.2 / h), 0.0, h, B, C, P, A, S0, W0, True)
     runs = []
     for cache in (True, False):
@@ -96,8 +96,8 @@ def test_at_rest_and_stable_beyond_the_explicit_limit():
     d["simulation"].update(method="implicit", step=h)
     sysm = system.build(drivedyn.model.from_dict(d))
     B, C, P, A = sysm.groups
-    S = system.new_state(sysm)
-    W = system.new_work(sysm, S)
+    S = state.new_state(sysm)
+    W = state.new_work(sysm, S)
     K.step_chunk(1, 0.0, h, B, C, P, A, S, W, True)
     e0 = W.energy[0]
     S.vy[10] += 0.01                                      # a kick of 4e-8 J
@@ -384,7 +384,7 @@ def test_which_pulleys_join_the_chain_solve():
     for law in ("elastic-plastic", "threlfall"):
         sysm = system.build(drivedyn.replace(base, {"friction.law": law}))
         B, C, P, A = sysm.groups
-        S = system.new_state(sysm)
+        S = state.new_state(sysm)
         got = K._implicit_pulleys(h, B, C, P, S, np.zeros(P.nk, dtype=np.bool_))
         for j, p in enumerate(base.pulleys):
             dynamic = P.mode[j] == 0 and P.cl_kind[j] == 0

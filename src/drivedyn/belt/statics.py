@@ -19,7 +19,7 @@ def capstan_torque(tension, radius, wrap, mu):
 def check_data(model, sysm=None) -> dict:
     """What ``check`` knows, as plain data (``drivedyn check --json``): the steady running state of
     creep theory (steady/creep.py), the slip margins and the rotational modes (modes.py). ``model``: a
-    model or its geometry.drive.Drive; ``sysm``: the segment model's system, when built."""
+    model or its geometry.drive.Drive; ``sysm``: the segment model's system (or its system.Placed), when built."""
     from . import supplier
     from .geometry.drive import resolve
     from .geometry.installation import installation_table
@@ -89,12 +89,12 @@ def check_data(model, sysm=None) -> dict:
 
 
 def _tensioner_data(model, rest, run=None) -> dict:
-    from .dynamics.bodies import arms_record
-    from .geometry.tensioner import spring_load, indices
+    from .geometry.tensioner import arm_angle, indices, senses, spring_load
 
-    A = arms_record(model)
+    idx = indices(model)
+    sense = senses(model) if idx else []
     out = {}
-    for a, j in enumerate(indices(model)):
+    for a, j in enumerate(idx):
         p = model.pulleys[j]
         e = {"type": "arm" if p.arm is not None else "slider", "hub_load": float(rest.hub[a]),
              "tension": float(rest.tension)}
@@ -107,7 +107,7 @@ def _tensioner_data(model, rest, run=None) -> dict:
             e["running_travel"] = q
             e["running_spring"] = float(spring_load(p.tensioner, q))
             if p.arm is not None:
-                e["running_arm_angle"] = float(A.psi0[a] + A.sgn[a] * q)
+                e["running_arm_angle"] = arm_angle(model, j, q, sense[a])
         out[p.name] = e
     return out
 
@@ -165,10 +165,10 @@ def report(model) -> str:
     from .geometry.installation import installation_table, table_lines
     from .geometry.segment_count import auto_segments
     from .geometry.drive import resolve
-    from .segments.system import build
+    from .segments.system import placed
 
     drive = resolve(model)
-    sysm = build(drive, settle=False)       # the report needs no settled segment positions
+    sysm = placed(drive)       # the chain as placed and its step: no settling, no kernels
     lay = sysm.layout
     T0 = sysm.init.tension
     belt, fr = model.belt, model.friction

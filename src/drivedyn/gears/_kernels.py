@@ -22,7 +22,10 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from ..tables import table
+from .. import tables
+
+# plain Python in tables.py (check reads spring and load tables without numba): compiled here
+table = njit(cache=True, inline="always")(tables.table)
 
 TWO_PI = 2.0 * math.pi
 

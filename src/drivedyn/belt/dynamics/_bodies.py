@@ -13,7 +13,10 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from ...tables import table
+from ... import tables
+
+# plain Python in tables.py (check reads spring and load tables without numba): compiled here
+table = njit(cache=True, inline="always")(tables.table)
 
 # fast-math without the no-NaN/no-inf assumptions, so that blow-ups still show as NaN/inf
 FAST = {"contract", "arcp", "reassoc", "nsz"}

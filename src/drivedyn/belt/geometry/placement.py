@@ -13,13 +13,14 @@ the pretension into the arc elements (the chord sagitta l^2/8r exceeds p0).
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
 from ..._roots import find_root
 from ...errors import ModelError
+from . import walk
 from .layout import Layout, layout_from
 
 
@@ -38,9 +39,7 @@ class InitialState:
 
 
 class _Path:
-    """The closed path as an array of pieces for the compiled walk: per row kind (0 line, 1 arc),
-    arc length at its start, its length, then (x0, y0, x1, y1) of a line or (cx, cy, R, angle0,
-    sweep) of an arc."""
+    """The closed path as an array of pieces for the walk (walk.py: one row per piece)."""
 
     def __init__(self, layout: Layout):
         rows, s0 = [], 0.0
@@ -74,113 +73,16 @@ def static_penetration(tension, radius, contact):
 
 
 def _walk(path: _Path, n: int, l: float, g: float):
-    """Place n chords of length l separated by gaps g; return ends and the arc length reached."""
-    starts, ends, s = _walk_pieces(path.pieces, path.length, n, l, g)
+    """Place n chords of length l separated by gaps g; return ends and the arc length reached.
+    Compiled where numba is loaded (a run's solvers), else interpreted (check): the same numbers."""
+    if "numba" in sys.modules:
+        from ._walk import walk_pieces
+
+        starts, ends, s = walk_pieces(path.pieces, path.length, n, l, g)
+    else:
+        starts, ends, s = walk.walk_pieces(path.pieces.tolist(), path.length, n, l, g)
     if not s >= 0:
         raise ModelError("cannot place the belt segments on the path", field="belt.segments")
-    return starts, ends, s
-
-
-@njit(cache=True)
-def _piece(pc, s):
-    """The piece holding arc length s, 0 <= s < the path's length."""
-    k = pc.shape[0] - 1
-    while k > 0 and pc[k, 1] > s:
-        k -= 1
-    return k
-
-
-@njit(cache=True)
-def _point(pc, total, s):
-    """The path's point at arc length s (taken modulo the length)."""
-    s = s % total
-    k = _piece(pc, s)
-    u = (s - pc[k, 1]) / pc[k, 2] if pc[k, 2] > 0 else 0.0
-    if pc[k, 0] == 0.0:
-        return pc[k, 3] + (pc[k, 5] - pc[k, 3]) * u, pc[k, 4] + (pc[k, 6] - pc[k, 4]) * u
-    a = pc[k, 6] + pc[k, 7] * u
-    return pc[k, 3] + pc[k, 5] * math.cos(a), pc[k, 4] + pc[k, 5] * math.sin(a)
-
-
-@njit(cache=True)
-def _next(pc, total, s, px, py, c):
-    """Smallest arc length beyond s where the path is at distance c from (px, py), the path's point
-    at s; -1 if none. Exact per piece: a line's crossing of the circle of radius c about the point
-    is a quadratic, an arc's is rho cos(a - beta) = K. The path is at most c away before s + c
-    (a chord is at most its arc), so crossings before s + c / 2 are the one behind."""
-    m = pc.shape[0]
-    sm = s % total
-    base = s - sm
-    k = _piece(pc, sm)
-    eps = 1e-12
-    for it in range(m + 2):
-        kk = (k + it) % m
-        s0 = base + total * ((k + it) // m) + pc[kk, 1]
-        L = pc[kk, 2]
-        if L <= 0.0:
-            continue
-        best = math.inf
-        if pc[kk, 0] == 0.0:
-            dx, dy = pc[kk, 5] - pc[kk, 3], pc[kk, 6] - pc[kk, 4]
-            wx, wy = pc[kk, 3] - px, pc[kk, 4] - py
-            A = dx * dx + dy * dy
-            # the foot of the point on the line and its distance h (cross product: exact where the
-            # point lies on the line), the crossings at u_foot +- sqrt(c^2 - h^2) / |d|
-            uf = -(wx * dx + wy * dy) / A
-            cr = wx * dy - wy * dx
-            e2 = c * c - cr * cr / A
-            if e2 >= 0.0:
-                du = math.sqrt(e2 / A)
-                for u in (uf - du, uf + du):
-                    t = s0 + u * L
-                    if -eps <= u <= 1.0 + eps and t > s + 0.5 * c:
-                        best = min(best, t)
-        else:
-            R, a0, sw = pc[kk, 5], pc[kk, 6], pc[kk, 7]
-            wx, wy = pc[kk, 3] - px, pc[kk, 4] - py
-            rho = math.sqrt(wx * wx + wy * wy)
-            K = (c * c - rho * rho - R * R) / (2.0 * R)
-            # rho^2 - K^2 in factors (Heron's form), exact where the chord c is small against R
-            d = rho - R
-            q = (c - d) * (c + d) * (rho + R - c) * (rho + R + c) / (4.0 * R * R)
-            if sw != 0.0 and rho > 0.0 and q >= 0.0:
-                beta = math.atan2(wy, wx)            # (C - p) . e(a) = rho cos(a - beta) = K
-                th = math.atan2(math.sqrt(q), K)
-                du = 2.0 * math.pi / abs(sw)         # u of one turn
-                for astar in (beta + th, beta - th):
-                    u = (astar - a0) / sw
-                    u -= math.floor(u / du) * du     # in [0, du)
-                    if u > du - eps:                 # at the piece's start, at round-off
-                        u -= du
-                    while u <= 1.0 + eps:
-                        t = s0 + u * L
-                        if u >= -eps and t > s + 0.5 * c:
-                            best = min(best, t)
-                        u += du
-        if best < math.inf:
-            return best
-    return -1.0
-
-
-@njit(cache=True)
-def _walk_pieces(pc, total, n, l, g):
-    """``_walk`` on the piece array: chord, gap, chord, ... from arc length 0; s = -1 where a
-    chord or gap finds no end on the path."""
-    starts = np.empty((n, 2))
-    ends = np.empty((n, 2))
-    s = 0.0
-    px, py = _point(pc, total, 0.0)
-    for i in range(n):
-        starts[i, 0], starts[i, 1] = px, py
-        for k in range(2):               # the chord, then the gap to the next one
-            c = l if k == 0 else g
-            if c > 0.0:
-                s = _next(pc, total, s, px, py, c)
-                if s < 0.0:
-                    return starts, ends, -1.0
-                px, py = _point(pc, total, s)
-            if k == 0:
-                ends[i, 0], ends[i, 1] = px, py
     return starts, ends, s
 
 

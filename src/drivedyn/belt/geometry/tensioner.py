@@ -194,12 +194,13 @@ def equilibrium(model, drawn=None, sense=None) -> Equilibrium:
     lay = compute_layout(moved)
     init = initial_state(moved, lay)
     hub = lay.hub_load_static(init.tension)
-    angle = np.array([_arm_angle(model, j, q, s) for j, q, s in zip(idx, qv, sense)])
+    angle = np.array([arm_angle(model, j, q, s) for j, q, s in zip(idx, qv, sense)])
     return Equilibrium(moved, qv, init.tension, np.array([spring_load(t, q) for t, q in zip(T, qv)]),
                        np.array([float(np.hypot(*hub[j])) for j in idx]), angle, J)
 
 
-def _arm_angle(model, j, q, s) -> float:
+def arm_angle(model, j, q, s) -> float:
+    """Arm angle (rad, counter-clockwise from x) of tensioner pulley j at travel q, sense s; nan for a slider."""
     p = model.pulleys[j]
     if p.arm is None:
         return float("nan")

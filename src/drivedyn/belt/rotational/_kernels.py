@@ -18,10 +18,14 @@ from typing import NamedTuple
 
 import numpy as np
 from numba import njit
-
+from numba.extending import register_jitable
 
 from ..dynamics import _bodies as BK
 from ..steady._wraps import sunk_depth, wrap_axial_stiffness
+
+# plain Python in _wraps (check uses them without numba): compiled and inlined where called here
+register_jitable(inline="always")(sunk_depth)
+register_jitable(inline="always")(wrap_axial_stiffness)
 
 
 class Rot(NamedTuple):

@@ -97,6 +97,7 @@ from numba import njit
 
 from ..dynamics._bodies import (FAST, State, _small_solve, _spring_energy, _step_arms, _step_pulleys_on, _torque, external_torque, prescribed_speed, smoothstep, solve_threlfall, threlfall)
 from . import _chain
+from .records import LAW_ELASTIC_PLASTIC, LAW_THRELFALL, LAWS, Belt, Contact  # noqa: F401
 
 
 # A stage of the time loop (``_advance``) is a function of its own, compiled once, not inlined into
@@ -109,43 +110,6 @@ from . import _chain
 # 1.6 s of compile for the loop's arguments alone).
 STAGE = {"cache": True, "_nrt": False, "error_model": "numpy", "no_cpython_wrapper": True, "no_cfunc_wrapper": True}
 STAGE_PY = {**STAGE, "no_cpython_wrapper": False}     # a stage the tests also call from Python
-
-
-# friction law ids (Contact.law)
-LAW_THRELFALL, LAW_ELASTIC_PLASTIC = 0, 1
-LAWS = {"threlfall": LAW_THRELFALL, "elastic-plastic": LAW_ELASTIC_PLASTIC}
-
-
-class Belt(NamedTuple):
-    n: int
-    m: np.ndarray            # segment mass (kg), eq. 2
-    inertia: np.ndarray      # segment inertia about its centre (kg m^2), eq. 2 (unscaled)
-    inv_m: np.ndarray        # 1 / m
-    inv_i: np.ndarray        # 1 / inertia
-    kax: np.ndarray          # per joint: F = kax |d|^e_L (N/m^e_L)
-    bax: np.ndarray          # per joint: axial damping (N s/m)
-    kb: np.ndarray           # per joint: bending stiffness (N m/rad^e_B)
-    bb: np.ndarray           # per joint: bending damping (N m s/rad)
-    eax: float               # e_L
-    eb: float                # e_B
-    linear: bool             # e_L == 1 (skips the power)
-    hl: float                # half segment length (m)
-    turn: float              # total turn of the closed path (rad)
-    g: float                 # gravity, along -y (m/s^2)
-    iscale: float            # rotation mass scaling of the semi-implicit scheme (system.ROTATION_SCALE)
-    implicit: bool           # the `implicit` scheme: joints through the chain solve (_chain.py)
-
-
-class Contact(NamedTuple):
-    c1: np.ndarray           # per segment (N/m^2)
-    c2: np.ndarray           # per segment (N/m)
-    bc: np.ndarray           # per segment contact damping (N s/m)
-    mu: np.ndarray           # per segment friction coefficient (friction zones)
-    pmax: float              # depth of the damping ramp delta(p) (m), eq. 10
-    law: int                 # LAW_THRELFALL | LAW_ELASTIC_PLASTIC
-    dv: float                # Threlfall's Delta_v (m/s)
-    dmax: float              # elastic-plastic displacement limit Delta_max (m)
-    centre: bool             # friction read at the segment's centre (r - p), else at the contact radius r
 
 
 # ---- contact and friction: the one place for the laws (both integrators) -------------------

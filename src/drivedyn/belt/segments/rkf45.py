@@ -10,11 +10,7 @@ from . import _kernels as K
 from .compiled import compile_note, compiled
 from ..dynamics import _bodies as BK
 from .state import clear_accumulators, new_work
-
-
-#: steps rkf45 takes within one output interval before it gives up (system.build refuses a model whose
-#: friction law needs more)
-MAX_STEPS_PER_SAMPLE = 2_000_000
+from .system import MAX_STEPS_PER_SAMPLE
 
 
 def integrate_rkf45(sysm, progress, rec, nsamples, frame_every, interval, max_steps_per_sample=MAX_STEPS_PER_SAMPLE):

@@ -1,23 +1,26 @@
-"""Model -> plain arrays for the kernels (the only place that knows both worlds)."""
+"""Model -> plain arrays for the kernels (the only place that knows both worlds).
+
+The kernels (numba) are imported where a system is built or settled, not with this module: check
+places the chain and states its step (``placed``) without them."""
 from __future__ import annotations
 
 import dataclasses
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ...errors import ModelError
-from . import _kernels as K
-from ..dynamics import _bodies as BK
-from ..dynamics.bodies import arms_record, pulleys_record, running_senses
-from .equilibrium import relax
-from .state import new_state, new_work
+from .records import LAWS, Belt, Contact
 from ..geometry.placement import InitialState, check_length, initial_state
 from ..geometry.layout import Layout, compute_layout
 from ..geometry import tensioner
 from ..model import integrator
 from ..geometry.drive import resolve
+
+if TYPE_CHECKING:
+    from ..dynamics import _bodies as BK
 
 
 @dataclass
@@ -25,8 +28,8 @@ class BeltSystem:
     model: object
     layout: Layout
     init: InitialState
-    belt: K.Belt
-    contact: K.Contact
+    belt: Belt
+    contact: Contact
     pulleys: BK.Pulleys
     arms: BK.Arms       # tensioners (na = 0 without)
     span_mid: np.ndarray
@@ -64,6 +67,11 @@ class BeltSystem:
         return self.belt, self.contact, self.pulleys, self.arms
 
 
+#: steps rkf45 takes within one output interval before it gives up (``build`` refuses a model whose
+#: friction law needs more)
+MAX_STEPS_PER_SAMPLE = 2_000_000
+
+
 #: the settled belt's tension may differ from the one asked for by this share before the chain is
 #: placed again with a corrected tension
 SETTLE_TOL = 1e-3
@@ -72,7 +80,7 @@ SETTLE_TOL = 1e-3
 def build(drive, settle: bool = True, before_settle=None) -> BeltSystem:
     """The kernels' arrays for ``drive`` (geometry.drive.Drive; a model is resolved first).
     ``settle``: start the belt from its static equilibrium (equilibrium.relax, 0.2-1.5 s);
-    ``check`` needs only the placement's tension and penetration. With tensioners, the belt is
+    ``check`` needs only the placement and the step (``placed``, without the kernels). With tensioners, the belt is
     placed on the path of their static equilibrium (``drive.equilibrium``, tensioner.py).
 
     Without tensioners, the belt's tension means the continuum's, at any segment count: a
@@ -84,8 +92,24 @@ def build(drive, settle: bool = True, before_settle=None) -> BeltSystem:
     system built, before its belt is settled (a run compiles its time loop ahead meanwhile)."""
     drive = resolve(drive)
     model = drive.resolved
+    first, target = _to_place(drive)
+    sysm = _build(first, drive, settle, before_settle)
+    if target is None:
+        return sysm
+    if settle and abs(settled_tension(sysm) / target - 1) > SETTLE_TOL:
+        sysm = _build(_with_pretension(model, target * target / settled_tension(sysm)), drive, settle,
+                      before_settle)
+    if settle:
+        sysm.init = dataclasses.replace(sysm.init, tension=settled_tension(sysm))
+    return sysm
+
+
+def _to_place(drive):
+    """The model ``build`` places the chain of (``drive.resolved``, or at the tension of its belt
+    length without tensioners) and that target tension (None with tensioners)."""
+    model = drive.resolved
     if drive.tensioners:
-        return _build(model, drive, settle, before_settle)
+        return model, None
     target = model.belt.pretension
     placed = model
     if target is None:
@@ -98,13 +122,31 @@ def build(drive, settle: bool = True, before_settle=None) -> BeltSystem:
                              field="belt.length")
         target = float(np.mean(T))
         placed = _with_pretension(model, target)
-    sysm = _build(placed, drive, settle, before_settle)
-    if settle and abs(settled_tension(sysm) / target - 1) > SETTLE_TOL:
-        sysm = _build(_with_pretension(model, target * target / settled_tension(sysm)), drive, settle,
-                      before_settle)
-    if settle:
-        sysm.init = dataclasses.replace(sysm.init, tension=settled_tension(sysm))
-    return sysm
+    return placed, target
+
+
+@dataclass
+class Placed:
+    """The chain as ``build(drive, settle=False)`` places it, with its step, before the kernels'
+    pulley and arm records: what check reports of the segment model."""
+    model: object        # drive.resolved
+    layout: Layout
+    init: InitialState
+    belt: Belt
+    contact: Contact
+    step: float
+    step_limit: float
+    rest: object = None
+
+    @property
+    def n(self):
+        return self.belt.n
+
+
+def placed(drive) -> Placed:
+    """``build(drive, settle=False)`` up to the kernels' records, which need numba (check)."""
+    drive = resolve(drive)
+    return _place(_to_place(drive)[0], drive)
 
 
 def _with_pretension(model, tension):
@@ -113,6 +155,9 @@ def _with_pretension(model, tension):
 
 def settled_tension(sysm) -> float:
     """Mean element force of the belt as placed (N)."""
+    from . import _kernels as K
+    from .state import new_state, new_work
+
     init = sysm.init
     S, W = new_state(sysm, init.x, init.y, init.phi), new_work(sysm)
     K.joint_forces(sysm.belt, S, W, 0.0)
@@ -122,11 +167,40 @@ def settled_tension(sysm) -> float:
 def _build(model, drive, settle: bool, before_settle=None) -> BeltSystem:
     """The system of ``model`` (the belt placed by its pretension or length; the pulleys as
     drawn); ``drive.resolved``, the user's model, is what the system reports."""
+    from ..dynamics.bodies import arms_record, pulleys_record, running_senses
+    from .equilibrium import relax
+
+    pl = _place(model, drive)
+    drawn, layout, init, rest = pl.model, pl.layout, pl.init, pl.rest
+    if rest is not None:
+        model = rest.model            # centres at the equilibrium, as placed
+    P = pulleys_record(model.pulleys, running_senses(model, layout))
+    A = arms_record(drawn, drive.senses)   # travel measured from the drawn centres
+    span_mid = np.array([sp.midpoint for sp in layout.spans])
+    span_geo = np.array([[*sp.midpoint, math.cos(sp.angle), math.sin(sp.angle)] for sp in layout.spans])
+    track = np.array(model.output.segments, dtype=np.int64)
+    sysm = BeltSystem(drawn, layout, init, pl.belt, pl.contact, P, A, span_mid, span_geo, track, pl.step,
+                      pl.step_limit, rest)
+    if before_settle is not None:
+        before_settle(sysm)
+    # start from the chain's static equilibrium, so that a drive at rest stays at rest
+    eq = relax(sysm, init.x, init.y, init.phi) if settle else None
+    if eq is not None:
+        x, y, phi, res, _ = eq
+        if rest is not None:
+            x, y, phi = _settle_tensioners(sysm, x, y, phi)
+        sysm.init = dataclasses.replace(init, x=x, y=y, phi=phi, residual=res)
+    return sysm
+
+
+def _place(model, drive) -> Placed:
+    """``_build`` up to the kernels' records: the chain placed, its constants and its step, with
+    the refusals of a step that cannot run."""
     drawn = drive.resolved
     rest = drive.equilibrium
     layout = drive.layout
     if rest is not None:
-        rest = dataclasses.replace(rest)     # the settling below refines this system's copy
+        rest = dataclasses.replace(rest)     # _build's settling refines this system's copy
         model = rest.model            # centres at the equilibrium, belt.length installed
         layout = compute_layout(model)
     _one_belt_speed(model, layout)
@@ -138,7 +212,7 @@ def _build(model, drive, settle: bool, before_settle=None) -> BeltSystem:
     m = belt.mass_per_length * l * ones
     inertia = m * l * l / 12.0                                      # eq. 2
     scaled = integrator(model) == "semi-implicit" and rotation_scaled(model)
-    B = K.Belt(
+    B = Belt(
         n=int(n), m=m, inertia=inertia, inv_m=1.0 / m, inv_i=1.0 / inertia,
         kax=belt.axial_stiffness / l ** e * ones,                     # F = EA (g / l)^e
         bax=belt.axial_damping / l * ones,
@@ -152,18 +226,13 @@ def _build(model, drive, settle: bool, before_settle=None) -> BeltSystem:
     s_mid = (np.arange(n) + 0.5) * (l + init.gap)
     for zone in model.friction.zones:
         mu[(s_mid >= zone.start) & (s_mid < zone.end)] = zone.coefficient
-    C = K.Contact(
+    C = Contact(
         c1=model.contact.stiffness_quadratic * l * ones,
         c2=model.contact.stiffness_linear * l * ones,
         bc=model.contact.damping * l * ones,
-        mu=mu, pmax=damping_depth(model, init), law=int(K.LAWS[model.friction.law]),
+        mu=mu, pmax=damping_depth(model, init), law=int(LAWS[model.friction.law]),
         dv=float(model.friction.velocity_threshold), dmax=float(model.friction.displacement_limit),
         centre=model.friction.radius == "centre")
-    P = pulleys_record(model.pulleys, running_senses(model, layout))
-    A = arms_record(drawn, drive.senses)   # travel measured from the drawn centres
-    span_mid = np.array([sp.midpoint for sp in layout.spans])
-    span_geo = np.array([[*sp.midpoint, math.cos(sp.angle), math.sin(sp.angle)] for sp in layout.spans])
-    track = np.array(model.output.segments, dtype=np.int64)
     limit = stability_limit(model, init, B, C, scaled)
     if B.implicit:
         limit = implicit_step(model, init, B, C)
@@ -188,8 +257,6 @@ def _build(model, drive, settle: bool, before_settle=None) -> BeltSystem:
                                  f"{model.simulation.duration:g} s, more than the {max_steps():.3g} a run may take: use "
                                  "the implicit or semi-implicit scheme, or a larger friction.velocity_threshold "
                                  "(or set DRIVEDYN_MAX_STEPS)", field="simulation.method")
-            from .rkf45 import MAX_STEPS_PER_SAMPLE
-
             per_sample = min(model.output.interval, model.simulation.duration) / h_f
             if per_sample > MAX_STEPS_PER_SAMPLE:
                 # (else it ran for minutes, at 0 % on the progress line, before it gave up)
@@ -203,17 +270,7 @@ def _build(model, drive, settle: bool, before_settle=None) -> BeltSystem:
                          f"{model.simulation.duration:g} s, more than the {max_steps():.3g} a run may take: a shorter "
                          "duration, or check the belt's stiffness and damping values and the contact stiffness "
                          "(or set DRIVEDYN_MAX_STEPS)", field="simulation")
-    sysm = BeltSystem(drawn, layout, init, B, C, P, A, span_mid, span_geo, track, step, limit, rest)
-    if before_settle is not None:
-        before_settle(sysm)
-    # start from the chain's static equilibrium, so that a drive at rest stays at rest
-    eq = relax(sysm, init.x, init.y, init.phi) if settle else None
-    if eq is not None:
-        x, y, phi, res, _ = eq
-        if rest is not None:
-            x, y, phi = _settle_tensioners(sysm, x, y, phi)
-        sysm.init = dataclasses.replace(init, x=x, y=y, phi=phi, residual=res)
-    return sysm
+    return Placed(drawn, layout, init, B, C, step, limit, rest)
 
 
 #: prescribed speeds whose belt speeds differ by more than this share cannot all hold without gross
@@ -245,6 +302,9 @@ def _settle_tensioners(sysm, x, y, phi):
     """Move the tensioners until their spring balances the discrete belt's hub force at rest
     (the placement's uniform tension is off by the chain's discretisation), relaxing the belt
     after each move: Newton on the travel with the stiffness of the continuum equilibrium."""
+    from ..dynamics import _bodies as BK
+    from .equilibrium import relax
+
     rest, A = sysm.rest, sysm.arms
     scale = max(float(np.max(np.abs(rest.spring))), 1e-9)
     for _ in range(6):
@@ -427,6 +487,8 @@ def hub_at_rest(sysm, x, y, cx, cy) -> np.ndarray:
 
 def loads_at_rest(sysm, x, y, q) -> np.ndarray:
     """Generalised load (spring + belt) on each tensioner with the discrete belt at rest."""
+    from ..dynamics import _bodies as BK
+
     A = sysm.arms
     cx, cy = sysm.pulleys.cx.copy(), sysm.pulleys.cy.copy()
     jac = []

@@ -1,11 +1,10 @@
-"""Compiled closed forms of the belt on a wrap, shared by the modes (modes.py) and the rotational
-model's step (rotational/_kernels.py): the depth the belt sinks to under its pressure, and its axial
-stiffness there (EA in series with the sinking)."""
+"""Closed forms of the belt on a wrap, shared by the modes (modes.py) and the rotational model's
+step (rotational/_kernels.py): the depth the belt sinks to under its pressure, and its axial
+stiffness there (EA in series with the sinking). Plain Python (check's modes run them without
+numba); the rotational kernels compile them."""
 import math
 
-from numba import njit
 
-@njit(cache=True, inline="always")
 def sunk_depth(q, c1, c2):
     """Depth p (m) at which the contact law carries q (N/m): c1 p^2 + c2 p = q (placement.penetration)."""
     if q <= 0.0:
@@ -13,7 +12,6 @@ def sunk_depth(q, c1, c2):
     return 2.0 * q / (c2 + math.sqrt(c2 * c2 + 4.0 * c1 * q))
 
 
-@njit(cache=True, inline="always")
 def wrap_axial_stiffness(EA, c1, c2, q, r):
     """Axial stiffness (N) of the belt on a wrap of radius r that it presses at q = N / length
     (N/m): its EA in series with its sinking into the rim. A tension change dT changes the pressure
