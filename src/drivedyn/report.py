@@ -188,7 +188,7 @@ def model_note(result) -> str:
         at_arm = est.get("share_of_half_band_at_a_tensioner", share)
         size = ("" if share is None else
                 f"; its span tension extremes may sit {'' if share == 1 else f'{share:g} x '}their half band "
-                f"(max - min) / 2 from the segment model's{'' if at_arm == share else f', {at_arm:g} x on a span at a tensioner'} "
+                f"(max - min) / 2 from the segment model's{'' if at_arm == share else f', {at_arm:g} x where a span at a tensioner may take a mode by its flap'} "
                 "(discretisation.estimate; its means within 2 %)")
         cells = s.get("belt", {}).get("friction_law") == "elastic-plastic"
         wraps = ("each wrap's belt in cells the rim carries, with their tension and bristles" if cells else

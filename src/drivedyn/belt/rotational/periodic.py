@@ -300,6 +300,7 @@ def run(drive, progress=None, keys=None):
                             f"period {max(residual):.2g} tolerance units", "runup.periodic_residual",
                             max(residual), TOLERANCE, "1")
     if keys is None:
+        RT.add_flap_and_modes(drive.model, result)
         RT.extremes_estimate(result, RT.PERIODIC_SHARE)
     if failure:
         raise SolverError(failure + f" (periodic solutions kept for {done} of {len(speeds)} speeds)", partial=result)

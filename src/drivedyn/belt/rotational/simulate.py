@@ -56,6 +56,7 @@ import numpy as np
 from ...errors import ModelError, SolverError, Stopped, stop_reason
 from ..dynamics import _bodies as BK
 from ..dynamics.bodies import arms_record, pulleys_record, running_senses
+from ..dynamics.frequencies import add_flap_and_modes
 from . import _kernels as RK
 from ..geometry import tensioner as TN
 from ..geometry.layout import Layout, compute_layout
@@ -341,6 +342,7 @@ def run(drive, progress=None):
     o["E"] -= E0
     o["t"][:k] = (np.arange(k) + 1) * interval      # exact sample times
     result = _assemble(model, sysm, o, k, steps * k, h, wall, failure)
+    add_flap_and_modes(model, result)       # the estimate reads them (_absorbs); the verdict too
     extremes_estimate(result, TIME_SHARE)
     if failure:
         raise SolverError(failure + f" (results kept up to t = {o['t'][k - 1] if k else 0.0:.6g} s)", partial=result)
@@ -442,22 +444,44 @@ GROSS_SHARE = 0.02
 #: the alternator's mode): these, with a margin. Means (within 1-2 %) are not affected.
 TIME_SHARE = 0.75
 PERIODIC_SHARE = 1.5
-#: ... on a span at a tensioner's pulley: the arm's swing moves it across, and its flap modes, which the
-#: rotational model lacks, take the arm's mode's energy as a tuned absorber would: where a flap frequency
-#: sits on the arm's mode the segment model's one peak is two, and between and beside them the bands
-#: differ by up to 2x. The three-pulley drive of tests/belt/test_rotational.py swept with its 6th order
-#: across the arm's mode (1800-2300 rpm, 50 rpm apart; the arm spans' 2nd flap modes at 206-209 Hz)
-#: needed 1.13 (2150 rpm: half bands 28.5 against 55.8 N); the segment model's spans damp their flap
-#: little (benchmarks/bench_flap_decay.py: damping ratios below 0.005), so the split stays sharp.
+#: ... on a span at a tensioner's pulley whose flap frequency (its first or second, at the run's speed)
+#: lies within FLAP_NEAR of one of the drive's modes: the arm's swing moves the span across, and its flap
+#: modes, which the rotational model lacks, take that mode's energy as a tuned absorber would: the
+#: segment model's one peak is two, and between and beside them the bands differ by up to 2.8x. The
+#: three-pulley drive of tests/belt/test_rotational.py swept with its 6th order across its arm's mode
+#: (200 Hz; its arm spans' 2nd flap modes at 204-207 Hz, 3 % off; 1800-2300 rpm, 50 rpm apart) needed
+#: 1.13 (2150 rpm: half bands 28.5 against 55.8 N); examples/fead-ag0868.toml's first duty row (a flap
+#: frequency 18 % off a mode) 0.44, within the other spans' 0.75. The segment model's spans damp their
+#: flap little (benchmarks/bench_flap_decay.py: damping ratios below 0.005), so the split stays sharp.
 ARM_SPAN_SHARE = 1.5
+FLAP_NEAR = 0.1
 #: an estimate above this share of the extreme itself makes the run a warning
 EXTREMES_LIMIT = 0.05
 
 
+def _absorbs(summary, span, where) -> bool:
+    """Whether ``span`` (at ``where``: "<rpm> rpm" or the steady window) may take a drive mode's energy
+    by its flap: it ends at a tensioner's pulley, and its first or second flap frequency at that speed
+    lies within FLAP_NEAR of one of the drive's modes (summary.flap, summary.modes)."""
+    arms = set(summary.get("tensioners", {}))
+    if not any(end in arms for end in span.split("-")):       # span names: "<from>-<to>"
+        return False
+    flap, modes = summary.get("flap", {}), summary.get("modes", {}).get("frequencies_hz", [])
+    f = flap.get("spans", {}).get(span)
+    if not f or not modes:
+        return True            # nothing to tell: the cautious share
+    speeds = flap.get("speed_rpm", [])
+    k = 0
+    if where.endswith(" rpm") and len(speeds) > 1:
+        rpm = float(where.split()[0])
+        k = int(np.argmin([abs(abs(x) - rpm) for x in speeds]))
+    return any(abs(f[key][k] - fm) <= FLAP_NEAR * fm for key in ("f1", "f2") if key in f for fm in modes)
+
+
 def extremes_estimate(result, share):
     """summary.discretisation.estimate for the rotational model: each span tension extreme's
-    uncertainty against the segment model, share x its half band (ARM_SPAN_SHARE at least on a span at
-    a tensioner's pulley), and the ``model-accuracy`` diagnostic where the largest is above
+    uncertainty against the segment model, share x its half band (ARM_SPAN_SHARE at least where a
+    span's flap may take a drive mode's energy: _absorbs), and the ``model-accuracy`` diagnostic where the largest is above
     EXTREMES_LIMIT of the extreme (a bin of a run-up, or the steady window)."""
     s = result.summary
     ru = s.get("runup")
@@ -467,17 +491,16 @@ def extremes_estimate(result, share):
     else:
         rows = [(sp, "the steady window", v["tension_min"], v["tension_max"]) for sp, v in s.get("spans", {}).items()
                 if "tension_min" in v]
-    arms = set(s.get("tensioners", {}))
-    at_arm = lambda sp: any(end in arms for end in sp.split("-"))      # span names: "<from>-<to>"
     worst = None
     for sp, where, lo, hi in rows:
         if not (np.isfinite(lo) and np.isfinite(hi)) or lo <= 0.0:
             continue
-        u = (max(share, ARM_SPAN_SHARE) if at_arm(sp) else share) * 0.5 * (hi - lo)
+        u = (max(share, ARM_SPAN_SHARE) if _absorbs(s, sp, where) else share) * 0.5 * (hi - lo)
         if worst is None or u / lo > worst[0]:
             worst = (u / lo, sp, where, lo, u)
     est = {"method": f"{share:g} x each span tension's half band (max - min) / 2, {max(share, ARM_SPAN_SHARE):g} on a "
-                     "span at a tensioner's pulley: at least the largest deviation of the rotational model's extremes "
+                     f"span at a tensioner's pulley whose flap frequency lies within {100 * FLAP_NEAR:g} % of a mode of the "
+                     "drive: at least the largest deviation of the rotational model's extremes "
                      "from the segment model's (twice its \"auto\" segments) measured on examples/fead-runup.toml's drive "
                      "(benchmarks/bench_rotational_agreement.py) and a three-pulley drive swept across its arm's mode "
                      "(tests/belt/test_rotational.py); the means are within 2 %", "share_of_half_band": share,
