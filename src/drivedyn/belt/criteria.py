@@ -19,7 +19,9 @@ import numpy as np
 
 from ..criteria import Criterion
 from .dynamics.frequencies import add_flap_and_modes
-from .dynamics.frequencies import judged as _window      # (overview.py and plots.py read it here)
+from .dynamics.frequencies import judged as _window
+
+# (_window: overview.py and plots.py read it here)
 
 RPM = 30 / math.pi
 
