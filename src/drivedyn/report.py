@@ -186,18 +186,17 @@ def model_note(result) -> str:
         est = disc.get("estimate", {})
         share = est.get("share_of_half_band")
         at_arm = est.get("share_of_half_band_at_a_tensioner", share)
+        flap = "" if at_arm == share else f", {at_arm:g} x where a span at a tensioner may take a mode by its flap"
         size = ("" if share is None else
                 f"; its span tension extremes may sit {'' if share == 1 else f'{share:g} x '}their half band "
-                f"(max - min) / 2 from the segment model's{'' if at_arm == share else f', {at_arm:g} x where a span at a tensioner may take a mode by its flap'} "
-                "(discretisation.estimate; its means within 2 %)")
+                f"(max - min) / 2 from the segment model's{flap} (discretisation.estimate; its means within 2 %)")
         cells = s.get("belt", {}).get("friction_law") == "elastic-plastic"
         wraps = ("each wrap's belt in cells the rim carries, with their tension and bristles" if cells else
                  "each wrap's belt relaxed to its creep-theory content over one passage")
         return ("Model: the rotational model (one unknown per pulley, rotor and tensioner; the spans as axial springs; "
                 f"{wraps}). Not in it: the spans' transverse motion (flap, judged from its frequencies; in the "
                 f"segment model a span at a tensioner splits the arm's mode as a tuned absorber would) and the belt's "
-                f"axial waves{size}. Confirm a design "
-                "with simulation.model = \"segments\".")
+                f"axial waves{size}. Confirm a design with simulation.model = \"segments\".")
     n = s.get("belt", {}).get("segments") or disc.get("segments")
     if n:
         law = s.get("belt", {}).get("friction_law", "")

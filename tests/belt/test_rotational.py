@@ -443,13 +443,16 @@ ARM_SWEEP_SEGMENTS = {
     2050: {"crank-alternator": (323.8, 353.2), "alternator-tensioner": (247.8, 283.8), "tensioner-crank": (252.2, 288.4)},
     2150: {"crank-alternator": (328.2, 355.0), "alternator-tensioner": (209.0, 320.5), "tensioner-crank": (214.9, 324.6)},
 }
+#: ... and the arm's travel range there (rad)
+ARM_SWEEP_TRAVEL = {2050: 0.831e-3, 2150: 3.148e-3}
 
 
 @pytest.mark.parametrize("rpm", sorted(ARM_SWEEP_SEGMENTS))
 def test_the_estimate_covers_the_spans_flap_at_the_arm_s_mode(rpm):
     """Where the arm spans' flap splits the arm's mode, the rotational model's band on them is up to half
     the segment model's (2150 rpm) or nearly three times it (2050 rpm): its estimate must still cover each
-    extreme (with the share of the other spans, 0.75, it did not: 1.13 of the half band was needed)."""
+    extreme (with the share of the other spans, 0.75, it did not: 1.13 of the half band was needed), and
+    say that the arm's travel range may be off by a factor (3.8 at 2050 rpm)."""
     m = drivedyn.replace(_three_pulleys(float(rpm)), {"pulleys.crank.speed_orders": [{"order": 6, "amplitude": 0.3}],
                                                       "simulation.model": "rotational"})
     rot = drivedyn.run(m)
@@ -460,6 +463,11 @@ def test_the_estimate_covers_the_spans_flap_at_the_arm_s_mode(rpm):
         share = est["share_of_half_band_at_a_tensioner"] if "tensioner" in sp else est["share_of_half_band"]
         u = share * 0.5 * (r["tension_max"] - r["tension_min"])
         assert abs(r["tension_min"] - lo) < u and abs(r["tension_max"] - hi) < u, sp
+    # the arm's travel range, 3.8 times the segment model's at 2050 rpm and 0.57 of it at 2150: said
+    a = rot.summary["tensioners"]["tensioner"]
+    ratio = (a["travel_max"] - a["travel_min"]) / ARM_SWEEP_TRAVEL[rpm]
+    assert 1 / est["arm_travel_range_factor"] < ratio < est["arm_travel_range_factor"]
+    assert "arm travel range" in next(d.text for d in rot.diagnostics if d.code == "model-accuracy")
 
 
 def test_the_wraps_creep_and_damp_as_the_segment_model_s():
