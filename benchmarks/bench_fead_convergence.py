@@ -15,6 +15,12 @@ import drivedyn
 from drivedyn.model import from_dict, to_dict
 
 
+def fead_belt() -> dict:
+    """examples/fead-runup.toml's belt, contact and friction sections (SI), for drives built around them."""
+    d = to_dict(drivedyn.load(drivedyn.example_path("fead-runup")))
+    return {k: d[k] for k in ("belt", "contact", "friction")}
+
+
 def held(rpm: float, segments, orders: bool = True, duration: float = 0.8):
     d = to_dict(drivedyn.load(drivedyn.example_path("fead-runup")))
     w = -rpm * math.pi / 30

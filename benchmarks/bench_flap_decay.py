@@ -23,6 +23,7 @@ import argparse
 import math
 
 import numpy as np
+from bench_fead_convergence import fead_belt
 
 from drivedyn.belt.geometry.drive import resolve
 from drivedyn.belt.segments import _kernels as K
@@ -40,11 +41,7 @@ SAMPLE = 5e-5       # s between samples
 def drive(rpm: float):
     w = -rpm * math.pi / 30
     return from_dict({
-        "kind": "belt-drive",
-        "belt": {"mass_per_length": 0.115, "axial_stiffness": 1.82e5, "axial_damping": 0.197,
-                 "bending_stiffness": 2.5e-4, "pretension": 350.0},
-        "contact": {"stiffness_linear": 9.75e7, "stiffness_quadratic": 4.54e11, "damping": 4.5e4},
-        "friction": {"coefficient": 1.0, "displacement_limit": 1e-4},
+        "kind": "belt-drive", **fead_belt(),
         "simulation": {"duration": 1.0},
         "pulleys": [
             {"name": "crank", "center": [0, 0], "radius": 0.07, "speed_time": [[0, 0], [0.2, w], [2, w]]},

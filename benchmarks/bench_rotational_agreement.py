@@ -26,7 +26,7 @@ import time
 import numpy as np
 
 import drivedyn
-from bench_fead_convergence import held
+from bench_fead_convergence import fead_belt, held
 
 GOALS = {"tension": 0.05, "travel": 0.10, "slip": 0.02}
 
@@ -119,11 +119,7 @@ def three_pulleys(rpm: float):
 
     w = -rpm * math.pi / 30
     return from_dict({
-        "kind": "belt-drive",
-        "belt": {"mass_per_length": 0.115, "axial_stiffness": 1.82e5, "axial_damping": 0.197,
-                 "bending_stiffness": 2.5e-4, "pretension": 350.0},
-        "contact": {"stiffness_linear": 9.75e7, "stiffness_quadratic": 4.54e11, "damping": 4.5e4},
-        "friction": {"coefficient": 1.0, "displacement_limit": 1e-4},
+        "kind": "belt-drive", **fead_belt(),
         "simulation": {"duration": 0.6},
         "output": {"interval": 2e-4, "steady_window": [0.4, 0.6]},
         "pulleys": [
