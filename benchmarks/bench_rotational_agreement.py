@@ -112,19 +112,20 @@ def compare_runup(ref, rot, label):
     return over, cells
 
 
-def three_pulleys(rpm: float):
-    """The three-pulley drive of tests/belt/test_rotational.py (crank, alternator, arm tensioner) driven
-    with the 6th order at 0.3 rad/s, across its arm's mode (200 Hz)."""
+def three_pulleys(rpm: float, order: float = 6.0, amplitude: float = 0.3, duration: float = 0.6):
+    """A small drive of fead-runup's belt: a crank with one speed order (by default the 6th at 0.3 rad/s,
+    on the arm's mode, 200 Hz), a loaded alternator and an arm tensioner; the steady window its last
+    0.2 s (tests/belt/test_rotational.py runs it with the 2nd order and without)."""
     from drivedyn.model import from_dict
 
     w = -rpm * math.pi / 30
     return from_dict({
         "kind": "belt-drive", **fead_belt(),
-        "simulation": {"duration": 0.6},
-        "output": {"interval": 2e-4, "steady_window": [0.4, 0.6]},
+        "simulation": {"duration": duration},
+        "output": {"interval": 2e-4, "steady_window": [duration - 0.2, duration]},
         "pulleys": [
-            {"name": "crank", "center": [0, 0], "radius": 0.07, "speed_time": [[0, 0], [0.3, w], [0.6, w]],
-             "speed_orders": [{"order": 6, "amplitude": 0.3}]},
+            {"name": "crank", "center": [0, 0], "radius": 0.07, "speed_time": [[0, 0], [0.3, w], [duration, w]],
+             "speed_orders": [{"order": order, "amplitude": amplitude}] if amplitude else []},
             {"name": "alternator", "center": [0.3, 0.0], "radius": 0.03, "inertia": 2e-3, "torque": 2.0, "drag": 0.1},
             {"name": "tensioner", "center": [0.15, 0.15], "radius": 0.035, "inertia": 1e-4,
              "arm": {"pivot": [0.07, 0.15], "inertia": 2e-3, "preload": 25.0, "rate": 40.0, "damping": 0.05}}]})

@@ -6,7 +6,8 @@ import pytest
 
 from drivedyn.model import from_dict
 
-# tests that reuse a benchmark's drive (bench_fead_convergence.held, bench_chord_sag.drive) import it
+# tests that reuse a benchmark's drive (bench_fead_convergence.held, bench_chord_sag.drive,
+# bench_rotational_agreement.three_pulleys) import it
 sys.path.insert(0, str(Path(__file__).parents[2] / "benchmarks"))
 
 BASE = {

@@ -387,24 +387,13 @@ def test_against_the_converged_segment_model():
     assert rot.summary["solver"]["wall_time"] < 0.1 * seg.summary["solver"]["wall_time"]
 
 
-def _three_pulleys(rpm=2000.0, dur=0.6):
-    """A crank with its 2nd order, a loaded accessory and an arm tensioner: fead-runup's belt,
-    contact and friction (the elastic-plastic law) on tensioned()'s layout."""
-    w = -rpm * math.pi / 30
-    return from_dict({
-        "kind": "belt-drive",
-        "belt": {"mass_per_length": 0.115, "axial_stiffness": 1.82e5, "axial_damping": 0.197,
-                 "bending_stiffness": 2.5e-4, "pretension": 350.0},
-        "contact": {"stiffness_linear": 9.75e7, "stiffness_quadratic": 4.54e11, "damping": 4.5e4},
-        "friction": {"coefficient": 1.0, "displacement_limit": 1e-4},
-        "simulation": {"duration": dur},
-        "output": {"interval": 2e-4, "steady_window": [dur - 0.2, dur]},
-        "pulleys": [
-            {"name": "crank", "center": [0, 0], "radius": 0.07, "speed_time": [[0, 0], [0.3, w], [dur, w]],
-             "speed_orders": [{"order": 2, "amplitude": 3.0}]},
-            {"name": "alternator", "center": [0.3, 0.0], "radius": 0.03, "inertia": 2e-3, "torque": 2.0, "drag": 0.1},
-            {"name": "tensioner", "center": [0.15, 0.15], "radius": 0.035, "inertia": 1e-4,
-             "arm": {"pivot": [0.07, 0.15], "inertia": 2e-3, "preload": 25.0, "rate": 40.0, "damping": 0.05}}]})
+def _three_pulleys(rpm=2000.0, order=2.0, amplitude=3.0):
+    """A crank with one speed order (the 2nd at 3 rad/s), a loaded accessory and an arm tensioner:
+    fead-runup's belt, contact and friction (the elastic-plastic law) on tensioned()'s layout
+    (benchmarks/bench_rotational_agreement.three_pulleys)."""
+    from bench_rotational_agreement import three_pulleys
+
+    return three_pulleys(rpm, order, amplitude)
 
 
 def test_a_small_drive_against_the_converged_segment_model():
@@ -453,8 +442,7 @@ def test_the_estimate_covers_the_spans_flap_at_the_arm_s_mode(rpm):
     the segment model's (2150 rpm) or nearly three times it (2050 rpm): its estimate must still cover each
     extreme (with the share of the other spans, 0.75, it did not: 1.13 of the half band was needed), and
     say that the arm's travel range may be off by a factor (3.8 at 2050 rpm)."""
-    m = drivedyn.replace(_three_pulleys(float(rpm)), {"pulleys.crank.speed_orders": [{"order": 6, "amplitude": 0.3}],
-                                                      "simulation.model": "rotational"})
+    m = drivedyn.replace(_three_pulleys(float(rpm), 6.0, 0.3), {"simulation.model": "rotational"})
     rot = drivedyn.run(m)
     assert rot.status == "warning" and "model-accuracy" in [d.code for d in rot.diagnostics]
     est = rot.summary["discretisation"]["estimate"]
@@ -478,7 +466,7 @@ def test_the_wraps_creep_and_damp_as_the_segment_model_s():
     than doubles); (2) the alternator's mode (65.6 Hz) ringing after the spin-up, damped by the bristles'
     hysteresis as they slide and stick (relaxed over a passage: the tight span rang 299-376 N in the
     window against the segment model's 331-343 N)."""
-    m = drivedyn.replace(_three_pulleys(), {"pulleys.crank.speed_orders": []})
+    m = _three_pulleys(amplitude=0.0)
     n = drivedyn.run(drivedyn.replace(m, {"simulation.duration": 0.01, "output.steady_window": [0, 0.01]})).summary["belt"]["segments"]
     seg = drivedyn.run(drivedyn.replace(m, {"belt.segments": 2 * n})).summary
     rot = drivedyn.run(drivedyn.replace(m, {"simulation.model": "rotational"})).summary
