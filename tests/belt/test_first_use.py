@@ -74,7 +74,7 @@ def test_a_run_compiles_its_time_loop_ahead_for_the_types_it_calls_it_with(model
     # the second process compiles _advance while the belt settles; for other types it would be
     # compiled twice (once there, once here)
     started, used = [], []
-    monkeypatch.setattr(ahead, "start", lambda module, name, args: started.append((module, name, args)))
+    monkeypatch.setattr(ahead, "start", lambda module, name, args, before: started.append((module, name, args)))
     compiled = simulate.compiled
     monkeypatch.setattr(simulate, "compiled", lambda d, args: used.append(args) or compiled(d, args))
     drivedyn.run(model_factory(simulation__duration=2e-3, belt__segments=60))
@@ -103,8 +103,8 @@ def test_the_loops_last_stages_are_compiled_here_for_the_types_the_loop_calls_th
     # a first run compiles them here (tail.py) while the second process compiles the loop: for
     # other types each would compile twice (_check did, for the literal 0 the loop passed it)
     _, args = _fresh_loop(model_factory(simulation__method=method, belt__segments=60))
-    jobs = tail.stages(args[2], *args[3:9], args[-1])
-    assert len(jobs) == (14 if method == "implicit" else 4)
+    jobs = tail.head(args[2], *args[3:9], args[-1]) + tail.stages(args[2], *args[3:9], args[-1])
+    assert len(jobs) == (18 if method == "implicit" else 4)
     for stage, a in jobs:
         assert stage.signatures == [tail.signature(stage, a)], stage.py_func.__name__
 
@@ -134,6 +134,33 @@ def test_energy_and_the_static_forces_compile_once_for_python_and_the_loop(model
     assert len(K._energy.signatures) == 1
     assert len(K._joint_forces.signatures) == 1
     assert not isinstance(K.energy, Dispatcher) and not isinstance(K.static_forces, Dispatcher)
+
+
+def test_the_two_processes_compile_each_stage_once(tmp_path):
+    # the second process from the first stage on, this one from the last back, each claiming a
+    # stage before it compiles it: they met on the cache alone, and both compiled the stage the
+    # other had under way (_joint_forces and _join of the 5PK drive, 1 s each)
+    code = """
+import os
+from numba import types
+from drivedyn.belt.dynamics import _bodies as BK
+from drivedyn.belt.segments import tail
+claims = os.environ["CLAIMS"]
+jobs = [(BK.smoothstep, (0.5,)), (BK.threlfall, (0.5, 1.0))]
+assert tail.claim(claims, BK.threlfall) and not tail.claim(claims, BK.threlfall)
+assert tail.compile_back(jobs, lambda: True, claims) == []            # the last one taken: met there
+assert tail.claim(None, BK.threlfall)                                 # no second process: all ours
+args = (1, 0.0, 1e-5, None, None, None, None, None, None, None, None, None)
+tail.head = lambda h, B, Ct, P, A, S, W, X: jobs[:1]
+tail.stages = lambda h, B, Ct, P, A, S, W, X: jobs[1:]
+# forward: smoothstep compiled, threlfall claimed by the other: waits for it in the cache
+assert tail.compile_forward(args, claims, patience=0.2) == ["smoothstep"]
+assert not BK.threlfall.signatures
+"""
+    (tmp_path / "claims").mkdir()
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache"), "CLAIMS": str(tmp_path / "claims")}
+    subprocess.run([sys.executable, "-c", code], env=env, check=True)
+    assert sorted(p.name for p in (tmp_path / "claims").iterdir()) == ["smoothstep", "threlfall"]
 
 
 def test_stages_compile_from_the_last_back_until_one_is_cached(tmp_path):

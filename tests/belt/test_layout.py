@@ -81,23 +81,10 @@ def _off_path(layout, p):
     return best
 
 
-def _same_walk(path, n, l, g):
-    """The walk interpreted (walk.py, as check runs it) and compiled (_walk.py, as the solvers run
-    it): the same chord ends and arc length to the last bit."""
-    from drivedyn.belt.geometry import _walk, walk
-
-    S, E, s_end = walk.walk_pieces(path.pieces.tolist(), path.length, n, l, g)
-    Sc, Ec, sc_end = _walk.walk_pieces(path.pieces, path.length, n, l, g)
-    assert sc_end == s_end
-    if s_end >= 0:
-        assert np.array_equal(Sc, S) and np.array_equal(Ec, E)
-
-
 def _check_walk(layout, n, l, g, closes):
     from drivedyn.belt.geometry.placement import _Path, _walk
 
     path = _Path(layout)
-    _same_walk(path, n, l, g)
     S, E, s_end = _walk(path, n, l, g)
     assert np.hypot(*(E - S).T) == pytest.approx(l, rel=1e-12)
     if g > 0:
@@ -115,27 +102,6 @@ def test_the_placement_walk_is_exact_on_a_six_pulley_path():
     m = drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-runup")), {"belt.segments": 666})
     init = initial_state(m, compute_layout(m))
     _check_walk(init.layout, 666, init.seg_length, init.gap, closes=True)
-
-
-@pytest.mark.parametrize("name", ["fead-runup", "belt-5pk", "fead-ag0868"])
-def test_check_walks_the_path_as_a_run_does(name, monkeypatch):
-    """Every walk the placement makes on an example's drive (fead-runup, fead-ag0868: the
-    tensioner's equilibrium, 60 walks each), interpreted and compiled, to the bit: check prints the
-    numbers a run starts from."""
-    from drivedyn.belt.geometry import placement
-    from drivedyn.belt.segments.system import placed
-
-    walks, walk = [], placement._walk
-
-    def record(path, n, l, g):
-        walks.append((path, n, l, g))
-        return walk(path, n, l, g)
-
-    monkeypatch.setattr(placement, "_walk", record)
-    placed(drivedyn.load(drivedyn.example_path(name)))
-    assert len(walks) >= 8
-    for w in walks:
-        _same_walk(*w)
 
 
 @settings(max_examples=60, deadline=None)

@@ -1,11 +1,9 @@
-"""The placement's walk along the closed path (placement.py), in plain Python: ``check`` runs it
-interpreted, a few dozen walks, where importing numba and loading the compiled walk would take
-several times longer; the solvers run the same functions compiled (_walk.py). No numba here.
+"""The placement's walk along the closed path (placement.py), in plain Python: a placement takes a
+few dozen walks, where importing numba (``check``) or compiling them (a first run) would take longer.
 
 The path is a sequence of pieces, one row each: kind (0 line, 1 arc), arc length at its start,
 its length, then (x0, y0, x1, y1) of a line or (cx, cy, R, angle0, sweep) of an arc. ``pc`` is a
-2-D float array (compiled) or a list of rows of floats (interpreted: indexing a list is several
-times faster than indexing an array); the two give the same numbers to the last bit.
+list of rows of floats (indexing a list is several times faster than indexing an array).
 """
 import math
 

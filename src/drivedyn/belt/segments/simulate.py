@@ -73,7 +73,8 @@ def _loop_args(sysm: BeltSystem, h, S, W):
 def _compile_ahead(sysm: BeltSystem):
     """The time loop compiled in a second process while the belt settles (ahead.py), or None."""
     S = new_state(sysm)
-    return _ahead.start(K.__name__, "_advance", _loop_args(sysm, sysm.step, S, new_work(sysm, S)))
+    return _ahead.start(K.__name__, "_advance", _loop_args(sysm, sysm.step, S, new_work(sysm, S)),
+                        before=f"{_tail.__name__}:compile_forward")
 
 
 def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsamples, steps_per_sample, h, frame_every,
@@ -111,7 +112,9 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
     with compile_note(progress, integrator(sysm.model), now=ahead is not None):
         if ahead is not None:
             # the loop's last stages compiled here meanwhile, from the last back (tail.py)
-            _tail.compile_back(_tail.stages(h, *records[:6], records[-1]), ahead.busy)
+            _tail.compile_back(_tail.stages(h, *records[:6], records[-1]), ahead.busy, ahead.claims)
+            if ahead.busy():     # xarray's first dataset looks for dask and pint (0.4 s): done meanwhile
+                xr.Dataset({"warm": ("time", np.zeros(1))})
             ahead.wait()         # then loaded from numba's cache (or compiled here if that failed)
         step = compiled(K._advance, (1, 0.0, h, *records))
     hstep = [h]

@@ -1,10 +1,17 @@
-"""The time loop's last stages with arguments of the types ``_kernels._advance`` calls them with,
-in the loop's order: on a first run this process compiles them from the last back (``compile_back``)
-while the second process (ahead.py) compiles the loop from its first stage on; the loop then loads
-them from numba's cache. A stage compiled for other types would compile twice (here, and again
-in the loop): every call below mirrors one in ``_advance`` (tests/belt/test_first_use.py checks
-that each stage ends up with one signature)."""
+"""The time loop's stages with arguments of the types ``_kernels._advance`` calls them with, in the
+loop's order. On a first run the two processes share them: this one compiles the last stages from the
+last back (``compile_back``) while the second process (ahead.py) compiles them from the first on
+(``compile_forward``); each claims a stage before it compiles it, so that none compiles twice (a
+cache entry is written only when a compile ends: both compiled ``_joint_forces`` and ``_join``, 1 s
+each, when they met on the cache alone). The second process then compiles the loop itself, which
+loads its stages from numba's cache. A stage compiled for other types would compile twice (here, and
+again in the loop): every call below mirrors one in ``_advance`` (tests/belt/test_first_use.py checks
+that each stage ends up with one signature). ``_joint_forces`` and ``_energy`` are not listed: the
+belt's settling compiles them first, here."""
 from __future__ import annotations
+
+import os
+import time
 
 import numpy as np
 
@@ -14,6 +21,20 @@ from .ahead import cached
 F = 0.0                  # a float the loop computes (a power, a time)
 I = np.int64(0)          # an int64 it computes (counts, indices)
 TRUE = True              # a flag
+
+
+def head(h, B, Ct, P, A, S, W, X):
+    """[(stage, args)] of the implicit loop's stages between the joint forces and ``stages``."""
+    if not B.implicit:
+        return []
+    n, hl, linear, eax = B.n, B.hl, B.linear, B.eax
+    return [
+        (K._joint_transport, (n, h, hl, linear, eax, B.kax, B.bax, S.c, S.s, S.w, W.jdx, W.jdy, W.fx, W.fy, W.mz)),
+        (K._spin_damper, (n, h, hl, F, X.ieff, S.w, W.jfk, W.jdx, W.jdy, W.seg_n, X.spd, X.cs, W.mz, F)),
+        (K._contacts, (n, P.nk, h, F, B.g, B.m, Ct.c1, Ct.c2, Ct.bc, Ct.pmax, Ct.centre, S.x, S.y, S.vx, S.vy, S.cx,
+                       S.cy, S.cvx, S.cvy, P.r, W.cand_j, W.cand_skip, W.lin_st, S.z, W.fy, X.si, X.sc)),
+        (K._friction, (n, h, Ct, S.om, W.lin_st, S.z, W.lin_fk, W.fx, W.fy, W.mz, X.si, X.sc)),
+    ]
 
 
 def stages(h, B, Ct, P, A, S, W, X):
@@ -68,18 +89,50 @@ def signature(stage, args):
     return tuple(stage.typeof_pyval(a) for a in args)
 
 
-def compile_back(jobs, busy) -> list:
+def claim(claims, stage) -> bool:
+    """Whether this process takes ``stage`` (the other has not): a file created in ``claims``, a
+    directory the two processes share; None: no other process, every stage is this one's."""
+    if claims is None:
+        return True
+    try:
+        os.close(os.open(os.path.join(claims, stage.py_func.__name__), os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+        return True
+    except FileExistsError:
+        return False
+
+
+def compile_back(jobs, busy, claims=None) -> list:
     """Compile the stages of ``jobs`` (``stages``) from the last back, while ``busy()`` (the second
-    process still compiling), until one is compiled or cached already: the second process got
-    there first (it compiles them from the first on). Returns the names of those compiled here."""
+    process still compiling), until one is compiled, cached or claimed already: the second process
+    got there first (it compiles them from the first on). Returns the names of those compiled here."""
     done = []
     try:
         for stage, args in reversed(jobs):
             sig = signature(stage, args)
-            if not busy() or cached(stage, sig):
+            if not busy() or cached(stage, sig) or not claim(claims, stage):
                 break
             stage.compile(sig)
             done.append(stage.py_func.__name__)
     except Exception:  # noqa: BLE001  (numba's internals moved: the loop compiles what is left itself)
         pass
+    return done
+
+
+def compile_forward(args, claims, patience=60.0) -> list:
+    """In the second process, before the loop (``_advance`` with ``args``): its stages from the
+    first on until one is claimed (this process compiles the rest back from the last); then wait,
+    up to ``patience`` seconds, until the other's are in the cache, so that the loop loads them."""
+    h, records, X = args[2], args[3:9], args[-1]
+    jobs = [(stage, signature(stage, a)) for stage, a in head(h, *records, X) + stages(h, *records, X)]
+    done = []
+    for stage, sig in jobs:
+        if cached(stage, sig):
+            continue
+        if not claim(claims, stage):
+            break
+        stage.compile(sig)
+        done.append(stage.py_func.__name__)
+    end = time.monotonic() + patience
+    while time.monotonic() < end and not all(cached(stage, sig) for stage, sig in jobs):
+        time.sleep(0.02)
     return done
