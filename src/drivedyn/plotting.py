@@ -8,6 +8,7 @@ that :class:`Painters` forked before a solve import it on the core the solve lea
 """
 from __future__ import annotations
 
+import contextlib
 import os
 from pathlib import Path
 
@@ -182,6 +183,11 @@ def _painter_start(module: str, one_at_a_time):
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)   # Ctrl-C stops the parent, which ends its painters
+    # a lower priority: on a first run two processes compile the kernels on the two cores, and the
+    # painters' start-up (1-2 s each) took its share of them; on an idle core it runs at full speed
+    # (the solve, the wait on the second process's compile)
+    with contextlib.suppress(OSError, AttributeError):
+        os.nice(10)
     with one_at_a_time:     # one painter loads at a time: together they would slow the solve on two cores
         importlib.import_module(module)
         _rehearse()
