@@ -156,11 +156,30 @@ tail.stages = lambda h, B, Ct, P, A, S, W, X: jobs[1:]
 # forward: smoothstep compiled, threlfall claimed by the other: waits for it in the cache
 assert tail.compile_forward(args, claims, patience=0.2) == ["smoothstep"]
 assert not BK.threlfall.signatures
+# the other gives a stage back (its compile failed): the wait ends at once, the loop compiles it
+import time
+os.remove(os.path.join(claims, "threlfall"))
+t = time.monotonic()
+assert tail.compile_forward(args, claims, patience=30.0) == ["threlfall"]
+assert time.monotonic() - t < 10.0
 """
     (tmp_path / "claims").mkdir()
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache"), "CLAIMS": str(tmp_path / "claims")}
     subprocess.run([sys.executable, "-c", code], env=env, check=True)
     assert sorted(p.name for p in (tmp_path / "claims").iterdir()) == ["smoothstep", "threlfall"]
+
+
+def test_a_stage_this_process_fails_to_compile_is_given_back(tmp_path, monkeypatch):
+    from drivedyn.belt.dynamics import _bodies as BK
+
+    def fail(sig):
+        raise RuntimeError("numba moved")
+
+    monkeypatch.setattr(BK.threlfall, "compile", fail)
+    monkeypatch.setattr(tail, "cached", lambda stage, sig: False)
+    claims = str(tmp_path)
+    assert tail.compile_back([(BK.threlfall, (0.5, 1.0))], lambda: True, claims) == []
+    assert not os.listdir(claims)         # its claim removed: the second process does not wait on it
 
 
 def test_stages_compile_from_the_last_back_until_one_is_cached(tmp_path):

@@ -10,6 +10,7 @@ that each stage ends up with one signature). ``_joint_forces`` and ``_energy`` a
 belt's settling compiles them first, here."""
 from __future__ import annotations
 
+import contextlib
 import os
 import time
 
@@ -106,15 +107,20 @@ def compile_back(jobs, busy, claims=None) -> list:
     process still compiling), until one is compiled, cached or claimed already: the second process
     got there first (it compiles them from the first on). Returns the names of those compiled here."""
     done = []
+    taken = None
     try:
         for stage, args in reversed(jobs):
             sig = signature(stage, args)
             if not busy() or cached(stage, sig) or not claim(claims, stage):
                 break
+            taken = stage
             stage.compile(sig)
+            taken = None
             done.append(stage.py_func.__name__)
     except Exception:  # noqa: BLE001  (numba's internals moved: the loop compiles what is left itself)
-        pass
+        if claims is not None and taken is not None:     # given back: the second process stops waiting on it
+            with contextlib.suppress(OSError):
+                os.remove(os.path.join(claims, taken.py_func.__name__))
     return done
 
 
@@ -132,7 +138,11 @@ def compile_forward(args, claims, patience=60.0) -> list:
             break
         stage.compile(sig)
         done.append(stage.py_func.__name__)
+    # (a stage this process did not take is the other's while its claim stands: given back, the loop
+    # compiles it)
+    theirs = [(stage, sig) for stage, sig in jobs if stage.py_func.__name__ not in done]
     end = time.monotonic() + patience
-    while time.monotonic() < end and not all(cached(stage, sig) for stage, sig in jobs):
+    while time.monotonic() < end and any(not cached(stage, sig) and os.path.exists(
+            os.path.join(claims, stage.py_func.__name__)) for stage, sig in theirs):
         time.sleep(0.02)
     return done
