@@ -34,3 +34,5 @@ def test_readme_short_and_commands():
     assert 'pip install . && drivedyn run examples/belt-5pk.toml -o out' in text
     assert 'pip install ".[test]" && python -m pytest' in text
     assert "pip install \".[test]\" && python -m pytest" in (ROOT / ".ci" / "run").read_text()
+    # the manual browsed from disk (site/index.html) or served while it is edited
+    assert "site/index.html" in text and "mkdocs serve" in text

@@ -172,3 +172,22 @@ def test_load_sharing_is_judged_and_said():
     assert c["value"] == pytest.approx(2.159, abs=1e-3) and not c["pass"] and "54 %" in c["where"]
     s = drivedyn.run(drivedyn.replace(m, {"criteria.load_sharing_max": None})).summary
     assert "K_gamma 2.16" in s["criteria_skipped"]["load_sharing_planetary"]
+
+
+def test_the_planetary_table_reads_in_engineering_units(tmp_path, capsys):
+    """``drivedyn run`` prints the planetary stage with names a person reads, angles in degrees,
+    the centre distance in mm, pin errors in um and load shares in % (it printed raw summary keys,
+    angles in rad and pin errors in m)."""
+    import re
+
+    from drivedyn.cli import main
+
+    assert main(["run", "examples/gears-planetary.toml", "-o", str(tmp_path), "-q", "--no-plots", "--no-report"]) == 0
+    text = capsys.readouterr().out
+    rows = {m.group(1).strip(): (m.group(2).strip(), m.group(3).strip())
+            for m in re.finditer(r"│ ([a-zA-Z][^│]*?) +│ ([^│]+?) +│ ([^│]*?) *│", text)}
+    assert rows["planet angles"] == ("[0, 90, 180, 270]", "deg")
+    assert rows["centre distance"] == ("72", "mm")
+    assert rows["position errors"] == ("[-10, 0, 0, 0]", "um")
+    assert rows["load share"] == ("[53.97, 15.34, 15.34, 15.34]", "%")
+    assert "planet_angles" not in text and "pin_error" not in text

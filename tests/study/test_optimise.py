@@ -125,3 +125,17 @@ def test_an_optimum_on_a_bound_is_said(client, write_study, tmp_path):
     # an optimum inside its range: nothing said
     inside = dict(run.optimum.values, **{"belt.pretension": 390.0})
     assert on_bounds(study, inside) == []
+
+
+def test_the_study_command_writes_an_optimisations_report_and_says_a_bound(write_study, tmp_path, capsys):
+    """``drivedyn study --report`` on an optimisation: report.html written and the optimum on a
+    bound said on the terminal (the option was silently ignored for an optimisation)."""
+    from drivedyn.cli import main
+
+    text = STUDY.replace('constraints = [{ key = "steady.slip_margin", min = 1.5 }, { key = "steady.pulleys.*.slip_arc", '
+                         'max = "3 rad" }]', "constraints = []").replace("budget = 60", "budget = 20")
+    out = tmp_path / "out"
+    assert main(["study", str(write_study(text)), "-o", str(out), "--report", "--no-plots", "-q"]) == 0
+    page = (out / "report.html").read_text()
+    assert "optimum-on-bound" in page and "belt.pretension" in page
+    assert "belt.pretension sits on the lower bound of its range (200 N)" in capsys.readouterr().err
