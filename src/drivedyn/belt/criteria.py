@@ -151,8 +151,9 @@ def evaluate(model, result):
     # gross slip, the driver's included: slip is measured against the crank, so a crank whose belt
     # slides over its wrap never shows in slip_mean / slip_runup; each model's gross-slip diagnostic
     # says where a belt leaves creep for sliding (segments/diagnose.py, rotational/simulate.py)
-    gross = sorted({d.quantity.split(".")[1] for d in getattr(result, "diagnostics", [])
-                    if d.code == "gross-slip" and d.quantity.count(".") >= 2})
+    # (the pulley: pulleys.<name>.sliding_share, or runup.<table>.<name>)
+    gross = sorted({d.quantity.split(".")[1 if d.quantity.startswith("pulleys.") else -1]
+                    for d in getattr(result, "diagnostics", []) if d.code == "gross-slip" and d.quantity.count(".") >= 2})
     out.append(Criterion("gross_slip", len(gross), c.gross_slip_max, "", "max",
                          "pulleys whose belt slides grossly over its wrap (the gross-slip diagnostic), the driver "
                          "included", ", ".join(gross) or "none"))

@@ -77,7 +77,7 @@ UNITS = {
     "tensioners.*.rest_tension": "N",
     "clutches.*.torque_mean": "N*m", "clutches.*.rotor_speed_mean": "rad/s", "clutches.*.overrun_share": "1",
     "runup.order_peaks.arm_travel.*.amplitude": "rad", "runup.order_peaks.*.amplitude": "N",
-    "runup.order_peaks.*.rpm": "rpm", "runup.speed_rpm": "rpm", "runup.sweep": "", "runup.span_tension_*": "N", "runup.hub_load_max.*": "N", "runup.slip.*": "1",
+    "runup.order_peaks.*.rpm": "rpm", "runup.speed_rpm": "rpm", "runup.sweep": "", "runup.span_tension_*": "N", "runup.hub_load_max.*": "N", "runup.slip.*": "1", "runup.gross_slip_share.*": "1",
     "runup.arm_travel_range.*": "rad", "runup.orders": "1", "runup.crank": "",
 }
 #: the rotational model's own keys besides :data:`UNITS`

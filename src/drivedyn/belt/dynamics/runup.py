@@ -89,7 +89,8 @@ def add_runup(ds, model, bin_width=None, up_only=False) -> dict:
     travel = (ds["arm_travel"].values, ds["arm"].values.tolist()) if "arm_travel" in ds else None
     tables = runup_tables(model, ds["time"].values, ds["span_tension"].values, ds["hub_load"].values,
                           ds["speed"].values, r, ds["span"].values.tolist(), ds["pulley"].values.tolist(), travel,
-                          bin_width, up_only)
+                          bin_width, up_only,
+                          gross=ds["gross_slip_share"].values if "gross_slip_share" in ds else None)
     if tables is None:
         return {}
     out, variables, coords = tables
@@ -101,12 +102,13 @@ def add_runup(ds, model, bin_width=None, up_only=False) -> dict:
 
 
 def runup_tables(model, t, ten, hub, speed, r, spans, pulleys, travel=None, bin_width=None, up_only=False,
-                 orders=True):
+                 orders=True, gross=None):
     """The run-up tables from the samples' arrays (time; span tension and hub load, pulley speed
     (time x span / pulley); the rolling radii; ``travel``: (arm travel (time x arm), arm names) or
     None): (the summary entry ``runup``, its Dataset variables, their coordinates), or None when
     the run is no run-up. ``orders=False`` leaves out the order tracking (its amplitudes and
-    peaks), which the rest does not use."""
+    peaks), which the rest does not use. ``gross`` (time x pulley, the rotational model's share of
+    each sample's interval a wrap slid as a whole): its mean per bin, ``gross_slip_share``."""
     j = crank_index(model)
     if j is None or len(t) < 4:
         return None
@@ -192,6 +194,11 @@ def runup_tables(model, t, ten, hub, speed, r, spans, pulleys, travel=None, bin_
            "span_tension_max": {s: tmax[:, q].tolist() for q, s in enumerate(spans)},
            "slip": {n: slip[:, q].tolist() for q, n in enumerate(pulleys) if q != j},
            "hub_load_max": {n: hmax[:, q].tolist() for q, n in enumerate(pulleys)}}
+    if gross is not None:
+        g = per_bin(gross, np.mean)
+        var["runup_gross_slip_share"] = variable(g, dims + ("pulley",), "1",
+                                                 "share of the bin a wrap slid as a whole (tension ratio at e^(mu theta))")
+        out["gross_slip_share"] = {n: g[:, q].tolist() for q, n in enumerate(pulleys)}
     if travel is not None:
         q, arms = travel
         qmin, qmax = per_bin(q, np.min), per_bin(q, np.max)
