@@ -432,6 +432,12 @@ def test_against_the_converged_segment_model():
     # against 0.0174 rad at the segment model's 666 segments)
     assert abs(a["travel_mean"] - b["travel_mean"]) < 0.1 * 1.5 / 25
     assert rot.summary["solver"]["wall_time"] < 0.1 * seg.summary["solver"]["wall_time"]
+    # the estimate says how far its slips and the arm's travel range may be off: covered
+    est = rot.summary["discretisation"]["estimate"]
+    for p, v in seg.summary["pulleys"].items():
+        assert abs(rot.summary["pulleys"][p]["slip"] - v["slip"]) < est["slip_absolute"]
+    ra, rb = a["travel_max"] - a["travel_min"], b["travel_max"] - b["travel_min"]
+    assert abs(ra / rb - 1) < est["arm_travel_range_relative"]
 
 
 def _three_pulleys(rpm=2000.0, order=2.0, amplitude=3.0):
@@ -467,6 +473,11 @@ def test_a_small_drive_against_the_converged_segment_model():
         assert abs(r["tension_min"] - v["tension_min"]) < u and abs(r["tension_max"] - v["tension_max"]) < u
     a, b = rot.summary["tensioners"]["tensioner"], seg.summary["tensioners"]["tensioner"]
     assert a["travel_max"] - a["travel_min"] == pytest.approx(b["travel_max"] - b["travel_min"], rel=0.3)
+    # its slips: within what the estimate says, the wider allowance where its wraps slide as a whole
+    est = rot.summary["discretisation"]["estimate"]
+    assert "gross-slip" in [d.code for d in rot.diagnostics] and est["slip_absolute"] > 1e-3
+    for p, v in seg.summary["pulleys"].items():
+        assert abs(rot.summary["pulleys"][p]["slip"] - v["slip"]) < est["slip_absolute"], p
 
 
 #: The three-pulley drive driven at its arm's mode (the 6th order, 0.3 rad/s), the segment model at twice its

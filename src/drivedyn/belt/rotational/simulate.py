@@ -459,6 +459,15 @@ FLAP_NEAR = 0.1
 #: ... and there the arm's travel range may be this factor off (either way): the same sweep read 3.19
 #: against 0.83 mrad at 2050 rpm, 1.79 against 3.15 at 2150 (fead-runup held: within 13 %)
 ARM_TRAVEL_FACTOR = 4.0
+#: How far its slips (against the crank) and the arm's travel range may sit from the segment model's,
+#: the largest seen on fead-runup's drive (benchmarks/bench_rotational_agreement.py) with a margin:
+#: slips 0.037 points held and 0.033 in the run-up's bins where no wrap slides as a whole, 0.105 where
+#: one does (4375 rpm held: the rotational model's wraps slide, the segment model's do not; 0.146 on the
+#: three-pulley drive of tests/belt/test_rotational.py at 2000 rpm); the arm's travel range 12.6 % held,
+#: 24.2 % over the run-up's bins (periodic 22.8 %), 24 % on the three-pulley drive
+SLIP_ABSOLUTE = 4e-4
+SLIP_ABSOLUTE_GROSS = 2e-3
+ARM_TRAVEL_RELATIVE = 0.3
 #: an estimate above this share of the extreme itself makes the run a warning
 EXTREMES_LIMIT = 0.05
 
@@ -518,11 +527,17 @@ def extremes_estimate(result, share):
         est.update(tension_extreme_relative_largest=worst[0], where=f"{worst[1]} at {worst[2]}")
     if absorbing:
         est.update(arm_travel_range_factor=ARM_TRAVEL_FACTOR, spans_taking_a_mode=sorted(absorbing))
+    gross = any(d.code == "gross-slip" for d in getattr(result, "diagnostics", []))
+    est["slip_absolute"] = SLIP_ABSOLUTE_GROSS if gross else SLIP_ABSOLUTE
+    if s.get("tensioners"):
+        est["arm_travel_range_relative"] = ARM_TRAVEL_RELATIVE
     s.setdefault("discretisation", {})["estimate"] = est
     result.units.update({"discretisation.estimate.share_of_half_band": "1", "discretisation.estimate.where": "",
                          "discretisation.estimate.share_of_half_band_at_a_tensioner": "1",
                          "discretisation.estimate.arm_travel_range_factor": "1",
                          "discretisation.estimate.spans_taking_a_mode": "",
+                         "discretisation.estimate.slip_absolute": "1",
+                         "discretisation.estimate.arm_travel_range_relative": "1",
                          "discretisation.estimate.tension_extreme_relative_largest": "1"})
     if worst is not None and worst[0] > EXTREMES_LIMIT:
         rel, sp, where, lo, u = worst
@@ -531,6 +546,9 @@ def extremes_estimate(result, share):
                         "takes energy from the drive's modes, and the belt's axial waves)"
                         + (f"; its arm travel range may be {ARM_TRAVEL_FACTOR:g} times off where {', '.join(sorted(absorbing))} "
                            "may take a mode by its flap" if absorbing else "")
+                        + f"; its slips may be off by {100 * est['slip_absolute']:.2g} points"
+                        + (f", its arm travel range by {100 * ARM_TRAVEL_RELATIVE:.0f} %"
+                           if "arm_travel_range_relative" in est and not absorbing else "")
                         + "; confirm the bands with simulation.model = \"segments\"",
                         "discretisation.estimate.tension_extreme_relative_largest", rel, EXTREMES_LIMIT, "1")
 
