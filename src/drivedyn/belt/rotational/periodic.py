@@ -91,7 +91,8 @@ class _Drive:
 
     def held_at(self, w, accel=0.0):
         """The pulley record with the crank's speed table a constant w (rad/s), and every other
-        pulley (with the rotor behind its clutch, which the clutch drives as the drive speeds up)
+        pulley (with the rotor behind its clutch, which the clutch drives as the drive speeds up and
+        lets overrun as it slows down)
         loaded by its inertia's torque -J alpha at the crank's acceleration ``accel`` (rad/s^2),
         alpha at its rigid speed ratio: the torque the run-up's sweep draws from the belt (d'Alembert).
         Held at one speed, fead-runup's drive read its spans from the crank to the alternator 27-53 N
@@ -102,8 +103,9 @@ class _Drive:
         o0, o1 = P.sp_off[self.j], P.sp_off[self.j + 1]
         sp_y[o0:o1] = w
         tq = P.tq_const.copy()
+        speeding_up = accel * w > 0.0    # a run-down's rotor overruns its clutch: its inertia stays off the belt
         for k in self.dyn:
-            inertia = P.inertia[k] + (P.cl_ir[k] if P.cl_kind[k] != 0 else 0.0)
+            inertia = P.inertia[k] + (P.cl_ir[k] if P.cl_kind[k] != 0 and speeding_up else 0.0)
             tq[k] -= inertia * accel * R.rho[self.j] / R.rho[k]
         return P._replace(sp_x=sp_x, sp_y=sp_y, tq_const=tq)
 
