@@ -91,10 +91,9 @@ class _Drive:
 
     def held_at(self, w, accel=0.0):
         """The pulley record with the crank's speed table a constant w (rad/s), and every other
-        pulley (with the rotor behind its clutch, which the clutch drives as the drive speeds up and
-        lets overrun as it slows down)
-        loaded by its inertia's torque -J alpha at the crank's acceleration ``accel`` (rad/s^2),
-        alpha at its rigid speed ratio: the torque the run-up's sweep draws from the belt (d'Alembert).
+        pulley loaded by its inertia's torque -J alpha at the crank's acceleration ``accel`` (rad/s^2),
+        alpha at its rigid speed ratio: the torque the run-up's sweep draws from the belt (d'Alembert);
+        the rotor behind a clutch with it as the drive speeds up (slowing down, the rotor overruns).
         Held at one speed, fead-runup's drive read its spans from the crank to the alternator 27-53 N
         below the time-integrated run-up's bins; the alternator's rotor, 3e-3 kg m^2 at 2.7 times
         the crank's 110 rad/s^2, takes about 32 N of it."""
