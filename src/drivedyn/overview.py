@@ -64,12 +64,12 @@ def _resolution_note(s) -> str:
 
 
 def _belt(result) -> list[dict]:
-    from .belt.criteria import _window
+    from .belt.dynamics.frequencies import judged
 
     s, ds = result.summary, result.ds
     ru = s.get("runup") or {}
     driver = ru.get("crank") or s.get("driver")
-    sel = _window(ds) if "time" in ds.dims else None
+    sel = judged(ds) if "time" in ds.dims else None
     out = []
     pulleys = s.get("pulleys", {})
     torques = {n: abs(p.get("torque_mean") or 0.0) for n, p in pulleys.items()}

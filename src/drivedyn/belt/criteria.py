@@ -18,17 +18,14 @@ import math
 import numpy as np
 
 from ..criteria import Criterion
-from .dynamics.frequencies import add_flap_and_modes
-from .dynamics.frequencies import judged as _window
-
-# (_window: overview.py and plots.py read it here)
+from .dynamics.frequencies import add_flap_and_modes, judged
 
 RPM = 30 / math.pi
 
 
 def speed_range(ds, summary, driver) -> tuple[float, float]:
     """The crank's speed range over the judged samples (rpm)."""
-    sel = _window(ds)
+    sel = judged(ds)
     if "crank_rpm" in ds:
         n = ds["crank_rpm"].values[sel]
     else:
@@ -201,7 +198,7 @@ def evaluate(model, result):
         var, dim = ("arm_travel", "arm") if p.arm is not None else ("slider_travel", "slider")
         if var not in ds or p.name not in ds[dim].values.tolist():
             continue
-        q = ds[var].sel({dim: p.name}).values[_window(ds)]
+        q = ds[var].sel({dim: p.name}).values[judged(ds)]
         if not q.size:
             continue
         lo, hi = t.stops
@@ -212,7 +209,7 @@ def evaluate(model, result):
 
     # hub loads against a bearing limit
     if c.hub_load_max is not None:
-        h = ds["hub_load"].values[_window(ds)]
+        h = ds["hub_load"].values[judged(ds)]
         if h.size:
             k = int(np.argmax(h.max(axis=0)))
             out.append(Criterion("hub_load", float(h[:, k].max()), c.hub_load_max, "N", "max",

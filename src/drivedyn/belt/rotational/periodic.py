@@ -18,6 +18,7 @@ stays above the tolerance is reported (``unconverged-periodic``, ``runup.periodi
 """
 from __future__ import annotations
 
+import itertools
 import math
 import time as _time
 
@@ -28,6 +29,7 @@ from ...limits import bytes_problem, steps_problem
 from . import _kernels as RK
 from ..geometry.drive import resolve
 from . import simulate as RT
+from ..dynamics.frequencies import add_flap_and_modes
 from ..dynamics.runup import MAX_PERIOD_REVS, RPM, crank_index, excitation_orders, period_revolutions
 
 #: periodicity tolerance: the largest change over one period of a tension (share of the rest
@@ -73,7 +75,7 @@ def sweep_acceleration(model, j, w):
     (rad/s, signed): the slope of the first of the table's pieces that holds w with a change of
     speed; 0 where none does."""
     rows = model.pulleys[j].speed_time
-    for (t0, w0), (t1, w1) in zip(rows[:-1], rows[1:]):
+    for (t0, w0), (t1, w1) in itertools.pairwise(rows):
         if w1 != w0 and t1 > t0 and min(w0, w1) <= w <= max(w0, w1):
             return (w1 - w0) / (t1 - t0)
     return 0.0
@@ -324,7 +326,7 @@ def run(drive, progress=None, keys=None):
                             f"period {max(residual):.2g} tolerance units", "runup.periodic_residual",
                             max(residual), TOLERANCE, "1")
     if keys is None:
-        RT.add_flap_and_modes(drive.model, result)
+        add_flap_and_modes(drive.model, result)
         RT.extremes_estimate(result, RT.PERIODIC_SHARE)
     if failure:
         raise SolverError(failure + f" (periodic solutions kept for {done} of {len(speeds)} speeds)", partial=result)
