@@ -32,7 +32,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.linalg import eigh
 
 from ._wraps import wrap_axial_stiffness
 from ..geometry.layout import Layout, compute_layout
@@ -296,8 +295,18 @@ def _wrap_compliance(model, lay, T, G):
     return -Kxw @ C, G - H @ C
 
 
+def _generalised_eigh(K, M):
+    """K v = w2 M v for symmetric K and positive definite M, as LAPACK's sygv reduces it (M = L L^T,
+    the standard problem of L^-1 K L^-T): in numpy, so that ``drivedyn check`` does not import
+    scipy.linalg for a ten-by-ten problem (0.2-0.4 s of its 0.6-1.7 s). Vectors M-orthonormal."""
+    Linv = np.linalg.inv(np.linalg.cholesky(M))
+    A = Linv @ K @ Linv.T
+    w2, y = np.linalg.eigh(0.5 * (A + A.T))
+    return w2, Linv.T @ y
+
+
 def _eigen(K, M, names) -> Modes:
-    w2, vec = eigh(K, M)
+    w2, vec = _generalised_eigh(K, M)
     scale = float(np.max(np.abs(w2))) or 1.0
     rigid = int(np.sum(w2 < 1e-9 * scale))
     freqs, shapes, parts = [], [], []
