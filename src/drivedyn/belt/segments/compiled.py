@@ -5,9 +5,14 @@ from __future__ import annotations
 from contextlib import contextmanager
 
 
-#: seconds numba takes to compile each scheme's kernels on their first use (empty cache; 2-core
-#: AMD EPYC, measured): the progress line says so meanwhile
-COMPILE_SECONDS = {"implicit": 20, "semi-implicit": 10, "rkf45": 7}
+#: seconds numba takes to compile each scheme's kernels on their first use (empty cache, the 5PK
+#: drive), measured on two 2-core machines 2.5 times apart in speed (an Intel Xeon, an AMD EPYC):
+#: the progress line says so meanwhile
+COMPILE_SECONDS = {"implicit": "15-40", "semi-implicit": "10-25", "rkf45": "7-30"}
+
+
+def _note(method):
+    return f"compiling the {method} kernels (first use: {COMPILE_SECONDS[method]} s)"
 
 
 @contextmanager
@@ -19,7 +24,7 @@ def compile_note(progress, method, now=False):
         yield
         return
     if now:
-        progress(0.0, f"compiling the {method} kernels (first use, about {COMPILE_SECONDS[method]} s)")
+        progress(0.0, _note(method))
         yield
         return
     from numba.core import event
@@ -30,7 +35,7 @@ def compile_note(progress, method, now=False):
         def on_start(self, ev):
             if not self.said:
                 self.said = True
-                progress(0.0, f"compiling the {method} kernels (first use, about {COMPILE_SECONDS[method]} s)")
+                progress(0.0, _note(method))
 
         def on_end(self, ev):
             pass
