@@ -89,14 +89,61 @@ def next_end(pc, total, s, px, py, c):
     return -1.0
 
 
+def _advance(r, c):
+    """Arc length from one end of a chord of length c to the other, both on piece r (a line: c;
+    an arc of radius R: R 2 asin(c / 2R)); None where no chord c fits the piece's circle."""
+    if c <= 0.0:
+        return 0.0
+    if r[0] == 0.0:
+        return c
+    R = r[5]
+    return 2.0 * R * math.asin(0.5 * c / R) if c < 2.0 * R else None
+
+
+def _points(r, base, s):
+    """The points at arc lengths s (an array) on piece r, whose start lies at base + r[1]."""
+    u = (s - (base + r[1])) / r[2]
+    if r[0] == 0.0:
+        return np.stack([r[3] + (r[5] - r[3]) * u, r[4] + (r[6] - r[4]) * u], axis=1)
+    a = r[6] + r[7] * u
+    return np.stack([r[3] + r[5] * np.cos(a), r[4] + r[5] * np.sin(a)], axis=1)
+
+
+def _whole_pairs(pc, total, s, l, g, most):
+    """Chord-and-gap pairs from s that lie wholly on s's piece: on a line or an arc every pair
+    advances the arc length by the same amount, so they are placed at once (a walk of n chords
+    costs its pieces, not n searches). (m, advance per chord, advance per pair, piece, base)."""
+    sm = s % total
+    k = piece(pc, sm)
+    r = pc[k]
+    base = s - sm
+    al, ag = _advance(r, l), _advance(r, g)
+    if al is None or ag is None or al + ag <= 0.0 or r[2] <= 0.0:
+        return 0, 0.0, 0.0, r, base
+    room = base + r[1] + r[2] - s - 1e-9 * r[2]      # (clear of the piece's end: round-off there)
+    m = min(most, int(room // (al + ag))) if room > 0.0 else 0
+    return max(m, 0), al, al + ag, r, base
+
+
 def walk_pieces(pc, total, n, l, g):
     """Chord, gap, chord, ... from arc length 0: the n chords' start and end points and the arc
-    length reached; s = -1 where a chord or gap finds no end on the path."""
+    length reached; s = -1 where a chord or gap finds no end on the path. Pairs wholly on one piece
+    are placed at once (``_whole_pairs``), the others searched (``next_end``)."""
     starts = np.empty((n, 2))
     ends = np.empty((n, 2))
     s = 0.0
     px, py = point(pc, total, 0.0)
-    for i in range(n):
+    i = 0
+    while i < n:
+        m, al, d, r, base = _whole_pairs(pc, total, s, l, g, n - i)
+        if m > 0:
+            s0 = s + d * np.arange(m)
+            starts[i:i + m] = _points(r, base, s0)
+            ends[i:i + m] = _points(r, base, s0 + al)
+            s += d * m
+            px, py = point(pc, total, s)
+            i += m
+            continue
         starts[i, 0], starts[i, 1] = px, py
         for k in range(2):               # the chord, then the gap to the next one
             c = l if k == 0 else g
@@ -107,4 +154,5 @@ def walk_pieces(pc, total, n, l, g):
                 px, py = point(pc, total, s)
             if k == 0:
                 ends[i, 0], ends[i, 1] = px, py
+        i += 1
     return starts, ends, s
