@@ -73,8 +73,9 @@ def static_penetration(tension, radius, contact):
 
 def _walk(path: _Path, n: int, l: float, g: float):
     """Place n chords of length l separated by gaps g; return ends and the arc length reached.
-    Interpreted (walk.py), also in a run: a placement takes 10-80 walks (14 / 112 ms for the 5PK drive
-    and fead-runup), where compiling the walk on a first run took 1.1 s, ahead of everything else."""
+    Interpreted (walk.py), also in a run: a placement takes 10-80 walks (6 / 60-90 ms for the 5PK drive
+    and fead-runup on a slow 2-core machine), where compiling the walk on a first run took 1.1 s,
+    ahead of everything else."""
     starts, ends, s = walk.walk_pieces(path.pieces.tolist(), path.length, n, l, g)
     if not s >= 0:
         raise ModelError("cannot place the belt segments on the path", field="belt.segments")
