@@ -254,11 +254,15 @@ def analyse(spec, iso=None, where: str = "planetary", dynamics: tuple | None = N
     # the sun's share of the torques (T_s : T_r : T_c = 1 : z_r / z_s : -(1 + z_r / z_s), the stage in balance)
     t_sun = {"sun": spec.torque, "ring": spec.torque * st.z_sun / st.z_ring,
              "carrier": spec.torque * st.z_sun / (st.z_sun + st.z_ring)}[spec.input]
+    from ..errors import ModelError
+
+    if min(held.k_sun_planet, held.k_ring_planet) <= 1e-12 * max(held.k_sun_planet, held.k_ring_planet):
+        # (a mesh of 1e-29 N/m beside 1e9: whether LAPACK then finds the stiffness matrix singular,
+        # or solves it to noise, differed between two machines; said the same on every one)
+        raise ModelError(f"the stage's load sharing cannot be solved: {_SPREAD}", field=where)
     try:
         ls = load_sharing(held, spec.torque, spec.input)
     except np.linalg.LinAlgError:      # a stiffness 1e-29 N/m beside 1e9: one line, not a traceback
-        from ..errors import ModelError
-
         raise ModelError(f"the stage's load sharing cannot be solved: {_SPREAD}", field=where) from None
     summary = {
         "ring_teeth": st.z_ring, "planets": st.n, "planet_angles": [float(a) for a in st.planet_angles],
