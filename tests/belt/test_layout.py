@@ -121,3 +121,32 @@ def test_the_placement_walk_on_random_paths(nk, seed, n, fill, gap):
         assume(False)
     l = lay.length / n * fill / (1 + gap)
     _check_walk(lay, n, l, gap * l, closes=False)
+
+
+@settings(max_examples=30, deadline=None)
+@given(nk=st.integers(2, 5), seed=st.integers(0, 10 ** 6), n=st.sampled_from([12, 150, 700]),
+       gap=st.sampled_from([0.0, 1e-9, 0.02]))
+def test_the_walk_places_whole_pieces_as_the_chord_by_chord_search_does(nk, seed, n, gap):
+    """The walk places the chord-and-gap pairs that lie wholly on one line or arc at once (walk.py,
+    ``_whole_pairs``); chord by chord (every end searched on the path) it puts every end at the
+    same point to round-off and reaches the same arc length."""
+    from drivedyn.belt.geometry import walk
+
+    rng = np.random.default_rng(seed)
+    ang = 2 * np.pi * np.arange(nk) / nk + rng.uniform(-0.2, 0.2, nk)
+    rad = rng.uniform(0.12, 0.3, nk)
+    centers = np.stack([rad * np.cos(ang), rad * np.sin(ang)], 1)
+    lay = layout_from([f"p{k}" for k in range(nk)], centers, rng.uniform(0.015, 0.08, nk), ["inside"] * nk)
+    from drivedyn.belt.geometry.placement import _Path
+
+    path = _Path(lay)
+    l = lay.length / n * 0.99 / (1 + gap)
+    pc = path.pieces.tolist()
+    S, E, s = walk.walk_pieces(pc, path.length, n, l, gap * l)
+    whole = walk._whole_pairs
+    try:
+        walk._whole_pairs = lambda *a: (0, 0.0, 0.0, None, 0.0)      # every end searched
+        S1, E1, s1 = walk.walk_pieces(pc, path.length, n, l, gap * l)
+    finally:
+        walk._whole_pairs = whole
+    assert np.abs(S - S1).max() < 1e-12 and np.abs(E - E1).max() < 1e-12 and abs(s - s1) < 1e-12
