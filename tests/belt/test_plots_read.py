@@ -53,3 +53,18 @@ def test_spectrum_order_axis_names_the_peak_by_order():
     named = [float(s.split("order ")[1]) for s in labels if s.startswith("86 Hz")]
     assert len(named) == 1 and abs(named[0] - 86 / fd) < 0.06, labels     # bins 0.25 Hz apart
     assert not any(ln.get_linestyle() == ":" for ln in ax[0].get_lines())   # orders 1-6 would crowd 0-500 Hz
+
+
+def test_a_drift_of_the_window_is_not_named_a_peak():
+    """A tension that drifts over the steady window (a slow trend, not a vibration) leaks into the
+    lowest bins of the spectrum; named, it read as a "1 Hz, order 0.0" peak in a run-up's plot."""
+    dt = 1e-3
+    t = np.arange(1200) * dt                        # a 1.2 s window: bins 0.83 Hz apart
+    fd = 72.8
+    speed = -2 * np.pi * fd + 0 * t
+    tension = 677 + 40 * t / t[-1] + 8 * (t / t[-1]) ** 2 + 90 * np.sin(2 * np.pi * 146 * t)
+    fig = Figure()
+    ax = fig.subplots(3, 1)
+    assert plot_spectrum(_drive(t, tension, tension, tension, speed), "driver", ax)
+    labels = [a.get_text() for a in ax[0].texts]
+    assert labels and all(float(s.split(" Hz")[0]) > 100 for s in labels), labels

@@ -293,7 +293,9 @@ def _label_peaks(ax, f, amp, fd, count=3):
     # side (a prominence test; scipy.signal.find_peaks costs a 0.65 s import in a fresh painter)
     la = np.log10(np.maximum(amp, 1e-300))
     w = max(2, len(la) // 20)
-    idx = [i for i in range(1, len(la) - 1) if la[i] > la[i - 1] and la[i] >= la[i + 1]
+    # from the 3rd bin on: the Hann window's main lobe spans 2 bins either side of 0 Hz, where the
+    # window's mean and a drift over it leak (a "1 Hz, order 0.0" peak of a run-up's tension)
+    idx = [i for i in range(3, len(la) - 1) if la[i] > la[i - 1] and la[i] >= la[i + 1]
            and la[i] - min(la[max(0, i - w):i].min(), la[i + 1:i + 1 + w].min()) >= 1.0]
     idx = np.array(idx, dtype=int)
     top = idx[np.argsort(amp[idx])[::-1][:count]] if len(idx) else idx
