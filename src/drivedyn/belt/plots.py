@@ -722,12 +722,12 @@ def plot_waterfall(ds, span, ax, modes=None):
             ax.text(fm, min(R), f" {fm:.0f} Hz", color="C1", fontsize=7, rotation=90, va="bottom", ha="right")
     if "flap_frequency" in ds and span in ds["flap_span"].values.tolist():
         ff = ds["flap_frequency"].sel(flap_span=span, flap_mode=1).values
+        # named in the title: a legend in a corner hid the modes' labels along the bottom edge
         ax.plot(ff, ds["flap_rpm"].values, color="C3", lw=1.2, label=f"flap f1 of {span}")
-        ax.legend(loc="lower right", fontsize=7)
     ax.set_xlim(0, fmax)
     ax.set_xlabel("frequency (Hz)")
     ax.set_ylabel("crank speed (rpm)")
-    ax.set_title(f"waterfall: tension of span {span}\n(dashed: engine orders; dotted: rotational modes; red: flap f1)", fontsize=9)
+    ax.set_title(f"waterfall: tension of span {span}\n(dashed: engine orders; dotted: rotational modes; red: the span's flap f1)", fontsize=9)
 
 
 def _crank_rpm(ds):
