@@ -18,17 +18,24 @@ from drivedyn.belt.segments import ahead, simulate, system, tail
 from drivedyn.belt.segments.state import new_state, new_work
 
 
+_FRESH = {}     # the fresh loops compiled in this session, by argument types (5-13 s each)
+
+
 def _fresh_loop(model):
     """A copy of ``_advance`` compiled afresh for ``model`` (not from numba's cache; the stages
-    themselves may come from it): its compile result and its arguments."""
+    themselves may come from it): its compile result and its arguments. Compiled once per argument
+    types in a session: the compile result depends on nothing else."""
     sysm = system.build(model)
     B, C, P, A = sysm.groups
     S = new_state(sysm)
     W = new_work(sysm, S)
     args = (1, 0.0, sysm.step, B, C, P, A, S, W, *K.scheme(B), K.scratch(B, P))
-    fresh = njit(_nrt=False, error_model="numpy", no_cpython_wrapper=True, no_cfunc_wrapper=True)(K._advance.py_func)
-    fresh.compile(tuple(fresh.typeof_pyval(a) for a in args))
-    return next(iter(fresh.overloads.values())), args
+    sig = tuple(K._advance.typeof_pyval(a) for a in args)
+    if sig not in _FRESH:
+        fresh = njit(_nrt=False, error_model="numpy", no_cpython_wrapper=True, no_cfunc_wrapper=True)(K._advance.py_func)
+        fresh.compile(sig)
+        _FRESH[sig] = next(iter(fresh.overloads.values()))
+    return _FRESH[sig], args
 
 
 def _stages_compiled_in(model):

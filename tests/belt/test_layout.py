@@ -136,7 +136,10 @@ def test_the_walk_places_whole_pieces_as_the_chord_by_chord_search_does(nk, seed
     ang = 2 * np.pi * np.arange(nk) / nk + rng.uniform(-0.2, 0.2, nk)
     rad = rng.uniform(0.12, 0.3, nk)
     centers = np.stack([rad * np.cos(ang), rad * np.sin(ang)], 1)
-    lay = layout_from([f"p{k}" for k in range(nk)], centers, rng.uniform(0.015, 0.08, nk), ["inside"] * nk)
+    try:
+        lay = layout_from([f"p{k}" for k in range(nk)], centers, rng.uniform(0.015, 0.08, nk), ["inside"] * nk)
+    except ModelError:       # a small pulley inside its neighbours' tangent: no wrap, not a drive
+        assume(False)
     from drivedyn.belt.geometry.placement import _Path
 
     path = _Path(lay)
