@@ -23,5 +23,18 @@ def test_run_save_plot_htd8m(tmp_path):
     assert {"mesh-contours.png", "mesh-interference.png", "mesh-flank-map.png", "mesh-maps.png",
             "mesh-comparison.png", "mesh-animation.gif"} <= names
     assert all(f.stat().st_size > 1000 for f in files)
+    # the animation: the pulley drawn once, the tooth moving over it, the angle changing above it
+    from PIL import Image, ImageChops
+
+    gif = Image.open(tmp_path / "mesh-animation.gif")
+    assert gif.n_frames == 48
+    gif.seek(0)
+    first = gif.convert("RGB")
+    gif.seek(47)
+    last = gif.convert("RGB")
+    w, h = first.size
+    moved = ImageChops.difference(first, last)
+    assert moved.crop((0, h // 10, w, h)).getbbox() is not None        # the tooth
+    assert moved.crop((0, 0, w, h // 10)).getbbox() is not None        # the angle in the title
     report = drivedyn.check(m)
     assert "pitch error" in report and "tip clearance 0.071" in report

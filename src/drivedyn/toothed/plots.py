@@ -270,9 +270,8 @@ def plot_load(ds):
 
 
 def animate(ds, path, frames=48, fps=12):
-    """GIF of the tooth entering, seating and leaving the groove."""
-    from matplotlib.animation import FuncAnimation, PillowWriter
-
+    """GIF of the tooth entering, seating and leaving the groove: the pulley drawn once, the tooth
+    and the angle over it in each frame."""
     fig = Figure(figsize=(5, 4), dpi=80, layout="constrained")
     ax = fig.subplots()
     start = _contact_range(ds)
@@ -280,22 +279,22 @@ def animate(ds, path, frames=48, fps=12):
     pulley = shapely.Polygon(np.column_stack([ds["pulley_x"].values, ds["pulley_y"].values]))
     uv = np.column_stack([ds["tooth_u"].values, ds["tooth_v"].values])
     width = float(np.ptp(uv[:, 0]))
+    _draw_pulley(ax, ds)
+    ax.set_xlim(-1.6 * width * MM, 1.6 * width * MM)
+    ax.set_ylim((ds.attrs["tooth_tip"] - 0.6 * width) * MM, 0.8 * width * MM)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (mm)")
+    ax.set_title(" ", fontsize=9)       # its room in the layout; the angle is drawn per frame
 
     def frame(k):
-        ax.clear()
-        _draw_pulley(ax, ds)
-        _draw_tooth(ax, ds, phis[k], "C0", pulley, lw=1.5)
-        ax.set_xlim(-1.6 * width * MM, 1.6 * width * MM)
-        ax.set_ylim((ds.attrs["tooth_tip"] - 0.6 * width) * MM, 0.8 * width * MM)
-        ax.set_aspect("equal")
-        ax.set_title(f"pulley angle {np.degrees(phis[k]):+.2f} deg", fontsize=9)
-        ax.set_xlabel("x (mm)")
-        return []
+        title = ax.text(0.5, 1.0, f"pulley angle {np.degrees(phis[k]):+.2f} deg", transform=ax.transAxes,
+                        ha="center", va="baseline", fontsize=9)
+        title.set_position((0.5, 1.0 + 6 / 72 * fig.dpi / ax.bbox.height))     # the title's 6 pt pad
+        return _draw_tooth(ax, ds, phis[k], "C0", pulley, lw=1.5) + [title]
 
     from .. import plotting
 
-    plotting.save_animation(FuncAnimation(fig, frame, frames=frames, blit=False), path, writer=PillowWriter(fps=fps))
-    return path
+    return plotting.save_gif(fig, path, frames, frame, fps=fps)
 
 
 def plot_all(result, outdir) -> list[Path]:
