@@ -6,6 +6,9 @@ Contract: float64 C-contiguous arrays in, arrays out; no Python objects; scalar 
   distance to the nearest segment ``a[k] -> b[k]`` (shape (K, 2)), searching for each i only the
   segments whose bounding box meets the bounding box of ``pts[i]`` grown by ``margin``; points
   with no such segment get +inf.
+- ``on_polyline(pts, which, q)``: for every point ``q[v]`` the distance to the polyline
+  ``pts[which[v]]`` and the arc length along it to the nearest point (the first nearest segment,
+  as GEOS's line_locate_point takes it): the overlap's vertices located on the tooth's flank.
 """
 from __future__ import annotations
 
@@ -57,3 +60,30 @@ def nearest_distance(pts, a, b, margin):
                     best = d2
             out[i, j] = np.sqrt(best)
     return out
+
+
+@njit(cache=True)
+def on_polyline(pts, which, q):
+    nv, m = q.shape[0], pts.shape[1]
+    dist = np.empty(nv)
+    at = np.empty(nv)
+    for v in range(nv):
+        i = which[v]
+        px, py = q[v, 0], q[v, 1]
+        best, s_best, s0 = np.inf, 0.0, 0.0
+        for k in range(m - 1):
+            ax, ay = pts[i, k, 0], pts[i, k, 1]
+            dx, dy = pts[i, k + 1, 0] - ax, pts[i, k + 1, 1] - ay
+            ll = dx * dx + dy * dy
+            t = 0.0
+            if ll > 0:
+                t = min(max(((px - ax) * dx + (py - ay) * dy) / ll, 0.0), 1.0)
+            ex, ey = ax + t * dx - px, ay + t * dy - py
+            d2 = ex * ex + ey * ey
+            seg = np.sqrt(ll)
+            if d2 < best:
+                best, s_best = d2, s0 + t * seg
+            s0 += seg
+        dist[v] = np.sqrt(best)
+        at[v] = s_best
+    return dist, at

@@ -54,7 +54,6 @@ def evaluate(flank: Flank, pulley, phi, belt_radius, offset, land, margin=1e-3):
     pts = to_pulley(flank.uv, phi, belt_radius, offset)  # (n, m, 2)
     closed = np.concatenate([pts, pts[:, :1]], axis=1)
     teeth = shapely.polygons(closed)
-    lines = shapely.linestrings(pts)
     shapely.prepare(pulley)
     overlap = shapely.intersection(teeth, pulley)
     area = shapely.area(overlap)
@@ -89,9 +88,11 @@ def evaluate(flank: Flank, pulley, phi, belt_radius, offset, land, margin=1e-3):
         (vi, _), dp = tree.query_nearest(vp, return_distance=True, all_matches=False)
         d_p = np.empty(len(coords))
         d_p[vi] = dp
-        d_t = shapely.distance(lines[which], vp)
+        # (compiled: GEOS's distance and line_locate_point took 3.7 of a 6 s map of 25 pairs)
+        from ._kernels import on_polyline
+
+        d_t, s_at = on_polyline(np.ascontiguousarray(pts), which.astype(np.int64), np.ascontiguousarray(coords))
         depth = np.maximum(d_p, d_t)
-        s_at = shapely.line_locate_point(lines[which], vp)
         u_at = np.interp(s_at, flank.s, flank.uv[:, 0])
         below = land - np.interp(s_at, flank.s, flank.uv[:, 1])  # depth below the land
         for key, mask in (("all", np.ones(len(coords), bool)), ("lead", u_at > 0), ("trail", u_at <= 0)):
