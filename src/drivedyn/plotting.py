@@ -210,6 +210,44 @@ class Painters:
         self.close()
 
 
+_DRAW = None     # the draw(k) of draw_all's forked workers (inherited, never pickled)
+
+
+def _draw_forked(k):
+    return _DRAW(k)
+
+
+def draw_all(count: int, draw, meanwhile=None, workers=None) -> list:
+    """``[draw(k) for k in range(count)]``, the figures of a run. Where this process runs no other
+    thread, two processes forked now draw them in parallel while this one runs ``meanwhile()``
+    (1.5x faster on two cores, measured on a belt drive's seven figures); else one by one after
+    it. ``workers=1`` forces the serial path."""
+    import threading
+
+    global _DRAW
+    workers = min(2, os.cpu_count() or 1) if workers is None else workers
+    if workers > 1 and count > 2 and threading.active_count() == 1 and hasattr(os, "fork"):
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        # matplotlib loaded and its first figure's fonts and text set up once, here, before the
+        # fork: each child otherwise pays them (0.3-0.5 s) on the critical path of a short run
+        rehearse_png()
+        _DRAW = draw
+        try:
+            # forked: the children inherit draw and what it reads; only what it returns travels back
+            with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as ex:
+                pending = ex.map(_draw_forked, range(count))
+                if meanwhile is not None:
+                    meanwhile()
+                return list(pending)
+        finally:
+            _DRAW = None
+    if meanwhile is not None:
+        meanwhile()
+    return [draw(k) for k in range(count)]
+
+
 _PAINTER_RESULT = None     # (file, Result) last read by this painter
 
 

@@ -552,9 +552,6 @@ def _figures(ds, driver):
     return jobs
 
 
-_JOB = None     # (jobs, outdir, status holder) for the forked workers (inherited, never pickled)
-
-
 def _draw_figure(jobs, k, outdir, result):
     import matplotlib
 
@@ -566,11 +563,6 @@ def _draw_figure(jobs, k, outdir, result):
     if fig is None:
         return None
     return str(plotting.save(fig, outdir / name, result, None, dpi=90))
-
-
-def _draw(k):
-    jobs, outdir, result = _JOB
-    return _draw_figure(jobs, k, outdir, result)
 
 
 def _paint(result, outdir, k):
@@ -592,46 +584,22 @@ def painters_useful(model) -> bool:
 def plot_all(result, outdir, workers=None, meanwhile=None, painters=None) -> list[Path]:
     """Write the standard figures (and belt.gif when ``output.animation``). ``painters``
     (plotting.Painters, forked before the solve) draw them while this process runs
-    ``meanwhile()``; else, on a process with no other thread running, two processes forked now
-    draw them in parallel (1.5x faster on two cores, measured); else one by one. ``workers=1``
-    forces the serial path."""
-    import os
-    import threading
-
-    global _JOB
+    ``meanwhile()``; else plotting.draw_all draws them (in two processes forked now where it can).
+    ``workers=1`` forces the serial path."""
     ds, outdir = result.ds, Path(outdir)
     if ds.sizes.get("time", 0) == 0:
         if meanwhile is not None:
             meanwhile()
         return []
     jobs = _figures(ds, _driver(result))
-    workers = min(2, os.cpu_count() or 1) if workers is None else workers
-    _JOB = (jobs, outdir, plotting.StatusOnly.of(result))
-    try:
-        if painters is not None and workers > 1:
-            pending = [painters.submit(result, _paint, outdir, k) for k in range(len(jobs))]
-            if meanwhile is not None:
-                meanwhile()
-            done = [f.result() for f in pending]
-        elif workers > 1 and len(jobs) > 2 and threading.active_count() == 1 and hasattr(os, "fork"):
-            import multiprocessing
-            from concurrent.futures import ProcessPoolExecutor
-
-            # matplotlib loaded and its first figure's fonts and text set up once, here, before the
-            # fork: each child otherwise pays them (0.3-0.5 s) on the critical path of a short run
-            plotting.rehearse_png()
-            # forked: the children inherit ds and the jobs; only file names travel back
-            with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as ex:
-                pending = ex.map(_draw, range(len(jobs)))
-                if meanwhile is not None:
-                    meanwhile()
-                done = list(pending)
-        else:
-            if meanwhile is not None:
-                meanwhile()
-            done = [_draw(k) for k in range(len(jobs))]
-    finally:
-        _JOB = None
+    if painters is not None and workers != 1:
+        pending = [painters.submit(result, _paint, outdir, k) for k in range(len(jobs))]
+        if meanwhile is not None:
+            meanwhile()
+        done = [f.result() for f in pending]
+    else:
+        status = plotting.StatusOnly.of(result)
+        done = plotting.draw_all(len(jobs), lambda k: _draw_figure(jobs, k, outdir, status), meanwhile, workers)
     files = [Path(p) for p in done if p]
     if ds.sizes.get("frame", 0) and ds.attrs.get("animation"):
         files.append(animate(ds, outdir / "belt.gif"))

@@ -43,11 +43,19 @@ def nearest_distance(pts, a, b, margin):
             if hi_x[k] >= x0 and lo_x[k] <= x1 and hi_y[k] >= y0 and lo_y[k] <= y1:
                 sel[ns] = k
                 ns += 1
+        last = sel[0] if ns else 0
         for j in range(m):
             px, py = pts[i, j, 0], pts[i, j, 1]
             best = np.inf
-            for q in range(ns):
-                k = sel[q]
+            # the previous point's nearest segment first (the flank is sampled densely, so it is
+            # near), then only the segments whose box is nearer than the best so far
+            for q in range(-1, ns):
+                k = last if q < 0 else sel[q]
+                if q >= 0:
+                    gx = max(lo_x[k] - px, px - hi_x[k], 0.0)
+                    gy = max(lo_y[k] - py, py - hi_y[k], 0.0)
+                    if gx * gx + gy * gy >= best:
+                        continue
                 dx, dy = b[k, 0] - a[k, 0], b[k, 1] - a[k, 1]
                 ll = dx * dx + dy * dy
                 t = 0.0
@@ -58,7 +66,8 @@ def nearest_distance(pts, a, b, margin):
                 d2 = ex * ex + ey * ey
                 if d2 < best:
                     best = d2
-            out[i, j] = np.sqrt(best)
+                    last = k
+            out[i, j] = np.sqrt(best) if ns else np.inf
     return out
 
 

@@ -297,21 +297,28 @@ def animate(ds, path, frames=48, fps=12):
     return plotting.save_gif(fig, path, frames, frame, fps=fps)
 
 
-def plot_all(result, outdir) -> list[Path]:
-    """Write the standard figures into ``outdir``; returns the paths."""
-    ds, outdir = result.ds, Path(outdir)
-    figs = {"mesh-contours.png": plot_contours(ds), "mesh-interference.png": plot_interference(ds),
-            "mesh-flank-map.png": plot_flank_map(ds)}
-    if "map_overlap_area" in ds:
-        figs["mesh-maps.png"] = plot_maps(ds)
-    if "tooth_load" in ds:
-        figs["mesh-load.png"] = plot_load(ds)
-    if "pair" in ds.dims and ds.sizes["pair"] > 1:
-        figs["mesh-comparison.png"] = plot_comparison(ds)
+def plot_all(result, outdir, meanwhile=None) -> list[Path]:
+    """Write the standard figures and the animation into ``outdir``; returns the paths. They are
+    drawn by plotting.draw_all (in two processes where it can) while this one runs ``meanwhile()``."""
     from .. import plotting
 
-    paths = []
-    for name, fig in figs.items():
-        plotting.save(fig, outdir / name, result, paths, dpi=110)
-    paths.append(animate(ds, outdir / "mesh-animation.gif"))
-    return paths
+    ds, outdir = result.ds, Path(outdir)
+    jobs = [("mesh-contours.png", plot_contours), ("mesh-interference.png", plot_interference),
+            ("mesh-flank-map.png", plot_flank_map)]
+    if "map_overlap_area" in ds:
+        jobs.append(("mesh-maps.png", plot_maps))
+    if "tooth_load" in ds:
+        jobs.append(("mesh-load.png", plot_load))
+    if "pair" in ds.dims and ds.sizes["pair"] > 1:
+        jobs.append(("mesh-comparison.png", plot_comparison))
+    # the animation first: the longest job (48 frames), so the two processes end together
+    jobs.insert(0, ("mesh-animation.gif", lambda d: animate(d, outdir / "mesh-animation.gif")))
+    status = plotting.StatusOnly.of(result)
+
+    def draw(k):
+        name, fn = jobs[k]
+        if name.endswith(".gif"):
+            return str(fn(ds))
+        return str(plotting.save(fn(ds), outdir / name, status, None, dpi=110))
+    done = plotting.draw_all(len(jobs), draw, meanwhile)
+    return [Path(p) for p in done[1:] + done[:1]]
