@@ -32,6 +32,9 @@ class Analysis:
     # a run and of check's data: a study's constraint bounds are read against them
     units_at: str = ""
     check_units_at: str = ""
+    # its plot function takes plotting.Painters forked before the solve (importing the plot module
+    # to find out costs 1 s of matplotlib on the critical path of the analyses that do not)
+    paints_ahead: bool = False
 
     def _get(self, where: str):
         module, name = where.split(":")
@@ -67,7 +70,7 @@ class Analysis:
 
         from .plotting import Painters
 
-        if "painters" not in inspect.signature(self._get(self.plot_at)).parameters:
+        if not self.paints_ahead or "painters" not in inspect.signature(self._get(self.plot_at)).parameters:
             return None
         module = self.plot_at.split(":")[0]
         useful = getattr(importlib.import_module(f"{self.package}.{module}"), "painters_useful", None)
@@ -115,7 +118,7 @@ class Analysis:
 ANALYSES = {a.kind: a for a in (
     Analysis("belt-drive", "drivedyn.belt", "simulate:run", "statics:report", "plots:plot_all", "simulate:warm",
              "statics:check_data", lean_at="simulate:run_lean", lean_possible_at="simulate:lean_possible",
-             units_at="simulate:summary_units", check_units_at="statics:CHECK_UNITS"),
+             units_at="simulate:summary_units", check_units_at="statics:CHECK_UNITS", paints_ahead=True),
     Analysis("gear-train", "drivedyn.gears", "simulate:run", "report:report", "plots:plot_all", units_at="simulate:UNITS"),
     Analysis("span-stability", "drivedyn.span", "analysis:run", "report:report", "plots:plot_all", units_at="analysis:UNITS"),
     Analysis("toothed-mesh", "drivedyn.toothed", "analysis:run", "report:report", "plots:plot_all", units_at="analysis:UNITS"),

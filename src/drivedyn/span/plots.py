@@ -199,8 +199,10 @@ def plot_response(ds, summary, ax=None):
     return arts
 
 
-def plot_all(result, outdir) -> list[Path]:
-    """Write the standard PNGs of a span-stability result into ``outdir`` (a warned run says so on each)."""
+def plot_all(result, outdir, meanwhile=None) -> list[Path]:
+    """Write the standard PNGs of a span-stability result into ``outdir`` (a warned run says so on
+    each); plotting.draw_all draws them (in two processes where it can) while this one runs
+    ``meanwhile()``."""
     from .. import plotting
 
     outdir = Path(outdir)
@@ -211,11 +213,13 @@ def plot_all(result, outdir) -> list[Path]:
         jobs.append(("span-floquet.png", plot_floquet, (7, 5)))
     if "modal_coordinate" in ds:
         jobs.append(("span-response.png", plot_response, (8, 3.5)))
-    written = []
-    for name, fn, size in jobs:
+    status = plotting.StatusOnly.of(result)
+
+    def draw(k):
+        name, fn, size = jobs[k]
         fig = Figure(figsize=size, layout="constrained")
         fn(ds, s, fig.subplots())
         if fn is plot_chart:
             fig.axes[0].set_title(f"stability chart: {ds.attrs.get('title', '')}", fontsize=10)
-        plotting.save(fig, outdir / name, result, written, dpi=110)
-    return written
+        return plotting.save(fig, outdir / name, status, None, dpi=110)
+    return [Path(p) for p in plotting.draw_all(len(jobs), draw, meanwhile)]
