@@ -17,7 +17,6 @@ from drivedyn.belt.segments import _kernels as K
 from drivedyn.belt.segments import ahead, simulate, system, tail
 from drivedyn.belt.segments.state import new_state, new_work
 
-
 _FRESH = {}     # the fresh loops compiled in this session, by argument types (5-13 s each)
 
 

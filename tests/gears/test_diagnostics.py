@@ -208,5 +208,5 @@ def test_plots_are_marked(quiet, tmp_path, monkeypatch):
     marked = []
     monkeypatch.setattr(plotting, "mark_status", lambda fig, result: marked.append(result.status))
     r = drivedyn.run(seed_model(**{"meshes.m13.position_angle": math.pi, "simulation.duration": 0.02}))
-    files = plot_all(r, tmp_path)
+    files = plot_all(r, tmp_path, workers=1)      # here, where the patch above holds
     assert len(marked) == len(files) and set(marked) == {"warning"}

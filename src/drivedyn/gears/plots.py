@@ -337,60 +337,59 @@ def plot_stage_kv(ds, label, axes):
     return arts
 
 
-def _stage_plots(ds, save) -> None:
+def _job(nrows, ncols, size, draw):
+    """A figure to draw: ``draw(axes)`` on a new ``nrows`` x ``ncols`` figure of ``size`` inches."""
+    def make():
+        fig, ax = _figure(nrows, ncols, size)
+        draw(ax)
+        return fig
+    return make
+
+
+def _stage_jobs(ds) -> list:
+    jobs = []
     for label in _stage_labels(ds, "_sun_planet_force"):
         if f"{label}_planet" not in ds.coords:     # a single stage's lateral load sharing (lateral_...): no stage
             continue
-        fig, ax = _figure(1, 2, (10, 4))
-        plot_stage_loads(ds, label, ax[0])
-        save(fig, label)
+        jobs.append((label, _job(1, 2, (10, 4), lambda ax, label=label: plot_stage_loads(ds, label, ax[0]))))
     for label in _stage_labels(ds, "_dynamics_force"):
-        fig, ax = _figure(2, 1, (9, 7.5))
-        plot_stage_kv(ds, label, ax[:, 0])
-        save(fig, f"{label}-kv")
+        jobs.append((f"{label}-kv", _job(2, 1, (9, 7.5), lambda ax, label=label: plot_stage_kv(ds, label, ax[:, 0]))))
+    return jobs
 
 
-def plot_all(result, outdir) -> list[Path]:
-    """Write the standard PNGs into ``outdir`` (a warned or failed run says so on each); their paths."""
+def _jobs(ds) -> list:
+    """The standard figures of ``ds``: (name, function drawing the Figure), in order."""
+    if ds.attrs.get("planetary_only"):
+        def planetary(ax):
+            plot_planet_loads(ds, ax[0, 0])
+            plot_planetary_modes(ds, ax[0, 1])
+        return [("planetary", _job(1, 2, (10, 4), planetary))] + _stage_jobs(ds)
+
+    def stiffness(ax):
+        plot_stiffness_time(ds, ax[0, 0])
+        plot_stiffness_roll(ds, ax=ax[1, 0])
+    one = (8, 4.5)
+    jobs = [("stiffness", _job(2, 1, (8, 7.5), stiffness)),
+            ("vibration", _job(1, 1, one, lambda ax: plot_vibration(ds, ax[0, 0]))),
+            ("kv", _job(1, 1, one, lambda ax: plot_kv_time(ds, ax[0, 0]))),
+            ("forces", _job(3, 1, (8, 8), lambda ax: plot_forces(ds, ax[:, 0]))),
+            ("spectrum", _job(1, 1, one, lambda ax: plot_spectrum(ds, ax[0, 0])))]
+    if "kv_sweep" in ds:
+        jobs.append(("sweep", _job(1, 1, one, lambda ax: plot_sweep(ds, ax[0, 0]))))
+    jobs.append(("campbell", _job(1, 1, one, lambda ax: plot_campbell(ds, ax[0, 0]))))
+    return jobs + _stage_jobs(ds)
+
+
+def plot_all(result, outdir, meanwhile=None, workers=None) -> list[Path]:
+    """Write the standard PNGs into ``outdir`` (a warned or failed run says so on each); their paths.
+    plotting.draw_all draws them (in two processes where it can; ``workers=1``: here) while this one runs ``meanwhile()``."""
     from .. import plotting
 
-    ds = result.ds
     outdir = Path(outdir)
-    files = []
+    jobs = _jobs(result.ds)
+    status = plotting.StatusOnly.of(result)
 
-    def save(fig, name):
-        plotting.save(fig, outdir / f"gears-{name}.png", result, files)
-
-    if ds.attrs.get("planetary_only"):
-        fig, ax = _figure(1, 2, (10, 4))
-        plot_planet_loads(ds, ax[0, 0])
-        plot_planetary_modes(ds, ax[0, 1])
-        save(fig, "planetary")
-        _stage_plots(ds, save)
-        return files
-
-    fig, ax = _figure(2, 1, (8, 7.5))
-    plot_stiffness_time(ds, ax[0, 0])
-    plot_stiffness_roll(ds, ax=ax[1, 0])
-    save(fig, "stiffness")
-    fig, ax = _figure()
-    plot_vibration(ds, ax[0, 0])
-    save(fig, "vibration")
-    fig, ax = _figure()
-    plot_kv_time(ds, ax[0, 0])
-    save(fig, "kv")
-    fig, ax = _figure(3, 1, (8, 8))
-    plot_forces(ds, ax[:, 0])
-    save(fig, "forces")
-    fig, ax = _figure()
-    plot_spectrum(ds, ax[0, 0])
-    save(fig, "spectrum")
-    if "kv_sweep" in ds:
-        fig, ax = _figure()
-        plot_sweep(ds, ax[0, 0])
-        save(fig, "sweep")
-    fig, ax = _figure()
-    plot_campbell(ds, ax[0, 0])
-    save(fig, "campbell")
-    _stage_plots(ds, save)
-    return files
+    def draw(k):
+        name, make = jobs[k]
+        return plotting.save(make(), outdir / f"gears-{name}.png", status)
+    return [Path(p) for p in plotting.draw_all(len(jobs), draw, meanwhile, workers)]

@@ -199,10 +199,10 @@ def plot_response(ds, summary, ax=None):
     return arts
 
 
-def plot_all(result, outdir, meanwhile=None) -> list[Path]:
+def plot_all(result, outdir, meanwhile=None, workers=None) -> list[Path]:
     """Write the standard PNGs of a span-stability result into ``outdir`` (a warned run says so on
-    each); plotting.draw_all draws them (in two processes where it can) while this one runs
-    ``meanwhile()``."""
+    each); plotting.draw_all draws them (in two processes where it can; ``workers=1``: here) while this one
+    runs ``meanwhile()``."""
     from .. import plotting
 
     outdir = Path(outdir)
@@ -222,4 +222,4 @@ def plot_all(result, outdir, meanwhile=None) -> list[Path]:
         if fn is plot_chart:
             fig.axes[0].set_title(f"stability chart: {ds.attrs.get('title', '')}", fontsize=10)
         return plotting.save(fig, outdir / name, status, None, dpi=110)
-    return [Path(p) for p in plotting.draw_all(len(jobs), draw, meanwhile)]
+    return [Path(p) for p in plotting.draw_all(len(jobs), draw, meanwhile, workers)]

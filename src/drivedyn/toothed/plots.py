@@ -297,9 +297,9 @@ def animate(ds, path, frames=48, fps=12):
     return plotting.save_gif(fig, path, frames, frame, fps=fps)
 
 
-def plot_all(result, outdir, meanwhile=None) -> list[Path]:
+def plot_all(result, outdir, meanwhile=None, workers=None) -> list[Path]:
     """Write the standard figures and the animation into ``outdir``; returns the paths. They are
-    drawn by plotting.draw_all (in two processes where it can) while this one runs ``meanwhile()``."""
+    drawn by plotting.draw_all (in two processes where it can; ``workers=1``: here) while this one runs ``meanwhile()``."""
     from .. import plotting
 
     ds, outdir = result.ds, Path(outdir)
@@ -320,5 +320,5 @@ def plot_all(result, outdir, meanwhile=None) -> list[Path]:
         if name.endswith(".gif"):
             return str(fn(ds))
         return str(plotting.save(fn(ds), outdir / name, status, None, dpi=110))
-    done = plotting.draw_all(len(jobs), draw, meanwhile)
+    done = plotting.draw_all(len(jobs), draw, meanwhile, workers)
     return [Path(p) for p in done[1:] + done[:1]]
