@@ -6,7 +6,8 @@
 Commands: `drivedyn --help`, `drivedyn check examples/fead-runup.toml`, `drivedyn run
 examples/belt-5pk.toml -o TMP` (after a first run, so the kernels are cached), `drivedyn run
 examples/fead-runup.toml --set simulation.model=rotational -o TMP` with and without
-`--no-plots --no-report`. Each is run --repeat times (default 3); the table gives the best and the
+`--no-plots --no-report`, and the same pair for the toothed mesh, span and gear examples
+(mesh-htd8m, span-t10, gears-split-path). Each is run --repeat times (default 3); the table gives the best and the
 median. --cold also times the first `run examples/belt-5pk.toml` with NUMBA_CACHE_DIR pointing at
 an empty folder (every kernel compiled: minutes on a 2-core machine). --pyc unsets
 PYTHONDONTWRITEBYTECODE for the commands, so that drivedyn's modules are read from __pycache__ as
@@ -85,6 +86,10 @@ def main(argv=None) -> None:
             ("run fead-runup, rotational model", rot),
             ("run fead-runup, rotational, --no-plots --no-report", rot + ["--no-plots", "--no-report"]),
         ]
+        # the other analyses' examples, with and without their outputs (figures, report, netCDF)
+        for ex in ("mesh-htd8m", "span-t10", "gears-split-path"):
+            cmd = ["run", f"examples/{ex}.toml", "-o", out, "-q"]
+            cases += [(f"run {ex}", cmd), (f"run {ex} --no-plots --no-report", cmd + ["--no-plots", "--no-report"])]
         rows = []
         if a.cold:
             cache = Path(tmp) / "numba-cache"
@@ -93,6 +98,8 @@ def main(argv=None) -> None:
             rows.append(("first run belt-5pk, empty kernel cache", [t]))
         wall(CLI + ["run", "examples/belt-5pk.toml", "-o", out, "-q"])     # warm the kernel cache
         wall(CLI + rot + ["--no-plots", "--no-report"])
+        for ex in ("mesh-htd8m", "span-t10", "gears-split-path"):      # their kernels cached too
+            wall(CLI + ["run", f"examples/{ex}.toml", "-o", out, "-q", "--no-plots", "--no-report"])
         for name, args in cases:
             times = [import_time() if args is None else wall(CLI + args) for _ in range(a.repeat)]
             rows.append((name, times))
