@@ -68,3 +68,27 @@ def test_a_drift_of_the_window_is_not_named_a_peak():
     assert plot_spectrum(_drive(t, tension, tension, tension, speed), "driver", ax)
     labels = [a.get_text() for a in ax[0].texts]
     assert labels and all(float(s.split(" Hz")[0]) > 100 for s in labels), labels
+
+
+def test_the_segments_passing_frequency_is_named_as_the_discretisations():
+    """The segment model's polygon effect: a peak where the segments pass a point (belt speed over
+    segment length) is a discretisation artefact and says so; a peak elsewhere reads as an order."""
+    dt = 1e-3
+    t = np.arange(2000) * dt
+    fd = 4.0                                        # driver rev/s; radius 27 mm: belt at 0.6786 m/s
+    n_seg, perimeter = 240, 1.2                     # 5 mm segments: they pass at 135.7 Hz
+    passing = 2 * np.pi * fd * 0.027 * n_seg / perimeter
+    speed = -2 * np.pi * fd + 0 * t
+    tension = 800 + 0.5 * np.sin(2 * np.pi * passing * t) + 5 * np.sin(2 * np.pi * 30 * t)
+    ds = _drive(t, tension, tension, tension, speed)
+    ang = np.linspace(0, 2 * np.pi, n_seg, endpoint=False)
+    rad = perimeter / (2 * n_seg * np.sin(np.pi / n_seg))     # a regular polygon of that perimeter
+    ds = ds.assign(belt_x=(("frame", "segment"), (rad * np.cos(ang))[None]),
+                   belt_y=(("frame", "segment"), (rad * np.sin(ang))[None]),
+                   pulley_radius=("pulley", [0.027, 0.027]))
+    fig = Figure()
+    ax = fig.subplots(3, 1)
+    assert plot_spectrum(ds, "driver", ax)
+    labels = {s.split(" Hz")[0]: s for s in (a.get_text() for a in ax[0].texts)}
+    assert "segment passing" in labels[f"{passing:.0f}"] and "discretisation" in labels[f"{passing:.0f}"], labels
+    assert "order 7.5" in labels["30"], labels

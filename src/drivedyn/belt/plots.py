@@ -283,12 +283,26 @@ def plot_spectrum(ds, driver, ax):
         order.set_xlabel(f"order of the driver's mean speed ({fd:.3g} Hz, {60 * fd:.0f} rpm){dotted}", fontsize=8)
         order.tick_params(labelsize=8)
         a.set_title(a.get_title(), pad=30)
-        _label_peaks(a, f, a_tight, fd)     # at full resolution, not the drawn blocks
+        # at full resolution, not the drawn blocks
+        _label_peaks(a, f, a_tight, fd, _segment_passing(ds, driver, fd))
     return True
 
 
-def _label_peaks(ax, f, amp, fd, count=3):
-    """Name the largest peaks of a spectrum by frequency and driver order."""
+def _segment_passing(ds, driver, fd):
+    """The frequency at which the segment model's segments pass a point (its polygon effect, a
+    discretisation artefact): the belt's speed on the driver over the segment length of the last
+    frame; None without frames (the rotational model has no segments)."""
+    if ds.sizes.get("frame", 0) == 0 or "belt_x" not in ds or "pulley_radius" not in ds:
+        return None
+    x, y = ds["belt_x"].values[-1], ds["belt_y"].values[-1]
+    perimeter = float(np.hypot(np.diff(np.append(x, x[0])), np.diff(np.append(y, y[0]))).sum())
+    r = float(ds["pulley_radius"].sel(pulley=driver))
+    return 2 * np.pi * fd * r * len(x) / perimeter if perimeter > 0 else None
+
+
+def _label_peaks(ax, f, amp, fd, passing=None, count=3):
+    """Name the largest peaks of a spectrum by frequency and driver order; a peak at the segments'
+    passing frequency ``passing`` or its harmonics is named as the discretisation's."""
     # local maxima standing a decade above the lowest point within +-5 % of the band on either
     # side (a prominence test; scipy.signal.find_peaks costs a 0.65 s import in a fresh painter)
     la = np.log10(np.maximum(amp, 1e-300))
@@ -299,9 +313,14 @@ def _label_peaks(ax, f, amp, fd, count=3):
            and la[i] - min(la[max(0, i - w):i].min(), la[i + 1:i + 1 + w].min()) >= 1.0]
     idx = np.array(idx, dtype=int)
     top = idx[np.argsort(amp[idx])[::-1][:count]] if len(idx) else idx
+    # within 2 bins or 2 %: the segments' length varies with the tension along the belt
+    tol = max(2 * (f[1] - f[0]), 0.02 * passing) if passing else 0.0
     for i in top:
-        ax.annotate(f"{f[i]:.0f} Hz\norder {f[i] / fd:.1f}", (f[i], amp[i]), xytext=(3, 2),
-                    textcoords="offset points", fontsize=7, va="bottom", color="0.25")
+        k = round(f[i] / passing) if passing else 0
+        text = (f"{f[i]:.0f} Hz\norder {f[i] / fd:.1f}" if not (k >= 1 and abs(f[i] - k * passing) <= k * tol)
+                else f"{f[i]:.0f} Hz\nsegment passing{f' x{k}' if k > 1 else ''}\n(discretisation)")
+        ax.annotate(text, (f[i], amp[i]), xytext=(3, 2), textcoords="offset points", fontsize=7, va="bottom",
+                    color="0.25")
     if len(top):
         lo, hi = ax.get_ylim()
         ax.set_ylim(lo, hi * 8)     # room for the labels above the peaks (log axis)
