@@ -249,6 +249,20 @@ def draw_all(count: int, draw, meanwhile=None, workers=None) -> list:
     return [draw(k) for k in range(count)]
 
 
+def write_figures(jobs, outdir, result, meanwhile=None, workers=None, **kw) -> list[Path]:
+    """Draw ``jobs``, (file name, function returning its Figure), by :func:`draw_all` and save each
+    into ``outdir`` with the run's status on it (:func:`save`; ``kw`` to savefig); their paths, in
+    the jobs' order. A function that writes its own file (an animation) returns its path instead."""
+    outdir = Path(outdir)
+    status = StatusOnly.of(result)
+
+    def draw(k):
+        name, make = jobs[k]
+        out = make()
+        return str(out) if isinstance(out, (str, Path)) else str(save(out, outdir / name, status, None, **kw))
+    return [Path(p) for p in draw_all(len(jobs), draw, meanwhile, workers)]
+
+
 _PAINTER_RESULT = None     # (file, Result) last read by this painter
 
 

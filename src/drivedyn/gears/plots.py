@@ -382,14 +382,9 @@ def _jobs(ds) -> list:
 
 def plot_all(result, outdir, meanwhile=None, workers=None) -> list[Path]:
     """Write the standard PNGs into ``outdir`` (a warned or failed run says so on each); their paths.
-    plotting.draw_all draws them (in two processes where it can; ``workers=1``: here) while this one runs ``meanwhile()``."""
+    plotting.write_figures draws them (in two processes where it can; ``workers=1``: here) while
+    this one runs ``meanwhile()``."""
     from .. import plotting
 
-    outdir = Path(outdir)
-    jobs = _jobs(result.ds)
-    status = plotting.StatusOnly.of(result)
-
-    def draw(k):
-        name, make = jobs[k]
-        return plotting.save(make(), outdir / f"gears-{name}.png", status)
-    return [Path(p) for p in plotting.draw_all(len(jobs), draw, meanwhile, workers)]
+    jobs = [(f"gears-{name}.png", make) for name, make in _jobs(result.ds)]
+    return plotting.write_figures(jobs, outdir, result, meanwhile, workers)

@@ -201,11 +201,10 @@ def plot_response(ds, summary, ax=None):
 
 def plot_all(result, outdir, meanwhile=None, workers=None) -> list[Path]:
     """Write the standard PNGs of a span-stability result into ``outdir`` (a warned run says so on
-    each); plotting.draw_all draws them (in two processes where it can; ``workers=1``: here) while this one
-    runs ``meanwhile()``."""
+    each); plotting.write_figures draws them (in two processes where it can; ``workers=1``: here)
+    while this one runs ``meanwhile()``."""
     from .. import plotting
 
-    outdir = Path(outdir)
     ds, s = result.ds, result.summary
     jobs = [("span-chart.png", plot_chart, (7, 5)), ("span-tongue.png", plot_tongue, (7.5, 5)),
             ("span-frequencies.png", plot_frequencies, (7, 4.5)), ("span-tooth-force.png", plot_tooth_force, (7, 4))]
@@ -213,13 +212,12 @@ def plot_all(result, outdir, meanwhile=None, workers=None) -> list[Path]:
         jobs.append(("span-floquet.png", plot_floquet, (7, 5)))
     if "modal_coordinate" in ds:
         jobs.append(("span-response.png", plot_response, (8, 3.5)))
-    status = plotting.StatusOnly.of(result)
 
-    def draw(k):
-        name, fn, size = jobs[k]
+    def figure(fn, size):
         fig = Figure(figsize=size, layout="constrained")
         fn(ds, s, fig.subplots())
         if fn is plot_chart:
             fig.axes[0].set_title(f"stability chart: {ds.attrs.get('title', '')}", fontsize=10)
-        return plotting.save(fig, outdir / name, status, None, dpi=110)
-    return [Path(p) for p in plotting.draw_all(len(jobs), draw, meanwhile, workers)]
+        return fig
+    return plotting.write_figures([(name, lambda fn=fn, size=size: figure(fn, size)) for name, fn, size in jobs],
+                                  outdir, result, meanwhile, workers, dpi=110)

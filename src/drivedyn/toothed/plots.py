@@ -299,7 +299,8 @@ def animate(ds, path, frames=48, fps=12):
 
 def plot_all(result, outdir, meanwhile=None, workers=None) -> list[Path]:
     """Write the standard figures and the animation into ``outdir``; returns the paths. They are
-    drawn by plotting.draw_all (in two processes where it can; ``workers=1``: here) while this one runs ``meanwhile()``."""
+    drawn by plotting.write_figures (in two processes where it can; ``workers=1``: here) while this
+    one runs ``meanwhile()``."""
     from .. import plotting
 
     ds, outdir = result.ds, Path(outdir)
@@ -311,14 +312,8 @@ def plot_all(result, outdir, meanwhile=None, workers=None) -> list[Path]:
         jobs.append(("mesh-load.png", plot_load))
     if "pair" in ds.dims and ds.sizes["pair"] > 1:
         jobs.append(("mesh-comparison.png", plot_comparison))
+    jobs = [(name, lambda fn=fn: fn(ds)) for name, fn in jobs]
     # the animation first: the longest job (48 frames), so the two processes end together
-    jobs.insert(0, ("mesh-animation.gif", lambda d: animate(d, outdir / "mesh-animation.gif")))
-    status = plotting.StatusOnly.of(result)
-
-    def draw(k):
-        name, fn = jobs[k]
-        if name.endswith(".gif"):
-            return str(fn(ds))
-        return str(plotting.save(fn(ds), outdir / name, status, None, dpi=110))
-    done = plotting.draw_all(len(jobs), draw, meanwhile, workers)
-    return [Path(p) for p in done[1:] + done[:1]]
+    jobs.insert(0, ("mesh-animation.gif", lambda: animate(ds, outdir / "mesh-animation.gif")))
+    done = plotting.write_figures(jobs, outdir, result, meanwhile, workers, dpi=110)
+    return done[1:] + done[:1]
