@@ -532,13 +532,18 @@ def test_damaged_files_end_in_one_line(tmp_path, text, what):
     assert "\n" not in str(exc.value)
 
 
+# The time guards below count this process's CPU time, not the wall: the wall counts whatever else
+# runs on the machine's cores (an earlier test's compile process, for one). The 10 000-row read takes
+# 0.07-0.14 s alone and took 1.06 s of wall time once, in a full suite on a fresh environment.
+
+
 def test_a_huge_file_is_refused_before_it_is_parsed(tmp_path):
     path = tmp_path / "m.toml"
     path.write_text("kind = 'belt-drive'\n# " + "x" * 3_000_000 + "\n")
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     with pytest.raises(drivedyn.ModelError, match="too large"):
         drivedyn.load(path)
-    assert time.perf_counter() - t0 < 0.5
+    assert time.process_time() - t0 < 0.5
 
 
 def test_a_100000_row_table_is_refused_in_under_two_seconds(tmp_path):
@@ -546,10 +551,10 @@ def test_a_100000_row_table_is_refused_in_under_two_seconds(tmp_path):
     data["pulleys"][1]["torque_speed"] = [[f"{k} rad/s", "1 N*m"] for k in range(100_000)]
     path = tmp_path / "m.toml"
     path.write_text(tomli_w.dumps(data))
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     code, err, _, _ = _cli(["check", str(path)], 30)
     assert code == 2 and "100000" in err
-    assert time.perf_counter() - t0 < 2.0
+    assert time.process_time() - t0 < 2.0
 
 
 def test_a_10000_row_table_with_units_reads_fast_and_right():
@@ -561,9 +566,9 @@ def test_a_10000_row_table_with_units_reads_fast_and_right():
     # the registry built first: in a fresh environment building it takes most of a second, which
     # is start-up, not the table's reading that this times
     ureg = registry()
-    t0 = time.perf_counter()
+    t0 = time.process_time()
     got = table_rows(rows, ("rad/s", "N*m"), "t")
-    assert time.perf_counter() - t0 < 1.0
+    assert time.process_time() - t0 < 1.0
     for k in (0, 1, 977, 9999):
         assert got[k][0] == ureg.Quantity(rows[k][0]).to("rad/s").magnitude
         assert got[k][1] == ureg.Quantity(rows[k][1]).to("N*m").magnitude
