@@ -9,7 +9,7 @@ import statistics
 import numpy as np
 
 import drivedyn
-from drivedyn.model import from_dict, to_dict
+from drivedyn.core.model import from_dict, to_dict
 
 
 def timed(model, repeat=3):

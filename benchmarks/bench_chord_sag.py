@@ -13,9 +13,9 @@ import argparse
 import numpy as np
 
 import drivedyn
-from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.mechanics.layout import compute_layout
 from drivedyn.belt.geometry.segment_count import auto_segments, chord_sag
-from drivedyn.model import from_dict, to_dict
+from drivedyn.core.model import from_dict, to_dict
 
 
 def drive(segments, omega=600.0, duration=0.2):

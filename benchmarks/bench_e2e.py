@@ -1,5 +1,5 @@
 """End to end, as a person waits on it: the wall time of each command from a fresh interpreter
-(a subprocess, as from a shell), and the import time of drivedyn.cli.
+(a subprocess, as from a shell), and the import time of drivedyn.front.cli.
 
     python benchmarks/bench_e2e.py [--repeat N] [--cold]
 
@@ -29,7 +29,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-CLI = [sys.executable, "-m", "drivedyn.cli"]
+CLI = [sys.executable, "-m", "drivedyn.front.cli"]
 
 
 PYC = False     # --pyc
@@ -59,8 +59,8 @@ def wall(args, environ=None) -> float:
 
 
 def import_time(environ=None) -> float:
-    """drivedyn.cli's import, measured inside a fresh interpreter (no interpreter start-up)."""
-    code = "import time; t = time.perf_counter(); import drivedyn.cli; print(time.perf_counter() - t)"
+    """drivedyn.front.cli's import, measured inside a fresh interpreter (no interpreter start-up)."""
+    code = "import time; t = time.perf_counter(); import drivedyn.front.cli; print(time.perf_counter() - t)"
     out = subprocess.run([sys.executable, "-c", code], cwd=ROOT, env=environ or env(),
                          capture_output=True, text=True, check=True).stdout
     return float(out.strip())
@@ -79,7 +79,7 @@ def main(argv=None) -> None:
         out = str(Path(tmp) / "out")
         rot = ["run", "examples/fead-runup.toml", "--set", "simulation.model=rotational", "-o", out, "-q"]
         cases = [
-            ("import drivedyn.cli (in process)", None),
+            ("import drivedyn.front.cli (in process)", None),
             ("drivedyn --help", ["--help"]),
             ("drivedyn check examples/fead-runup.toml", ["check", "examples/fead-runup.toml"]),
             ("drivedyn run examples/belt-5pk.toml (kernels cached)", ["run", "examples/belt-5pk.toml", "-o", out, "-q"]),

@@ -8,7 +8,7 @@ import time
 
 import drivedyn
 from drivedyn.belt.segments.system import build
-from drivedyn.model import from_dict, to_dict
+from drivedyn.core.model import from_dict, to_dict
 
 
 def per_step(model, repeat=3):

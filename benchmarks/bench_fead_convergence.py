@@ -12,7 +12,7 @@ import argparse
 import math
 
 import drivedyn
-from drivedyn.model import from_dict, to_dict
+from drivedyn.core.model import from_dict, to_dict
 
 
 def fead_belt() -> dict:

@@ -31,7 +31,7 @@ from drivedyn.belt.segments.compiled import compiled
 from drivedyn.belt.segments.simulate import _loop_args
 from drivedyn.belt.segments.state import new_state, new_work
 from drivedyn.belt.segments.system import build
-from drivedyn.model import from_dict
+from drivedyn.core.model import from_dict
 
 SETTLE = 0.35       # s at constant speed before the kick
 RECORD = 0.25       # s of free decay

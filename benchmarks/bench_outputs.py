@@ -21,7 +21,8 @@ def one(example):
     import io
     import tempfile
 
-    from drivedyn import api, cli
+    from drivedyn import api
+    from drivedyn.front import cli
 
     marks = {}
     run = api.run

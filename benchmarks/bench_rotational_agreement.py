@@ -116,7 +116,7 @@ def three_pulleys(rpm: float, order: float = 6.0, amplitude: float = 0.3, durati
     """A small drive of fead-runup's belt: a crank with one speed order (by default the 6th at 0.3 rad/s,
     on the arm's mode, 200 Hz), a loaded alternator and an arm tensioner; the steady window its last
     0.2 s (tests/belt/test_rotational.py runs it with the 2nd order and without)."""
-    from drivedyn.model import from_dict
+    from drivedyn.core.model import from_dict
 
     w = -rpm * math.pi / 30
     return from_dict({

@@ -35,7 +35,7 @@ import numpy as np
 import drivedyn
 from bench_fead_convergence import held
 from drivedyn.belt.steady.modes import drive_linear_model, linear_model
-from drivedyn.model import from_dict, to_dict
+from drivedyn.core.model import from_dict, to_dict
 
 
 def drive(rpm, segments, linear, small, mu):

@@ -9,7 +9,7 @@ import numpy as np
 
 import drivedyn
 from drivedyn.span.analysis import tooth_force_harmonics
-from drivedyn.span.floquet import floquet_chart
+from drivedyn.mechanics.span.floquet import floquet_chart
 from drivedyn.span.source import resolve
 
 

@@ -5,7 +5,7 @@ Run: PYTHONPATH=src python benchmarks/bench_steady.py
 import time
 
 from drivedyn.belt.statics import check_data
-from drivedyn.model import load
+from drivedyn.core.model import load
 
 
 def bench(path, repeat=20):

@@ -7,9 +7,9 @@ import time
 
 import numpy as np
 
-from drivedyn.toothed import catalogue
+from drivedyn.mechanics.teeth import catalogue
 from drivedyn.toothed.engagement import sweep
-from drivedyn.toothed.pair import build
+from drivedyn.mechanics.teeth.pair import build
 
 
 def main():

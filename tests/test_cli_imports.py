@@ -1,4 +1,4 @@
-"""What `drivedyn check` and `import drivedyn.cli` import, in a fresh interpreter: not the modules
+"""What `drivedyn check` and `import drivedyn.front.cli` import, in a fresh interpreter: not the modules
 a check does not use (scipy.optimize's import was a quarter of check's wall time)."""
 import json
 import subprocess
@@ -18,12 +18,12 @@ def _imported_after(code: str) -> set[str]:
 
 
 def test_import_of_the_cli_imports_no_numerics():
-    assert _imported_after("import drivedyn.cli") == set()
+    assert _imported_after("import drivedyn.front.cli") == set()
 
 
 @pytest.mark.parametrize("args", [["check"], ["check", "--json"]])
 def test_check_imports_no_numerics_it_does_not_run(args):
     # nor numba: importing it and loading the compiled placement walk was a third of check's wall
     # time; check walks the belt's path interpreted (a tensioner's equilibrium at rest: 60 walks)
-    code = f"from drivedyn.cli import main\ntry:\n    main({args + ['examples/fead-runup.toml']!r})\nexcept SystemExit:\n    pass"
+    code = f"from drivedyn.front.cli import main\ntry:\n    main({args + ['examples/fead-runup.toml']!r})\nexcept SystemExit:\n    pass"
     assert _imported_after(code) == set()

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from drivedyn._roots import find_root
+from drivedyn.core._roots import find_root
 
 
 def _cases():

@@ -9,13 +9,13 @@ One way in::
     result.save("out")
 """
 from ._version import __version__
-from .errors import DrivedynError, DrivedynWarning, ModelError, SolverError
+from .core.errors import DrivedynError, DrivedynWarning, ModelError, SolverError
 
-# the rest is imported on first use (PEP 562), so that `drivedyn --help` and `import drivedyn.cli`
+# the rest is imported on first use (PEP 562), so that `drivedyn --help` and `import drivedyn.front.cli`
 # do not import pydantic, the model classes and numpy before a command needs them
 _LAZY = {"check": "api", "example_path": "api", "examples": "api", "run": "api",
-         "dumps": "model", "load": "model", "loads": "model", "replace": "model", "save": "model",
-         "Result": "results", "open_result": "results"}
+         "dumps": "core.model", "load": "core.model", "loads": "core.model", "replace": "core.model",
+         "save": "core.model", "Result": "core.results", "open_result": "core.results"}
 
 __all__ = [
     "__version__", "load", "loads", "save", "dumps", "replace", "run", "check", "examples",
@@ -30,7 +30,7 @@ def __getattr__(name):
 
     module = _LAZY.get(name)
     if module is None:
-        # a submodule (`drivedyn.model.to_dict` after `import drivedyn`, as when they were imported eagerly)
+        # a submodule (`drivedyn.core.model.to_dict` after `import drivedyn`, as when they were imported eagerly)
         if not name.startswith("__") and importlib.util.find_spec(f"{__name__}.{name}") is not None:
             return importlib.import_module(f".{name}", __name__)
         raise AttributeError(f"module 'drivedyn' has no attribute {name!r}")

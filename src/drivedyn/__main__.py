@@ -1,4 +1,4 @@
 """``python -m drivedyn`` runs the command-line interface."""
-from drivedyn.cli import main
+from drivedyn.front.cli import main
 
 main()

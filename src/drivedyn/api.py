@@ -4,8 +4,9 @@ from __future__ import annotations
 from contextlib import contextmanager
 from pathlib import Path
 
-from .errors import ModelError, SolverError
-from .model import analysis, load
+from .core.errors import ModelError, SolverError
+from .core.examples import example_path, examples, examples_dir  # noqa: F401  (the public API)
+from .core.model import analysis, load
 
 
 def _as_model(model):
@@ -34,7 +35,7 @@ def run(model, progress=None):
     and ``result.summary["criteria"]`` judge it against the model's ``[criteria]``. A solve that fails raises :class:`~drivedyn.SolverError`
     whose ``partial`` holds the Result computed so far (status "failed").
     """
-    from .criteria import judge
+    from .core.criteria import judge
 
     m = _as_model(model)
     with _naming(model):
@@ -68,21 +69,3 @@ def painters(kind: str, model=None):
     plotting libraries while it runs and then write its outputs (a ``plotting.Painters``; close it
     after use), or None where the analysis draws in this process."""
     return analysis(kind).painters(model)
-
-
-def examples_dir() -> Path:
-    """Folder of the shipped example models (inside the package, so it works after pip install)."""
-    return Path(__file__).parent / "examples_data"
-
-
-def examples() -> dict[str, Path]:
-    """Shipped example models by name."""
-    return {p.stem: p for p in sorted(examples_dir().glob("*.toml"))}
-
-
-def example_path(name: str) -> Path:
-    """Path of a shipped example model, e.g. ``example_path("belt-5pk")``."""
-    ex = examples()
-    if name.removesuffix(".toml") not in ex:
-        raise ModelError(f"no example named {name!r} (have: {', '.join(ex)})")
-    return ex[name.removesuffix(".toml")]

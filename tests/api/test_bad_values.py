@@ -13,8 +13,8 @@ import warnings
 import pytest
 
 import drivedyn
-from drivedyn.errors import ModelError
-from drivedyn.model import from_dict
+from drivedyn.core.errors import ModelError
+from drivedyn.core.model import from_dict
 
 EXAMPLES = ["belt-5pk", "belt-accessory", "belt-verification", "gears-split-path", "span-t10",
             "mesh-htd8m", "mesh-l", "mesh-l-on-htd8m", "mesh-l-on-htd-9525", "mesh-load-l"]
@@ -141,7 +141,7 @@ def test_a_model_read_back_writes_back():
 def test_the_known_unit_factors_are_pints():
     """units.KNOWN_FACTORS (read without building the pint registry) and the identity shortcut give
     exactly the factor pint gives, for every unit the shipped examples write."""
-    from drivedyn import units
+    from drivedyn.core import units
 
     targets = {u for _, u in units.KNOWN_FACTORS} | {
         "N", "N*m", "N*m*s/rad", "N*m*s^2/rad^2", "N*m/rad", "N*m^2", "N*m^2*s", "N*s", "N*s/m^2",

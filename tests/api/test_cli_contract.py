@@ -4,8 +4,8 @@ import json
 import time
 
 import drivedyn
-from drivedyn.cli import main
-from drivedyn.results import number_text as _number
+from drivedyn.front.cli import main
+from drivedyn.core.results import number_text as _number
 
 
 def test_output_path_that_is_a_file_is_refused_before_solving(tmp_path, capsys):
@@ -53,8 +53,8 @@ def test_diagnostic_line_shows_quantity_value_and_limit():
     import xarray as xr
     from rich.console import Console
 
-    from drivedyn.cli import _print_status
-    from drivedyn.results import Result
+    from drivedyn.front.cli import _print_status
+    from drivedyn.core.results import Result
 
     r = Result("belt-drive", xr.Dataset())
     r.diagnose("gross-slip", "pulley [a] slips", "pulleys.a.sliding", 0.42, 0.027, "1")
@@ -86,7 +86,7 @@ def test_lowered_limits_refuse_in_one_line_and_leave_the_schema(tmp_path):
 def test_step_limit_at_and_just_past_the_limit(monkeypatch):
     """A run at exactly DRIVEDYN_MAX_STEPS is allowed; just past it the refusal prints two different
     numbers (it printed "1e+04 ... more than the 1e+04")."""
-    from drivedyn.limits import steps_problem
+    from drivedyn.core.limits import steps_problem
 
     monkeypatch.setenv("DRIVEDYN_MAX_STEPS", "10000")
     assert steps_problem(10000 * (1 + 1e-12), "x", "y") is None

@@ -3,7 +3,7 @@ reopen, plot, check, round-trip of the model file)."""
 import pytest
 
 import drivedyn
-from drivedyn.model import KINDS
+from drivedyn.core.model import KINDS
 
 # the cheapest shipped example of each kind, shortened where the kind allows it
 CASES = {

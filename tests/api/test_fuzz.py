@@ -37,7 +37,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import drivedyn
-from drivedyn.cli import main
+from drivedyn.front.cli import main
 
 LONG = int(os.environ.get("DRIVEDYN_FUZZ_EXAMPLES", "0"))
 REPORT = os.environ.get("DRIVEDYN_FUZZ_REPORT")
@@ -559,8 +559,8 @@ def test_a_100000_row_table_is_refused_in_under_two_seconds(tmp_path):
 
 def test_a_10000_row_table_with_units_reads_fast_and_right():
     """The cached unit factor gives pint's value exactly, and 20 000 cells take well under a second."""
-    from drivedyn.model import table_rows
-    from drivedyn.units import registry
+    from drivedyn.core.model import table_rows
+    from drivedyn.core.units import registry
 
     rows = [[f"{k / 7:.6g} rpm", f"{k % 13} kN*m"] for k in range(10_000)]
     # the registry built first: in a fresh environment building it takes most of a second, which
@@ -576,7 +576,7 @@ def test_a_10000_row_table_with_units_reads_fast_and_right():
 
 @pytest.mark.parametrize("text", ["9**9**9 m", "9^9^9 m", "10**(9**9) m", "2 m**2**99", "1 m^999"])
 def test_power_towers_are_refused_at_once(text):
-    from drivedyn.units import to_si
+    from drivedyn.core.units import to_si
 
     t0 = time.perf_counter()
     with pytest.raises(drivedyn.ModelError, match="exponent"):
@@ -588,7 +588,7 @@ def test_power_towers_are_refused_at_once(text):
                                             ("1450 rpm", "rad/s", 1450 * math.pi / 30), ("4 rev/s", "rad/s", 8 * math.pi),
                                             ("9.81 m/s**2", "m/s^2", 9.81), ("20 deg", "rad", math.radians(20))])
 def test_ordinary_quantities_still_read(text, unit, si):
-    from drivedyn.units import to_si
+    from drivedyn.core.units import to_si
 
     assert to_si(text, unit) == pytest.approx(si, rel=1e-15)
 

@@ -18,8 +18,8 @@ import pytest
 import tomli_w
 
 import drivedyn
-from drivedyn.cli import main
-from drivedyn.errors import ModelError
+from drivedyn.front.cli import main
+from drivedyn.core.errors import ModelError
 
 
 def cli(*args):
@@ -66,7 +66,7 @@ def write(tmp_path, data: dict, name="m.toml") -> Path:
 def test_savefig_draws_math_text_literally(tmp_path):
     from matplotlib.figure import Figure
 
-    from drivedyn.plotting import savefig
+    from drivedyn.core.plotting import savefig
 
     fig = Figure()
     ax = fig.subplots()
@@ -116,7 +116,7 @@ def test_piped_tables_keep_their_names_whole(tmp_path):
     """Written to a file or a pipe, rich sizes a console at 80 columns and cut every table's names to
     8 characters ("tensio…", "(compr…") and folded its numbers ("762 .." over "5018"); the tables
     are printed at the width their columns need now (a long cell folds at cli.PIPE_WIDTH)."""
-    from drivedyn.cli import PIPE_WIDTH
+    from drivedyn.front.cli import PIPE_WIDTH
 
     names = ("crankshaft_main_pulley", "alternator_with_clutch")
     d = short_belt(**{"pulleys.0.name": names[0], "pulleys.1.name": names[1]})
@@ -135,7 +135,7 @@ def test_a_narrow_terminal_folds_names_not_cuts_them(tmp_path):
     "alternat…")."""
     from rich.console import Console
 
-    from drivedyn.cli import _print_overview
+    from drivedyn.front.cli import _print_overview
 
     names = ("crankshaft_main_pulley", "alternator_with_clutch")
     d = short_belt(**{"pulleys.0.name": names[0], "pulleys.1.name": names[1]})
@@ -149,7 +149,7 @@ def test_a_narrow_terminal_folds_names_not_cuts_them(tmp_path):
 
 
 def test_file_and_netcdf_names():
-    from drivedyn.outputs import file_stem, nc_name
+    from drivedyn.core.outputs import file_stem, nc_name
 
     long = "k" * 300
     assert len(file_stem(long)) <= 100 and file_stem(long) == file_stem(long) != file_stem(long + "x")
@@ -340,7 +340,7 @@ def test_check_says_when_a_table_is_read_outside_its_range():
 def test_a_disk_that_fills_up_ends_the_run_in_one_line(tmp_path, monkeypatch):
     import errno
 
-    import drivedyn.outputs as outputs
+    import drivedyn.core.outputs as outputs
 
     def full(src, dst):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
@@ -412,7 +412,7 @@ def test_check_json_is_strict_where_no_steady_state_exists(tmp_path):
 def test_summary_json_is_strict(tmp_path):
     import xarray as xr
 
-    from drivedyn.results import Result
+    from drivedyn.core.results import Result
 
     r = Result("belt-drive", xr.Dataset(), {"a": float("nan"), "b": [1.0, float("inf")], "c": np.float64("nan")})
     r.diagnose("gross-slip", "x", "q", float("nan"), 1.0)
@@ -471,7 +471,7 @@ def test_the_long_fuzz_runs_findings_end_in_one_line(tmp_path):
 def test_summary_units_take_the_first_pattern_that_matches():
     """The units of a summary's dotted keys: the first of the fnmatch patterns in their order that
     matches a key (one regex of them all), no unit where none does."""
-    from drivedyn.results import unit_map
+    from drivedyn.core.results import unit_map
 
     patterns = {"spans.*.tension_*": "N", "spans.*": "1", "power.efficiency": "1", "power.*": "W"}
     summary = {"spans": {"a-b": {"tension_min": 1.0, "speed_mean": 2.0}}, "power": {"efficiency": 0.9, "loss": 3.0},

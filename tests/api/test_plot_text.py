@@ -1,7 +1,7 @@
 """Every text of a saved figure reads as written: names stay literal (a `$` in a pulley name is not
 math text) and a log axis's tick labels are plain numbers (they printed as raw
 `$\\mathdefault{10^{-1}}$`, cut off, on every spectrum plot)."""
-from drivedyn.plotting import figure, savefig
+from drivedyn.core.plotting import figure, savefig
 
 
 def test_log_axis_ticks_are_plain_and_names_literal(tmp_path):

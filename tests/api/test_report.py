@@ -11,7 +11,7 @@ import pytest
 from typer.testing import CliRunner
 
 import drivedyn
-from drivedyn.cli import app
+from drivedyn.front.cli import app
 
 CASES = {
     "belt-drive": ("belt-verification", {"simulation.duration": 0.02, "output.frames": 2}),

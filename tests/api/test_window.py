@@ -1,7 +1,7 @@
-"""The steady window's drift measure (drivedyn.window.drift) on signals whose drift is known."""
+"""The steady window's drift measure (drivedyn.core.window.drift) on signals whose drift is known."""
 import numpy as np
 
-from drivedyn.window import drift
+from drivedyn.core.window import drift
 
 
 def _signal(ramp):

@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from drivedyn.model import from_dict
+from drivedyn.core.model import from_dict
 
 # tests that reuse a benchmark's drive (bench_fead_convergence.held, bench_chord_sag.drive,
 # bench_rotational_agreement.three_pulleys) import it
@@ -29,7 +29,7 @@ BASE = {
 def make(**changes):
     """The two-pulley 5PK drive of the seed (100 segments, no gravity, Threlfall's law) with dotted-path
     changes."""
-    from drivedyn.model import set_path
+    from drivedyn.core.model import set_path
 
     data = copy.deepcopy(BASE)
     for path, value in changes.items():

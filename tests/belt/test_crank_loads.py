@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.model import from_dict, to_dict
+from drivedyn.core.model import from_dict, to_dict
 
 
 def drive(crank, driven=None, duration=0.4, window=(0.2, 0.4)):
@@ -95,7 +95,7 @@ def test_decoupler_spring_winds_up_under_load():
 
 
 def test_bad_load_input():
-    from drivedyn.errors import ModelError
+    from drivedyn.core.errors import ModelError
     for change, words in [({"speed_orders": [{"order": 2, "angle": 0.01}]}, "speed_orders need"),
                           ({"efficiency": 0.0}, "efficiency"),
                           ({"clutch": {"type": "decoupler", "inertia": 0.01}}, "rate > 0"),

@@ -2,7 +2,7 @@
 import pytest
 
 import drivedyn
-from drivedyn.cli import main
+from drivedyn.front.cli import main
 
 GOOD = drivedyn.example_path("belt-5pk").read_text().replace("segments = [302]", "segments = [10]")
 

@@ -87,7 +87,7 @@ def test_load_laws_closed_form():
 
 
 def test_table_interpolation_and_extrapolation():
-    from drivedyn.tables import table
+    from drivedyn.core.tables import table
 
     xs, ys = np.array([0.0, 1.0, 3.0]), np.array([0.0, 2.0, 0.0])
     assert table(xs, ys, 0, 3, 0.5, False) == 1.0

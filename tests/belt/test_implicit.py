@@ -88,13 +88,13 @@ def test_small_space_active_set_matches_refactoring_at_each_change():
 def test_at_rest_and_stable_beyond_the_explicit_limit():
     """At 10x the semi-implicit stability limit a kicked drive at rest neither gains energy nor
     drifts: the chain no longer limits the step."""
-    d = drivedyn.model.to_dict(seed_5pk())
+    d = drivedyn.core.model.to_dict(seed_5pk())
     d["pulleys"][0]["torque_time"] = [[0, 0], [1, 0]]
     d["pulleys"][1]["torque_speed"] = [[-1, 0], [1, 0]]
-    ref = system.build(drivedyn.model.from_dict(d))
+    ref = system.build(drivedyn.core.model.from_dict(d))
     h = 10 * ref.step_limit
     d["simulation"].update(method="implicit", step=h)
-    sysm = system.build(drivedyn.model.from_dict(d))
+    sysm = system.build(drivedyn.core.model.from_dict(d))
     B, C, P, A = sysm.groups
     S = state.new_state(sysm)
     W = state.new_work(sysm, S)
@@ -305,15 +305,15 @@ def test_gross_slip_halves_the_step_and_warns_like_the_reference():
     at 0.4 s -82.6 against -77.9 rad/s, at 0.6 s -134 against -120). The runaway is faster
     because the scheme's spin limiter (_kernels.SPIN_LIMIT) damps the free spans' segment spin that
     gross slip excites (without it: -78.8 at 0.4 s); gross slip is outside the model's valid regime."""
-    d = drivedyn.model.to_dict(seed_5pk())
+    d = drivedyn.core.model.to_dict(seed_5pk())
     d["belt"]["pretension"] = 200.0
     d["pulleys"][0]["torque_time"] = [[0, 0], [0.3, -20.0]]
     d["pulleys"][1]["torque_speed"] = [["-4 rev/s", "20 N*m"], ["4 rev/s", "-20 N*m"]]
     d["simulation"]["duration"] = 0.6
     d["output"]["steady_window"] = [0.45, 0.6]
-    ref = drivedyn.run(drivedyn.model.from_dict(d))
+    ref = drivedyn.run(drivedyn.core.model.from_dict(d))
     d["simulation"]["method"] = "implicit"
-    new = drivedyn.run(drivedyn.model.from_dict(d))
+    new = drivedyn.run(drivedyn.core.model.from_dict(d))
     assert new.summary["solver"]["step_reductions"] >= 1
     assert new.status == ref.status == "warning"
     assert "gross-slip" in {x.code for x in new.diagnostics}
@@ -330,23 +330,23 @@ def test_fast_belt_takes_the_accuracy_rule():
     than 1 % of the work, and the run says so: step-too-large, energy-residual. (Before the chain's grid-scale
     rotation mode was damped, system.GRID_ZETA, the same run at 34.5 us read about twice the
     reference's tensions, and 17 us read 3.5-4.9 % high.)"""
-    d = drivedyn.model.to_dict(seed_5pk())
+    d = drivedyn.core.model.to_dict(seed_5pk())
     d["pulleys"][0].pop("torque_time")
     d["pulleys"][0]["speed_time"] = [[0, 0], [0.25, -800.0], [1, -800.0]]
     d["pulleys"][1].pop("torque_speed")
     d["pulleys"][1].update(viscous_torque=5.0 / 800, inertia=0.002)
     d["simulation"]["duration"] = 0.4
     d["output"]["steady_window"] = [0.3, 0.4]
-    ref = drivedyn.run(drivedyn.model.from_dict(d)).summary
+    ref = drivedyn.run(drivedyn.core.model.from_dict(d)).summary
     d["simulation"]["method"] = "implicit"
-    new = drivedyn.run(drivedyn.model.from_dict(d)).summary
+    new = drivedyn.run(drivedyn.core.model.from_dict(d)).summary
     assert new["solver"]["speed_reductions"] >= 1 and new["solver"]["step"] < 13e-6
     for span in ref["spans"]:
         assert new["spans"][span]["tension_mean"] == pytest.approx(ref["spans"][span]["tension_mean"], rel=0.006)
     assert abs(new["pulleys"]["driven"]["slip"] - ref["pulleys"]["driven"]["slip"]) < 2e-4
     # a step the user sets is kept, and a run that turns its segments too far per step says so
     d["simulation"]["step"] = 34.5e-6
-    coarse = drivedyn.run(drivedyn.model.from_dict(d))
+    coarse = drivedyn.run(drivedyn.core.model.from_dict(d))
     assert coarse.summary["solver"]["turn_per_step"] > 0.02
     assert coarse.status == "warning" and "step-too-large" in {x.code for x in coarse.diagnostics}
     for span in ref["spans"]:

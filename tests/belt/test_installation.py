@@ -5,7 +5,7 @@ import pytest
 
 import drivedyn
 from drivedyn.belt.geometry.installation import installation_table, table_lines, tension_from_span_frequency
-from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.mechanics.layout import compute_layout
 
 
 @pytest.fixture(scope="module")

@@ -7,9 +7,9 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 import drivedyn
-from drivedyn.errors import ModelError
+from drivedyn.core.errors import ModelError
 from drivedyn.belt.geometry.placement import initial_state
-from drivedyn.belt.geometry.layout import compute_layout, layout_from
+from drivedyn.mechanics.layout import compute_layout, layout_from
 from drivedyn.belt.statics import capstan_torque
 
 

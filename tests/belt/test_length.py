@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.mechanics.layout import compute_layout
 from drivedyn.belt.steady.creep import drive_of, tensions
 from drivedyn.belt.segments.system import build, settled_tension
 

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from drivedyn.belt.steady.modes import linear_model, modes
-from drivedyn.model import from_dict
+from drivedyn.core.model import from_dict
 
 EA, MASS, R, L, J = 1.5e5, 0.1, 0.05, 0.4, 2e-3
 

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.mechanics.layout import compute_layout
 from drivedyn.belt.steady.modes import modes
 
 

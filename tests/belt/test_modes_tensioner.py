@@ -20,10 +20,10 @@ from scipy.linalg import eigh
 from scipy.optimize import brentq
 
 import drivedyn
-from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.mechanics.layout import compute_layout
 from drivedyn.belt.steady.modes import _stretch_derivatives, drive_linear_model, drive_modes, modes
 from drivedyn.belt.geometry.tensioner import equilibrium, with_centres
-from drivedyn.model import from_dict, to_dict
+from drivedyn.core.model import from_dict, to_dict
 
 
 def drive(mass=0.1, segments=200, duration=0.5):

@@ -6,7 +6,7 @@ import pytest
 
 import drivedyn
 from drivedyn.belt.dynamics.runup import period_revolutions
-from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.mechanics.layout import compute_layout
 
 
 def _periodic(changes):
@@ -46,7 +46,7 @@ def test_a_crawling_crank_is_refused_before_any_work():
 def test_a_sweep_past_the_memory_limit_is_refused_before_any_work(monkeypatch, tmp_path):
     """425 crank speeds of 384 samples (10 rpm bins): about 0.37 GB of recorded periods, past a
     DRIVEDYN_MAX_BYTES of 0.1 GB that the time run's own estimate (17 MB) fits; it ran past the limit."""
-    from drivedyn.cli import main
+    from drivedyn.front.cli import main
 
     monkeypatch.setenv("DRIVEDYN_MAX_BYTES", "1e8")
     m = _periodic({"output.runup_bin": "10 rpm"})
@@ -74,7 +74,7 @@ def test_a_drive_without_grip_ends_with_its_report(tmp_path, capfd):
     """friction.coefficient = 1e-6: the periodic run-up ends with every span slack (status warning,
     gross slip); the Campbell painter's wrap compliance failed with a singular matrix after the run
     and no report was written, and the spectrum plot warned of a log axis with no positive values."""
-    from drivedyn.cli import main
+    from drivedyn.front.cli import main
 
     code = main(["run", str(drivedyn.example_path("fead-runup")), "-o", str(tmp_path / "out"), "-q",
                  "--set", "simulation.model=\"rotational\"", "--set", "simulation.runup=\"periodic\"",

@@ -30,8 +30,8 @@ def test_parallel_figures_equal_serial(tmp_path):
 def test_painters_forked_before_the_solve_write_the_same_outputs(tmp_path):
     """What `drivedyn run` does: painters forked before the solve write results.nc and the figures
     after it; the same figures as drawn one by one, results.nc readable, the temporary pickle gone."""
-    from drivedyn.plotting import Painters, save_result
-    from drivedyn.results import open_result
+    from drivedyn.core.plotting import Painters, save_result
+    from drivedyn.core.results import open_result
 
     if threading.active_count() > 1:
         pytest.skip("threads running in this process: no painters are forked here")

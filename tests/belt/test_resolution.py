@@ -9,7 +9,7 @@ import pytest
 import drivedyn
 from drivedyn.belt.geometry.segment_count import SAG_RATIO, SAG_RATIO_PRESLIDING, WRAP_SEGMENTS, auto_segments, sag_ratio
 from drivedyn.belt.steady.creep import steady_state
-from drivedyn.model import from_dict, to_dict
+from drivedyn.core.model import from_dict, to_dict
 
 
 def held(rpm, segments="auto", duration=0.8):
@@ -34,7 +34,7 @@ def test_auto_resolves_the_shortest_wrap_and_the_chordal_landing():
     m = drivedyn.replace(held(3000), {"friction.law": "threlfall"})
     n, why = auto_segments(m)
     assert "chord sag" in why and "alternator" in why
-    from drivedyn.belt.geometry.layout import compute_layout
+    from drivedyn.mechanics.layout import compute_layout
 
     lay = compute_layout(m)
     l = lay.length / n
@@ -208,7 +208,7 @@ def test_rotation_scaling_where_the_chord_sag_is_resolved():
 
 def test_the_overview_prints_the_stated_error():
     """The CLI's spans table carries the error the summary states, and says how it was found."""
-    from drivedyn.overview import _resolution_note
+    from drivedyn.front.overview import _resolution_note
 
     rule = {"segments": 333, "estimate": {"slip_largest": 1.6e-4, "tension_relative_largest": 0.032}}
     text = _resolution_note({"discretisation": rule})

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.model import from_dict
+from drivedyn.core.model import from_dict
 
 EA, MASS, R = 1.5e5, 0.1, 0.05
 
@@ -309,7 +309,7 @@ def _held(rpm, duration):
 def _sweep_inertia(model, rpm):
     """(pulley, inertia, angular acceleration) of each free pulley of ``model``'s run-up where the
     crank passes rpm: the crank's acceleration there at the pulley's rigid speed ratio."""
-    from drivedyn.belt.geometry.layout import compute_layout
+    from drivedyn.mechanics.layout import compute_layout
 
     rho = compute_layout(model).rho
     (t0, w0), (t1, w1) = model.pulleys[0].speed_time[-2:]        # fead-runup's ramp: its last piece
@@ -535,7 +535,7 @@ def test_the_wraps_creep_and_damp_as_the_segment_model_s():
 
 
 def test_periodic_needs_the_rotational_model_and_a_runup():
-    from drivedyn.errors import ModelError
+    from drivedyn.core.errors import ModelError
 
     with pytest.raises(ModelError, match="simulation"):
         drivedyn.replace(_fead(), {"simulation.model": "segments", "simulation.runup": "periodic"})

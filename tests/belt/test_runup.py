@@ -11,7 +11,7 @@ import xarray as xr
 
 import drivedyn
 from drivedyn.belt.dynamics.runup import add_runup, mean_angle
-from drivedyn.model import from_dict, to_dict
+from drivedyn.core.model import from_dict, to_dict
 
 
 def test_order_tracking_recovers_known_orders():
@@ -42,7 +42,7 @@ def test_order_tracking_recovers_known_orders():
 def test_fead_runup_from_the_cli(tmp_path):
     from typer.testing import CliRunner
 
-    from drivedyn.cli import app
+    from drivedyn.front.cli import app
 
     m = drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-runup")), {"simulation.duration": 1.2})
     path = tmp_path / "fead.toml"

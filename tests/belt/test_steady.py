@@ -9,11 +9,11 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 import drivedyn
-from drivedyn.belt.geometry.layout import compute_layout, layout_from
+from drivedyn.mechanics.layout import compute_layout, layout_from
 from drivedyn.belt.steady.modes import modes
 from drivedyn.belt.statics import check_data, check_json
 from drivedyn.belt.steady.creep import steady_state
-from drivedyn.model import load
+from drivedyn.core.model import load
 
 from .conftest import make
 

@@ -180,7 +180,7 @@ def test_effective_diameters_and_the_check_report():
     """PK's effective diameters (grooved d_p - 2.4 mm, back side d_p + 2.4 mm) as printed, and the
     report's tables in check (text and --json)."""
     model = _model(REPORTS["8PK"])
-    data = drivedyn.analyses.analysis("belt-drive").check_data(model)["supplier"]
+    data = drivedyn.core.analyses.analysis("belt-drive").check_data(model)["supplier"]
     for n, d in EFFECTIVE.items():
         assert data["pulleys"][n]["effective_diameter"] * 1e3 == pytest.approx(d, abs=1e-9)
     assert set(data) >= {"belt", "pulleys", "positions", "duty", "life"}
@@ -196,7 +196,7 @@ def test_running_balance_against_an_independent_length_kept_calculation():
     import numpy as np
 
     from drivedyn.belt.geometry import tensioner as TN
-    from drivedyn.belt.geometry.layout import compute_layout
+    from drivedyn.mechanics.layout import compute_layout
 
     model = _model(REPORTS["8PK"])
     drive = resolve(model)
@@ -299,7 +299,7 @@ def test_entry_angles_from_offset_and_misalignment():
     turned by 0.5 deg about the direction across the span tilts its groove against it by the whole
     0.5 deg, about the span's own direction by nothing (first order)."""
     from drivedyn.belt.geometry.alignment import entry_angles
-    from drivedyn.belt.geometry.layout import compute_layout
+    from drivedyn.mechanics.layout import compute_layout
 
     base = '''
 kind = "belt-drive"
@@ -328,7 +328,7 @@ radius = 0.05
     along = drivedyn.loads(base + 'misalignment = "0.5 deg"\nmisalignment_axis = "0 deg"\n')
     assert math.degrees(entry_angles(across, compute_layout(across))["b"]["arriving"]) == pytest.approx(0.5, rel=1e-9)
     assert math.degrees(entry_angles(along, compute_layout(along))["b"]["arriving"]) == pytest.approx(0.0, abs=1e-12)
-    data = drivedyn.analyses.analysis("belt-drive").check_data(across)["supplier"]
+    data = drivedyn.core.analyses.analysis("belt-drive").check_data(across)["supplier"]
     assert data["alignment"]["entry_angles"]["b"]["arriving"] == pytest.approx(math.radians(0.5))
 
 

@@ -11,11 +11,11 @@ import pytest
 import drivedyn
 from drivedyn.belt.segments import _kernels as K
 from drivedyn.belt.dynamics import _bodies as BK
-from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.mechanics.layout import compute_layout
 from drivedyn.belt.segments.state import new_state, new_work
 from drivedyn.belt.segments.system import build
-from drivedyn.errors import ModelError
-from drivedyn.model import from_dict, to_dict
+from drivedyn.core.errors import ModelError
+from drivedyn.core.model import from_dict, to_dict
 
 PIVOT = (-0.020, -0.200)     # below the idler (-20, -130) mm: a 70 mm arm pointing up
 

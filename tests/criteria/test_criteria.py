@@ -10,9 +10,9 @@ import pytest
 from typer.testing import CliRunner
 
 import drivedyn
-from drivedyn.cli import EXIT_CRITERIA, EXIT_WARNING, app
-from drivedyn.criteria import judge
-from drivedyn.results import open_result
+from drivedyn.front.cli import EXIT_CRITERIA, EXIT_WARNING, app
+from drivedyn.core.criteria import judge
+from drivedyn.core.results import open_result
 
 
 def _run(tmp_path, name, overrides, tag="", strict=True):

@@ -12,7 +12,7 @@ import xarray as xr
 
 import drivedyn
 from drivedyn.belt.steady import flap as flapmod
-from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.mechanics.layout import compute_layout
 
 
 def _model(EI=1e-12):

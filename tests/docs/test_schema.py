@@ -11,9 +11,9 @@ import pytest
 from typer.testing import CliRunner
 
 import drivedyn
-from drivedyn.analyses import KINDS
-from drivedyn.cli import app
-from drivedyn.schema import json_schema
+from drivedyn.core.analyses import KINDS
+from drivedyn.front.cli import app
+from drivedyn.front.schema import json_schema
 
 EXAMPLES = {n: p for n, p in drivedyn.examples().items() if tomllib.loads(p.read_text()).get("kind") in KINDS}
 
@@ -77,7 +77,7 @@ def test_bounds_in_standard_keywords_refuse_a_negative_mass():
 
 def test_the_reference_writes_units_as_code():
     """N*m*s/rad in the model-file reference reads as written (Markdown made "Nms/rad" with an italic m)."""
-    from drivedyn.schema import reference_markdown
+    from drivedyn.front.schema import reference_markdown
 
     text = reference_markdown("belt-drive")
     assert "| `N*m*s/rad` |" in text and "| N*m*s/rad |" not in text
@@ -104,7 +104,7 @@ def test_every_property_says_what_it_means(kind):
 
 
 def test_every_study_field_says_what_it_means():
-    from drivedyn.schema import spec_json_schema
+    from drivedyn.front.schema import spec_json_schema
     from drivedyn.study.spec import StudySpec
 
     assert not _undescribed(spec_json_schema(StudySpec))
@@ -113,7 +113,7 @@ def test_every_study_field_says_what_it_means():
 def test_descriptions_carry_the_unit_and_reach_the_reference():
     """A physical field's description ends with its SI unit (editors ignore the ``unit`` keyword), and the
     model-file reference of the docs prints each field's description in its "meaning" column."""
-    from drivedyn.schema import reference_markdown
+    from drivedyn.front.schema import reference_markdown
 
     belt = json_schema("belt-drive")["$defs"]["Belt"]["properties"]
     assert belt["pretension"]["description"].startswith("Installation (static) tension")

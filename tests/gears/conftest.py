@@ -35,7 +35,7 @@ def pair_model(**changes):
         "drive": {"input": "p", "speed": 151.84, "torque": 24.7},
         "simulation": {"duration": 0.02, "step": 5e-6},
     }
-    from drivedyn.model import from_dict, set_path
+    from drivedyn.core.model import from_dict, set_path
 
     for k, v in changes.items():
         set_path(data, k.replace("__", "."), v)
@@ -52,7 +52,7 @@ def quiet():
 def assert_one_line_refusal(example, edit, expect, tmp_path, capsys):
     """``drivedyn check`` of ``example`` with ``edit`` = (old, new) applied to its text: exit 2 and a
     single stderr line holding ``expect``."""
-    from drivedyn.cli import main
+    from drivedyn.front.cli import main
 
     good = drivedyn.example_path(example).read_text()
     old, new = edit

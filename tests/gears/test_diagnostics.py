@@ -9,8 +9,8 @@ import pytest
 
 import drivedyn
 from drivedyn.gears import simulate
-from drivedyn.gears.checks import DECAY_TIMES, floquet_growth, rk4_step_limit
-from drivedyn.gears.train import assemble
+from drivedyn.gears.train.checks import DECAY_TIMES, floquet_growth, rk4_step_limit
+from drivedyn.gears.train.system import assemble
 
 from .conftest import EXAMPLE, pair_model, seed_model
 
@@ -39,7 +39,7 @@ def test_step_too_large_is_one_line_before_integrating(tmp_path):
     model = tmp_path / "big-step.toml"
     model.write_text(text)
     out = tmp_path / "out"
-    p = subprocess.run([sys.executable, "-m", "drivedyn.cli", "run", str(model), "-o", str(out), "-q"],
+    p = subprocess.run([sys.executable, "-m", "drivedyn.front.cli", "run", str(model), "-o", str(out), "-q"],
                        capture_output=True, text=True)
     assert p.returncode == 2
     assert "Traceback" not in p.stderr and len(p.stderr.strip().splitlines()) == 1
@@ -156,7 +156,7 @@ def test_solver_record_and_chunks_change_nothing(quiet, monkeypatch, method):
     assert chunked.summary["solver"]["steps"] == rec["steps"]
 
 
-@pytest.mark.parametrize("exc", [drivedyn.errors.Stopped("case_timeout 1 s"), KeyboardInterrupt()])
+@pytest.mark.parametrize("exc", [drivedyn.core.errors.Stopped("case_timeout 1 s"), KeyboardInterrupt()])
 @pytest.mark.parametrize("method", ["rk4", "dopri5"])
 def test_stop_keeps_partial_results(quiet, monkeypatch, exc, method):
     monkeypatch.setattr(simulate, "CHUNK_SECONDS", 1e-5)
@@ -202,7 +202,7 @@ def test_sweep_marks_unstable_speeds_by_floquet(quiet):
 
 
 def test_plots_are_marked(quiet, tmp_path, monkeypatch):
-    from drivedyn import plotting
+    from drivedyn.core import plotting
     from drivedyn.gears.plots import plot_all
 
     marked = []

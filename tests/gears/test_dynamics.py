@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.gears.train import assemble
+from drivedyn.gears.train.system import assemble
 
 from .conftest import pair_model, seed_model
 

@@ -1,4 +1,4 @@
-"""A gearbox of stages in series (drivedyn.gears.gearbox, examples/gears-gearbox.toml): the planetary
+"""A gearbox of stages in series (drivedyn.gears.planetary.gearbox, examples/gears-gearbox.toml): the planetary
 stage's rating, lateral-torsional load sharing and modes through the model file, the whole train's
 modes against the stage's and the train's own ones, the verdict over every mesh, and bad input."""
 import math
@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.gears import planetary_lateral as pl
-from drivedyn.gears.gearbox import modes as gearbox_modes
-from drivedyn.gears.gearbox import stage_matrices
-from drivedyn.gears.train import assemble
+from drivedyn.gears.planetary import lateral as pl
+from drivedyn.gears.planetary.gearbox import modes as gearbox_modes
+from drivedyn.gears.planetary.gearbox import stage_matrices
+from drivedyn.gears.train.system import assemble
 
 from .conftest import assert_one_line_refusal
 from .test_planetary_rating import CASE, RING, nrel_stage
@@ -50,7 +50,7 @@ def test_gearbox_example_runs_and_judges_every_mesh(gearbox):
 def test_gearbox_rating_is_the_stage_rating(gearbox):
     # the model file's [planetary.rating] gives the same numbers as planetary_rating.rate_stage with
     # the report's data (test_planetary_rating.py checks those against the report)
-    from drivedyn.gears import planetary_rating as prt
+    from drivedyn.gears.rating import planetary as prt
 
     m, r = gearbox
     direct = prt.rate_stage(nrel_stage(), (CASE, CASE, RING), planets=3, torque_sun=3945990.316 * 19 / 75,
@@ -114,7 +114,7 @@ def test_gearbox_modes_join_the_stage_and_the_train(gearbox):
 
 
 def _lateral(model):
-    from drivedyn.gears import planetary as tors
+    from drivedyn.gears.planetary import stage as tors
 
     spec = model.planetary
     st = tors.stage_of(spec, support={spec.fixed: spec.lateral.support_stiffness})
@@ -178,7 +178,7 @@ def test_stage_alone_kgamma_and_kv_computed_when_not_given():
 def test_the_overview_shows_every_stage_its_meshes_and_the_whole_trains_modes(gearbox):
     # what `drivedyn run` prints and report.html shows: each stage's quantities, the rating of every
     # gear of both its meshes (stage 1 and stage 2), its modes, and the gearbox's modes
-    from drivedyn.overview import tables
+    from drivedyn.front.overview import tables
 
     _, r = gearbox
     t = {x["title"]: x for x in tables(r)}

@@ -14,8 +14,8 @@ import math
 
 import pytest
 
-from drivedyn.gears.geometry import GearGeometry, inv, inv_inverse, pair
-from drivedyn.gears.train import assemble
+from drivedyn.gears.mesh.geometry import GearGeometry, inv, inv_inverse, pair
+from drivedyn.gears.train.system import assemble
 
 from .conftest import seed_model
 
@@ -55,8 +55,8 @@ def test_seed_table_with_the_examples_tips():
 def test_printed_centre_distance_within_tolerance_is_accepted():
     # a pair whose profile shifts are printed to four decimals: the zero-backlash centre distance
     # computed from the rounded shifts lies a few 1e-7 above the printed one
-    from drivedyn.errors import ModelError
-    from drivedyn.gears.geometry import CENTRE_TOLERANCE, GearGeometry, pair
+    from drivedyn.core.errors import ModelError
+    from drivedyn.gears.mesh.geometry import CENTRE_TOLERANCE, GearGeometry, pair
 
     class G:
         def __init__(self, z, x):
@@ -81,7 +81,7 @@ def test_printed_helical_pair_of_a_published_report_is_accepted():
     # github.com/gfsReboucas/Drivetrain): z 24 / 95, m_n 14 mm, beta 10 deg, x 0.4800 / 0.6691,
     # a 861.000 mm, tips 380.747 / 1395.376 mm. The four-decimal shifts put the zero-backlash centre
     # distance 0.15 um (1.7e-7) above 861 mm: accepted, at the report's alpha_wt 22.856 deg
-    from drivedyn.gears.geometry import GearGeometry, pair
+    from drivedyn.gears.mesh.geometry import GearGeometry, pair
 
     class G:
         def __init__(self, z, x, da, hand):

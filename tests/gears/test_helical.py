@@ -6,9 +6,10 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.gears import rating, stiffness
-from drivedyn.gears.train import assemble
-from drivedyn.model import from_dict
+from drivedyn.gears.rating import mesh as rating
+from drivedyn.gears.mesh import stiffness
+from drivedyn.gears.train.system import assemble
+from drivedyn.core.model import from_dict
 
 
 def tr_pair(**changes):
@@ -32,7 +33,7 @@ def tr_pair(**changes):
         "iso": {"life": "50000 h", "lubricant_viscosity": "320 mm^2/s", "pitch_deviation": "5 um",
                 "profile_deviation": "5 um"},
     }
-    from drivedyn.model import set_path
+    from drivedyn.core.model import set_path
 
     for k, v in changes.items():
         set_path(data, k, v)

@@ -4,9 +4,9 @@ import math
 import numpy as np
 import pytest
 
-from drivedyn.gears import iso6336
-from drivedyn.gears.stiffness import CAI_MEAN, cai_bracket
-from drivedyn.gears.train import assemble
+from drivedyn.gears.mesh import iso6336
+from drivedyn.gears.mesh.stiffness import CAI_MEAN, cai_bracket
+from drivedyn.gears.train.system import assemble
 
 from .conftest import seed_model
 

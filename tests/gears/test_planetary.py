@@ -1,4 +1,4 @@
-"""Planetary stage (drivedyn.gears.planetary): modes against the closed forms of the lumped torsional
+"""Planetary stage (drivedyn.gears.planetary.stage): modes against the closed forms of the lumped torsional
 model (the rotational part of Lin & Parker 1999), mesh phasing against the counting rule, and load
 sharing with a planet position error against the closed form."""
 import math
@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from drivedyn.gears import planetary as pl
+from drivedyn.gears.planetary import stage as pl
 
 from .conftest import assert_one_line_refusal
 
@@ -110,7 +110,7 @@ def test_load_sharing_with_a_position_error_closed_form():
 
 def test_planetary_model_file_run_and_check(tmp_path):
     import drivedyn
-    from drivedyn.cli import main
+    from drivedyn.front.cli import main
 
     path = drivedyn.example_path("gears-planetary")
     m = drivedyn.load(path)
@@ -180,7 +180,7 @@ def test_the_planetary_table_reads_in_engineering_units(tmp_path, capsys):
     angles in rad and pin errors in m)."""
     import re
 
-    from drivedyn.cli import main
+    from drivedyn.front.cli import main
 
     assert main(["run", "examples/gears-planetary.toml", "-o", str(tmp_path), "-q", "--no-plots", "--no-report"]) == 0
     text = capsys.readouterr().out

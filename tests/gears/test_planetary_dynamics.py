@@ -1,4 +1,4 @@
-"""Time integration of a planetary stage (drivedyn.gears.planetary_dynamics): K_v of every mesh against
+"""Time integration of a planetary stage (drivedyn.gears.planetary.dynamics): K_v of every mesh against
 references written here: the constant-stiffness limit (K_v = 1), a one-planet stage with the carrier
 held against the same gears as a parallel train (the gear-train code's sweep), the quasi-static limit
 (linear solves over one mesh period with the stiffness shape written out here), the resonance at the
@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.gears import planetary_dynamics as pd
-from drivedyn.model import from_dict
+from drivedyn.gears.planetary import dynamics as pd
+from drivedyn.core.model import from_dict
 
 M = 3e-3
 ALPHA = math.radians(20)
@@ -117,8 +117,8 @@ def test_one_planet_with_the_carrier_held_is_a_train_of_three_gears():
         "sweep": {"enabled": True, "speed_min": speeds[0], "speed_max": speeds[-1], "count": 3, "settle": 0.02,
                   "window_cycles": 30, "steps_per_cycle": 64},
         "iso": {"rating": False}})
-    from drivedyn.gears.sweep import run_sweep
-    from drivedyn.gears.train import assemble
+    from drivedyn.gears.train.sweep import run_sweep
+    from drivedyn.gears.train.system import assemble
 
     tsys = assemble(train)
     assert tsys.pairs[1].contact_ratio == pytest.approx(ring.contact_ratio, rel=1e-12)
@@ -211,7 +211,7 @@ def test_sweep_peaks_at_the_rotational_mode_of_an_in_phase_stage():
     # planets in phase (z_s / N whole): the mesh excitation drives the rotational modes, not the planet
     # modes (Parker, J. Sound Vib. 236 (2000) 561-573); the K_v sweep of both meshes peaks where the mesh
     # frequency meets the lowest rotational mode, and passes the planet mode without a peak
-    from drivedyn.gears import planetary as tors
+    from drivedyn.gears.planetary import stage as tors
 
     base = stage_model()
     st = tors.stage_of(base.planetary)
@@ -347,8 +347,8 @@ def test_lateral_constant_stiffness_is_the_static_lateral_load_sharing():
     # constant mesh stiffnesses, four planets, a floating sun and a pin error: the run turns rigidly at
     # the static deflection of the lateral-torsional model (Lin & Parker's load sharing, the output held:
     # planetary_lateral), its forces constant (K_v = 1); the opposite planet shares the error
-    from drivedyn.gears import planetary as tors
-    from drivedyn.gears import planetary_lateral as pl
+    from drivedyn.gears.planetary import stage as tors
+    from drivedyn.gears.planetary import lateral as pl
 
     m = stage_model({"stiffness_model": "constant", "model": "lateral"}, sun_teeth=25, planet_teeth=23,
                     position_errors=[8e-6, 0.0, 0.0, 0.0], lateral=LATERAL)
@@ -368,8 +368,8 @@ def test_lateral_sweep_peaks_at_the_translational_mode():
     # sequential phasing with z_s - 1 = 24 a multiple of N = 4: the fundamental mesh harmonic drives the
     # translational modes (Parker, J. Sound Vib. 236 (2000) 561-573); the lateral model's K_v sweep peaks
     # where the mesh frequency meets the lowest translational mode, which the torsional model has not
-    from drivedyn.gears import planetary as tors
-    from drivedyn.gears import planetary_lateral as pl
+    from drivedyn.gears.planetary import stage as tors
+    from drivedyn.gears.planetary import lateral as pl
 
     base = stage_model({"model": "lateral"}, sun_teeth=25, planet_teeth=23, lateral=LATERAL)
     st = tors.stage_of(base.planetary)

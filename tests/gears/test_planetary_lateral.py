@@ -1,4 +1,4 @@
-"""The lateral-torsional planetary model (drivedyn.gears.planetary_lateral) against Lin & Parker's
+"""The lateral-torsional planetary model (drivedyn.gears.planetary.lateral) against Lin & Parker's
 published natural frequencies, and its static load sharing with a floating sun against closed forms
 derived in this file."""
 import math
@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from drivedyn.gears import planetary_lateral as pl
+from drivedyn.gears.planetary import lateral as pl
 
 # Lin & Parker, J. Vib. Acoust. 121 (1999) 316-321, table 1 (example system): masses (kg), I/r^2
 # (kg), base diameters of sun, ring, planet and the diameter of the pin circle (mm), mesh and bearing

@@ -1,4 +1,4 @@
-"""ISO 6336 rating of a planetary stage (drivedyn.gears.planetary_rating) against a commercial rating
+"""ISO 6336 rating of a planetary stage (drivedyn.gears.rating.planetary) against a commercial rating
 tool's report, value by value.
 
 Reference: KISSsoft Release 03/2017 report "CALCULATION OF A SPUR PLANETARY GEAR STAGE", ISO 6336:2006
@@ -24,9 +24,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from drivedyn.errors import ModelError
-from drivedyn.gears import planetary_rating as pr
-from drivedyn.gears.rating import Material
+from drivedyn.core.errors import ModelError
+from drivedyn.gears.rating import planetary as pr
+from drivedyn.gears.rating.mesh import Material
 
 CASE = Material("Eh", 1500.0, 430.0)
 RING = Material("V", 700.0, 290.0, 1000.0, hardness_hb=240.0)
@@ -285,14 +285,14 @@ def test_stage_2_method_b_kv_with_the_reports_deviations():
     assert s["K_v_method_b"] == near(1.02, 2) and r["K_v_method_b"] == near(1.06, 2)
     assert s["region"] == r["region"] == "subcritical"
     # the running-in mean, by hand: y_p of the ring mesh
-    from drivedyn.gears.iso6336 import running_in
+    from drivedyn.gears.mesh.iso6336 import running_in
 
     assert (running_in(20.7, "Eh", 1500.0, 4.88) + running_in(20.7, "St", 700.0, 4.88)) / 2 == near(3.142, 3)
 
 
 def test_a_bad_ring_root_section_in_a_model_file_is_one_line_naming_the_field(tmp_path, capsys):
     import drivedyn
-    from drivedyn.cli import main
+    from drivedyn.front.cli import main
 
     src = Path(drivedyn.example_path("gears-gearbox")).read_text()
     for wrong in ('"-22.24 mm", "2673.522 mm"', '"22.24 mm", "2490 mm"'):

@@ -1,4 +1,4 @@
-"""ISO 6336-2/-3 ratings (drivedyn.gears.rating) against ISO/TR 6336-30:2017, example 1.
+"""ISO 6336-2/-3 ratings (drivedyn.gears.rating.mesh) against ISO/TR 6336-30:2017, example 1.
 
 ISO/TR 6336-30:2017 example 1, "single helical case carburized gear pair": z 17/103, m_n 8 mm,
 alpha_n 20 deg, beta 15.8 deg, b 100 mm, x 0.145/0, a_w 500 mm, basic rack h_fP 1.4 m_n, rho_fP
@@ -12,7 +12,8 @@ import math
 
 import pytest
 
-from drivedyn.gears import iso6336, rating
+from drivedyn.gears.mesh import iso6336
+from drivedyn.gears.rating import mesh as rating
 
 from .conftest import seed_model
 
@@ -133,7 +134,7 @@ def test_split_path_run_reports_ratings():
 def test_steel_table_sets_the_limits():
     import drivedyn
     from drivedyn.gears.simulate import _rating
-    from drivedyn.gears.train import assemble
+    from drivedyn.gears.train.system import assemble
 
     m = drivedyn.replace(seed_model(), {"iso.steel": "through-hardened", "iso.sigma_hlim": 1500e6})
     s = assemble(m)
@@ -153,8 +154,8 @@ def test_yield_strength_per_gear_reaches_the_notch_sensitivity():
     import numpy as np
 
     import drivedyn
-    from drivedyn.gears.rating import rate_mesh
-    from drivedyn.gears.train import assemble
+    from drivedyn.gears.rating.mesh import rate_mesh
+    from drivedyn.gears.train.system import assemble
 
     def y_delta(ys, q_s):
         rho = float(np.interp(ys, [500, 600, 800, 1000], [0.0281, 0.0194, 0.0064, 0.0014]))
@@ -207,9 +208,9 @@ def test_root_section_against_the_generated_fillet(z, x, h_fp, rho_fp):
 
 
 def test_load_point_is_the_outer_point_of_single_contact():
-    # ISO 6336-3's d_en for a spur pair against the contact geometry of drivedyn.gears.geometry:
+    # ISO 6336-3's d_en for a spur pair against the contact geometry of drivedyn.gears.mesh.geometry:
     # the pinion's outer point of single pair contact lies one base pitch beyond the start of contact A
-    from drivedyn.gears.train import assemble
+    from drivedyn.gears.train.system import assemble
 
     s = assemble(seed_model())
     p_ = s.pairs[0]
@@ -229,9 +230,9 @@ def test_given_kv_and_per_gear_roughness_reach_the_rating():
     # [iso] dynamic_factor replaces the run's K_v in the rating; a gear's own R_z replaces iso's:
     # sigma_H ~ sqrt(K_v) (K_Hbeta, K_Halpha given), Z_R from the mean R_z of the pair (ISO 6336-2)
     import drivedyn
-    from drivedyn.gears.rating import rate_mesh
+    from drivedyn.gears.rating.mesh import rate_mesh
     from drivedyn.gears.simulate import _rating
-    from drivedyn.gears.train import assemble
+    from drivedyn.gears.train.system import assemble
 
     m = seed_model(**{"iso.face_load_factor": 1.2, "iso.transverse_load_factor": 1.0})
     sys_ = assemble(m)
@@ -254,9 +255,9 @@ def test_load_cycles_and_mean_stress_factor_per_gear():
     # split path: the pinion drives both wheels on the same flank, so each tooth is loaded twice a turn
     # (N_L = 2 x 60 n life); each wheel once. An idler (driven by one gear, driving another) is loaded
     # once a turn on each flank and its teeth are bent both ways: Y_M = 0.7 (ISO 6336-3)
-    from drivedyn.gears.rating import rate_mesh
-    from drivedyn.gears.train import assemble
-    from drivedyn.model import from_dict
+    from drivedyn.gears.rating.mesh import rate_mesh
+    from drivedyn.gears.train.system import assemble
+    from drivedyn.core.model import from_dict
 
     from .conftest import pair_model
 

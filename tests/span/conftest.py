@@ -2,7 +2,7 @@ import copy
 
 import pytest
 
-from drivedyn.model import from_dict, set_path
+from drivedyn.core.model import from_dict, set_path
 
 # seed 002 (Belyaev): T10 span, density read as 3e3 kg/m^3 (printed 3e-3: misprint)
 BASE = {
@@ -38,6 +38,6 @@ def span_model():
 
 @pytest.fixture(scope="session")
 def seed_span():
-    from drivedyn.span.quantities import SpanProperties
+    from drivedyn.mechanics.span.quantities import SpanProperties
 
     return SpanProperties(0.3, 0.084, 0.045)

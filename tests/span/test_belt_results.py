@@ -3,8 +3,8 @@ import pytest
 import xarray as xr
 
 import drivedyn
-from drivedyn.belt.geometry.layout import compute_layout
-from drivedyn.model import from_dict
+from drivedyn.mechanics.layout import compute_layout
+from drivedyn.core.model import from_dict
 
 
 @pytest.fixture(scope="module")

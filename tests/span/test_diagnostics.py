@@ -6,7 +6,7 @@ import sys
 import pytest
 
 import drivedyn
-from drivedyn.results import flatten
+from drivedyn.core.results import flatten
 
 SMALL = {"chart.points": [12, 12], "chart.zoom.points": [8, 8]}
 
@@ -32,10 +32,10 @@ def test_cli_text_and_exit_agree_above_critical_speed(tmp_path):
     text = text.replace("points = [200, 200]", "points = [12, 12]").replace("points = [160, 160]", "points = [8, 8]")
     f = tmp_path / "fast.toml"
     f.write_text(text)
-    p = subprocess.run([sys.executable, "-m", "drivedyn.cli", "run", str(f), "-o", str(tmp_path / "o"), "-q",
+    p = subprocess.run([sys.executable, "-m", "drivedyn.front.cli", "run", str(f), "-o", str(tmp_path / "o"), "-q",
                         "--no-plots"], capture_output=True, text=True)
     assert p.returncode == 0 and "above-critical-speed" in p.stderr + p.stdout
-    p = subprocess.run([sys.executable, "-m", "drivedyn.cli", "run", str(f), "-o", str(tmp_path / "o2"), "-q",
+    p = subprocess.run([sys.executable, "-m", "drivedyn.front.cli", "run", str(f), "-o", str(tmp_path / "o2"), "-q",
                         "--no-plots", "--strict"], capture_output=True, text=True)
     assert p.returncode == 3
 

@@ -8,8 +8,7 @@ import numpy as np
 import pytest
 
 from drivedyn import ModelError
-from drivedyn.span.frequencies import (beam_frequency, estimate_tension, moving_beam_frequencies,
-                                       moving_string_frequency, string_frequency, tension_from_frequency)
+from drivedyn.mechanics.span.frequencies import beam_frequency, estimate_tension, moving_beam_frequencies, moving_string_frequency, string_frequency, tension_from_frequency
 
 T, M, L = 120.0, 0.084, 0.3
 

@@ -10,8 +10,8 @@ import pytest
 from scipy import optimize, special
 
 from drivedyn.span.fourier import Harmonics
-from drivedyn.span.floquet import hill_parameters, mathieu_multiplier, multipliers
-from drivedyn.span.mathieu import characteristic_values, exact_boundaries, first_order_boundaries, speed_band
+from drivedyn.mechanics.span.floquet import hill_parameters, mathieu_multiplier, multipliers
+from drivedyn.mechanics.span.mathieu import characteristic_values, exact_boundaries, first_order_boundaries, speed_band
 
 PITCH = 2 * np.pi * 0.024 / 16
 
@@ -92,7 +92,7 @@ def test_first_order_converges_to_exact(seed_span):
 
 
 def test_principal_band_first_order_vs_exact_vs_floquet(seed_span):
-    from drivedyn.span.chart import floquet_band
+    from drivedyn.mechanics.span.chart import floquet_band
     from drivedyn.span.fourier import from_polynomial
     from drivedyn.span.source import Setup
 

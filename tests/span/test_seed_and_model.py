@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.cli import main
+from drivedyn.front.cli import main
 from drivedyn.span import fourier
-from drivedyn.span.quantities import critical_speed, natural_frequency
+from drivedyn.mechanics.span.quantities import critical_speed, natural_frequency
 
 SEED_POLY = [0.00139, 0.0337, -0.685, 2.89, -1.71, 7.29]
 
@@ -107,7 +107,7 @@ def test_model_round_trip(name):
 
 def test_span_from_belt_drive_model(span_model):
     """The span length comes from the belt-drive layout (5PK seed: 515 mm between equal pulleys)."""
-    pytest.importorskip("drivedyn.belt.geometry.layout")
+    pytest.importorskip("drivedyn.mechanics.layout")
     m = span_model(span__length=None, span__belt_model="belt-5pk.toml", span__span_name="driver-driven",
                    span__mass_per_length=None, span__bending_stiffness=None, operation__pretension=None)
     r = drivedyn.run(m.model_copy(update={"chart": m.chart.model_copy(update={"floquet": False})}))
@@ -157,8 +157,8 @@ def test_bad_input_one_line_naming_the_field(tmp_path, capsys, old, new, expect)
 def test_growth_rate_floquet_vs_response_vs_first_order_theory(span_model):
     """At the tongue centre, the undamped growth rate is mu Omega / 2 (Nayfeh & Mook 1979, sec. 5.2);
     the Floquet multiplier and the integrated response (no moment forcing) must agree with it."""
-    from drivedyn.span.mathieu import tongue_centre_speed
-    from drivedyn.span.quantities import SpanProperties
+    from drivedyn.mechanics.span.mathieu import tongue_centre_speed
+    from drivedyn.mechanics.span.quantities import SpanProperties
 
     vc = float(tongue_centre_speed(100.0, 1, SpanProperties(0.3, 0.084, 0.045), 16, 2 * np.pi * 0.024 / 16))
     m = span_model(operation__speed=vc, tooth_force__polynomial=None, tooth_force__amplitude=3.058,
@@ -200,7 +200,7 @@ def test_diverged_operating_point_is_reported_not_an_error(span_model):
 
 
 def test_belt_model_path_relative_to_the_model_file(tmp_path):
-    pytest.importorskip("drivedyn.belt.geometry.layout")
+    pytest.importorskip("drivedyn.mechanics.layout")
     (tmp_path / "sub").mkdir()
     (tmp_path / "sub" / "mybelt.toml").write_text(drivedyn.example_path("belt-5pk").read_text())
     f = tmp_path / "sub" / "span.toml"

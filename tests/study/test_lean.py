@@ -3,7 +3,7 @@ constraints name, with the full run's numbers; when a study takes it, and its ow
 import json
 
 import drivedyn
-from drivedyn.analyses import analysis
+from drivedyn.core.analyses import analysis
 from drivedyn.belt.rotational.periodic import lean_keys
 from drivedyn.study.cases import TOKEN, case_keys, resolve, run_case
 from drivedyn.study.design import Design, overrides_of

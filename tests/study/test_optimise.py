@@ -5,8 +5,8 @@ import pytest
 from scipy.optimize import brentq
 
 import drivedyn
-from drivedyn.analyses import analysis
-from drivedyn.errors import ModelError
+from drivedyn.core.analyses import analysis
+from drivedyn.core.errors import ModelError
 from drivedyn.study.execute import run_optimisation
 from drivedyn.study.spec import load_study
 
@@ -101,7 +101,7 @@ def test_a_bound_whose_unit_only_a_result_tells_is_refused_at_the_first_design(c
 
 
 def test_dry_run_lists_the_design_variables(write_study, tmp_path, capsys):
-    from drivedyn.study.command import main
+    from drivedyn.front.study_command import main
 
     assert main(write_study(STUDY), out=tmp_path / "out", dry_run=True) == 0
     assert not (tmp_path / "out" / "study.nc").exists()
@@ -111,7 +111,7 @@ def test_an_optimum_on_a_bound_is_said(client, write_study, tmp_path):
     """Without the constraints the least pretension is the range's lower end (200 N): the
     optimum may lie outside the design space, which the command prints and report.html lists
     (before, the best design was printed without a word, and the report was not written)."""
-    from drivedyn.report import write_optimisation_report
+    from drivedyn.front.report import write_optimisation_report
     from drivedyn.study.optimise import on_bounds
 
     text = STUDY.replace('constraints = [{ key = "steady.slip_margin", min = 1.5 }, { key = "steady.pulleys.*.slip_arc", '
@@ -130,7 +130,7 @@ def test_an_optimum_on_a_bound_is_said(client, write_study, tmp_path):
 def test_the_study_command_writes_an_optimisations_report_and_says_a_bound(write_study, tmp_path, capsys):
     """``drivedyn study --report`` on an optimisation: report.html written and the optimum on a
     bound said on the terminal (the option was silently ignored for an optimisation)."""
-    from drivedyn.cli import main
+    from drivedyn.front.cli import main
 
     text = STUDY.replace('constraints = [{ key = "steady.slip_margin", min = 1.5 }, { key = "steady.pulleys.*.slip_arc", '
                          'max = "3 rad" }]', "constraints = []").replace("budget = 60", "budget = 20")

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from drivedyn import ModelError
-from drivedyn.cli import main as cli_main
+from drivedyn.front.cli import main as cli_main
 from drivedyn.study import load_study, make_design
 
 OK = """

@@ -2,9 +2,9 @@
 import numpy as np
 import pytest
 
-from drivedyn.toothed import catalogue
+from drivedyn.mechanics.teeth import catalogue
 from drivedyn.toothed.engagement import sweep
-from drivedyn.toothed.pair import build
+from drivedyn.mechanics.teeth.pair import build
 
 
 def make_pair(belt, pulley=None, z=24, groove="standard", offset=0.0, tol=5e-7, spacing=2e-5):

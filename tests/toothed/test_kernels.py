@@ -3,7 +3,7 @@ in the hot loop: the same numbers to round-off on random polylines and points.""
 import numpy as np
 import shapely
 
-from drivedyn.toothed._kernels import nearest_distance, on_polyline
+from drivedyn.mechanics.teeth._kernels import nearest_distance, on_polyline
 
 
 def test_points_located_on_a_polyline_as_geos_does():

@@ -7,9 +7,8 @@ import numpy as np
 import pytest
 
 import drivedyn
-from drivedyn.cli import main
-from drivedyn.toothed.loadshare import (Chain, climb_factor, flank_angle, jump_torque, solve, span_tensions,
-                                        teeth_in_mesh, tooth_stiffness_per_width)
+from drivedyn.front.cli import main
+from drivedyn.mechanics.teeth.loadshare import Chain, climb_factor, flank_angle, jump_torque, solve, span_tensions, teeth_in_mesh, tooth_stiffness_per_width
 
 from .conftest import DEG, make_pair
 

@@ -5,7 +5,7 @@ import sys
 import pytest
 
 import drivedyn
-from drivedyn.errors import ModelError
+from drivedyn.core.errors import ModelError
 
 BASE = """
 kind = "toothed-mesh"
@@ -42,7 +42,7 @@ def test_custom_tooth_and_groove_in_the_model_file():
              'pld = "0.381 mm" }')
     ref = load('profile = "L"', "teeth = 20")
     from drivedyn.toothed.engagement import headline, sweep
-    from drivedyn.toothed.pair import resolve
+    from drivedyn.mechanics.teeth.pair import resolve
 
     a, b = headline(sweep(resolve(m), 21)), headline(sweep(resolve(ref), 21))
     assert a["seated"] == pytest.approx(b["seated"])
@@ -79,7 +79,7 @@ def test_gt_needs_a_generated_groove():
 def test_command_line_bad_input_is_one_line_and_status_2(tmp_path):
     f = tmp_path / "bad.toml"
     f.write_text(BASE.format(belt='profile = "L8"', pulley="teeth = 20"))
-    r = subprocess.run([sys.executable, "-m", "drivedyn.cli", "check", str(f)], capture_output=True, text=True)
+    r = subprocess.run([sys.executable, "-m", "drivedyn.front.cli", "check", str(f)], capture_output=True, text=True)
     if r.returncode != 2:  # the module may not be runnable with -m; use the entry point
         r = subprocess.run(["drivedyn", "check", str(f)], capture_output=True, text=True)
     assert r.returncode == 2

@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 
 from drivedyn.toothed.engagement import headline, sweep
-from drivedyn.toothed.interference import Flank, evaluate
-from drivedyn.toothed.profiles import tooth_outline
-from drivedyn.toothed.pulley import pulley_polygon
+from drivedyn.mechanics.teeth.interference import Flank, evaluate
+from drivedyn.mechanics.teeth.profiles import tooth_outline
+from drivedyn.mechanics.teeth.pulley import pulley_polygon
 
 from .conftest import DEG, MM, make_pair
 
@@ -116,7 +116,7 @@ def _l_corner_gap_closed_form(z):
     tangent y = R_b, seen from the pulley turned by phi; gap = n . (q(phi) - G) - r_a."""
     from scipy.optimize import minimize_scalar
 
-    from drivedyn.toothed.kinematics import to_pulley
+    from drivedyn.mechanics.teeth.kinematics import to_pulley
 
     p, a, s, ht, ra, bw, hg, b = 9.525, 0.381, 4.65, 1.91, 0.51, 3.05, 2.67, 20 * DEG
     r_o = z * p / (2 * np.pi) - a

@@ -2,12 +2,12 @@
 import json
 
 import drivedyn
-from drivedyn.results import open_result
+from drivedyn.core.results import open_result
 
 
 def test_run_save_plot_htd8m(tmp_path):
     m = drivedyn.load(drivedyn.example_path("mesh-htd8m"))
-    m = drivedyn.model.replace(m, {"mesh.angles": 61, "maps.teeth": [20, 32], "maps.angles": 21})
+    m = drivedyn.core.model.replace(m, {"mesh.angles": 61, "maps.teeth": [20, 32], "maps.angles": 21})
     r = drivedyn.run(m)
     r.save(tmp_path)
     doc = json.loads((tmp_path / "summary.json").read_text())

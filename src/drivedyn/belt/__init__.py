@@ -3,7 +3,7 @@
 ``Model`` is the model file; ``run`` simulates it; ``check`` reports layout and statics;
 ``plot`` draws the standard figures.
 
-The entry points are registered in ``drivedyn.analyses`` and reached through ``drivedyn.run``,
+The entry points are registered in ``drivedyn.core.analyses`` and reached through ``drivedyn.run``,
 ``drivedyn.check`` and ``drivedyn.plot``.
 """
 from .model import Model

@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from ..criteria import Criterion
+from ..core.criteria import Criterion
 from .dynamics.frequencies import add_flap_and_modes, judged
 
 RPM = 30 / math.pi
@@ -36,7 +36,7 @@ def speed_range(ds, summary, driver) -> tuple[float, float]:
 def add_supplier(model, result) -> None:
     """summary.supplier: the supplier's report tables (supplier.py), for a model that asks for them."""
     from . import supplier
-    from ..errors import ModelError
+    from ..core.errors import ModelError
     from .geometry.drive import resolve
 
     if "supplier" in result.summary or not supplier.wanted(model):

@@ -18,7 +18,7 @@ from typing import Annotated, Literal, Optional, Union
 
 from pydantic import Field, field_validator, model_validator
 
-from ..model import Spec, check_name, limit, quantity, table_rows
+from ..core.model import Spec, check_name, limit, quantity, table_rows
 
 Length = quantity("m")
 Time = quantity("s")
@@ -829,7 +829,7 @@ class Model(Spec):
 
     def _cost(self):
         """Samples, frames and run-up bins known from the model: refuse what would not fit."""
-        from ..limits import bytes_problem
+        from ..core.limits import bytes_problem
 
         sim, out = self.simulation, self.output
         samples = sim.duration / out.interval
@@ -856,7 +856,7 @@ class Model(Spec):
                                      f"speed range, more than {min(10_000, samples / 4):.4g} (at most 10 000, and 4 "
                                      "samples per bin): a wider bin")
         if sim.step is not None:
-            from ..limits import steps_problem
+            from ..core.limits import steps_problem
 
             problem = steps_problem(sim.duration / min(sim.step, out.interval), "simulation.step",
                                     "a longer step, or leave step out for the stable one")

@@ -1,7 +1,7 @@
 """Standard figures of a belt-drive run (seed figs. 10-17) and an animation of the belt.
 
 Functions are ``plot_x(ds, ..., ax=None)`` (a new figure when no ``ax``) and never touch pyplot or
-the backend; ``plot_all`` marks every figure of a warned or failed run (drivedyn.plotting).
+the backend; ``plot_all`` marks every figure of a warned or failed run (drivedyn.core.plotting).
 """
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import plotting
+from ..core import plotting
 
 
 def _fig(nrows=1, height=3.2):
@@ -48,7 +48,7 @@ def _window(ds, ax):
 def _steady(ds) -> np.ndarray:
     """Mask of the samples in the run's steady window (window.py's rule: the model's window as
     the run recorded it, else the last quarter), all samples if it holds none."""
-    from ..window import in_window, steady_window
+    from ..core.window import in_window, steady_window
 
     t = ds["time"].values
     w = ds.attrs.get("steady_window")
@@ -354,7 +354,7 @@ def _draw_arms(ds, frame, ax):
     """Each tensioner arm at the frame: pivot, arm, and its stops (thin lines at the stop angles)."""
     if "arm_angle" not in ds or "model_toml" not in ds.attrs:
         return
-    from ..model import loads
+    from ..core.model import loads
 
     model = loads(ds.attrs["model_toml"])
     t = float(ds["frame_time"][frame])
@@ -491,7 +491,7 @@ def _figures(ds, driver):
         return fig if plot_spectrum(ds, driver, ax) else None
 
     def campbell():   # the drive's rotational modes (modes.py) against the driver's orders
-        from ..model import loads
+        from ..core.model import loads
         from .steady.modes import drive_modes
 
         from .criteria import speed_range
@@ -532,7 +532,7 @@ def _figures(ds, driver):
         fig = Figure(figsize=(8, 5), layout="constrained")
         tight = str(ds["span"].values[int(np.argmax(ds["runup_tension_mean"].values.mean(axis=0)))])
         try:
-            from ..model import loads
+            from ..core.model import loads
             from .steady.modes import drive_modes
 
             fm = drive_modes(loads(ds.attrs["model_toml"]), tensions=_mean_tensions(ds)).frequencies_hz

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 
 def run(model, progress=None):
-    """Run a belt-drive model (drivedyn.run calls it through drivedyn.analyses): the drive is
+    """Run a belt-drive model (drivedyn.run calls it through drivedyn.core.analyses): the drive is
     resolved once (geometry/drive.py) and handed to the model that integrates it."""
     from .geometry.drive import resolve
 
@@ -54,7 +54,7 @@ def run_lean(model, keys, progress=None):
 
 def warm():
     """Run a tiny drive for a few steps so that every kernel is loaded from numba's cache."""
-    from ..model import from_dict
+    from ..core.model import from_dict
 
     m = from_dict({"kind": "belt-drive", "belt": {"mass_per_length": 0.1, "axial_stiffness": 1e5, "pretension": 100.0,
                                                    "segments": 24},

@@ -23,7 +23,7 @@ def check_data(model, sysm=None) -> dict:
     from . import supplier
     from .geometry.drive import resolve
     from .geometry.installation import installation_table
-    from .geometry.layout import compute_layout
+    from ..mechanics.layout import compute_layout
     from .steady.modes import modes
     from .steady.creep import steady_state
 
@@ -154,7 +154,7 @@ CHECK_UNITS = {"steady.spans.*.tension": "N", "steady.pulleys.*.torque": "N*m", 
 
 
 def check_json(model) -> str:
-    from ..results import dumps_json, unit_map
+    from ..core.results import dumps_json, unit_map
 
     data = check_data(model)
     data["units"] = unit_map(data, CHECK_UNITS)

@@ -110,8 +110,8 @@ def dynamic_duty(drive) -> list[dict]:
     status and diagnostics."""
     import numpy as np
 
-    from ..errors import SolverError
-    from ..window import in_window
+    from ..core.errors import SolverError
+    from ..core.window import in_window
     from .rotational.simulate import run
     from .steady.duty import belt_speed, crank_of, row_power
 

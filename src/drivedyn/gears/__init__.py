@@ -4,7 +4,7 @@
 input speed if asked); ``check`` reports geometry, stiffness and natural frequencies; ``plot``
 draws the standard figures.
 
-The entry points are registered in ``drivedyn.analyses`` and reached through ``drivedyn.run``,
+The entry points are registered in ``drivedyn.core.analyses`` and reached through ``drivedyn.run``,
 ``drivedyn.check`` and ``drivedyn.plot``.
 """
 from .model import Model

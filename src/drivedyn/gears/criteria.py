@@ -14,8 +14,8 @@ from typing import Annotated
 
 from pydantic import Field
 
-from ..criteria import Criterion
-from ..model import Spec, quantity
+from ..core.criteria import Criterion
+from ..core.model import Spec, quantity
 
 
 RPM = 30 / math.pi

@@ -12,7 +12,7 @@ from typing import Literal, Optional
 
 from pydantic import Field, field_validator, model_validator
 
-from ..model import Spec, check_name, quantity, table_rows
+from ..core.model import Spec, check_name, quantity, table_rows
 from .criteria import Criteria
 
 #: highest pitch-line speed accepted (m/s): turbo gears, the fastest in service, stay below 200 m/s
@@ -338,7 +338,7 @@ class Simulation(Spec):
             raise ValueError("start = 'ramp' needs ramp_time > 0")
         if self.step > self.duration:
             raise ValueError("step is longer than duration")
-        from ..limits import bytes_problem, steps_problem
+        from ..core.limits import bytes_problem, steps_problem
 
         if self.method == "rk4":
             problem = steps_problem(self.duration / self.step, "step", "a longer step or a shorter duration")
@@ -853,8 +853,8 @@ class Model(Spec):
     def _gearbox(self, names):
         """A planetary stage driving the train: the train starts at the stage's output gear, with the
         torque (and, when the rating gives the stage's speed, the speed) the stage delivers."""
-        from .gearbox import output_torque
-        from .planetary import MEMBERS, _speed_ratio, stage_of
+        from .planetary.gearbox import output_torque
+        from .planetary.stage import MEMBERS, _speed_ratio, stage_of
 
         chain = [self.planetary, *self.stages]
         pl, where = chain[-1], _where(len(chain) - 1)
@@ -879,7 +879,7 @@ class Model(Spec):
     def _chain(self, chain):
         """Planetary stages in series: each but the last drives the next one's input member through its
         output shaft, with the torque (and, with ratings, the speed) it delivers."""
-        from .gearbox import output_speed, output_torque
+        from .planetary.gearbox import output_speed, output_torque
 
         for k, (a, b) in enumerate(zip(chain, chain[1:])):
             wa, wb = _where(k), _where(k + 1)

@@ -384,7 +384,7 @@ def plot_all(result, outdir, meanwhile=None, workers=None) -> list[Path]:
     """Write the standard PNGs into ``outdir`` (a warned or failed run says so on each); their paths.
     plotting.write_figures draws them (in two processes where it can; ``workers=1``: here) while
     this one runs ``meanwhile()``."""
-    from .. import plotting
+    from ..core import plotting
 
     jobs = [(f"gears-{name}.png", make) for name, make in _jobs(result.ds)]
     return plotting.write_figures(jobs, outdir, result, meanwhile, workers)

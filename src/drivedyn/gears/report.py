@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from .train import assemble, method_b, reduced_mass_per_mesh
+from .train.system import assemble, method_b, reduced_mass_per_mesh
 
 
 def report(model) -> str:
@@ -63,14 +63,14 @@ def report(model) -> str:
 
 def gearbox_lines(model, sys_=None) -> list[str]:
     """The ``check`` text of a model's planetary stages and, for a gearbox, its whole-train modes."""
-    from .planetary import report_lines
+    from .planetary.stage import report_lines
 
     out = report_lines(model.planetary, model.iso)
     for k, spec in enumerate(model.stages):
         out += [line.replace("planetary stage:", f"stage {k + 2} (planetary):", 1) for line in report_lines(spec, model.iso, f"stages[{k}]")]
     last = [model.planetary, *model.stages][-1]
     if model.stages or (sys_ is not None and last.output_gear is not None):
-        from .gearbox import modes as gearbox_modes
+        from .planetary.gearbox import modes as gearbox_modes
 
         gb = gearbox_modes(model, sys_ if last.output_gear is not None else None)
         drives = f", the last driving {gb['output_gear']!r}" if gb["output_gear"] and sys_ is not None else ""
@@ -83,7 +83,7 @@ def gearbox_lines(model, sys_=None) -> list[str]:
 
 def _rating_lines(model, s, j, kv) -> list[str]:
     """ISO 6336-2/-3 method B at the nominal load with ISO's K_v (the run uses the simulated one)."""
-    from .rating import rate_mesh
+    from .rating.mesh import rate_mesh
 
     r = rate_mesh(model, s, j, kv)
     f = r.factors

@@ -7,13 +7,13 @@ import time
 import numpy as np
 import xarray as xr
 
-from ..errors import SolverError, Stopped, stop_reason
-from ..results import Result, unit_map, variable
-from ..window import in_window, steady_window
-from . import _kernels
-from .kernel_inputs import params, stiffness_at, static_start
-from .planetary import PLANETARY_UNITS
-from .train import assemble, method_b
+from ..core.errors import SolverError, Stopped, stop_reason
+from ..core.results import Result, unit_map, variable
+from ..core.window import in_window, steady_window
+from .train import _kernels
+from .train.kernel_inputs import params, stiffness_at, static_start
+from .planetary.stage import PLANETARY_UNITS
+from .train.system import assemble, method_b
 
 
 #: wall time aimed at per compiled chunk: progress, Ctrl-C and a study's time limit act between chunks
@@ -118,10 +118,10 @@ def run(model, progress=None) -> Result:
     The integration runs in chunks: ``progress`` is called between them, and a ``Stopped`` from it
     or a Ctrl-C ends the run with a SolverError whose ``partial`` Result keeps what was computed.
     """
-    from .checks import check_step, diagnose, diagnose_sweep
+    from .train.checks import check_step, diagnose, diagnose_sweep
 
     if model.planetary is not None and not model.meshes:
-        from .gearbox import run_stage
+        from .planetary.gearbox import run_stage
 
         return run_stage(model, progress)
     t0 = time.perf_counter()
@@ -161,7 +161,7 @@ def run(model, progress=None) -> Result:
         raise SolverError(failure + f" (results kept up to t = {run_.time:.6g} s)", partial=result)
     diagnose(result, sys_, model)
     if model.sweep.enabled:
-        from .sweep import run_sweep
+        from .train.sweep import run_sweep
 
         try:
             sw = run_sweep(sys_, model, progress=progress)
@@ -175,7 +175,7 @@ def run(model, progress=None) -> Result:
         diagnose_sweep(result, sys_, sw)
     result.summary["solver"]["wall_time"] = time.perf_counter() - t0
     if model.planetary is not None:
-        from .gearbox import add_stages
+        from .planetary.gearbox import add_stages
 
         add_stages(result, model, sys_)
     _units(result)
@@ -186,7 +186,7 @@ def run(model, progress=None) -> Result:
 
 def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Result:
     from .. import dumps
-    from .train import reduced_mass_per_mesh
+    from .train.system import reduced_mass_per_mesh
 
     n, m = sys_.n, sys_.m
     th, om = out_y[:, :n], out_y[:, n:]
@@ -297,7 +297,7 @@ def _result(model, sys_, t, out_y, out_f, out_d, stats, window, solver) -> Resul
 def _rating(model, sys_, kv_dyn, kv_iso) -> dict:
     """ISO 6336-2/-3 ratings per mesh with K_v from the run (largest over the steady window) and from
     ISO 6336-1 method B; empty when switched off or when the run has no finite K_v."""
-    from .rating import rate_mesh, summary_of
+    from .rating.mesh import rate_mesh, summary_of
 
     if not model.iso.rating:
         return {}

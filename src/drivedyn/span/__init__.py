@@ -4,7 +4,7 @@
 ``Model`` is the model file; ``run`` computes the stability chart and the span quantities;
 ``check`` reports what is known without running; ``plot`` draws the standard figures.
 
-The entry points are registered in ``drivedyn.analyses`` and reached through ``drivedyn.run``,
+The entry points are registered in ``drivedyn.core.analyses`` and reached through ``drivedyn.run``,
 ``drivedyn.check`` and ``drivedyn.plot``.
 """
 from .model import Model

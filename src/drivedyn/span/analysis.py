@@ -6,13 +6,13 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..errors import ModelError, SolverError
-from ..model import dumps
-from ..results import Result, unit_map, variable
+from ..core.errors import ModelError, SolverError
+from ..core.model import dumps
+from ..core.results import Result, unit_map, variable
 from . import fourier
-from .chart import UNSTABLE, bands, chart_variables, floquet_band, tongue_curves, zoom_ranges
-from .frequencies import estimate_tension, span_frequencies
-from .quantities import critical_speed, effective_tension, excitation_coefficient, excitation_frequency, natural_frequency
+from ..mechanics.span.chart import UNSTABLE, bands, chart_variables, floquet_band, tongue_curves, zoom_ranges
+from ..mechanics.span.frequencies import estimate_tension, span_frequencies
+from ..mechanics.span.quantities import critical_speed, effective_tension, excitation_coefficient, excitation_frequency, natural_frequency
 from .source import read_belt_run, resolve
 
 KIND = "span-stability"
@@ -214,7 +214,7 @@ def run(model, progress=None) -> Result:
 
 def point_floquet(setup, harm, steps) -> dict:
     """Largest Floquet multiplier and growth rate ln|lambda| / T (1/s) at the model's F0 and V."""
-    from .floquet import hill_parameters, multipliers
+    from ..mechanics.span.floquet import hill_parameters, multipliers
 
     if setup.speed <= 0:
         return {"floquet_multiplier": 1.0, "growth_rate": 0.0}

@@ -7,8 +7,8 @@ parametric-resonance region (tongue) of the span, and not in one.
 """
 from __future__ import annotations
 
-from ..criteria import Criterion
-from ..model import Spec, limit, quantity
+from ..core.criteria import Criterion
+from ..core.model import Spec, limit, quantity
 
 
 class Criteria(Spec):

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import ModelError
+from ..core.errors import ModelError
 
 
 @dataclass(frozen=True)
@@ -144,7 +144,7 @@ def read_series(path) -> tuple[np.ndarray, np.ndarray]:
     """Read a CSV (or whitespace) file with columns time (s), force (N); '#' comments allowed."""
     from pathlib import Path
 
-    from ..model import read_capped
+    from ..core.model import read_capped
 
     p = Path(path)
     if not p.exists():

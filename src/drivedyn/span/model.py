@@ -20,7 +20,7 @@ from typing import Literal, Optional
 
 from pydantic import ValidationInfo, field_validator, model_validator
 
-from ..model import Spec, quantity
+from ..core.model import Spec, quantity
 from .criteria import Criteria
 
 Force = quantity("N")

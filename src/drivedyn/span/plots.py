@@ -203,7 +203,7 @@ def plot_all(result, outdir, meanwhile=None, workers=None) -> list[Path]:
     """Write the standard PNGs of a span-stability result into ``outdir`` (a warned run says so on
     each); plotting.write_figures draws them (in two processes where it can; ``workers=1``: here)
     while this one runs ``meanwhile()``."""
-    from .. import plotting
+    from ..core import plotting
 
     ds, s = result.ds, result.summary
     jobs = [("span-chart.png", plot_chart, (7, 5)), ("span-tongue.png", plot_tongue, (7.5, 5)),

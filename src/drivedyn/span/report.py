@@ -4,8 +4,8 @@ from __future__ import annotations
 import numpy as np
 
 from .analysis import measurement_summary, operating_point, point_floquet, require_stable_speed, tooth_force_harmonics
-from .chart import bands
-from .frequencies import span_frequencies
+from ..mechanics.span.chart import bands
+from ..mechanics.span.frequencies import span_frequencies
 from .source import resolve
 
 

@@ -12,8 +12,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..errors import SolverError
-from .quantities import excitation_frequency, moment_rate_gain, natural_frequency
+from ..core.errors import SolverError
+from ..mechanics.span.quantities import excitation_frequency, moment_rate_gain, natural_frequency
 
 
 def modal_response(setup, harm, duration: float, moment_amplitude: float, q0: float, points: int):

@@ -2,7 +2,7 @@
 
 A span may give ``span.length`` directly, or name a belt-drive model file (``span.belt_model``)
 and one of its spans (``span.span_name``, e.g. "driver-driven"): the length then comes from
-``drivedyn.belt.geometry.layout.compute_layout(model).spans``, and the mass per metre, bending stiffness
+``drivedyn.mechanics.layout.compute_layout(model).spans``, and the mass per metre, bending stiffness
 and pretension default to the belt's when the span model leaves them out. The path is taken
 relative to the model file (made absolute at load), then the working directory, then as a
 shipped example name.
@@ -19,8 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ModelError
-from .quantities import SpanProperties
+from ..core.errors import ModelError
+from ..mechanics.span.quantities import SpanProperties
 
 
 @dataclass(frozen=True)
@@ -68,8 +68,8 @@ def read_belt_run(path: str, span_name: str, field: str = "span.belt_results"):
 
     import xarray as xr
 
-    from ..model import loads
-    from ..window import in_window, steady_window
+    from ..core.model import loads
+    from ..core.window import in_window, steady_window
 
     p = Path(path)
     if not p.exists():
@@ -99,7 +99,7 @@ def read_belt_run(path: str, span_name: str, field: str = "span.belt_results"):
     speed = abs(float(ds["span_speed"].sel(span=span_name).values[sel].mean()))
     diagnostics = tuple(d.get("code", "") for d in json.loads(ds.attrs.get("diagnostics", "[]")))
     run = BeltRun(str(p), span_name, str(ds.attrs.get("status", "")), diagnostics, window, t[sel], ten, speed)
-    from ..belt.geometry import compute_layout
+    from ..mechanics.layout import compute_layout
 
     length = next(float(sp.length) for sp in compute_layout(belt).spans if sp.name == span_name)
     return length, belt, run
@@ -109,7 +109,7 @@ def _belt_model_path(name: str) -> Path:
     p = Path(name)
     if p.exists():
         return p
-    from ..api import examples
+    from ..core.examples import examples
 
     shipped = examples().get(p.name.removesuffix(".toml"))
     if shipped is not None:
@@ -120,7 +120,7 @@ def _belt_model_path(name: str) -> Path:
 
 def belt_span(name: str, span_name: str):
     """(span length, belt model) of the span ``span_name`` of the belt-drive model file ``name``."""
-    from ..model import load
+    from ..core.model import load
 
     path = _belt_model_path(name)
     try:
@@ -130,7 +130,7 @@ def belt_span(name: str, span_name: str):
     if belt.kind != "belt-drive":
         raise ModelError(f"{name!r} is a {belt.kind!r} model, not a belt-drive", field="span.belt_model")
     try:  # imported lazily: the belt-drive analysis is optional for the span analysis
-        from ..belt.geometry import compute_layout
+        from ..mechanics.layout import compute_layout
     except ImportError as exc:
         raise ModelError(f"the belt-drive layout is not available in this build ({exc})", field="span.belt_model") from None
     spans = getattr(compute_layout(belt), "spans", None)

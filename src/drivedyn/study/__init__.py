@@ -11,14 +11,13 @@ address, caches each case under the hash of its model, and assembles one ``xarra
     res.ds["pulleys.driven.slip"].sel({"belt.pretension": 550.0})
 
 Modules: ``spec`` (the study file), ``design`` (samplers), ``cases`` (resolved models, cache,
-the worker task), ``execute`` (Dask), ``collect`` (the Dataset), ``plots``, ``command`` (the
-``drivedyn study`` command).
+the worker task), ``execute`` (Dask), ``collect`` (the Dataset), ``plots``; the ``drivedyn study``
+command around them is drivedyn/front/study_command.py.
 """
-from .command import main
 from .design import Design, make_design
 from .execute import StudyRun, run_study
 from .plots import plot_key, plot_study
 from .spec import Study, load_study, study_from_dict
 
-__all__ = ["main", "run_study", "load_study", "study_from_dict", "make_design", "plot_key", "plot_study",
+__all__ = ["run_study", "load_study", "study_from_dict", "make_design", "plot_key", "plot_study",
            "Study", "StudyRun", "Design"]

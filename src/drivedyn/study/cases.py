@@ -30,8 +30,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .. import __version__
-from ..errors import ModelError, SolverError, Stopped
-from ..model import from_dict, set_path, to_dict
+from ..core.errors import ModelError, SolverError, Stopped
+from ..core.model import from_dict, set_path, to_dict
 
 TOKEN = ".study-id"
 #: statuses a case can end with
@@ -51,7 +51,7 @@ class Case:
     values : dict
         Parameter label -> value.
     overrides : dict
-        Model path -> value given to :func:`drivedyn.model.set_path`.
+        Model path -> value given to :func:`drivedyn.core.model.set_path`.
     toml : str or None
         The resolved model, or None when the overrides do not validate.
     key : str
@@ -92,8 +92,8 @@ def case_keys(study) -> list | None:
 
 def resolve(study, design, overrides_of) -> list[Case]:
     """Apply each case's overrides to the base model; invalid combinations are kept, not raised."""
-    from ..analyses import analysis
-    from ..model import dumps
+    from ..core.analyses import analysis
+    from ..core.model import dumps
 
     base = to_dict(study.base)
     keys = case_keys(study)
@@ -225,8 +225,8 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
     where it has one (no Dataset, criteria or diagnostics but the solve's; case_keys).
     """
     from ..api import run
-    from ..model import loads
-    from ..results import _clean
+    from ..core.model import loads
+    from ..core.results import _clean
 
     cache = cache_visible(cache_dir, token)
     if cache is not None:
@@ -242,8 +242,8 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
         if mode == "check":   # what check knows, as the case's summary (no time series)
             import xarray as xr
 
-            from ..analyses import analysis
-            from ..results import Result, unit_map
+            from ..core.analyses import analysis
+            from ..core.results import Result, unit_map
 
             a = analysis(model.kind)
             data = a.check_data(model)
@@ -253,7 +253,7 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
         else:
             result = None
             if keys:
-                from ..analyses import analysis
+                from ..core.analyses import analysis
 
                 result = analysis(model.kind).run_lean(model, keys, progress=_deadline(timeout))
             if result is None:
@@ -301,7 +301,7 @@ _WARM: set = set()
 def warm_worker(kind: str) -> str:
     """Import the analysis on a worker and run its optional ``warmup()`` (numba compilation), once
     per process (an optimisation sends every generation to the same workers)."""
-    from ..model import analysis
+    from ..core.model import analysis
 
     if kind not in _WARM:
         analysis(kind).warmup()

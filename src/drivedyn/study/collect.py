@@ -45,14 +45,14 @@ def _kind_of(values):
 
 
 def _safe(name: str) -> str:
-    from ..outputs import nc_name
+    from ..core.outputs import nc_name
 
     return nc_name(name)  # HDF5 reads "/" as a group separator; names over 200 characters shortened
 
 
 def assemble(study, design, cases, records, cache) -> xr.Dataset:
     """The study Dataset from ``records`` (key -> record) in design order."""
-    from ..model import dumps
+    from ..core.model import dumps
 
     n = len(cases)
     recs = [records.get(c.key) or {"status": "missing", "message": "not run (interrupted?)", "summary": {}}
@@ -183,6 +183,6 @@ def _to_grid(ds: xr.Dataset, design) -> xr.Dataset:
 
 def write_dataset(ds: xr.Dataset, path) -> Path:
     """Write the study netCDF atomically (so a reader never sees half a file)."""
-    from ..outputs import replace_write
+    from ..core.outputs import replace_write
 
     return replace_write(path, lambda tmp: ds.to_netcdf(tmp, engine="h5netcdf"))

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import DrivedynWarning, ModelError
+from ..core.errors import DrivedynWarning, ModelError
 from .spec import Parameter, to_number
 
 

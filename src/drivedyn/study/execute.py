@@ -16,7 +16,7 @@ import uuid
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ..errors import ModelError
+from ..core.errors import ModelError
 from .cases import COMPLETED, STATUSES, TOKEN, Case, read_record, resolve, run_case, warm_worker, write_record
 from .design import make_design, overrides_of
 from .spec import Study, load_study
@@ -233,7 +233,7 @@ def run_optimisation(study, out=None, *, client=None, scheduler=None, workers=No
                     optimise_best=float(optimum.objective) if optimum.values else float("nan"))
     path = write_dataset(ds, out / "study.nc")
     if optimum.toml is not None:
-        from ..outputs import write_text
+        from ..core.outputs import write_text
 
         write_text(out / "best.toml", f"# the best feasible design of {study.name or 'the study'}: objective "
                    f"{study.spec.optimise.objective} = {optimum.objective:.6g}\n" + optimum.toml)

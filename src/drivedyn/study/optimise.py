@@ -21,7 +21,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..errors import ModelError
+from ..core.errors import ModelError
 from .cases import COMPLETED, resolve
 from .design import Design, column_values, overrides_of
 from .spec import to_number
@@ -246,7 +246,7 @@ def on_bounds(study, values: dict) -> list[dict]:
 
 def plot_convergence(opt: Optimum, path: Path, objective: str, sense: str, unit: str = "") -> Path:
     """The best feasible objective against the designs evaluated, each feasible design's dotted."""
-    from ..plotting import figure, savefig
+    from ..core.plotting import figure, savefig
 
     fig, axes = figure()
     ax = axes[0, 0]

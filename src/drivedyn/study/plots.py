@@ -178,8 +178,8 @@ def plot_study(ds, outdir, keys=None) -> list[Path]:
         chosen = [k for k in available if any(fnmatch.fnmatchcase(k.lower(), p.lower()) for p in keys)]
     if not chosen or not np.isin(ds["status"].values, ("success", "warning")).any():
         return []
-    from ..outputs import file_stem, make_folder
-    from ..plotting import savefig
+    from ..core.outputs import file_stem, make_folder
+    from ..core.plotting import savefig
 
     make_folder(outdir)
     files = []

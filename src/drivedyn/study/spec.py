@@ -23,9 +23,9 @@ from typing import Any, Literal, Optional, Union
 
 from pydantic import ValidationError, field_validator, model_validator
 
-from ..errors import ModelError
-from ..model import Spec, field_unit, format_validation_error, from_dict, quantity, read_toml, schema_step, set_path, to_dict
-from ..model import unwrap as _unwrap
+from ..core.errors import ModelError
+from ..core.model import Spec, field_unit, format_validation_error, from_dict, quantity, read_toml, schema_step, set_path, to_dict
+from ..core.model import unwrap as _unwrap
 
 #: most cases a study may have (a grid's product of points, or samples): 100 000 cases of the
 #: fastest kind (check mode, ~5 ms each) take minutes; more is a typo or a job for several studies
@@ -37,7 +37,7 @@ def max_cases() -> float:
     """The case limit: :data:`MAX_CASES`, or the environment's ``DRIVEDYN_MAX_CASES`` read as the other
     limits are (limits.py: a value that is not a positive number is ignored; "inf" lifts the limit;
     it was int(inf), an OverflowError traceback under every study command)."""
-    from ..limits import _env
+    from ..core.limits import _env
 
     v = _env(CASES_VARIABLE, MAX_CASES)
     return float(math.floor(v)) if math.isfinite(v) and v >= 1 else (v if v > 1 else 1.0)
@@ -160,7 +160,7 @@ class Parameter(Spec):
     def label(self) -> str:
         """The dimension / coordinate name in the study Dataset (a '/' in it, which netCDF reads as
         a group separator, written as '_'; a very long one shortened with a stable hash)."""
-        from ..outputs import nc_name
+        from ..core.outputs import nc_name
 
         return nc_name(self.name or self.paths[0])
 
@@ -417,7 +417,7 @@ class Study:
     def default_out(self) -> Path:
         """Output folder: ``out`` of the study file, else the study file's stem (both relative to
         cwd; ``out`` is validated to stay under it)."""
-        from ..outputs import file_stem
+        from ..core.outputs import file_stem
 
         if self.spec.out:
             return Path(self.spec.out)
@@ -447,7 +447,7 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
         spec = StudySpec.model_validate(data)
     except ValidationError as exc:
         raise ModelError(f"{source}: {format_validation_error(exc, StudySpec)}") from None
-    from ..model import load
+    from ..core.model import load
 
     if spec.base is not None:
         base_path = Path(root) / spec.base
@@ -463,7 +463,7 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
         _absolute_files(inline, Path(root))
         base = from_dict(inline, source=f"{source}: model")
     if spec.eval_mode == "check":
-        from ..analyses import analysis
+        from ..core.analyses import analysis
 
         if not analysis(base.kind).check_data_at:
             raise ModelError(f"{source}: mode: \"check\" studies are for belt-drive models (the base is {base.kind})")
@@ -533,8 +533,8 @@ def _check_bounds(spec: StudySpec, base, source: str) -> None:
     is read: "100 kg" on a tension is one line here, not a traceback after the first generation
     (or, where the results gave no unit, a bound silently read as 100). A key whose unit the
     analysis's unit table does not give is read against the first design's units (optimise.py)."""
-    from ..analyses import analysis
-    from ..units import to_si
+    from ..core.analyses import analysis
+    from ..core.units import to_si
 
     table = analysis(base.kind).summary_units(spec.eval_mode)
     for i, c in enumerate(spec.optimise.constraints):
@@ -639,7 +639,7 @@ def to_number(value, unit: str | None):
     unit (tables, plain floats) a string that starts like a number ("15 N*m") is converted to SI
     base units; any other string (an option such as "rkf45") is kept as it is.
     """
-    from ..units import registry, to_si
+    from ..core.units import registry, to_si
 
     if isinstance(value, bool):
         return value

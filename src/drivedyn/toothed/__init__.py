@@ -5,7 +5,7 @@ groove (entry, full seating, exit) and measures the overlap; ``check`` reports t
 geometry; ``plot`` draws the superposed contours (seed figs. 6-8), interference curves, the flank
 colour map, maps and an animation.
 
-The entry points are registered in ``drivedyn.analyses`` and reached through ``drivedyn.run``,
+The entry points are registered in ``drivedyn.core.analyses`` and reached through ``drivedyn.run``,
 ``drivedyn.check`` and ``drivedyn.plot``.
 """
 from .model import Model

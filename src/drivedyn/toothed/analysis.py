@@ -4,10 +4,10 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..model import dumps
-from ..results import Result, unit_map, variable
+from ..core.model import dumps
+from ..core.results import Result, unit_map, variable
 from .engagement import comparison, geometry, headline, maps, sweep
-from .pair import resolve
+from ..mechanics.teeth.pair import resolve
 
 
 #: units of the summary keys: the keys carry their unit as a suffix (summary.json keeps mm and deg)

@@ -1,7 +1,7 @@
 """Design criteria of a timing-belt mesh (``[criteria]`` of a toothed-mesh model).
 
 Defaults (docs/criteria.md), judged when the model has a ``[load]`` section: the jump torque at
-least 1.5 times the transmitted torque (the rigid-tooth jump criterion of toothed/loadshare.py
+least 1.5 times the transmitted torque (the rigid-tooth jump criterion of mechanics/teeth/loadshare.py
 ignores tooth deflection, so real belts jump earlier), and at least 6 teeth in mesh (the usual
 rule of timing-belt catalogues: fewer teeth carry the load with too little reserve against
 jumping and wear).
@@ -12,8 +12,8 @@ from typing import Annotated
 
 from pydantic import Field
 
-from ..criteria import Criterion
-from ..model import Spec, limit
+from ..core.criteria import Criterion
+from ..core.model import Spec, limit
 
 
 class Criteria(Spec):

@@ -5,11 +5,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .interference import Flank, evaluate
-from .kinematics import first_contact
-from .pair import Pair, resolve, resolve_row
-from .profiles import tooth_outline
-from .pulley import pulley_polygon
+from ..mechanics.teeth.interference import Flank, evaluate
+from ..mechanics.teeth.kinematics import first_contact
+from ..mechanics.teeth.pair import Pair, resolve, resolve_row
+from ..mechanics.teeth.profiles import tooth_outline
+from ..mechanics.teeth.pulley import pulley_polygon
 
 
 @dataclass

@@ -8,9 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import catalogue
-from .loadshare import (Chain, climb_factor, exit_path, flank_angle, jump_margin, jump_torque, land_share, solve,
-                        span_tensions, teeth_in_mesh, tooth_stiffness_per_width)
+from ..mechanics.teeth import catalogue
+from ..mechanics.teeth.loadshare import Chain, climb_factor, exit_path, flank_angle, jump_margin, jump_torque, land_share, solve, span_tensions, teeth_in_mesh, tooth_stiffness_per_width
 
 MAX_NODES = 5000     # nodes of one chain: each jump torque is ~30 solves of it, per tension
 MAX_STRAIN = 0.1     # tensions beyond 10 % cord strain are outside a linear-elastic cord
@@ -85,7 +84,7 @@ def run_load(model, pair, progress=None):
     try:
         return _run_load(model, pair, progress)
     except RuntimeError as exc:
-        from ..errors import SolverError
+        from ..core.errors import SolverError
 
         ch = chain_of(model, pair)
         raise SolverError(f"{exc}: tooth stiffness {ch.tooth_stiffness:.3g} N/m against cord stiffness "
@@ -94,7 +93,7 @@ def run_load(model, pair, progress=None):
 
 
 def _run_load(model, pair, progress=None):
-    from ..results import variable
+    from ..core.results import variable
 
     ld = model.load
     path = exit_path(pair)

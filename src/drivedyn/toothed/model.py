@@ -13,7 +13,7 @@ from typing import Annotated, Literal, Optional, Union
 import numpy as np
 from pydantic import Field, field_validator, model_validator
 
-from ..model import Spec, quantity
+from ..core.model import Spec, quantity
 from .criteria import Criteria
 
 Length = quantity("m")
@@ -170,7 +170,7 @@ def _tooth_count(v):
 
 
 def _profile_name(v):
-    from .catalogue import canonical
+    from ..mechanics.teeth.catalogue import canonical
 
     return None if v is None else canonical(v)
 
@@ -179,7 +179,7 @@ class Belt(Spec):
     """The belt: a catalogue ``profile`` or a custom ``tooth``."""
 
     profile: Optional[str] = None
-    """Catalogue profile of the belt ("HTD8M", "T10", "L", ...; toothed/catalogue.py); give this or tooth."""
+    """Catalogue profile of the belt ("HTD8M", "T10", "L", ...; mechanics/teeth/catalogue.py); give this or tooth."""
     tooth: Optional[ToothSpec] = None
     """A custom tooth by its defining dimensions (type = "trapezoidal", "arc", "gt" or "polyline")."""
 
@@ -320,7 +320,7 @@ class Load(Spec):
     clearance: Optional[NonNeg] = None
     """Sideways play of a seated tooth before it bears on a flank; none: from the contours."""
     slip_scale: quantity("m", ge=1e-9, le=1e-3) = 1e-6
-    """Slip displacement u_s over which land friction is regularised (toothed/loadshare.py)."""
+    """Slip displacement u_s over which land friction is regularised (mechanics/teeth/loadshare.py)."""
     land_nodes: int = Field(4, ge=1, le=64)
     """Points per land where friction acts (1..64)."""
     tensions: list[quantity("N", gt=0)] = []
@@ -367,7 +367,7 @@ class Model(Spec):
 
     @model_validator(mode="after")
     def _pair(self):
-        from .pair import resolve, resolve_row
+        from ..mechanics.teeth.pair import resolve, resolve_row
 
         pair = resolve(self)
         if self.load is not None:

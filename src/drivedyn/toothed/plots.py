@@ -12,7 +12,7 @@ import numpy as np
 import shapely
 from matplotlib.figure import Figure
 
-from .kinematics import to_pulley
+from ..mechanics.teeth.kinematics import to_pulley
 
 MM = 1e3
 
@@ -292,7 +292,7 @@ def animate(ds, path, frames=48, fps=12):
         title.set_position((0.5, 1.0 + 6 / 72 * fig.dpi / ax.bbox.height))     # the title's 6 pt pad
         return _draw_tooth(ax, ds, phis[k], "C0", pulley, lw=1.5) + [title]
 
-    from .. import plotting
+    from ..core import plotting
 
     return plotting.save_gif(fig, path, frames, frame, fps=fps)
 
@@ -301,7 +301,7 @@ def plot_all(result, outdir, meanwhile=None, workers=None) -> list[Path]:
     """Write the standard figures and the animation into ``outdir``; returns the paths. They are
     drawn by plotting.write_figures (in two processes where it can; ``workers=1``: here) while this
     one runs ``meanwhile()``."""
-    from .. import plotting
+    from ..core import plotting
 
     ds, outdir = result.ds, Path(outdir)
     jobs = [("mesh-contours.png", plot_contours), ("mesh-interference.png", plot_interference),

@@ -4,11 +4,11 @@ from __future__ import annotations
 import numpy as np
 
 from .engagement import geometry
-from .interference import evaluate, Flank
-from .kinematics import first_contact
-from .pair import resolve
-from .profiles import tooth_outline
-from .pulley import pulley_polygon
+from ..mechanics.teeth.interference import evaluate, Flank
+from ..mechanics.teeth.kinematics import first_contact
+from ..mechanics.teeth.pair import resolve
+from ..mechanics.teeth.profiles import tooth_outline
+from ..mechanics.teeth.pulley import pulley_polygon
 
 
 def report(model) -> str:

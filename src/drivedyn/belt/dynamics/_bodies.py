@@ -13,7 +13,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from ... import tables
+from ...core import tables
 
 # plain Python in tables.py (check reads spring and load tables without numba): compiled here
 table = njit(cache=True, inline="always")(tables.table)

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from ...tables import flatten
+from ...core.tables import flatten
 from ..geometry.tensioner import indices, senses
 from . import _bodies as BK
 

@@ -8,8 +8,8 @@ import math
 
 import numpy as np
 
-from ...errors import ModelError
-from ...window import drift
+from ...core.errors import ModelError
+from ...core.window import drift
 
 
 #: drift of a window mean over the window, against its scale

@@ -24,7 +24,7 @@ def judged(ds):
 def add_flap_and_modes(model, result) -> None:
     """summary["flap"] (span flap frequencies, belt/steady/flap.py), summary["modes"] (the rotational
     modes, belt/steady/modes.py) and ds["flap_frequency"] for the Campbell diagram."""
-    from ...results import variable
+    from ...core.results import variable
     from ..steady import flap as flapmod
     from ..steady.modes import drive_modes
 

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from ...results import variable
+from ...core.results import variable
 
 
 def clutch_variables(ds, model, sysm, rec, ns, interval):

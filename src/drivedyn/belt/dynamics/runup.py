@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from ...results import variable
+from ...core.results import variable
 
 RPM = 60 / (2 * math.pi)
 

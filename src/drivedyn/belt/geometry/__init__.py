@@ -2,6 +2,6 @@
 tensioners' moving geometry and static equilibrium (tensioner.py), the belt placed on its path as
 segments (placement.py) and how many (segment_count.py), installation by span frequency
 (installation.py). Nothing here imports the rest of the belt package but its model file."""
-from .layout import Layout, Span, compute_layout
+from ...mechanics.layout import Layout, Span, compute_layout
 
 __all__ = ["Layout", "Span", "compute_layout"]

@@ -19,8 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...errors import ModelError
-from .layout import Layout
+from ...core.errors import ModelError
+from ...mechanics.layout import Layout
 
 
 @dataclass(frozen=True)

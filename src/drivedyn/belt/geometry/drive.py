@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from functools import cached_property
 
 from . import tensioner
-from .layout import Layout, compute_layout
+from ...mechanics.layout import Layout, compute_layout
 from .rest import installed_length, rest_state
 from .segment_count import resolved
 

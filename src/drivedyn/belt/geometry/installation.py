@@ -3,7 +3,7 @@ and the tension a measured span frequency means, from the same belt data.
 
 A sonic or optical tension meter plucks a free span at rest and reads its first transverse
 frequency. For a pinned span of length L, mass per metre m, bending stiffness EI at tension T
-(span/frequencies.py): string f = (1/2L) sqrt(T/m); with bending f = (1/2L) sqrt((T + pi^2 EI/L^2)/m).
+(mechanics/span/frequencies.py): string f = (1/2L) sqrt(T/m); with bending f = (1/2L) sqrt((T + pi^2 EI/L^2)/m).
 The bending correction matters on short spans of stiff belts; the table states it. The band is
 the frequency range of the tension tolerance: f is monotonic in T, so the band's ends are the
 frequencies at T0 (1 -+ tolerance). Meters want long spans (low, well-separated frequencies and
@@ -11,8 +11,8 @@ the smallest share of the bending correction): the longest span is the one to me
 """
 from __future__ import annotations
 
-from ...errors import ModelError
-from ...span.frequencies import beam_frequency, string_frequency, tension_from_frequency
+from ...core.errors import ModelError
+from ...mechanics.span.frequencies import beam_frequency, string_frequency, tension_from_frequency
 
 #: default tension tolerance of an installation (+-10 %: a common belt-maker specification)
 TOLERANCE = 0.10

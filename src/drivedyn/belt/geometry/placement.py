@@ -17,10 +17,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..._roots import find_root
-from ...errors import ModelError
+from ...core._roots import find_root
+from ...core.errors import ModelError
 from . import walk
-from .layout import Layout, layout_from
+from ...mechanics.layout import Layout, layout_from
 
 
 @dataclass(frozen=True)

@@ -20,11 +20,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..._roots import find_root
-from ...errors import ModelError
+from ...core._roots import find_root
+from ...core.errors import ModelError
 from . import tensioner as TN
 from .catalogue import effective_diameters, effective_drive_length, length_offset
-from .layout import compute_layout
+from ...mechanics.layout import compute_layout
 from ..model import free_arm_angle
 
 ROWS = ("free arm", "replace", "max belt", "mean", "min belt", "load stop")

@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..._roots import find_root
-from ...errors import ModelError
+from ...core._roots import find_root
+from ...core.errors import ModelError
 from . import tensioner as TN
-from .layout import Layout, compute_layout
+from ...mechanics.layout import Layout, compute_layout
 from .placement import penetration
 
 

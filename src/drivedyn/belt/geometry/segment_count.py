@@ -44,9 +44,9 @@ from __future__ import annotations
 
 import math
 
-from ...errors import ModelError
+from ...core.errors import ModelError
 from ..model import MAX_AUTO
-from .layout import compute_layout
+from ...mechanics.layout import compute_layout
 from .placement import penetration
 
 #: segments on the shortest wrap (the wrap-resolution rule above)

@@ -22,11 +22,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..._roots import find_root
-from ...errors import ModelError
-from ...tables import table
+from ...core._roots import find_root
+from ...core.errors import ModelError
+from ...core.tables import table
 from .placement import initial_state
-from .layout import compute_layout
+from ...mechanics.layout import compute_layout
 
 
 @dataclass

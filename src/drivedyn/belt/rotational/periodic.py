@@ -24,8 +24,8 @@ import time as _time
 
 import numpy as np
 
-from ...errors import ModelError, Stopped, stop_reason
-from ...limits import bytes_problem, steps_problem
+from ...core.errors import ModelError, Stopped, stop_reason
+from ...core.limits import bytes_problem, steps_problem
 from . import _kernels as RK
 from ..geometry.drive import resolve
 from . import simulate as RT
@@ -296,7 +296,7 @@ def run(drive, progress=None, keys=None):
     :func:`lean_keys`): a lean Result whose summary holds only the ``runup`` entry (without the
     order tracking unless asked for) and no Dataset, no criteria and no diagnostics but the
     solve's own; its numbers are the full run's."""
-    from ...errors import SolverError
+    from ...core.errors import SolverError
 
     drive = resolve(drive)
     model = drive.model
@@ -355,7 +355,7 @@ def _lean(model, sysm, o, ns, stair, orders):
     """The lean Result: the run-up tables from the recorded samples, as the full run computes them."""
     import xarray as xr
 
-    from ...results import Result, unit_map
+    from ...core.results import Result, unit_map
     from ..dynamics.runup import runup_tables
     from ..dynamics.outputs import UNITS
 

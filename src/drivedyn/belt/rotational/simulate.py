@@ -53,13 +53,13 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ...errors import ModelError, SolverError, Stopped, stop_reason
+from ...core.errors import ModelError, SolverError, Stopped, stop_reason
 from ..dynamics import _bodies as BK
 from ..dynamics.bodies import arms_record, pulleys_record, running_senses
 from ..dynamics.frequencies import add_flap_and_modes
 from . import _kernels as RK
 from ..geometry import tensioner as TN
-from ..geometry.layout import Layout, compute_layout
+from ...mechanics.layout import Layout, compute_layout
 from ..steady.modes import rolled_on
 from ..geometry.drive import resolve
 from ..geometry.placement import penetration
@@ -298,7 +298,7 @@ def new_states(sysm: RotSystem):
 
 def run(drive, progress=None):
     """Integrate ``drive`` (geometry.drive.Drive, or a model) with the rotational model."""
-    from ...limits import steps_problem
+    from ...core.limits import steps_problem
 
     drive = resolve(drive)
     model = drive.model
@@ -352,9 +352,9 @@ def run(drive, progress=None):
 def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_model=None, window=None):
     import xarray as xr
 
-    from ...model import dumps
-    from ...results import Result, unit_map, variable
-    from ...window import in_window, steady_window
+    from ...core.model import dumps
+    from ...core.results import Result, unit_map, variable
+    from ...core.window import in_window, steady_window
     from ..dynamics.outputs import ROTATIONAL_UNITS, UNITS, clutch_variables, friction_law, run_summary, tensioner_variables
 
     lay = sysm.layout

@@ -1,7 +1,7 @@
 """Belt-drive diagnostics: does the computed run stay inside the model's valid regime?
 
 Each check reads the Result (window means, frames) and the built system, adds its numbers to the
-summary and, past its limit, a diagnostic (codes of :data:`drivedyn.diagnostics.CODES`):
+summary and, past its limit, a diagnostic (codes of :data:`drivedyn.core.diagnostics.CODES`):
 
 - gross-slip: creep theory (Euler-Eytelwein / Grashof) puts the pulley surface speed between the
   speeds of the belt arriving and leaving (adhesion arc at the entry, sliding arc at the exit); in
@@ -23,7 +23,7 @@ import math
 
 import numpy as np
 
-from ...window import in_window
+from ...core.window import in_window
 from ..dynamics.checks import energy_balance, excited, runup_slip, slip_margin, steady_drift
 from .equilibrium import FORCE_TOL
 from ..model import integrator

@@ -40,3 +40,15 @@ class Contact(NamedTuple):
     dv: float                # Threlfall's Delta_v (m/s)
     dmax: float              # elastic-plastic displacement limit Delta_max (m)
     centre: bool             # friction read at the segment's centre (r - p), else at the contact radius r
+
+
+# A stage of the time loop (``_advance``) is a function of its own, compiled once, not inlined into
+# the loop as numba IR: numba copies an inlined function's IR at a cost that grows with its size
+# times its blocks, and then compiles one giant function (the implicit kernel: 48 s cold against
+# 21 s as stages, 2-core AMD EPYC; LLVM inlines the smaller stages, the others are a call per step).
+# Compiled as the loop is (no fast-math, numpy's error model, no reference counting: a stage
+# allocates nothing), so every number is the same to the bit, the steps as fast, and without the
+# wrappers a function called from Python needs (a record's wrapper unboxes each of its arrays:
+# 1.6 s of compile for the loop's arguments alone).
+STAGE = {"cache": True, "_nrt": False, "error_model": "numpy", "no_cpython_wrapper": True, "no_cfunc_wrapper": True}
+STAGE_PY = {**STAGE, "no_cpython_wrapper": False}     # a stage the tests also call from Python

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 
-from ...errors import ModelError
+from ...core.errors import ModelError
 from ..model import MAX_AUTO
 from ..geometry.segment_count import MIN_SEGMENTS, WRAP_MIN_DEG, auto_segments, chord_sag
 
@@ -156,7 +156,7 @@ def check(model, result, run) -> None:
         "belt": model.belt.model_copy(update={"segments": n2}),
         "simulation": model.simulation.model_copy(update={"resolution_check": False}),
         "output": model.output.model_copy(update={"segments": [], "frames": 1})})   # what it does not compare
-    from ...errors import SolverError
+    from ...core.errors import SolverError
 
     try:
         other = run(coarse)
@@ -200,7 +200,7 @@ def check(model, result, run) -> None:
         disc["estimate"]["power_loss"] = loss
         disc["estimate"]["power_loss_relative"] = sum(loss.values()) / total if total > 0 else float("nan")
         disc["estimate"]["power_loss_method"] = f"change times {f2:.3g} (second order: the landing impacts)"
-    from ...results import unit_map
+    from ...core.results import unit_map
     from ..dynamics.outputs import UNITS
 
     result.units = unit_map(result.summary, UNITS)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...errors import ModelError
+from ...core.errors import ModelError
 from . import _kernels as K
 from .compiled import compile_note, compiled
 from ..dynamics import _bodies as BK

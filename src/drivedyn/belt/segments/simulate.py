@@ -8,10 +8,10 @@ import time as _time
 import numpy as np
 import xarray as xr
 
-from ...errors import ModelError, SolverError, Stopped, stop_reason
-from ...model import dumps
-from ...results import Result, unit_map, variable
-from ...window import in_window, steady_window
+from ...core.errors import ModelError, SolverError, Stopped, stop_reason
+from ...core.model import dumps
+from ...core.results import Result, unit_map, variable
+from ...core.window import in_window, steady_window
 from . import _kernels as K
 from . import ahead as _ahead
 from . import tail as _tail
@@ -275,7 +275,7 @@ def _run(drive, sysm, progress, ahead) -> Result:
     model = drive.model
     sim = model.simulation
     if sim.step is None:     # the step the model sets (a given one was checked with the model)
-        from ...limits import steps_problem
+        from ...core.limits import steps_problem
 
         if sysm.step < MIN_STEP:
             raise ModelError(f"the stable step of this belt is {sysm.step:.3g} s, below {MIN_STEP:g} s (belts run at "

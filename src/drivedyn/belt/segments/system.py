@@ -11,10 +11,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ...errors import ModelError
+from ...core.errors import ModelError
 from .records import LAWS, Belt, Contact
 from ..geometry.placement import InitialState, check_length, initial_state
-from ..geometry.layout import Layout, compute_layout
+from ...mechanics.layout import Layout, compute_layout
 from ..geometry import tensioner
 from ..model import integrator
 from ..geometry.drive import resolve
@@ -239,7 +239,7 @@ def _place(model, drive) -> Placed:
         step = model.simulation.step if model.simulation.step is not None else limit
     else:
         step = model.simulation.step if model.simulation.step is not None else 0.85 * limit
-    from ...limits import max_steps
+    from ...core.limits import max_steps
 
     steps = model.simulation.duration / min(step, model.output.interval)
     if integrator(model) == "rkf45":

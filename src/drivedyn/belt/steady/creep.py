@@ -31,10 +31,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..._roots import find_root
-from ...errors import ModelError
-from ...tables import table
-from ..geometry.layout import Layout, compute_layout
+from ...core._roots import find_root
+from ...core.errors import ModelError
+from ...core.tables import table
+from ...mechanics.layout import Layout, compute_layout
 from ..geometry.placement import penetration
 
 

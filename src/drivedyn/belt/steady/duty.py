@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...errors import ModelError
+from ...core.errors import ModelError
 from .creep import entry_exit, tension_offsets, drive_of
 
 

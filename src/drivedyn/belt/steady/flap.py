@@ -2,7 +2,7 @@
 tension and belt speed, and where the crank's orders cross them.
 
 Each span is taken as the axially moving, tensioned beam of the span analysis
-(``drivedyn.span.frequencies.moving_beam_spectrum``: pinned ends, length L between its
+(``drivedyn.mechanics.span.frequencies.moving_beam_spectrum``: pinned ends, length L between its
 tangent points in the drawn layout, tension T, mass per metre m, bending stiffness EI, belt
 speed V), whose first frequency without bending is the moving string's
 
@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from ...span.frequencies import moving_beam_spectrum
+from ...mechanics.span.frequencies import moving_beam_spectrum
 
 RPM = 30 / math.pi
 MODES = 2
@@ -38,7 +38,7 @@ def flap(model, ds, summary) -> dict:
     """Flap frequencies of every span: ``{"speed_rpm": [...], "spans": {name: {"length",
     "f1": [...], "f2": [...]}}, "crank": name}``; one entry per run-up bin, or one for a steady
     run (the steady window's means)."""
-    from ..geometry.layout import compute_layout
+    from ...mechanics.layout import compute_layout
 
     lay = compute_layout(model)
     m = model.belt.mass_per_length
@@ -145,7 +145,7 @@ def judged_crossings(model, fl: dict, orders, speed_range, zeta, tension_amp, te
       so it is listed, not counted.
 
     ``tension_amp(span, order, rpm)`` and ``tension_mean(span, rpm)`` (N) read the run."""
-    from ..geometry.layout import compute_layout
+    from ...mechanics.layout import compute_layout
 
     ends = moving_ends(model, compute_layout(model))
     m = model.belt.mass_per_length

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._wraps import wrap_axial_stiffness
-from ..geometry.layout import Layout, compute_layout
+from ...mechanics.layout import Layout, compute_layout
 
 #: points per wrap for its mass (the wrap is an arc carried rigidly by its pulley)
 WRAP_POINTS = 24

@@ -6,9 +6,9 @@ import math
 
 import numpy as np
 
-from ..._roots import find_root
-from ...errors import ModelError
-from ..geometry.layout import compute_layout
+from ...core._roots import find_root
+from ...core.errors import ModelError
+from ...mechanics.layout import compute_layout
 from ..geometry.tensioner import moved_to, spring_load, centre, indices, senses
 
 

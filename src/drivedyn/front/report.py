@@ -1,0 +1,323 @@
+"""``report.html``: one self-contained page per run (or study) that an engineer opens in a browser
+and prints to PDF: status and diagnostics, the headline results with units, every plot embedded
+with a caption, and the model's data. Rendered with Jinja2 (templates/report.html.j2); images are
+embedded as base64 data, so the file needs no server, no internet and no other file.
+"""
+from __future__ import annotations
+
+import base64
+import datetime as _dt
+from pathlib import Path
+
+from .._version import __version__
+from ..core.results import number_text
+
+#: what each standard plot shows (file name -> caption); a plot not listed gets its file name
+CAPTIONS = {
+    "speeds.png": "Pulley speeds over time (counter-clockwise positive) and the slip of every pulley against the driver.",
+    "tensions.png": "Mid-span tension of every span and the hub load of every pulley over time (interval means).",
+    "segment_forces.png": "Element, normal and friction force on the tracked belt segments as they travel round the drive (seed 000, figs. 11-13).",
+    "energy.png": "Energy balance: work in, energy stored, dissipation by mechanism, and the residual (integration error).",
+    "campbell.png": "Campbell diagram: the drive's rotational natural frequencies (linearised, spans EA/L) against the driver's orders.",
+    "spectrum.png": "Amplitude spectra over the steady window of the tight span's tension, the pulley speeds and the hub "
+                    "loads; the top axis reads frequency as orders of the driver's mean speed, the largest tension peaks "
+                    "are named by frequency and order.",
+    "belt.png": "The belt at the last frame, segments coloured by their element force.",
+    "belt.gif": "The belt moving (segments coloured by element force).",
+    "runup.png": "Run-up per crank-speed bin: span tension bands, slip against the crank, order cuts of the tight span, tensioner arm travel.",
+    "waterfall.png": "Waterfall: spectrum of the tight span's tension against crank speed; dashed lines are the engine orders.",
+    "gears-vibration.png": "Torsional vibration of each gear in the steady window: angle less the nominal rotation, "
+                           "with the linear drift removed (its rate in the legend).",
+    "gears-kv.png": "Dynamic factor in the steady window: mesh force over its nominal value; dashed: K_v, the largest.",
+    "gears-forces.png": "Mesh forces, dynamic transmission error and load sharing between the meshes in the steady window.",
+    "gears-spectrum.png": "Mesh-force amplitude per order of the mesh frequency (steady window); dotted: natural frequencies.",
+    "gears-sweep.png": "K_v against input speed, simulated and by ISO 6336-1 method B; shaded: speeds where the linear "
+                       "model is parametrically unstable (K_v there is meaningless).",
+    "gears-campbell.png": "Campbell diagram: natural frequencies against input speed with the mesh-frequency orders; "
+                          "circles: resonances.",
+    "gears-stiffness.png": "Mesh stiffness over time and over the roll angle (time-varying mesh stiffness, seed 003).",
+    "gears-planetary.png": "Planetary stage: static mesh force of each planet (pin position errors included) and the "
+                           "stage's natural frequencies with its fixed member held.",
+    "span-chart.png": "Stability chart of the span: parametric resonance regions against belt speed (seed 002).",
+    "span-floquet.png": "Floquet multipliers of the span: growth (unstable) where the largest exceeds 1.",
+    "span-frequencies.png": "First natural frequency of the span against its tension (string, beam, moving beam at the run's speed), "
+                            "and the tension a measured frequency gives.",
+    "span-response.png": "Transverse response of the span over time.",
+    "span-tongue.png": "The principal resonance region (tongue) of the span near the operating point.",
+    "span-tooth-force.png": "The tooth-force (tension) excitation of the span.",
+    "mesh-interference.png": "Interference of belt teeth and pulley grooves through the engagement (seed 001).",
+    "mesh-contours.png": "Tooth and groove contours in the engagement.",
+    "mesh-flank-map.png": "Where on the flank the tooth touches the groove.",
+    "mesh-maps.png": "Largest overlap area and penetration against the pulley's tooth count and the pitch error "
+                     "(colour scale from 0, pale: no overlap).",
+    "mesh-comparison.png": "The profile pairs compared, unloaded: largest overlap area and penetration of each pair "
+                           "(a pair with none is labelled 0).",
+    "mesh-animation.gif": "A tooth entering and leaving the groove.",
+    "mesh-load.png": "Under load: the load on each tooth in mesh (tooth 1 next to the tight span) with the load at which it "
+                     "would climb out, the cord tension along the wrap, and the jump torque against the installation tension.",
+}
+
+def _value(v, unit):
+    if isinstance(v, bool) or v is None:
+        return str(v)
+    if isinstance(v, (int, float)):
+        return number_text(float(v), unit)
+    if isinstance(v, (list, tuple)):
+        from .overview import compact
+
+        if any(isinstance(x, (list, tuple, dict)) for x in v):
+            return compact(v)
+        if len(v) > 8:
+            return f"[{len(v)} values: {_value(v[0], '')} ... {_value(v[-1], '')}]"
+        return "[" + ", ".join(_value(x, "") for x in v) + "]"
+    return str(v)
+
+
+def _rows(flat: dict, units: dict) -> list[dict]:
+    out = []
+    for k, v in flat.items():
+        unit = units.get(k, "")
+        numeric = isinstance(v, (int, float, list, tuple)) and not isinstance(v, bool)
+        out.append({"key": k, "value": _value(v, unit if "speed" in k else ""),
+                    "unit": "" if unit == "1" or not numeric else unit})
+    return out
+
+
+def _model_rows(model) -> list[dict]:
+    from ..core.model import field_unit, to_dict
+
+    rows = []
+
+    def walk(prefix, v, out):
+        # dicts by key, lists of tables by index (pulleys.0.radius), other values as they are
+        if isinstance(v, dict):
+            for k, x in v.items():
+                walk(f"{prefix}.{k}" if prefix else str(k), x, out)
+        elif isinstance(v, list) and v and all(isinstance(x, dict) for x in v):
+            for i, x in enumerate(v):
+                walk(f"{prefix}.{i}", x, out)
+        else:
+            out[prefix] = v
+        return out
+
+    for k, v in walk("", to_dict(model), {}).items():
+        try:
+            unit = field_unit(type(model), k) or _items_unit(type(model), k)
+        except Exception:
+            unit = ""
+        unit = unit or TABLE_UNITS.get(k.rsplit(".", 1)[-1], "")
+        rows.append({"key": k, "value": _value(v, unit), "unit": unit})
+    return rows
+
+
+#: columns of the table fields (the model-file reference), whose schema carries no unit
+TABLE_UNITS = {"torque_time": "rows [s, N*m]", "torque_speed": "rows [rad/s, N*m]", "speed_time": "rows [s, rad/s]"}
+
+
+def _items_unit(model_cls, path) -> str:
+    """The unit of a tuple field whose items all carry one (a pulley's centre: (m, m))."""
+    import typing
+
+    from ..core.model import schema_at, unwrap
+
+    ann = schema_at(model_cls, path)
+    if ann is None:
+        return ""
+    core = unwrap(ann)[0]
+    units = {unwrap(a)[1] for a in typing.get_args(core) if a is not Ellipsis}
+    return units.pop() or "" if len(units) == 1 else ""
+
+
+def _figures(files, captions=None) -> list[dict]:
+    out = []
+    for f in files:
+        f = Path(f)
+        if not f.exists() or f.suffix.lower() not in (".png", ".gif"):
+            continue
+        out.append({"name": f.name, "kind": "png" if f.suffix.lower() == ".png" else "gif",
+                    "caption": (captions or {}).get(f.name) or CAPTIONS.get(f.name, f.stem.replace("_", " ")),
+                    "data": base64.b64encode(f.read_bytes()).decode("ascii")})
+    return out
+
+
+def render(title, kind, status, message, diagnostics, headline, results, figures, model_rows, model_toml, source="",
+           extra="", table=None, model_heading="Model", verdict=None, tables=(), model_note="") -> str:
+    from jinja2 import Environment, PackageLoader, select_autoescape
+
+    env = Environment(loader=PackageLoader("drivedyn.front", "templates"), autoescape=select_autoescape(["html", "j2"]))
+    return env.get_template("report.html.j2").render(
+        title=title, kind=kind, status=status, message=message, diagnostics=diagnostics, headline=headline, results=results,
+        figures=figures, model_rows=model_rows, model_toml=model_toml, source=source, extra=extra, table=table,
+        model_heading=model_heading, verdict=verdict, tables=list(tables), model_note=model_note,
+        version=__version__, written=_dt.datetime.now().isoformat(timespec="seconds"))
+
+
+def write_report(result, outdir, files, model=None, source="") -> Path:
+    """Write ``outdir/report.html`` for a run: ``files`` are its plots (embedded)."""
+    from ..core.model import dumps, loads
+
+    outdir = Path(outdir)
+    if model is None and "model_toml" in result.ds.attrs:
+        model = loads(result.ds.attrs["model_toml"])
+    from .overview import tables, verdict_table
+
+    flat = {k: v for k, v in result.flat_summary().items()
+            if not (k.startswith(("runup.", "flap.")) and isinstance(v, list))}
+    html = render(
+        title=(getattr(model, "name", "") or result.kind) if model is not None else result.kind, kind=result.kind,
+        status=result.status, message=result.message,
+        diagnostics=[_diag(d) for d in result.diagnostics], headline=[],
+        results=_rows(flat, result.units), figures=_figures(files),
+        model_rows=_model_rows(model) if model is not None else [],
+        model_toml=dumps(model) if model is not None else "", source=str(source),
+        verdict=verdict_table(result.summary), tables=tables(result), model_note=model_note(result))
+    from ..core.outputs import write_text
+
+    return write_text(outdir / "report.html", html)
+
+
+def model_note(result) -> str:
+    """Which belt model ran and what it is known to miss (one sentence under the solve's status)."""
+    if result.kind != "belt-drive":
+        return ""
+    s = result.summary
+    disc = s.get("discretisation", {})
+    if disc.get("model") == "rotational":
+        est = disc.get("estimate", {})
+        share = est.get("share_of_half_band")
+        at_arm = est.get("share_of_half_band_at_a_tensioner", share)
+        flap = "" if at_arm == share else f", {at_arm:g} x where a span at a tensioner may take a mode by its flap"
+        size = ("" if share is None else
+                f"; its span tension extremes may sit {'' if share == 1 else f'{share:g} x '}their half band "
+                f"(max - min) / 2 from the segment model's{flap} (discretisation.estimate; its means within 2 %)")
+        cells = s.get("belt", {}).get("friction_law") == "elastic-plastic"
+        wraps = ("each wrap's belt in cells the rim carries, with their tension and bristles" if cells else
+                 "each wrap's belt relaxed to its creep-theory content over one passage")
+        return ("Model: the rotational model (one unknown per pulley, rotor and tensioner; the spans as axial springs; "
+                f"{wraps}). Not in it: the spans' transverse motion (flap, judged from its frequencies; in the "
+                f"segment model a span at a tensioner splits the arm's mode as a tuned absorber would) and the belt's "
+                f"axial waves{size}. Confirm a design with simulation.model = \"segments\".")
+    n = s.get("belt", {}).get("segments") or disc.get("segments")
+    if n:
+        law = s.get("belt", {}).get("friction_law", "")
+        return (f"Model: the segment model (after Kubas, Archiwum Motoryzacji 67 (2015): {n} rigid belt segments in the plane, penalty contact, "
+                f"{law} friction). Not in it: the belt's motion out of the drive's plane and polygon effects "
+                "beyond the discretisation estimate (discretisation.estimate).")
+    return ""
+
+
+def _case_names(ds) -> list[str]:
+    """'belt.pretension = 200 N, load_torque = 15 N*m' per case, in the order of ``status.ravel()``."""
+    import itertools
+
+    dims = list(ds["status"].dims)
+    if dims == ["case"] or any(d not in ds.coords for d in dims):
+        return [f"case {k}" for k in range(ds["status"].size)]
+
+    def one(d, v):
+        unit = ds[d].attrs.get("units", "")
+        v = f"{v:.4g}" if isinstance(v, float) else str(v)
+        return f"{d} = {v}{f' {unit}' if unit not in ('', '1') else ''}"
+
+    return [", ".join(one(d, v) for d, v in zip(dims, combo))
+            for combo in itertools.product(*(ds[d].values.tolist() for d in dims))]
+
+
+def _diag(d) -> dict:
+    e = d.to_dict()
+    unit = e.get("unit") or ""
+    e["unit"] = "" if unit in ("", "1") else f" {unit}"
+    for k in ("value", "limit"):
+        if isinstance(e.get(k), float):
+            e[k] = f"{e[k]:.4g}"
+    return e
+
+
+def write_study_report(res, study_file, outdir) -> Path:
+    """``outdir/report.html`` for a study: case counts, the cases that warned or did not finish,
+    the parameters and outputs, every study plot, and the study file."""
+    import numpy as np
+
+    ds = res.ds
+    c = res.counts
+    sts = ds["status"].values.ravel()
+    msgs = ds["message"].values.ravel()
+    # each case that did not succeed, named by its parameters (the plots mark it, this says why)
+    params_of = _case_names(ds)
+    diags = [{"code": str(st), "text": f"{name}: {m}", "quantity": ""}
+             for st, m, name in zip(sts, msgs, params_of) if st != "success"][:50]
+    results = [{"key": "cases", "value": str(c.get("total", len(sts))), "unit": ""}]
+    for k in ("success", "warning", "failed", "invalid", "error", "ran", "cached"):
+        if k in c:
+            results.append({"key": f"cases {k}", "value": str(c[k]), "unit": ""})
+    for name in ds.data_vars:
+        v = ds[name]
+        if v.dtype.kind in "fi" and name not in ("wall_time",):
+            vals = v.values[np.isin(ds["status"].values, ("success", "warning"))] if v.shape == ds["status"].shape else v.values
+            vals = np.asarray(vals, float)
+            if vals.size and np.isfinite(vals).any():
+                results.append({"key": f"{name} (completed cases: min / max)",
+                                "value": f"{np.nanmin(vals):.4g} / {np.nanmax(vals):.4g}",
+                                "unit": "" if v.attrs.get("units", "") == "1" else v.attrs.get("units", "")})
+    params = [{"key": str(d), "value": _value(list(ds[d].values.tolist()), ""), "unit": ds[d].attrs.get("units", "")}
+              for d in ds.dims if d in ds.coords]
+    text = ds.attrs.get("study_toml", "")      # as read (a file is read once, with its size capped)
+    status = "success" if c.get("success", 0) == c.get("total", 0) else ("warning" if not any(
+        st not in ("success", "warning") for st in sts) else "failed")
+    from ..core.outputs import file_stem
+
+    captions = {}
+    for p in res.plots or []:
+        key = next((k for k in ds.data_vars if file_stem(k.replace(".", "_")) == Path(p).stem), Path(p).stem)
+        unit = ds[key].attrs.get("units", "") if key in ds else ""
+        captions[Path(p).name] = (f"{key}{f' ({unit})' if unit not in ('', '1') else ''} of every case against the "
+                                  "study's parameters; cases that warned or failed are marked and left blank (see "
+                                  "Diagnostics for why).")
+    html = render(title=f"study: {ds.attrs.get('title') or Path(study_file).stem}", kind="parameter study", status=status,
+                  message=f"{c.get('total', 0)} cases", diagnostics=diags, headline=results, results=[],
+                  figures=_figures(res.plots, captions), model_rows=params, model_toml=text, source=str(study_file),
+                  model_heading="Parameters")
+    from ..core.outputs import write_text
+
+    return write_text(Path(outdir) / "report.html", html)
+
+
+def write_optimisation_report(res, study, study_file, outdir, hits=()) -> Path:
+    """``outdir/report.html`` for an optimisation: the best design, its objective and constraint
+    margins, the designs evaluated, an optimum on a bound of its range (said as a diagnostic), the
+    convergence plot and the study file."""
+    o = res.optimum
+    opt = study.spec.optimise
+    units = study.units
+    n = len(o.evaluations)
+    feasible = sum(1 for e in o.evaluations if e.feasible)
+    rows = [{"key": "designs evaluated", "value": str(n), "unit": ""},
+            {"key": "feasible designs", "value": str(feasible), "unit": ""}]
+    diags = [{"code": "optimum-on-bound", "quantity": h["name"], "value": f"{h['value']:.6g}", "limit": f"{h['bound']:.6g}",
+              "unit": f" {h['unit']}" if h["unit"] not in ("", "1") else "",
+              "text": f"the best design sits on the {h['side']} bound of this parameter's range (within "
+                      f"{100 * h['share']:g} % of its range): the optimum may lie outside the range; widen it"} for h in hits]
+    if o.values is None:
+        status, message = "failed", "no feasible design: widen the ranges, loosen the constraints or raise the budget"
+    else:
+        status, message = ("warning" if hits else "success"), f"best {opt.objective} = {o.objective:.6g}"
+        rows.append({"key": f"objective ({opt.sense}): {opt.objective}", "value": f"{o.objective:.6g}", "unit": ""})
+        rows += [{"key": k, "value": f"{v:.6g}" if isinstance(v, float) else str(v), "unit": units.get(k, "") or ""}
+                 for k, v in o.values.items()]
+        for key, c in o.constraints.items():
+            if "value" in c:
+                bounds = " ".join(f"{side} {c[side]:.4g}" for side in ("min", "max") if side in c)
+                rows.append({"key": f"constraint {key} ({bounds})", "value": f"{c['value']:.4g} (margin {c['margin']:.4g})",
+                             "unit": ""})
+    params = [{"key": p.label, "value": f"{p.range[0]} .. {p.range[1]}" if p.range is not None else str(p.values),
+               "unit": f"{p.scale}{', integer' if p.integer else ''}"} for p in study.spec.parameters]
+    text = res.ds.attrs.get("study_toml", "") if getattr(res, "ds", None) is not None else ""
+    captions = {Path(p).name: "the best feasible objective against the designs evaluated; dots: each feasible design"
+                for p in res.plots or []}
+    html = render(title=f"optimisation: {study.name or Path(study_file).stem}", kind="optimisation study",
+                  status=status, message=message, diagnostics=diags, headline=rows, results=[],
+                  figures=_figures(res.plots, captions), model_rows=params, model_toml=text, source=str(study_file),
+                  model_heading="Design space")
+    from ..core.outputs import write_text
+
+    return write_text(Path(outdir) / "report.html", html)
