@@ -296,6 +296,10 @@ class Pulley(Spec):
     """Efficiency of the alternator (in (0, 1]): the shaft power is power / efficiency."""
     cut_in_speed: quantity("rad/s", gt=0) = 100.0
     """Alternator cut-in speed: no electrical load below it, rising linearly to the full power at twice it."""
+    teeth: Optional[Annotated[int, Field(ge=8, le=400)]] = None
+    """Grooves of a toothed pulley (with belt.teeth): its radius must be the pitch radius teeth x pitch / (2 pi)
+    within 0.5 %; none: a smooth pulley or idler (friction contact, the belt's back on a back-side idler).
+    The pitch radius is where the belt's tension member runs."""
     clutch: Optional[Clutch] = None
     """An overrunning clutch or decoupler between this pulley and its accessory's rotor; none: the loads act on the
     pulley itself."""
@@ -390,6 +394,44 @@ class FrictionZone(Spec):
         return self
 
 
+class Teeth(Spec):
+    """The belt's teeth (a synchronous belt): each tooth engages the grooves of every pulley that gives
+    ``teeth`` (back-side idlers stay friction contacts). A tooth is a spring between the belt's tension
+    member and its groove with the tooth's sideways play as a dead band; past the climb criterion of
+    the wrapped belt (mechanics/teeth/loadshare.py, eq. 3: Q tan(phi - rho) >= T p / R) it climbs and
+    slides over the land into the next groove, a jump the run reports. No creep: a tooth stays in its
+    groove while it does not jump, so the mean speed ratio is the tooth ratio."""
+
+    profile: str
+    """Tooth profile from the catalogue (HTD8M, HTD9.525, GT2-3M, T10, L, ...; mechanics/teeth/catalogue.py): its pitch,
+    and its tooth's shape for the tooth stiffness, play and flank angle left out here."""
+    width: quantity("m", gt=0, le=1.0)
+    """Belt width (the tooth stiffness per unit width times this)."""
+    count: Optional[Annotated[int, Field(ge=10, le=2000)]] = None
+    """Teeth on the belt; none: belt.length / pitch when belt.length is given (it must be a whole number of pitches),
+    else the drawn path's length over the pitch, rounded."""
+    tooth_stiffness: Optional[quantity("N/m", gt=0)] = None
+    """Stiffness of one tooth in its groove, whole width (N per m of tangential deflection); none: from the tooth's
+    shape and tooth_modulus (a Timoshenko cantilever, mechanics/teeth/loadshare.py: tooth_stiffness_per_width)."""
+    tooth_modulus: quantity("Pa", gt=0) = 4.0e6
+    """Shear modulus G of the tooth's rubber, for the tooth stiffness from its shape (4 MPa: chloroprene rubber of
+    about 70 Shore A, G = E / 3 with E = 12 MPa; Gent, Engineering with Rubber, 3rd ed., fig. 1.5)."""
+    damping_ratio: float = Field(0.05, ge=0, le=1.0)
+    """Damping of a tooth on its groove as a share of the critical damping of a segment on the tooth spring."""
+    play: Optional[quantity("m", ge=0)] = None
+    """Sideways play of a seated tooth in its groove, the dead band of its spring; none: from the profile pair's
+    exact contours (the toothed-mesh analysis's exit path, seed 001) for the smallest toothed pulley."""
+    flank_angle: Optional[quantity("rad", gt=0, lt=math.pi / 2)] = None
+    """Flank angle phi of the climb criterion (to the groove axis); none: from the profile pair's contours as for
+    play."""
+    flank_friction: float = Field(0.0, ge=0, le=2.0)
+    """Friction coefficient on the flank (rho = atan of it) of the climb criterion (0, as the toothed-mesh analysis's
+    load.friction; a flank angle at or below atan(flank_friction) is self-locking: no jump)."""
+    nodes_per_tooth: Annotated[int, Field(ge=1, le=8)] = 1
+    """Segments per belt tooth (the belt has count x nodes_per_tooth segments; one in nodes_per_tooth carries a
+    tooth): 2 halves the chord between teeth, for the convergence check."""
+
+
 class Belt(Spec):
     """The belt: mass, axial and bending stiffness and damping as properties per unit length (the
     segments' values follow from them, so a model means the same physics at any segment count), the
@@ -434,6 +476,8 @@ class Belt(Spec):
     length_offset: Optional[quantity("m")] = None
     """Required belt length = effective drive length - length_offset; none: the drawn layout's effective drive length
     less the nominal length (the drawn tensioner is at the nominal length)."""
+    teeth: Optional[Teeth] = None
+    """A synchronous (toothed) belt: its teeth engage the pulleys that give ``teeth``; none: a friction belt."""
 
     @field_validator("segments")
     @classmethod
@@ -460,6 +504,18 @@ class Belt(Spec):
         if (self.pretension is None) == (self.length is None):
             raise ValueError("give exactly one of belt.pretension (N) or belt.length (unstretched, m)")
         return self
+
+    @field_validator("teeth")
+    @classmethod
+    def _profile(cls, v):
+        if v is not None:
+            from ..mechanics.teeth import catalogue
+
+            try:
+                catalogue.canonical(v.profile)
+            except ValueError as exc:
+                raise ValueError(f"profile: {exc}") from None
+        return v
 
 
 class Contact(Spec):
@@ -779,11 +835,57 @@ class Model(Spec):
                              "use semi-implicit or implicit")
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
             raise ValueError("output.steady_window ends after simulation.duration")
+        self._teeth()
         self._clutch_on_driver()
         self._reversing()
         self._cost()
         self._duty_names(names)
         return self
+
+    def _teeth(self):
+        """A toothed belt and its pulleys: grooves only with belt.teeth, on the inside of the loop, a
+        pitch radius that fits the groove count, a belt length of whole teeth."""
+        teeth = self.belt.teeth
+        for k, q in enumerate(self.pulleys):
+            if q.teeth is None:
+                continue
+            if teeth is None:
+                raise ValueError(f"pulleys[{k}].teeth: pulley {q.name!r} has {q.teeth} grooves but the belt has no teeth "
+                                 "(give [belt.teeth] for a synchronous belt, or leave teeth out for a smooth pulley)")
+            if q.side == "back":
+                raise ValueError(f"pulleys[{k}].teeth: pulley {q.name!r} runs on the belt's back, which has no teeth "
+                                 "(a back-side idler is smooth: leave teeth out)")
+        if teeth is None:
+            return
+        from ..mechanics.teeth import catalogue
+
+        pitch = catalogue.entry(teeth.profile).pitch
+        if not any(q.teeth for q in self.pulleys):
+            raise ValueError("belt.teeth: no pulley has grooves (give teeth = N on the pulleys the belt's teeth engage)")
+        for k, q in enumerate(self.pulleys):
+            if q.teeth is None:
+                continue
+            r = q.teeth * pitch / (2 * math.pi)
+            if abs(q.radius - r) > 0.005 * r:
+                raise ValueError(f"pulleys[{k}].radius: pulley {q.name!r} has {q.teeth} grooves of the {teeth.profile} "
+                                 f"pitch {pitch * 1e3:.4g} mm, a pitch radius of {r * 1e3:.4f} mm, but radius "
+                                 f"{q.radius * 1e3:.4f} mm (more than 0.5 % apart): give the pitch radius, or the "
+                                 "groove count that fits")
+        if self.belt.length is not None:
+            n = self.belt.length / pitch
+            if abs(n - round(n)) > 1e-3:
+                raise ValueError(f"belt.length: {self.belt.length * 1e3:.6g} mm is {n:.4f} pitches of "
+                                 f"{pitch * 1e3:.4g} mm, not a whole number of teeth "
+                                 f"({round(n)} teeth are {round(n) * pitch * 1e3:.6g} mm)")
+            if teeth.count is not None and round(n) != teeth.count:
+                raise ValueError(f"belt.teeth.count: {teeth.count} teeth of {pitch * 1e3:.4g} mm are "
+                                 f"{teeth.count * pitch * 1e3:.6g} mm, but belt.length is {self.belt.length * 1e3:.6g} mm")
+        if self.simulation.method in ("implicit", "rkf45"):
+            raise ValueError(f"simulation.method: a toothed belt runs with the semi-implicit scheme (its teeth are "
+                             f"explicit springs), not {self.simulation.method!r}")
+        if self.belt.segments != "auto":
+            raise ValueError("belt.segments: a toothed belt has teeth.count x teeth.nodes_per_tooth segments; leave "
+                             "segments out (or \"auto\")")
 
     def _reversing(self):
         """A periodic run-up holds the crank at speeds of one direction; a speed table that changes
@@ -879,6 +981,8 @@ def integrator(model) -> str:
     method = model.simulation.method
     if method != "auto":
         return method
+    if model.belt.teeth is not None:
+        return "semi-implicit"      # the teeth are explicit springs (segments/_teeth.py)
     if model.simulation.rotation_scaling is True:
         return "semi-implicit"
     if model.friction.law == "threlfall" and _accessory_parts(model.pulleys):

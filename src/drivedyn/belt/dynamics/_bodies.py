@@ -195,6 +195,14 @@ class Work(NamedTuple):
     lin_st: np.ndarray       # (n,) 1: the segment stuck to its pulley at the last step
     lin_cnt: np.ndarray      # int64 (4): steps until the next factorisation, factorisations, cached columns, active-set passes
     pul_dw: np.ndarray       # (nk) each pulley's speed change over the last step (the implicit scheme's explicit pulleys)
+    # a synchronous belt's teeth (segments/_teeth.py), per segment (n; size 0 without teeth): the tooth's load
+    # (N, + against a belt running ahead of its groove), its pulley (-1: none), its groove, the hold T p / R (N);
+    # tooth_stat (4): steps, jumps, time and pulley of the last jump
+    tooth_q: np.ndarray
+    tooth_j: np.ndarray
+    tooth_g: np.ndarray
+    tooth_hold: np.ndarray
+    tooth_stat: np.ndarray
 
 
 @njit(cache=True)

@@ -89,6 +89,11 @@ def sag_ratio(model) -> float:
 def auto_segments(model, layout=None) -> tuple[int, str]:
     """The number of segments "auto" picks for ``model``, and the rule that set it."""
     lay = layout or compute_layout(model)
+    if model.belt.teeth is not None:
+        from .teeth import belt_teeth
+
+        bt = belt_teeth(model, lay.length)
+        return bt.count * bt.nodes, f"{bt.count} teeth ({bt.count_source}) x {bt.nodes} segment(s) per tooth"
     radii = [p.radius for p in model.pulleys]
     arcs = [w * r if math.degrees(w) >= WRAP_MIN_DEG else math.inf for w, r in zip(lay.wrap, radii)]
     j = min(range(len(arcs)), key=arcs.__getitem__)

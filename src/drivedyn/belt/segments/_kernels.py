@@ -110,6 +110,7 @@ from ._implicit_contacts import (ANCHOR, SPIN_ZETA, SPIN_LIMIT, _spin_damper, _c
 from ._active_set import (REFACTOR_ANGLE, CMAX, ZMAX, PASSES, _refactor, _joint_transport, _velocity_change, _factored_state, _pulley_columns, _base_solve, _join, _corrections, _small_system, _check, PULLEY_IMPLICIT, _implicit_pulleys)  # noqa: F401
 from ._semi import (NQ, _contacts_semi)  # noqa: F401
 from ._outputs import (_accumulate, _probe, energy, _energy_of, _energy)  # noqa: F401
+from ._teeth import _teeth  # noqa: F401
 from ._explicit import (rhs, _C, _A, _B4, _B5, rkf45_chunk)  # noqa: F401
 
 
@@ -360,6 +361,9 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, semi, X):
                 if not X.ipl[j]:
                     S.om[j] = X.wsave[j]
         if semi is not None:
+            if Ct.teeth:
+                _teeth(n, nk, t, Ct, S, P.r, W.fx, W.fy, W.jfk, W.jdx, W.jdy, W.tooth_q, W.tooth_j, W.tooth_g,
+                       W.tooth_hold, W.tooth_stat, X.tq_belt, hubx, huby)
             pcd, pfr = _contacts_semi(n, nk, h, hg, hvb, X.hm, X.hi, W.fx, W.fy, W.mz, Ct, S, P.r, W.cand_j,
                                       W.cand_skip, W.seg_n, W.seg_t, W.seg_p, X.sj, X.sq, X.tq_belt, hubx, huby)
         # pulleys, then tensioners, under this step's belt torques and hub forces

@@ -31,7 +31,7 @@ def _contacts_semi(n, nk, h, hg, hvb, hm_, hi_, fx, fy, mz, Ct, S, pr, cand_j, c
     Written per segment with its branches, the stage compiled scalar: fead-runup's drive at 333
     segments stepped in 8.6-8.7 us, in 7.3-7.6 us with the passes (2-core AMD EPYC, alternating
     runs)."""
-    c1, c2, bc, mu, pmax, law, dv, dmax, centre = Ct
+    c1, c2, bc, mu, pmax, law, dv, dmax, centre = Ct.c1, Ct.c2, Ct.bc, Ct.mu, Ct.pmax, Ct.law, Ct.dv, Ct.dmax, Ct.centre
     x, y, phi, c, s, vx, vy, w, om, z = S.x, S.y, S.phi, S.c, S.s, S.vx, S.vy, S.w, S.om, S.z
     pcx, pcy, pvx, pvy = S.cx, S.cy, S.cvx, S.cvy
     qrx = sq[Q_RX]

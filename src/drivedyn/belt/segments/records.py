@@ -40,6 +40,16 @@ class Contact(NamedTuple):
     dv: float                # Threlfall's Delta_v (m/s)
     dmax: float              # elastic-plastic displacement limit Delta_max (m)
     centre: bool             # friction read at the segment's centre (r - p), else at the contact radius r
+    # a synchronous belt's teeth (segments/_teeth.py); all zero / empty for a friction belt
+    tk: np.ndarray = np.zeros(0)        # per segment: its tooth's stiffness (N/m; 0: no tooth)
+    tc: np.ndarray = np.zeros(0)        # per segment: its tooth's damping (N s/m)
+    tplay: float = 0.0                  # sideways play of a seated tooth (m)
+    tclimb: float = 0.0                 # tan(phi - rho) of the climb criterion (0: no climbing)
+    tpitch: float = 0.0                 # the belt's pitch (m)
+    tband: float = 0.0                  # a tooth engages within this distance outside the pitch circle (m)
+    gz: np.ndarray = np.zeros(0, dtype=np.int64)   # per pulley: grooves (0: smooth)
+    gphase: np.ndarray = np.zeros(0)    # per pulley: angle of groove 0 at theta = 0 (rad)
+    teeth: bool = False                 # any tooth
 
 
 # A stage of the time loop (``_advance``) is a function of its own, compiled once, not inlined into

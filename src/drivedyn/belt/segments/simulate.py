@@ -13,6 +13,9 @@ from ...core.model import dumps
 from ...core.results import Result, unit_map, variable
 from ...core.window import in_window, steady_window
 from . import _kernels as K
+from .teeth_outputs import TeethRecorder
+from .teeth_outputs import summary as teeth_summary
+from .teeth_outputs import variables as teeth_variables
 from . import ahead as _ahead
 from . import tail as _tail
 from .compiled import compile_note, compiled
@@ -62,6 +65,7 @@ class _Recorder:
         self.steps, self.step = 0, 0.0  # adaptive steps and last step size so far (rkf45)
         self.rejected, self.rhs = 0, 0  # rejected steps and right-hand-side evaluations (rkf45)
         self.nf = 0
+        self.teeth = None               # teeth_outputs.TeethRecorder of a synchronous belt
 
 
 def _loop_args(sysm: BeltSystem, h, S, W):
@@ -180,6 +184,8 @@ def _integrate_semi_implicit(sysm: BeltSystem, progress, rec: _Recorder, nsample
         rec.diss[k] = diss_total
         rec.work[k] = work
         rec.energy[k] = W.energy[0] - E0
+        if rec.teeth is not None:
+            rec.teeth.sample(k, S, W)
         rec.ns = k + 1
         if (k + 1) % frame_every == 0:
             capture_frame(t)
@@ -295,6 +301,7 @@ def _run(drive, sysm, progress, ahead) -> Result:
     frames = min(out.frames, nsamples)
     frame_every = max(1, nsamples // frames)
     rec = _Recorder(nsamples, nk, len(sysm.span_mid), len(sysm.track), nsamples // frame_every + 2, n, sysm.arms.na)
+    rec.teeth = TeethRecorder(nsamples, sysm) if sysm.contact.teeth else None
     wall0 = _time.perf_counter()
     steps_per_sample = max(1, int(math.ceil(interval / sysm.step)))
     h = interval / steps_per_sample
@@ -374,6 +381,8 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
                 "mechanism": ["axial_damping", "bending_damping", "contact_damping", "friction", "tensioner", "clutch"]},
         attrs={"model_toml": dumps(model), "title": model.name or "belt drive"},
     )
+    if rec.teeth is not None:
+        ds = teeth_variables(ds, rec.teeth, ns, sysm)
     tensioner_variables(ds, model, sysm, rec, ns)
     clutch_variables(ds, model, sysm, rec, ns, float(rec.t[0]) if ns else 1.0)
     ds["time"].attrs["units"] = "s"
@@ -399,6 +408,8 @@ def _assemble(model, sysm, rec: _Recorder, wall, nsteps, h, failure) -> Result:
         solver["step_reductions"] = int(getattr(rec, "step_reductions", 0))      # a run going unstable
         solver["speed_reductions"] = int(getattr(rec, "speed_reductions", 0))    # the accuracy rule
     summary = run_summary(model, sysm, ds, solver, sel, window, discretisation(model, sysm))
+    if rec.teeth is not None and ns:
+        summary["teeth"] = teeth_summary(ds, rec.teeth, sel, sysm, model)
     ds.attrs["steady_window"] = [float(window[0]), float(window[1])]   # for the plots
     ds.attrs["animation"] = int(model.output.animation)
     if ns:

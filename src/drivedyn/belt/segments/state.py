@@ -38,6 +38,7 @@ def new_work(sysm, state=None) -> BK.Work:
             span_joint[q] = int(np.argmin((jx - sysm.span_mid[q, 0]) ** 2 + (jy - sysm.span_mid[q, 1]) ** 2))
     z = np.zeros
     nl = n if sysm.belt.implicit else 0
+    nt = n if sysm.contact.teeth else 0
     return BK.Work(fx=z(n), fy=z(n), mz=z(n), jfk=z(n), jdx=z(n), jdy=z(n), jmk=z(n), jmi=z(n),
                   seg_n=z(n), seg_t=z(n), seg_p=z(n),
                   tq_ext=z(nk), tq_belt=z(nk), hubx=z(nk), huby=z(nk), pin=z(nk), diss=z(4),
@@ -46,7 +47,9 @@ def new_work(sysm, state=None) -> BK.Work:
                   span_geo=np.ascontiguousarray(sysm.span_geo, dtype=float).reshape(nspan, 4),
                   span_joint=span_joint, track=np.ascontiguousarray(sysm.track, dtype=np.int64),
                   lin_d=z((nl, 9)), lin_o=z((nl, 9)), lin_e=z((nl, 9)), lin_dinv=z((nl, 9)), lin_y=z((nl, 9)),
-                  lin_x=z((nl, 9)), lin_r=z((nl, 3)), lin_sig=z(nl), lin_gam=z(nl), lin_fk=z(nl), lin_fa=z(nl), lin_far=z(nl), lin_fnx=z(nl), lin_fny=z(nl), lin_geo=z(nl), lin_u=z((nk if nl else 0, nl, 3)), lin_zslot=np.full(nl, -1, dtype=np.int64), lin_zc=z((2 * K.ZMAX if nl else 0, nl, 3)), lin_g=z((nk, nk + 1)), lin_stat=z(4), cand_j=np.full(n, -1, dtype=np.int64), cand_skip=np.zeros(n, dtype=np.int64), lin_st=z(nl), lin_cnt=np.zeros(4, dtype=np.int64), pul_dw=z(nk))
+                  lin_x=z((nl, 9)), lin_r=z((nl, 3)), lin_sig=z(nl), lin_gam=z(nl), lin_fk=z(nl), lin_fa=z(nl), lin_far=z(nl), lin_fnx=z(nl), lin_fny=z(nl), lin_geo=z(nl), lin_u=z((nk if nl else 0, nl, 3)), lin_zslot=np.full(nl, -1, dtype=np.int64), lin_zc=z((2 * K.ZMAX if nl else 0, nl, 3)), lin_g=z((nk, nk + 1)), lin_stat=z(4), cand_j=np.full(n, -1, dtype=np.int64), cand_skip=np.zeros(n, dtype=np.int64), lin_st=z(nl), lin_cnt=np.zeros(4, dtype=np.int64), pul_dw=z(nk),
+                  tooth_q=z(nt), tooth_j=np.full(nt, -1, dtype=np.int64), tooth_g=np.zeros(nt, dtype=np.int64),
+                  tooth_hold=z(nt), tooth_stat=z(4))
 
 
 def clear_accumulators(W: BK.Work):

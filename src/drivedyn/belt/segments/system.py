@@ -175,6 +175,14 @@ def _build(model, drive, settle: bool, before_settle=None) -> BeltSystem:
     if rest is not None:
         model = rest.model            # centres at the equilibrium, as placed
     P = pulleys_record(model.pulleys, running_senses(model, layout))
+    if model.belt.teeth is not None:
+        # the chain carries its teeth at the grooves' spacing riding at these contact radii; placed on the
+        # pitch circles, it settles onto them (equilibrium.relax) with the belt's tension (geometry/teeth.py)
+        from ..geometry.teeth import chain_radius
+
+        for j, q in enumerate(model.pulleys):
+            if q.teeth:
+                P.r[j] = chain_radius(q.radius, model)
     A = arms_record(drawn, drive.senses)   # travel measured from the drawn centres
     span_mid = np.array([sp.midpoint for sp in layout.spans])
     span_geo = np.array([[*sp.midpoint, math.cos(sp.angle), math.sin(sp.angle)] for sp in layout.spans])
@@ -190,7 +198,50 @@ def _build(model, drive, settle: bool, before_settle=None) -> BeltSystem:
         if rest is not None:
             x, y, phi = _settle_tensioners(sysm, x, y, phi)
         sysm.init = dataclasses.replace(init, x=x, y=y, phi=phi, residual=res)
+    if sysm.contact.teeth:
+        sysm.contact = sysm.contact._replace(gphase=groove_phases(sysm.contact, sysm.pulleys, sysm.init.x, sysm.init.y))
     return sysm
+
+
+#: a tooth engages its groove within this share of the pitch outside the pitch circle (segments/_teeth.py):
+#: 0.02 p is 0.19 mm at 9.525 mm, reached 0.3-0.4 pitch before the tangent point on a 19-30 tooth pulley
+TOOTH_BAND = 0.02
+
+
+def _with_teeth(model, layout, B, C):
+    """The contact record with the belt's teeth (geometry/teeth.py): a tooth on every
+    ``nodes_per_tooth``-th segment, the grooves per pulley; the groove phases follow the placed belt
+    (``groove_phases``)."""
+    from ..geometry.teeth import belt_teeth
+
+    bt = belt_teeth(model, layout.length)
+    nk = len(model.pulleys)
+    if bt is None:
+        return C
+    tk = np.zeros(B.n)
+    tk[::bt.nodes] = bt.stiffness
+    tc = np.where(tk > 0, 2.0 * bt.damping_ratio * np.sqrt(tk * B.m), 0.0)
+    gz = np.array([q.teeth or 0 for q in model.pulleys], dtype=np.int64)
+    return C._replace(tk=tk, tc=tc, tplay=float(bt.play), tclimb=float(bt.climb), tpitch=float(bt.pitch),
+                      tband=float(TOOTH_BAND * bt.pitch), gz=gz, gphase=np.zeros(nk), teeth=True)
+
+
+def groove_phases(C, P, x, y) -> np.ndarray:
+    """Per grooved pulley, the angle of its groove 0 (pulley at theta = 0) that seats the placed belt's
+    teeth in mesh best: the circular mean of their angles over the groove spacing, so that a belt
+    whose pitch fits the grooves starts with every tooth centred."""
+    ph = np.zeros(len(C.gz))
+    teeth = np.flatnonzero(C.tk > 0)
+    for j, z in enumerate(C.gz):
+        if z == 0:
+            continue
+        dx, dy = x[teeth] - P.cx[j], y[teeth] - P.cy[j]
+        on = dx * dx + dy * dy < (P.r[j] + C.tband) ** 2
+        if not on.any():
+            continue
+        a = np.arctan2(dy[on], dx[on])
+        ph[j] = float(np.angle(np.mean(np.exp(1j * z * a)))) / z
+    return ph
 
 
 def _place(model, drive) -> Placed:
@@ -233,6 +284,7 @@ def _place(model, drive) -> Placed:
         mu=mu, pmax=damping_depth(model, init), law=int(LAWS[model.friction.law]),
         dv=float(model.friction.velocity_threshold), dmax=float(model.friction.displacement_limit),
         centre=model.friction.radius == "centre")
+    C = _with_teeth(model, layout, B, C)
     limit = stability_limit(model, init, B, C, scaled)
     if B.implicit:
         limit = implicit_step(model, init, B, C)
@@ -446,6 +498,8 @@ def stability_limit(model, init, B, C, scaled=False) -> float:
     k = _tangent_k(model, init, B)
     p = 2 * float(np.max(init.penetration))          # contact stiffness at twice the static penetration
     kc = 2 * float(C.c1[0]) * p + float(C.c2[0])
+    if C.teeth:
+        kc += float(np.max(C.tk))          # a tooth's spring acts on its segment beside the contact's
     kb = float(B.kb[0]) * max(model.belt.bending_exponent, 1.0)
     inertia = float(B.inertia[0])
     # the tension adds T l/2 per joint to a segment's rotational stiffness (arms turning in the

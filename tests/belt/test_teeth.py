@@ -1,0 +1,156 @@
+"""A synchronous (toothed) belt in the segment model: its tooth loads against the quasi-static
+shear-lag chain (mechanics/teeth/loadshare.py, whose linear case is Gerbert's recurrence), the tooth
+loads' balance with the belt torque, no creep, and the model's refusals."""
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import drivedyn
+from drivedyn.mechanics.teeth.loadshare import Chain, solve
+
+HTD = """
+kind = "belt-drive"
+name = "HTD 8M two-pulley drive (teeth test)"
+gravity = 0.0
+
+[belt]
+mass_per_length = "0.12 kg/m"
+axial_stiffness = "1.0e5 N"
+axial_damping = "0.5 N*s"
+bending_stiffness = "1e-4 N*m^2"
+length = "768 mm"                        # 96 teeth of 8 mm
+
+[belt.teeth]
+profile = "HTD8M"
+width = "20 mm"
+play = "0 mm"
+damping_ratio = 0.3
+
+[contact]
+stiffness_linear = "8e7 N/m^2"
+damping = "3e4 N*s/m^2"
+damping_depth = "1 mm"
+
+[friction]
+law = "threlfall"
+coefficient = 0.0
+
+[simulation]
+duration = "0.5 s"
+
+[output]
+interval = "1 ms"
+steady_window = ["0.4 s", "0.5 s"]
+
+[[pulleys]]
+name = "driver"
+center = ["0 mm", "0 mm"]
+radius = "28.0113 mm"
+teeth = 22
+inertia = "0.002 kg*m^2"
+speed_time = [["0 s", "0 rpm"], ["0.1 s", "60 rpm"]]
+
+[[pulleys]]
+name = "driven"
+center = ["251.5 mm", "0 mm"]
+radius = "56.0225 mm"
+teeth = 44
+inertia = "0.004 kg*m^2"
+viscous_torque = "0.05 N*m*s/rad"
+torque_time = [["0 s", "0 N*m"], ["0.2 s", "-10 N*m"]]
+"""
+
+
+@pytest.fixture(scope="module")
+def crawl(tmp_path_factory):
+    path = tmp_path_factory.mktemp("teeth") / "htd.toml"
+    path.write_text(HTD)
+    model = drivedyn.load(path)
+    return model, drivedyn.run(model)
+
+
+def _wrap_order(res, name):
+    """The driven pulley's tooth loads at the last sample in belt order (tight side first) and the
+    tensions of the spans either side of its wrap."""
+    ds = res.ds
+    m = list(ds["toothed_pulley"].values).index(name)
+    q = ds["tooth_load"].isel(time=-1).values[m]
+    on = np.flatnonzero(np.isfinite(q))
+    z = len(q)
+    # the wrap's slots are contiguous on the circle: start after the gap
+    gaps = np.flatnonzero(~np.isfinite(np.roll(q, 1)) & np.isfinite(q))
+    start = gaps[0]
+    order = [(start + k) % z for k in range(len(on))]
+    return q[order]
+
+
+def test_tooth_loads_follow_the_quasi_static_shear_lag_chain(crawl):
+    """At 60 rpm under a steady 10 N m, tooth by tooth, the driven pulley's loads equal the chain of
+    loadshare.solve (no play, no land friction, belt pitch = groove pitch unstretched: pitch error 0
+    at T_ref = 0) between the run's own span tensions; that chain's linear case is Gerbert's
+    tau_(i-1) - (2 + k_t / k_c) tau_i + tau_(i+1) = 0 (tests/toothed rebuild it independently)."""
+    model, res = crawl
+    assert res.success and res.summary["teeth"]["jumps"] == 0
+    q = _wrap_order(res, "driven")
+    ten = res.ds["span_tension"].isel(time=-1)
+    # belt order driver -> driven -> driver: the driven pulley's wrap is entered from span driver-driven
+    T_in = float(ten.sel(span="driver-driven"))
+    T_out = float(ten.sel(span="driven-driver"))
+    teeth = res.summary["teeth"]
+    r = 56.0225e-3
+    chain = Chain(teeth=len(q), pitch=8e-3, radius=r, tooth_stiffness=teeth["tooth_stiffness"],
+                  cord_stiffness=1.0e5, friction=0.0, pitch_error=0.0)
+    tight, slack = max(T_in, T_out), min(T_in, T_out)
+    ref = solve(chain, tight, slack, 0.0).tooth_load
+    # tight side first and the tight tooth's load positive, as the chain gives them (the run's slots
+    # run counter-clockwise and its sign is the belt's lead over the groove)
+    run = q if abs(q[0]) > abs(q[-1]) else q[::-1]
+    run = run * np.sign(run[0])
+    assert len(run) >= 20
+    assert np.max(np.abs(run - ref)) < 0.05 * np.max(ref), (run, ref)
+    assert ref[0] > 3 * ref[len(ref) // 2]          # the loads do fall from the tight side
+
+
+def test_tooth_loads_balance_the_belt_torque_and_the_span_tensions(crawl):
+    model, res = crawl
+    s = res.summary["teeth"]["pulleys"]["driven"]
+    ds = res.ds
+    sel = ds["time"] >= 0.4
+    belt = float(ds["torque_belt"].sel(pulley="driven")[sel].mean())
+    # no land friction: the teeth carry it all (instantaneous samples against interval means: 1 %)
+    assert s["tooth_torque_mean"] == pytest.approx(belt, rel=1e-2)
+    dT = float((ds["span_tension"].sel(span="driven-driver") - ds["span_tension"].sel(span="driver-driven"))[sel].mean())
+    assert abs(s["tooth_torque_mean"]) == pytest.approx(abs(dT) * 56.0225e-3, rel=0.02)
+    assert abs(belt) == pytest.approx(10.0 + 0.05 * 2 * math.pi * 0.5, rel=0.02)   # load + viscous at 30 rpm
+
+
+def test_no_creep_the_speed_ratio_is_the_tooth_ratio(crawl):
+    """The driven pulley turns 22/44 of the driver over the run: what is left is the change of the
+    teeth's deflection between start and end (bounded by the largest tooth load over k_t), not creep,
+    which in a friction drive grows with the load and the run's length."""
+    model, res = crawl
+    s = res.summary["teeth"]["pulleys"]["driven"]
+    th = res.ds["angle"].values
+    turned = abs(th[-1, 0] - th[0, 0]) * 28.0113e-3          # belt passed over the driver (m)
+    u_max = 2 * s["max_tooth_load"] / res.summary["teeth"]["tooth_stiffness"] + 1e-5
+    assert abs(s["speed_ratio"] - s["tooth_ratio"]) * turned < u_max * 3
+
+
+@pytest.mark.parametrize("change, says", [
+    ({"pulleys.driven.radius": "57 mm"}, "pulleys[1].radius"),
+    ({"belt.length": "770 mm"}, "not a whole number of teeth"),
+    ({"pulleys.driven.side": "back"}, "belt's back"),
+    ({"simulation.method": "implicit"}, "semi-implicit"),
+    ({"belt.teeth.profile": "HTD7M"}, "unknown profile"),
+])
+def test_bad_toothed_drives_are_refused_in_one_line(tmp_path, change, says):
+    path = tmp_path / "htd.toml"
+    path.write_text(HTD)
+    args = [a for k, v in change.items() for a in ("--set", f"{k}={v!r}".replace("'", '"'))]
+    out = subprocess.run([sys.executable, "-m", "drivedyn", "check", str(path), *args], capture_output=True, text=True)
+    assert out.returncode == 2, out.stdout + out.stderr
+    assert says in out.stderr and "Traceback" not in out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1, out.stderr
