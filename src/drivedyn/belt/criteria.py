@@ -116,6 +116,28 @@ def _supplier_criteria(model, s, out, skipped):
         skipped["belt_life"] = "no target life given (duty_cycle.life.target)"
 
 
+def _teeth_criteria(c, teeth, out, skipped):
+    """A synchronous belt's teeth: the smallest jump margin, the jumps, the largest tooth load."""
+    margins = [(p["jump_margin_min"], n) for n, p in teeth["pulleys"].items()
+               if p.get("jump_margin_min") is not None and math.isfinite(p["jump_margin_min"])]
+    if margins:
+        v, n = min(margins)
+        out.append(Criterion("jump_margin", v, c.jump_margin_min, "1", "min",
+                             "smallest hold T p / R over outward push Q tan(phi - rho) of a tooth in mesh over the "
+                             "steady window (below 1 it climbs)", n))
+    else:
+        skipped["jump_margin"] = "the flank is self-locking (flank angle at or below the flank friction angle): no jump"
+    where = f"last at t = {teeth['last_jump_time']:.4g} s on {teeth['last_jump_pulley']}" if teeth["jumps"] else "none"
+    out.append(Criterion("tooth_jumps", teeth["jumps"], c.tooth_jumps_max, "", "max",
+                         "teeth that changed groove during the run (jumped)", where))
+    peak = max(((p["max_tooth_load"], n) for n, p in teeth["pulleys"].items()), default=None)
+    if c.tooth_load_max is None:
+        skipped["tooth_load"] = "no rated tooth load given (criteria.tooth_load_max)"
+    elif peak:
+        out.append(Criterion("tooth_load", peak[0], c.tooth_load_max, "N", "max",
+                             "largest load of one tooth over the steady window", peak[1]))
+
+
 def evaluate(model, result):
     """([Criterion], {name: why not judged}) for a belt run."""
     from .steady import flap as flapmod
@@ -129,6 +151,12 @@ def evaluate(model, result):
     driver = (ru or {}).get("crank") or s.get("driver")
     pulleys = s.get("pulleys", {})
 
+    teeth = s.get("teeth")
+    if teeth:
+        # a synchronous belt does not slip on its grooved pulleys: their teeth are judged instead
+        toothed = set(teeth["pulleys"])
+        pulleys = {n: p for n, p in pulleys.items() if n not in toothed}
+        _teeth_criteria(c, teeth, out, skipped)
     # slip: per bin for a run-up (never a mean over the swept window), else the steady window's
     if ru and ru.get("slip"):
         worst = max(((abs(v), n, b) for n, vs in ru["slip"].items() for b, v in enumerate(vs) if v is not None),
@@ -151,6 +179,8 @@ def evaluate(model, result):
     # (the pulley: pulleys.<name>.sliding_share, or runup.<table>.<name>)
     gross = sorted({d.quantity.split(".")[1 if d.quantity.startswith("pulleys.") else -1]
                     for d in getattr(result, "diagnostics", []) if d.code == "gross-slip" and d.quantity.count(".") >= 2})
+    if teeth:
+        gross = [g for g in gross if g not in teeth["pulleys"]]
     out.append(Criterion("gross_slip", len(gross), c.gross_slip_max, "", "max",
                          "pulleys whose belt slides grossly over its wrap (the gross-slip diagnostic), the driver "
                          "included", ", ".join(gross) or "none"))

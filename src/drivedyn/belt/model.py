@@ -757,6 +757,14 @@ class Criteria(Spec):
     """Free travel kept at each tensioner stop, a share of the stop-to-stop travel (< 0.5)."""
     hub_load_max: quantity("N", gt=0) | None = None
     """Bearing limit on the peak hub load of any pulley; none: not judged."""
+    jump_margin_min: quantity("1", ge=0) = 1.0
+    """Synchronous belt: smallest hold over outward push of any tooth in mesh (the climb criterion of
+    mechanics/teeth/loadshare.py, eq. 3; below 1 a tooth climbs out of its groove). 1 is the onset, no safety factor:
+    give one of your own."""
+    tooth_jumps_max: Annotated[int, Field(ge=0)] = 0
+    """Synchronous belt: teeth that may change groove (jump) during the run."""
+    tooth_load_max: quantity("N", gt=0) | None = None
+    """Synchronous belt: the rated load of one tooth, whole width (the belt maker's); none: not judged."""
     flap_crossings_max: Annotated[int, Field(ge=0)] = 0
     """Crossings of a span's first transverse (flap) mode by an excited order allowed in the run's speed range."""
     flap_speed_margin: quantity("1", ge=0, lt=1) = 0.1

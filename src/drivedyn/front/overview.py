@@ -102,6 +102,8 @@ def _belt(result) -> list[dict]:
                 "note": "slip margin: friction capacity over transmitted torque, for the pulleys that carry torque"
                         + ("; judged per bin in a run-up" if ru else "")
                         + "; direction: of the mean hub force on the pulley, counter-clockwise from +x"})
+    if s.get("teeth"):
+        out.append(_teeth_table(s["teeth"]))
     fl = s.get("flap", {}).get("spans", {})
     rows = []
     for name, e in s.get("spans", {}).items():
@@ -169,6 +171,27 @@ def _belt(result) -> list[dict]:
         out.append(runup_table(s))
     out += supplier_tables(s.get("supplier") or {})
     return out
+
+
+def _teeth_table(th: dict) -> dict:
+    """A synchronous belt's teeth per grooved pulley (the segment model's tooth contact)."""
+    rows = []
+    for name, p in th["pulleys"].items():
+        ratio = p.get("speed_ratio")
+        rows.append([name, str(p["teeth"]), _f(p["teeth_in_mesh"], "{:.1f}"), _f(p["max_tooth_load"], "{:.1f}"),
+                     _f(p["max_tooth_load_angle"], "{:.0f}"), _f(p["jump_margin_min"], "{:.2f}"),
+                     "-" if ratio is None else f"{ratio:.6f} ({p['tooth_ratio']:.6f})"])
+    jumps = f"{th['jumps']} jump(s), the last at t = {th['last_jump_time']:.4g} s on {th['last_jump_pulley']}" \
+        if th["jumps"] else "no tooth jumped"
+    return {"title": f"teeth ({th['profile']}, {th['count']} teeth of {th['pitch'] * 1e3:.4g} mm; over the steady window)",
+            "head": ["pulley", "grooves", "teeth in mesh", "largest tooth load (N)", "at (deg)", "jump margin",
+                     "speed ratio (tooth ratio)"],
+            "rows": rows,
+            "note": f"{jumps}; tooth spring {th['tooth_stiffness'] / 1e3:.4g} N/mm ({th['tooth_stiffness_source']}), "
+                    f"play {th['play'] * 1e3:.3g} mm ({th['play_source']}), flank {math.degrees(th['flank_angle']):.2f} "
+                    f"deg; at: the groove position counter-clockwise from +x; jump margin: hold T p / R over the outward "
+                    "push Q tan(phi - rho) (below 1 a tooth climbs); speed ratio: turns of the pulley over the first "
+                    "grooved pulley's over the run; the slip column above is a friction drive's and reads deflection"}
 
 
 def supplier_tables(sup: dict) -> list[dict]:
