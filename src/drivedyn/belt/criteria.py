@@ -94,7 +94,9 @@ def _supplier_criteria(model, s, out, skipped):
                                  "smallest slip margin of the duty rows held in the rotational model", f"{n} at {rpm:.0f} rpm"))
     tol = sup.get("tolerance")
     if tol:
-        v, where = min((min(e["slip_factor_fixed"], e["slip_factor_running"]), e["position"]) for e in tol)
+        sf = [(min(x for x in (e["slip_factor_fixed"], e["slip_factor_running"]) if x is not None), e["position"])
+              for e in tol if e["slip_factor_fixed"] is not None or e["slip_factor_running"] is not None]
+        v, where = min(sf) if sf else (math.inf, "no pulley carries a torque")
         out.append(Criterion("tolerance_slip_factor", v, c.slip_margin_min, "1", "min",
                              "smallest slip safety factor of the duty cycle at any belt length of the tolerance "
                              "band and wear", f"{where} belt"))

@@ -597,8 +597,9 @@ class DutyRow(Spec):
 
     crank_speed: quantity("rad/s", gt=0)
     """Crank speed of this row."""
-    share: quantity("1", gt=0, le=1)
-    """Share of the running time spent at this row (the rows' shares add up to 1)."""
+    share: quantity("1", ge=0, le=1)
+    """Share of the running time spent at this row (the rows' shares add up to 1; 0: the row is evaluated and shown,
+    and carries no share of the belt's damage)."""
     power: dict[str, quantity("W", ge=0)] = {}
     """Accessory loads as powers, by pulley name."""
     torque: dict[str, quantity("N*m", ge=0)] = {}

@@ -192,7 +192,7 @@ def tolerance_study(drive, table) -> list[dict]:
                  for lo, hi in [r.arm_stops[n]]]
         names = [p.name for p in model.pulleys]
         out.append({"position": name, "tension": pos.tension,
-                    "slip_factor_fixed": min(fin, default=math.inf), "slip_factor_running": min(run, default=math.inf),
+                    "slip_factor_fixed": min(fin, default=None), "slip_factor_running": min(run, default=None),
                     "hub_load_fixed": {n: max(r.fixed_arm.hub_load[n] for r in rows) for n in names},
                     "hub_load_running": {n: max((r.running_arm.hub_load[n] for r in rows if r.running_arm),
                                                 default=math.nan) for n in names},
@@ -217,6 +217,11 @@ def _installation_tension(drive) -> float:
 
     st = steady_state(drive.model, drive.layout, with_margins=False)
     return float(max(st.spans.values()))
+
+
+def _sf(factors) -> str:
+    """The smallest slip safety factor of a row as printed ("-": no pulley carries a torque)."""
+    return f"{min(factors):.2f}" if factors else "-"
 
 
 def _position(r) -> dict:
@@ -285,7 +290,7 @@ def report_lines(data) -> list[str]:
             sf = [v for v in fa["slip_factor"].values() if v is not None]
             sfr = [v for v in (ra or {"slip_factor": {}})["slip_factor"].values() if v is not None]
             lines.append(f"{r['crank_speed'] * 30 / math.pi:6.0f} {100 * r['share']:5.1f}% " + " ".join(f"{c:>11s}" for c in cells)
-                         + f" {min(sf, default=math.inf):6.2f}|{min(sfr, default=math.inf):<6.2f}"
+                         + f" {_sf(sf):>6s}|{_sf(sfr) if ra else 'none':<6s}"
                          + (f"  {r['note']}" if r["note"] else ""))
         for n in (du["rows"][0]["arm_stops"] if du["rows"] else {}):
             lo, hi = du["rows"][0]["arm_stops"][n]
@@ -303,18 +308,19 @@ def report_lines(data) -> list[str]:
                 lines.append(f"{e['crank_speed'] * 30 / math.pi:6.0f}  failed: {e['note']}")
                 continue
             arm = "; ".join(f"{n} {lo * DEG:.2f}..{hi * DEG:.2f}" for n, (lo, hi) in e["arm_travel"].items())
-            sm = min(e["slip_margin"].values(), default=math.inf)
+            sm = _sf(list(e["slip_margin"].values()))
             lines.append(f"{e['crank_speed'] * 30 / math.pi:6.0f}  "
                          + "  ".join(f"{n} {e['hub_load_mean'][n]:.0f}/{e['hub_load_peak'][n]:.0f}" for n in names)
-                         + f"  margin {sm:.2f}  {arm}  {e['status']}"
+                         + f"  margin {sm}  {arm}  {e['status']}"
                          + (f" ({', '.join(e['diagnostics'])})" if e["diagnostics"] else ""))
     if "tolerance" in data:
         lines += ["", "tolerance study: the duty cycle at each belt length of the position table (slip factor fixed | "
                       "running arm, largest hub loads fixed | running, the arm's clearance to its stops)"]
         for e in data["tolerance"]:
             hubs = "  ".join(f"{n} {e['hub_load_fixed'][n]:.0f}|{e['hub_load_running'][n]:.0f}" for n in e["hub_load_fixed"])
-            lines.append(f"{e['position']:10s} T {e['tension']:6.1f} N  SF {e['slip_factor_fixed']:.2f}|"
-                         f"{e['slip_factor_running']:.2f}  {hubs}  clearance {100 * e['stop_clearance']:.0f} %"
+            sf = [e["slip_factor_fixed"]], [e["slip_factor_running"]]
+            lines.append(f"{e['position']:10s} T {e['tension']:6.1f} N  SF {_sf([x for x in sf[0] if x is not None])}|"
+                         f"{_sf([x for x in sf[1] if x is not None])}  {hubs}  clearance {100 * e['stop_clearance']:.0f} %"
                          + (f"  not carried at {', '.join(f'{w * 30 / math.pi:.0f}' for w in e['rows_not_carried'])} rpm"
                             if e["rows_not_carried"] else ""))
     if "alignment" in data:
