@@ -16,7 +16,7 @@ import pytest
 import drivedyn
 from drivedyn.belt.geometry import tensioner as TN
 from drivedyn.belt.geometry.drive import resolve
-from drivedyn.belt.geometry.layout import compute_layout
+from drivedyn.mechanics.layout import compute_layout
 from drivedyn.belt.geometry.positions import position_tables
 from drivedyn.belt.steady.duty import duty_cycle
 from drivedyn.belt.steady.running import running_balance
@@ -143,8 +143,55 @@ def test_a_row_with_no_share_is_shown_and_carries_no_damage():
     rows = AG00879_DUTY[:4] + [(2200, 0, 6.0, 8.8)]
     rows[1] = (800, 40, 1.9, 4.8)
     model = _ag00879(rows)
-    data = drivedyn.analyses.analysis("belt-drive").check_data(model)["supplier"]
+    data = drivedyn.core.analyses.analysis("belt-drive").check_data(model)["supplier"]
     assert len(data["duty"]["rows"]) == 5
     assert data["duty"]["rows"][4]["running_arm"] is not None
     assert data["life"]["row_share"][4] == 0.0
     assert sum(data["life"]["row_share"]) == pytest.approx(1.0)
+
+
+def _cli(*args):
+    import contextlib
+    import io
+
+    from drivedyn.front.cli import main
+
+    err, out = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(out):
+        code = main([str(a) for a in args])
+    return code, out.getvalue(), err.getvalue()
+
+
+def test_check_judges_what_it_computes_verdict_first(tmp_path):
+    """check ends in the verdict of what it computed, printed first: a design whose B10 misses its
+    target and whose duty rows are not all carried fails (was: no verdict, exit 0); --strict exits
+    as run does: 3 when check warns (here: pulleys outside the life fit's range), else 4 on a failed
+    criterion; --json carries the verdict and its criteria."""
+    import json
+
+    rows = [(600, 60, 1.4, 3.5), (800, 40, 1.9, 60.0)]           # the second row slips everywhere
+    model = drivedyn.replace(_ag00879(rows), {"duty_cycle.life.target": 1e6 * 3600})
+    path = tmp_path / "m.toml"
+    path.write_text(drivedyn.dumps(model))
+    code, out, err = _cli("check", path)
+    assert code == 0, err
+    first = out.splitlines()[0]
+    assert first.startswith("verdict: fail") and "belt_life" in first and "duty_rows_carried" in first
+    assert "inf" not in out.replace("info", "")
+    assert _cli("check", path, "--strict")[0] == 3               # the life fit's range: a warning
+    code, out, err = _cli("check", path, "--json")
+    data = json.loads(out)
+    assert list(data)[0] == "verdict" and data["verdict"] == "fail"
+    assert data["criteria"]["duty_rows_carried"]["value"] == 1
+    assert data["criteria"]["belt_life"]["pass"] is False
+    assert data["units"]["criteria.belt_life.value"] == "h"
+    assert data["warnings"]
+    # examples/fead-ag0868.toml (in the fit's range, no warning): its 23 900 h against 30 000 h fails
+    ex = drivedyn.replace(drivedyn.load(drivedyn.example_path("fead-ag0868")),
+                          {"duty_cycle.dynamic": False, "duty_cycle.tolerance": False})
+    path.write_text(drivedyn.dumps(drivedyn.replace(ex, {"duty_cycle.life.target": 30000 * 3600})))
+    code, out, err = _cli("check", path, "--strict")
+    assert code == 4 and out.startswith("verdict: fail (1 of 4 criteria failed: belt_life)"), out[:400]
+    path.write_text(drivedyn.dumps(ex))
+    code, out, err = _cli("check", path, "--strict")
+    assert code == 0 and out.startswith("verdict: pass"), out[:400]
