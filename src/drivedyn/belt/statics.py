@@ -185,6 +185,7 @@ def report_and_data(model):
     from .segments.system import placed
 
     drive = resolve(model)
+    model = drive.model        # (a belt installed by its part: with the length it installs)
     sysm = placed(drive)       # the chain as placed and its step: no settling, no kernels
     lay = sysm.layout
     T0 = sysm.init.tension

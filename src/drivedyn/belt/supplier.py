@@ -54,7 +54,12 @@ def report_data(drive) -> dict:
         out["positions"] = {t.pulley: {
             "rows": {name: _position(r) for name, r in zip(ROWS, t.rows) if r is not None},
             "unreached": t.unreached, "take_up": t.take_up, "design_tension": t.design_tension,
-            "length_offset": t.offset} for t in tables}
+            "length_offset": t.offset, "drawn_length": t.drawn_length,
+            **({"installed": _position(t.installed)} if t.installed is not None else {})} for t in tables}
+        from .geometry.part import length_warnings
+
+        out["installation"] = _installation(drive, tables[0])
+        out["warnings"] = length_warnings(drive, tables[0])
     if any(p.speed_time is not None for p in model.pulleys):
         import numpy as np
 
@@ -207,6 +212,17 @@ def _ratio(drive, j) -> float:
     return drive.model.pulleys[presc[0]].radius / drive.model.pulleys[j].radius if presc else float("nan")
 
 
+def _installation(drive, table) -> dict:
+    """How the belt is installed and the lengths and tensions that relate the part to the run."""
+    model, eq = drive.model, drive.equilibrium
+    by = "pretension" if model.belt.pretension is not None else "part" if table.installed is not None else "length"
+    from .geometry.layout import compute_layout
+
+    return {"by": by, "unstretched_length": drive.installed_length,
+            "rest_tension": float(eq.tension) if eq is not None else None,
+            "path_length": compute_layout(eq.model).length if eq is not None else drive.layout.length}
+
+
 def _installation_tension(drive) -> float:
     eq = drive.equilibrium
     if eq is not None:
@@ -217,6 +233,28 @@ def _installation_tension(drive) -> float:
 
     st = steady_state(drive.model, drive.layout, with_margins=False)
     return float(max(st.spans.values()))
+
+
+def _relating(data, t) -> list[str]:
+    """One paragraph relating the lengths and tensions check prints."""
+    b, inst = data.get("belt", {}), data.get("installation", {})
+    L = b.get("effective_length")
+    if not L or not inst:
+        return []
+    mm = lambda x: f"{x * 1e3:.2f} mm"
+    by = {"part": f"the part ({mm(L)} effective) installs the belt: the tensioner sits at the 'installed' row, where "
+                  f"the required belt length is {mm(L)}, holding {t['installed']['tension']:.1f} N"
+          if "installed" in t else "",
+          "pretension": "belt.pretension installs the belt at the drawn layout",
+          "length": "belt.length installs the belt"}[inst["by"]]
+    text = (f"lengths and tensions: {by}. The required belt length is the effective drive length "
+            f"(spans on pitch circles, wraps on effective diameters) less {mm(t['length_offset'])}; the drawn "
+            f"tensioner (the 'mean' row, the supplier's design position and its design tension "
+            f"{t['design_tension']:.1f} N) needs {mm(t['drawn_length'])}. The unstretched belt the dynamics "
+            f"start from is {mm(inst['unstretched_length'])} (on pitch circles, sunk into the grooves, at rest)"
+            + (f"; at rest it carries {inst['rest_tension']:.1f} N" if inst.get("rest_tension") else "")
+            + f" on a path of {mm(inst['path_length'])} (pitch circles, the tensioner at rest).")
+    return [text]
 
 
 def _sf(factors) -> str:
@@ -272,9 +310,16 @@ def report_lines(data) -> list[str]:
                          f"{r['centre'][1] * 1e3:8.2f} {r['edl'] * 1e3:8.2f} {r['required_length'] * 1e3:8.2f} "
                          f"{r['wrap'] * DEG:8.2f} {r['beta'] * DEG:8.2f} {r['tension']:7.1f} {r['hub_load']:7.1f} "
                          f"{r['hub_direction'] * DEG % 360:7.1f}")
+        shown = dict(t["rows"], **({"installed": t["installed"]} if "installed" in t else {}))
+        for row, r in list(shown.items())[len(t["rows"]):]:
+            lines.append(f"{row:10s} {r['rel'] * DEG:8.2f} {r['angle'] * DEG % 360:8.2f} {r['centre'][0] * 1e3:8.2f} "
+                         f"{r['centre'][1] * 1e3:8.2f} {r['edl'] * 1e3:8.2f} {r['required_length'] * 1e3:8.2f} "
+                         f"{r['wrap'] * DEG:8.2f} {r['beta'] * DEG:8.2f} {r['tension']:7.1f} {r['hub_load']:7.1f} "
+                         f"{r['hub_direction'] * DEG % 360:7.1f}")
         for row, why in t["unreached"].items():
             lines.append(f"{row:10s} not reached: {why}")
         lines.append(f"design tension {t['design_tension']:.1f} N; belt take-up {t['take_up'] * 1e3 / DEG:.3f} mm/deg")
+        lines += _relating(data, t)
     if "duty" in data:
         du = data["duty"]
         names = list(data.get("pulleys") or du["rows"][0]["fixed_arm"]["hub_load"])
