@@ -195,3 +195,19 @@ def test_check_judges_what_it_computes_verdict_first(tmp_path):
     path.write_text(drivedyn.dumps(ex))
     code, out, err = _cli("check", path, "--strict")
     assert code == 0 and out.startswith("verdict: pass"), out[:400]
+
+
+def test_a_first_compile_in_check_is_said_on_stderr(capsys):
+    """check's dynamic duty rows compile the rotational kernels on first use (numba's cache empty,
+    a minute or two): the first compile is said once on stderr with its expected range, as run's
+    progress line says it (was: nothing for minutes)."""
+    from numba import njit
+
+    from drivedyn.belt.segments.compiled import compile_said
+    from drivedyn.belt.supplier import COMPILE_SECONDS
+
+    with compile_said(f"compiling (first use only: {COMPILE_SECONDS} s)"):
+        njit(lambda x: x + 1)(1)          # a fresh function: numba compiles it here
+        njit(lambda x: x + 2)(1)
+    err = capsys.readouterr().err
+    assert err.count("drivedyn: compiling") == 1 and f"{COMPILE_SECONDS} s" in err

@@ -211,8 +211,16 @@ def report_and_data(model):
     data = check_data(drive, sysm)
     for name, t in data.get("tensioners", {}).items():
         if t["type"] == "arm":
-            lines.append(f"tensioner {name} (arm) at rest: travel {math.degrees(t['travel']):.3f} deg into the belt "
-                         f"(arm angle {math.degrees(t['arm_angle']):.2f} deg), spring torque {t['spring_torque']:.3f} N m, "
+            arm = next(p.arm for p in model.pulleys if p.name == name)
+            rel = ""
+            if arm.free_angle is not None:        # the supplier's convention: from the free arm, toward the belt
+                from .model import free_arm_angle
+
+                drawn = abs(free_arm_angle(next(p.center for p in model.pulleys if p.name == name), arm))
+                rel = f"{math.degrees(drawn - t['travel']) + 0.0:.2f} deg from the free arm, "
+            lines.append(f"tensioner {name} (arm) at rest: {rel}travel {math.degrees(t['travel']) + 0.0:.3f} deg into "
+                         f"the belt from the drawn position (absolute arm angle {math.degrees(t['arm_angle']) % 360:.2f} deg, "
+                         f"pivot to pulley from +x counter-clockwise), spring torque {t['spring_torque']:.3f} N m, "
                          f"hub load {t['hub_load']:.1f} N, belt tension {t['tension']:.1f} N")
         else:
             lines.append(f"tensioner {name} (slider) at rest: travel {t['slide'] * 1e3:.3f} mm into the belt, spring "

@@ -112,7 +112,21 @@ def dynamic_duty(drive) -> list[dict]:
     held at the row's speed (its declared speed orders on it) and the row's loads as viscous
     torques P / omega^2 (the row's power at its speed, opposing the motion as it ramps up): mean and
     peak hub loads, span tension bands, the arm's travel band and its stops, slip margins, the run's
-    status and diagnostics."""
+    status and diagnostics. A first use (numba compiling the rotational kernels) says so on stderr,
+    with how long it takes."""
+    from .segments.compiled import compile_said
+
+    with compile_said(f"compiling the rotational model's kernels for the duty cycle's dynamic rows (first use "
+                      f"only: {COMPILE_SECONDS} s; later checks load them from numba's cache)"):
+        return _dynamic_rows(drive)
+
+
+#: seconds numba takes to compile the rotational kernels on a first check with duty_cycle.dynamic
+#: (empty cache, examples/fead-ag0868.toml: measured over 360 s of wall, 110 s of CPU, on a shared 2-core machine)
+COMPILE_SECONDS = "60-400"
+
+
+def _dynamic_rows(drive) -> list[dict]:
     import numpy as np
 
     from ..core.errors import SolverError
@@ -341,8 +355,14 @@ def report_lines(data) -> list[str]:
             lo, hi = du["rows"][0]["arm_stops"][n]
             tr = [r["arm_travel"].get(n) for r in du["rows"] if r["arm_travel"].get(n) is not None]
             if tr:
-                lines.append(f"tensioner {n} running travel {min(tr) * DEG:.2f} to {max(tr) * DEG:.2f} deg into the belt "
-                             f"(stops {lo * DEG:.2f} / {hi * DEG:.2f} deg)")
+                pos = data.get("positions", {}).get(n)
+                rel = ""
+                if pos and "mean" in pos["rows"]:       # the supplier's convention, as in the position table
+                    d = pos["rows"]["mean"]["rel"]
+                    rel = (f"arm {(d - max(tr)) * DEG:.2f} to {(d - min(tr)) * DEG:.2f} deg from the free arm "
+                           f"(load stop {(d - lo) * DEG:.2f} deg); ")
+                lines.append(f"tensioner {n} running: {rel}travel {min(tr) * DEG:.2f} to {max(tr) * DEG:.2f} deg into the "
+                             f"belt from the drawn position (stops {lo * DEG:.2f} / {hi * DEG:.2f} deg)")
     if "duty_dynamic" in data:
         dd = data["duty_dynamic"]
         names = list(data["duty"]["rows"][0]["fixed_arm"]["hub_load"]) if data.get("duty") else []
