@@ -50,7 +50,7 @@ def test_check_sweeps_the_belt_length_and_relates_its_lengths_and_tensions(tmp_p
     import contextlib
     import io
 
-    from drivedyn.cli import main
+    from drivedyn.front.cli import main
 
     path = tmp_path / "m.toml"
     path.write_text(drivedyn.dumps(_example()))
@@ -82,7 +82,7 @@ def test_a_belt_the_tensioner_cannot_hold_is_one_line_naming_the_field(tmp_path)
     import contextlib
     import io
 
-    from drivedyn.cli import main
+    from drivedyn.front.cli import main
 
     path = tmp_path / "m.toml"
     path.write_text(drivedyn.dumps(_example(**{"belt.effective_length": 1.100})))

@@ -230,7 +230,7 @@ def _installation(drive, table) -> dict:
     """How the belt is installed and the lengths and tensions that relate the part to the run."""
     model, eq = drive.model, drive.equilibrium
     by = "pretension" if model.belt.pretension is not None else "part" if table.installed is not None else "length"
-    from .geometry.layout import compute_layout
+    from ..mechanics.layout import compute_layout
 
     return {"by": by, "unstretched_length": drive.installed_length,
             "rest_tension": float(eq.tension) if eq is not None else None,

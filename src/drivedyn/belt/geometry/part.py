@@ -11,7 +11,7 @@ part number); the part's position and tension are then still reported, with a wa
 differ from the installation's."""
 from __future__ import annotations
 
-from ...errors import ModelError
+from ...core.errors import ModelError
 
 
 def part_table(drive):
@@ -26,7 +26,7 @@ def part_length(drive) -> float:
     """Unstretched belt length (m) that the part installs: the belt at the table's installed
     position, at its tension. ModelError (naming the field) where the part cannot install it."""
     from . import tensioner as TN
-    from .layout import compute_layout
+    from ...mechanics.layout import compute_layout
     from .rest import belt_content
 
     model = drive.model
