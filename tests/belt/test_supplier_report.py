@@ -203,7 +203,12 @@ def test_running_balance_against_an_independent_length_kept_calculation():
     rows = duty_cycle(drive, position_tables(drive)[0].design_tension)
     EA, m = model.belt.axial_stiffness, model.belt.mass_per_length
     rest = drive.equilibrium
-    L_rest = compute_layout(rest.model).length / (1 + rest.tension / EA)     # installed, continuum
+    # installed, continuum: the rest path less the belt sunk into each wrap by its pressure T / r
+    # (contact law c2 p = T / r), counted at the rest tension as the running belt is counted below
+    lay_rest = compute_layout(rest.model)
+    sunk_rest = sum(lay_rest.wrap[k] * (rest.tension / abs(lay_rest.rho[k])) / model.contact.stiffness_linear
+                    for k in range(len(lay_rest.names)))
+    L_rest = (lay_rest.length - sunk_rest) / (1 + rest.tension / EA)
     for row in rows:
         assert row.running_arm is not None, row.note
         q = row.arm_travel["TEN"]

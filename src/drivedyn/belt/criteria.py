@@ -94,7 +94,9 @@ def _supplier_criteria(model, s, out, skipped):
                                  "smallest slip margin of the duty rows held in the rotational model", f"{n} at {rpm:.0f} rpm"))
     tol = sup.get("tolerance")
     if tol:
-        v, where = min((min(e["slip_factor_fixed"], e["slip_factor_running"]), e["position"]) for e in tol)
+        sf = [(min(x for x in (e["slip_factor_fixed"], e["slip_factor_running"]) if x is not None), e["position"])
+              for e in tol if e["slip_factor_fixed"] is not None or e["slip_factor_running"] is not None]
+        v, where = min(sf) if sf else (math.inf, "no pulley carries a torque")
         out.append(Criterion("tolerance_slip_factor", v, c.slip_margin_min, "1", "min",
                              "smallest slip safety factor of the duty cycle at any belt length of the tolerance "
                              "band and wear", f"{where} belt"))
@@ -354,3 +356,51 @@ def _o(k):
 
 def _orders(orders):
     return ", ".join(_o(k) for k in orders)
+
+
+def judge_check(model, data: dict) -> dict:
+    """The verdict of what ``check`` computes (statics.check_data's ``data``): the supplier report's
+    criteria (the duty cycle's slip factors, rows carried and stop clearance, belt life, entry
+    angles, the tolerance study; ``_supplier_criteria``), and the warnings check found. Returns
+    {"verdict", "criteria", "criteria_skipped", "warnings"}, the verdict "not judged" where the model
+    asks for none of these (a model without a duty cycle: the run judges it)."""
+    from ..core.criteria import verdict_of
+
+    out, skipped = [], {}
+    _supplier_criteria(model, {"supplier": data["supplier"]} if "supplier" in data else {}, out, skipped)
+    warnings = [n[len("warning: "):] for n in data.get("steady", {}).get("notes", []) if n.startswith("warning: ")]
+    sup = data.get("supplier") or {}
+    life = sup.get("life")
+    if life and not life["in_range"]:
+        warnings.append(f"belt life: {', '.join(life['out_of_range'])} outside the fit's 79.6-175 mm effective "
+                        "diameters: its B10 is about 0.55 x the supplier's there (steady/life.py)")
+    for name, t in (sup.get("positions") or {}).items():
+        for row, why in t["unreached"].items():
+            warnings.append(f"tensioner {name}: the {row} row is not reached: {why}")
+    warnings += sup.get("warnings", [])
+    if not out:
+        skipped.setdefault("check", "no duty cycle, belt life, alignment or tolerance study to judge: "
+                                    "'drivedyn run' judges the dynamics")
+    return {"verdict": verdict_of(out, "success"), "criteria": {c.name: c.to_dict() for c in out},
+            **({"criteria_skipped": skipped} if skipped else {}), "warnings": warnings}
+
+
+def verdict_lines(head: dict) -> list[str]:
+    """The check's verdict as text: the verdict, one line per criterion, the warnings."""
+    from ..core.criteria import rows
+
+    crit = rows(head)
+    bad = [r["name"] for r in crit if not r["ok"]]
+    lines = [f"verdict: {head['verdict']}" + (f" ({len(bad)} of {len(crit)} criteria failed: {', '.join(bad)})" if bad
+                                               else f" ({len(crit)} criteria)" if crit else "")]
+    if crit:
+        w = max(len(r["name"]) for r in crit)
+        for r in crit:
+            where = f" at {r['where']}" if r["where"] else ""
+            lines.append(f"  {r['pass']:4s} {r['name']:{w}s} {r['value']:>8s} {r['unit']:3s} (limit {r['limit']}){where}: "
+                         f"{r['text']}")
+    for k, v in (head.get("criteria_skipped") or {}).items():
+        lines.append(f"  not judged: {k}: {v}")
+    for w in head["warnings"]:
+        lines.append(f"  warning: {w}")
+    return lines

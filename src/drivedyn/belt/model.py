@@ -458,8 +458,8 @@ class Belt(Spec):
     """Number of rigid segments the belt is divided into (12..5000); "auto": chosen for accuracy by resolution.py (at
     most 2000)."""
     pretension: Optional[quantity("N", gt=0)] = None
-    """Installation (static) tension of the belt; the unstretched length follows from the layout. Give exactly one of
-    pretension and length."""
+    """Installation (static) tension of the belt; the unstretched length follows from the layout. Give one of
+    pretension and length, or neither where the part's effective_length and a supplier tensioner install the belt."""
     length: Optional[quantity("m", gt=0)] = None
     """Unstretched length of the belt's centre line (on the pulleys' radius, not a catalogue's effective length); the
     tension follows from the layout. Give exactly one of pretension and length."""
@@ -468,14 +468,16 @@ class Belt(Spec):
     ribs: Optional[Annotated[int, Field(ge=1, le=100)]] = None
     """Number of ribs (the 8 of 8PK1020)."""
     effective_length: Optional[quantity("m", gt=0)] = None
-    """Nominal effective length, as the catalogue name gives it (1020 mm for 8PK1020; ISO 9982)."""
+    """Nominal effective length, as the catalogue name gives it (1020 mm for 8PK1020; ISO 9982). With a supplier
+    tensioner (arm.free_angle) and no pretension or length, the part installs the belt: the tensioner sits where the
+    required belt length is this, and the belt there holds what the spring holds (docs/supplier-report.md)."""
     length_tolerance: quantity("m", ge=0) = 0.0
     """Tolerance +- on the effective length (the supplier's report checks the tensioner over it)."""
     wear_allowance: quantity("1", ge=0, lt=0.1) = 0.0
     """Allowance for the belt's wear and growth in service, a share of the length (0.01: 1 %)."""
     length_offset: Optional[quantity("m")] = None
-    """Required belt length = effective drive length - length_offset; none: the drawn layout's effective drive length
-    less the nominal length (the drawn tensioner is at the nominal length)."""
+    """Required belt length = effective drive length - length_offset; none: 0 (suppliers print 0 to 3.5 mm and do
+    not publish their rule: give theirs to compare)."""
     teeth: Optional[Teeth] = None
     """A synchronous (toothed) belt: its teeth engage the pulleys that give ``teeth``; none: a friction belt."""
 
@@ -501,8 +503,11 @@ class Belt(Spec):
 
     @model_validator(mode="after")
     def _tension(self):
-        if (self.pretension is None) == (self.length is None):
-            raise ValueError("give exactly one of belt.pretension (N) or belt.length (unstretched, m)")
+        if self.pretension is not None and self.length is not None:
+            raise ValueError("give one of belt.pretension (N) or belt.length (unstretched, m), not both")
+        if self.pretension is None and self.length is None and self.effective_length is None:
+            raise ValueError("give belt.pretension (N), belt.length (unstretched, m), or the part's "
+                             "belt.effective_length with a supplier tensioner (arm.free_angle)")
         return self
 
     @field_validator("teeth")
@@ -653,8 +658,9 @@ class DutyRow(Spec):
 
     crank_speed: quantity("rad/s", gt=0)
     """Crank speed of this row."""
-    share: quantity("1", gt=0, le=1)
-    """Share of the running time spent at this row (the rows' shares add up to 1)."""
+    share: quantity("1", ge=0, le=1)
+    """Share of the running time spent at this row (the rows' shares add up to 1; 0: the row is evaluated and shown,
+    and carries no share of the belt's damage)."""
     power: dict[str, quantity("W", ge=0)] = {}
     """Accessory loads as powers, by pulley name."""
     torque: dict[str, quantity("N*m", ge=0)] = {}

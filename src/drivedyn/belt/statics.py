@@ -60,7 +60,7 @@ def check_data(model, sysm=None) -> dict:
         running = None          # no steady state (a drive that cannot turn): the modes at rest
     md = modes(model, lay, tensions=running, travel=rest.travel if rest is not None else None)
     fin = lambda x: float(x) if math.isfinite(x) else None     # JSON: no inf (an unloaded pulley never slips)
-    return {
+    out = {
         "steady": {
             "state": st.state, "belt_speed": st.speed, "acceleration": st.acceleration,
             "centrifugal_tension": st.centrifugal, "unstretched_length": st.unstretched_length,
@@ -86,6 +86,9 @@ def check_data(model, sysm=None) -> dict:
                   "shapes": md.shapes, "participation": md.participation},
         **({"supplier": supplier.report_data(drive)} if supplier.wanted(model) else {}),
     }
+    from .criteria import judge_check
+
+    return {**judge_check(drive.model, out), **out}       # the verdict first
 
 
 def _tensioner_data(model, rest, run=None) -> dict:
@@ -154,20 +157,35 @@ CHECK_UNITS = {"steady.spans.*.tension": "N", "steady.pulleys.*.torque": "N*m", 
 
 
 def check_json(model) -> str:
+    return json_of(check_data(model))
+
+
+def json_of(data: dict) -> str:
+    """check_data's ``data`` as the JSON of ``check --json``, with its units."""
     from ..core.results import dumps_json, unit_map
 
-    data = check_data(model)
+    data = dict(data)
     data["units"] = unit_map(data, CHECK_UNITS)
+    for name, c in data.get("criteria", {}).items():
+        if c["unit"]:
+            data["units"][f"criteria.{name}.value"] = data["units"][f"criteria.{name}.limit"] = c["unit"]
     return dumps_json(data, indent=1)     # strict JSON: null where no steady state exists
 
 
 def report(model) -> str:
+    """The text of ``drivedyn check``: the verdict first, then what check computes."""
+    return report_and_data(model)[0]
+
+
+def report_and_data(model):
+    """(check's text, check_data's data) of a model, computed once."""
     from .geometry.installation import installation_table, table_lines
     from .geometry.segment_count import auto_segments
     from .geometry.drive import resolve
     from .segments.system import placed
 
     drive = resolve(model)
+    model = drive.model        # (a belt installed by its part: with the length it installs)
     sysm = placed(drive)       # the chain as placed and its step: no settling, no kernels
     lay = sysm.layout
     T0 = sysm.init.tension
@@ -193,8 +211,16 @@ def report(model) -> str:
     data = check_data(drive, sysm)
     for name, t in data.get("tensioners", {}).items():
         if t["type"] == "arm":
-            lines.append(f"tensioner {name} (arm) at rest: travel {math.degrees(t['travel']):.3f} deg into the belt "
-                         f"(arm angle {math.degrees(t['arm_angle']):.2f} deg), spring torque {t['spring_torque']:.3f} N m, "
+            arm = next(p.arm for p in model.pulleys if p.name == name)
+            rel = ""
+            if arm.free_angle is not None:        # the supplier's convention: from the free arm, toward the belt
+                from .model import free_arm_angle
+
+                drawn = abs(free_arm_angle(next(p.center for p in model.pulleys if p.name == name), arm))
+                rel = f"{math.degrees(drawn - t['travel']) + 0.0:.2f} deg from the free arm, "
+            lines.append(f"tensioner {name} (arm) at rest: {rel}travel {math.degrees(t['travel']) + 0.0:.3f} deg into "
+                         f"the belt from the drawn position (absolute arm angle {math.degrees(t['arm_angle']) % 360:.2f} deg, "
+                         f"pivot to pulley from +x counter-clockwise), spring torque {t['spring_torque']:.3f} N m, "
                          f"hub load {t['hub_load']:.1f} N, belt tension {t['tension']:.1f} N")
         else:
             lines.append(f"tensioner {name} (slider) at rest: travel {t['slide'] * 1e3:.3f} mm into the belt, spring "
@@ -204,11 +230,14 @@ def report(model) -> str:
         from .supplier import report_lines
 
         lines += report_lines(data["supplier"])
+    from .criteria import verdict_lines
+
+    lines = verdict_lines(data) + [""] + lines
     lines += ["", "static: no load, no gravity sag; span frequencies of the belt at rest (taut beam, pinned ends).",
               f"integration: {integrator(model)}, step {sysm.step * 1e6:.3f} us (stability limit "
               f"{sysm.step_limit * 1e6:.3f} us), {model.simulation.duration / sysm.step:.3g} steps for "
               f"{model.simulation.duration:g} s"]
-    return "\n".join(lines)
+    return "\n".join(lines), data
 
 
 def _steady_lines(data, model) -> list:

@@ -54,7 +54,12 @@ def report_data(drive) -> dict:
         out["positions"] = {t.pulley: {
             "rows": {name: _position(r) for name, r in zip(ROWS, t.rows) if r is not None},
             "unreached": t.unreached, "take_up": t.take_up, "design_tension": t.design_tension,
-            "length_offset": t.offset} for t in tables}
+            "length_offset": t.offset, "drawn_length": t.drawn_length,
+            **({"installed": _position(t.installed)} if t.installed is not None else {})} for t in tables}
+        from .geometry.part import length_warnings
+
+        out["installation"] = _installation(drive, tables[0])
+        out["warnings"] = length_warnings(drive, tables[0])
     if any(p.speed_time is not None for p in model.pulleys):
         import numpy as np
 
@@ -107,7 +112,21 @@ def dynamic_duty(drive) -> list[dict]:
     held at the row's speed (its declared speed orders on it) and the row's loads as viscous
     torques P / omega^2 (the row's power at its speed, opposing the motion as it ramps up): mean and
     peak hub loads, span tension bands, the arm's travel band and its stops, slip margins, the run's
-    status and diagnostics."""
+    status and diagnostics. A first use (numba compiling the rotational kernels) says so on stderr,
+    with how long it takes."""
+    from .segments.compiled import compile_said
+
+    with compile_said(f"compiling the rotational model's kernels for the duty cycle's dynamic rows (first use "
+                      f"only: {COMPILE_SECONDS} s; later checks load them from numba's cache)"):
+        return _dynamic_rows(drive)
+
+
+#: seconds numba takes to compile the rotational kernels on a first check with duty_cycle.dynamic
+#: (empty cache, examples/fead-ag0868.toml: measured over 360 s of wall, 110 s of CPU, on a shared 2-core machine)
+COMPILE_SECONDS = "60-400"
+
+
+def _dynamic_rows(drive) -> list[dict]:
     import numpy as np
 
     from ..core.errors import SolverError
@@ -192,7 +211,7 @@ def tolerance_study(drive, table) -> list[dict]:
                  for lo, hi in [r.arm_stops[n]]]
         names = [p.name for p in model.pulleys]
         out.append({"position": name, "tension": pos.tension,
-                    "slip_factor_fixed": min(fin, default=math.inf), "slip_factor_running": min(run, default=math.inf),
+                    "slip_factor_fixed": min(fin, default=None), "slip_factor_running": min(run, default=None),
                     "hub_load_fixed": {n: max(r.fixed_arm.hub_load[n] for r in rows) for n in names},
                     "hub_load_running": {n: max((r.running_arm.hub_load[n] for r in rows if r.running_arm),
                                                 default=math.nan) for n in names},
@@ -207,6 +226,17 @@ def _ratio(drive, j) -> float:
     return drive.model.pulleys[presc[0]].radius / drive.model.pulleys[j].radius if presc else float("nan")
 
 
+def _installation(drive, table) -> dict:
+    """How the belt is installed and the lengths and tensions that relate the part to the run."""
+    model, eq = drive.model, drive.equilibrium
+    by = "pretension" if model.belt.pretension is not None else "part" if table.installed is not None else "length"
+    from ..mechanics.layout import compute_layout
+
+    return {"by": by, "unstretched_length": drive.installed_length,
+            "rest_tension": float(eq.tension) if eq is not None else None,
+            "path_length": compute_layout(eq.model).length if eq is not None else drive.layout.length}
+
+
 def _installation_tension(drive) -> float:
     eq = drive.equilibrium
     if eq is not None:
@@ -217,6 +247,33 @@ def _installation_tension(drive) -> float:
 
     st = steady_state(drive.model, drive.layout, with_margins=False)
     return float(max(st.spans.values()))
+
+
+def _relating(data, t) -> list[str]:
+    """One paragraph relating the lengths and tensions check prints."""
+    b, inst = data.get("belt", {}), data.get("installation", {})
+    L = b.get("effective_length")
+    if not L or not inst:
+        return []
+    mm = lambda x: f"{x * 1e3:.2f} mm"
+    by = {"part": f"the part ({mm(L)} effective) installs the belt: the tensioner sits at the 'installed' row, where "
+                  f"the required belt length is {mm(L)}, holding {t['installed']['tension']:.1f} N"
+          if "installed" in t else "",
+          "pretension": "belt.pretension installs the belt at the drawn layout",
+          "length": "belt.length installs the belt"}[inst["by"]]
+    text = (f"lengths and tensions: {by}. The required belt length is the effective drive length "
+            f"(spans on pitch circles, wraps on effective diameters) less {mm(t['length_offset'])}; the drawn "
+            f"tensioner (the 'mean' row, the supplier's design position and its design tension "
+            f"{t['design_tension']:.1f} N) needs {mm(t['drawn_length'])}. The unstretched belt the dynamics "
+            f"start from is {mm(inst['unstretched_length'])} (on pitch circles, sunk into the grooves, at rest)"
+            + (f"; at rest it carries {inst['rest_tension']:.1f} N" if inst.get("rest_tension") else "")
+            + f" on a path of {mm(inst['path_length'])} (pitch circles, the tensioner at rest).")
+    return [text]
+
+
+def _sf(factors) -> str:
+    """The smallest slip safety factor of a row as printed ("-": no pulley carries a torque)."""
+    return f"{min(factors):.2f}" if factors else "-"
 
 
 def _position(r) -> dict:
@@ -267,9 +324,16 @@ def report_lines(data) -> list[str]:
                          f"{r['centre'][1] * 1e3:8.2f} {r['edl'] * 1e3:8.2f} {r['required_length'] * 1e3:8.2f} "
                          f"{r['wrap'] * DEG:8.2f} {r['beta'] * DEG:8.2f} {r['tension']:7.1f} {r['hub_load']:7.1f} "
                          f"{r['hub_direction'] * DEG % 360:7.1f}")
+        shown = dict(t["rows"], **({"installed": t["installed"]} if "installed" in t else {}))
+        for row, r in list(shown.items())[len(t["rows"]):]:
+            lines.append(f"{row:10s} {r['rel'] * DEG:8.2f} {r['angle'] * DEG % 360:8.2f} {r['centre'][0] * 1e3:8.2f} "
+                         f"{r['centre'][1] * 1e3:8.2f} {r['edl'] * 1e3:8.2f} {r['required_length'] * 1e3:8.2f} "
+                         f"{r['wrap'] * DEG:8.2f} {r['beta'] * DEG:8.2f} {r['tension']:7.1f} {r['hub_load']:7.1f} "
+                         f"{r['hub_direction'] * DEG % 360:7.1f}")
         for row, why in t["unreached"].items():
             lines.append(f"{row:10s} not reached: {why}")
         lines.append(f"design tension {t['design_tension']:.1f} N; belt take-up {t['take_up'] * 1e3 / DEG:.3f} mm/deg")
+        lines += _relating(data, t)
     if "duty" in data:
         du = data["duty"]
         names = list(data.get("pulleys") or du["rows"][0]["fixed_arm"]["hub_load"])
@@ -285,14 +349,20 @@ def report_lines(data) -> list[str]:
             sf = [v for v in fa["slip_factor"].values() if v is not None]
             sfr = [v for v in (ra or {"slip_factor": {}})["slip_factor"].values() if v is not None]
             lines.append(f"{r['crank_speed'] * 30 / math.pi:6.0f} {100 * r['share']:5.1f}% " + " ".join(f"{c:>11s}" for c in cells)
-                         + f" {min(sf, default=math.inf):6.2f}|{min(sfr, default=math.inf):<6.2f}"
+                         + f" {_sf(sf):>6s}|{_sf(sfr) if ra else 'none':<6s}"
                          + (f"  {r['note']}" if r["note"] else ""))
         for n in (du["rows"][0]["arm_stops"] if du["rows"] else {}):
             lo, hi = du["rows"][0]["arm_stops"][n]
             tr = [r["arm_travel"].get(n) for r in du["rows"] if r["arm_travel"].get(n) is not None]
             if tr:
-                lines.append(f"tensioner {n} running travel {min(tr) * DEG:.2f} to {max(tr) * DEG:.2f} deg into the belt "
-                             f"(stops {lo * DEG:.2f} / {hi * DEG:.2f} deg)")
+                pos = data.get("positions", {}).get(n)
+                rel = ""
+                if pos and "mean" in pos["rows"]:       # the supplier's convention, as in the position table
+                    d = pos["rows"]["mean"]["rel"]
+                    rel = (f"arm {(d - max(tr)) * DEG:.2f} to {(d - min(tr)) * DEG:.2f} deg from the free arm "
+                           f"(load stop {(d - lo) * DEG:.2f} deg); ")
+                lines.append(f"tensioner {n} running: {rel}travel {min(tr) * DEG:.2f} to {max(tr) * DEG:.2f} deg into the "
+                             f"belt from the drawn position (stops {lo * DEG:.2f} / {hi * DEG:.2f} deg)")
     if "duty_dynamic" in data:
         dd = data["duty_dynamic"]
         names = list(data["duty"]["rows"][0]["fixed_arm"]["hub_load"]) if data.get("duty") else []
@@ -303,18 +373,19 @@ def report_lines(data) -> list[str]:
                 lines.append(f"{e['crank_speed'] * 30 / math.pi:6.0f}  failed: {e['note']}")
                 continue
             arm = "; ".join(f"{n} {lo * DEG:.2f}..{hi * DEG:.2f}" for n, (lo, hi) in e["arm_travel"].items())
-            sm = min(e["slip_margin"].values(), default=math.inf)
+            sm = _sf(list(e["slip_margin"].values()))
             lines.append(f"{e['crank_speed'] * 30 / math.pi:6.0f}  "
                          + "  ".join(f"{n} {e['hub_load_mean'][n]:.0f}/{e['hub_load_peak'][n]:.0f}" for n in names)
-                         + f"  margin {sm:.2f}  {arm}  {e['status']}"
+                         + f"  margin {sm}  {arm}  {e['status']}"
                          + (f" ({', '.join(e['diagnostics'])})" if e["diagnostics"] else ""))
     if "tolerance" in data:
         lines += ["", "tolerance study: the duty cycle at each belt length of the position table (slip factor fixed | "
                       "running arm, largest hub loads fixed | running, the arm's clearance to its stops)"]
         for e in data["tolerance"]:
             hubs = "  ".join(f"{n} {e['hub_load_fixed'][n]:.0f}|{e['hub_load_running'][n]:.0f}" for n in e["hub_load_fixed"])
-            lines.append(f"{e['position']:10s} T {e['tension']:6.1f} N  SF {e['slip_factor_fixed']:.2f}|"
-                         f"{e['slip_factor_running']:.2f}  {hubs}  clearance {100 * e['stop_clearance']:.0f} %"
+            sf = [e["slip_factor_fixed"]], [e["slip_factor_running"]]
+            lines.append(f"{e['position']:10s} T {e['tension']:6.1f} N  SF {_sf([x for x in sf[0] if x is not None])}|"
+                         f"{_sf([x for x in sf[1] if x is not None])}  {hubs}  clearance {100 * e['stop_clearance']:.0f} %"
                          + (f"  not carried at {', '.join(f'{w * 30 / math.pi:.0f}' for w in e['rows_not_carried'])} rpm"
                             if e["rows_not_carried"] else ""))
     if "alignment" in data:

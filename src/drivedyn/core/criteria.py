@@ -106,6 +106,8 @@ def shown(value, unit: str, percent: bool = False):
         return f"{value:.3g}", ""
     u, f = SHOW.get(unit, (unit, 1.0))
     v = value * f + 0.0
+    if 1e4 <= abs(v) < 1e9:            # a life in hours, a load in N: whole numbers, no exponent
+        return f"{v:.0f}", u
     return (f"{v:.4g}" if abs(v) >= 1e-3 or v == 0 else f"{v:.3g}"), u
 
 

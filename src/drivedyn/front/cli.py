@@ -335,23 +335,32 @@ def _print_status(console, result):
 
 @app.command()
 def check(model: Path = typer.Argument(..., help="Model file (TOML)."),
-          as_json: bool = typer.Option(False, "--json", help="Belt drives: steady state, margins, modes as JSON."),
+          as_json: bool = typer.Option(False, "--json", help="Belt drives: the verdict, steady state, margins, modes "
+                                       "and the supplier's tables as JSON."),
+          strict: bool = typer.Option(False, "--strict", help=f"Belt drives: exit with status {EXIT_WARNING} when check "
+                                      f"warns, {EXIT_CRITERIA} when a design criterion it judges fails (as run)."),
           sets: list[str] = typer.Option(None, "--set", help=SET_HELP)):
-    """Validate a model and print what is known without running it."""
+    """Validate a model and print what is known without running it, the verdict of what it judges first."""
     from .. import api
 
     m = _load(model, sets)
+    data = None
     try:
         if as_json and m.kind != "belt-drive":
             _fail(f"{model}: check --json is for belt-drive models (this is {m.kind})")
-        if as_json:
-            from ..belt.statics import check_json
+        if m.kind == "belt-drive":
+            from ..belt.statics import check_data, json_of, report_and_data
 
-            typer.echo(check_json(m))
-            return
-        typer.echo(api.check(m))
+            text, data = (None, check_data(m)) if as_json else report_and_data(m)
+            typer.echo(json_of(data) if as_json else text)
+        else:
+            typer.echo(api.check(m))
     except ModelError as exc:
         _fail(_named(model, exc))
+    if strict and data is not None and data.get("warnings"):
+        raise typer.Exit(EXIT_WARNING)
+    if strict and data is not None and data.get("verdict") == "fail":
+        raise typer.Exit(EXIT_CRITERIA)
 
 
 @app.command()

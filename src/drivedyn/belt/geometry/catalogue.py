@@ -7,9 +7,8 @@ layout uses (``pulley.radius`` is the pitch radius). Grooved pulleys carry the r
 back-side (flat) pulleys carry the belt's back: d_e = d_p + 2 hb.
 
 - effective drive length EDL = the tangent spans between pitch circles + sum of wrap x effective radius;
-- required effective belt length REBL = EDL - ``belt.length_offset`` (by default the drawn layout's
-  EDL less the nominal length: the drawn tensioner is at the nominal length). Suppliers' reports
-  print an offset of 0 to 3.5 mm whose rule they do not publish: give theirs to compare.
+- required effective belt length REBL = EDL - ``belt.length_offset`` (by default 0). Suppliers'
+  reports print an offset of 0 to 3.5 mm whose rule they do not publish: give theirs to compare.
 
 Both reproduce the position tables of Gates accessory-drive reports (tests/belt/test_supplier_report.py).
 """
@@ -58,10 +57,6 @@ def effective_drive_length(lay: Layout, d_eff) -> float:
 
 
 def length_offset(model, drawn: Layout, d_eff) -> float:
-    """belt.length_offset, or the drawn layout's EDL less the nominal effective length."""
-    if model.belt.length_offset is not None:
-        return model.belt.length_offset
-    if model.belt.effective_length is None:
-        raise ModelError("the required belt length needs belt.effective_length (the nominal length, e.g. "
-                         "\"1020 mm\" for an 8PK1020) or belt.length_offset", field="belt.effective_length")
-    return effective_drive_length(drawn, d_eff) - model.belt.effective_length
+    """belt.length_offset, or 0 (the required belt length is the effective drive length). The offset
+    is a property of the layout, not of the belt: a longer belt moves the tensioner."""
+    return model.belt.length_offset if model.belt.length_offset is not None else 0.0

@@ -10,6 +10,9 @@ frozen; ``functools.cached_property`` fills each field once):
   places it (tensioner.equilibrium; None without tensioners): the segment model and ``check``;
 - ``installed_length``, ``rest``: the unstretched belt length and the continuum's rest state
   (rest.py): the rotational model and the modes.
+
+A belt given by its part number alone (belt.effective_length, no pretension or length) is
+installed here: ``model`` then carries the unstretched length the part installs (part.py).
 """
 from __future__ import annotations
 
@@ -65,6 +68,13 @@ def resolve(model) -> Drive:
     if _last and _last[0] is model:
         return _last[1]
     idx = tuple(tensioner.indices(model))
+    given = model
     drive = Drive(model, compute_layout(model), idx, tuple(tensioner.senses(model)) if idx else ())
-    _last[:] = [model, drive]
+    if model.belt.pretension is None and model.belt.length is None:
+        # the part installs the belt (part.py): its unstretched length, for every model alike
+        from .part import part_length
+
+        model = model.model_copy(update={"belt": model.belt.model_copy(update={"length": part_length(drive)})})
+        drive = Drive(model, drive.layout, idx, drive.senses)
+    _last[:] = [given, drive]
     return drive

@@ -55,6 +55,8 @@ class PositionTable:
     take_up: float             # d(EDL)/d(arm angle) at the mean position (m/rad)
     design_tension: float      # the tension at the mean position (N)
     offset: float              # belt.length_offset in use (m)
+    installed: Position | None = None   # where the part's belt puts the arm: required length = belt.effective_length
+    drawn_length: float = math.nan      # the required belt length of the drawn (mean) position (m)
 
 
 def position_tables(drive) -> list[PositionTable]:
@@ -136,4 +138,12 @@ def _table(model, j, s, d_eff, offset) -> PositionTable:
     mean = rows[ROWS.index("mean")]
     h = 1e-5
     take_up = -(rebl(mean.rel + h) - rebl(mean.rel - h)) / (2 * h)
-    return PositionTable(p.name, tuple(rows), unreached, take_up, mean.tension, offset)
+    # the part: the arm where the required belt length is the belt's effective length
+    L = belt.effective_length
+    installed = None
+    if lo_len <= L <= hi_len:
+        installed = row("installed", find_root(lambda x: rebl(x) - L, 0.0, load_stop, xtol=1e-12))
+    else:
+        unreached["installed"] = (f"the belt's {L * 1e3:.2f} mm lies {'beyond the free arm' if L > hi_len else 'beyond the load stop'}"
+                                  f" (the arm reaches {lo_len * 1e3:.2f}-{hi_len * 1e3:.2f} mm of required belt length)")
+    return PositionTable(p.name, tuple(rows), unreached, take_up, mean.tension, offset, installed, nominal)

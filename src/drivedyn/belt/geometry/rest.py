@@ -17,10 +17,10 @@ def installed_length(model, lay: Layout) -> float:
     """Unstretched belt length: ``belt.length``, or what the drawn path holds at the pretension with
     the belt sunk into each wrap by its static depth (as creep.drive_of)."""
     b = model.belt
-    return float(b.length) if b.length is not None else _content(model, lay, b.pretension)
+    return float(b.length) if b.length is not None else belt_content(model, lay, b.pretension)
 
 
-def _content(model, lay: Layout, T: float) -> float:
+def belt_content(model, lay: Layout, T: float) -> float:
     """Unstretched belt the path of ``lay`` holds at a uniform tension T at rest."""
     EA = model.belt.axial_stiffness
     sunk = float(np.sum(lay.wrap * penetration(T / np.abs(lay.rho), model.contact.stiffness_quadratic,
@@ -30,7 +30,7 @@ def _content(model, lay: Layout, T: float) -> float:
 
 def _tension_at(model, lay: Layout, L0: float) -> float:
     """Uniform tension at rest at which the path of ``lay`` holds L0 (0 when it is slack)."""
-    f = lambda T: _content(model, lay, T) - L0
+    f = lambda T: belt_content(model, lay, T) - L0
     if f(0.0) <= 0:
         return 0.0
     hi = 1.0

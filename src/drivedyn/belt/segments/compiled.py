@@ -44,6 +44,29 @@ def compile_note(progress, method, now=False):
         yield
 
 
+@contextmanager
+def compile_said(text):
+    """Within it, numba's first compile (a kernel not in its cache) is said once on stderr with
+    ``text`` (``check``'s dynamic duty rows: check has no progress bar)."""
+    import sys
+
+    from numba.core import event
+
+    class Note(event.Listener):
+        said = False
+
+        def on_start(self, ev):
+            if not self.said:
+                self.said = True
+                print(f"drivedyn: {text}", file=sys.stderr, flush=True)
+
+        def on_end(self, ev):
+            pass
+
+    with event.install_listener("numba:compile", Note()):
+        yield
+
+
 def compiled(dispatcher, args):
     """The compiled entry of ``dispatcher`` for these argument types: calling it skips numba's
     type dispatch, which for the kernel's records costs about 28 us a call against 15 (one call per

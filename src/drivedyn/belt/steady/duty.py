@@ -160,13 +160,13 @@ def _fixed_arm(model, drive, d, M, forward, design_tension, v) -> DutyColumns:
 
 def _running_arm(model, drive, M, v):
     from .creep import steady_state
-    from .running import running
+    from .running import running_balance
 
     try:
         if drive.tensioners:
-            run = running(model, drive.equilibrium, torques=M, speed=v)
+            run, why = running_balance(model, drive.equilibrium, torques=M, speed=v)
             if run is None:
-                return None, {}, {}, "no running balance of the arm within its stops (gross slip or a slack span)"
+                return None, {}, {}, f"not carried: {why}"
             qv, m, lay, st = run
             travel = {model.pulleys[j].name: float(q) for j, q in zip(drive.tensioners, qv)}
         else:
