@@ -421,6 +421,24 @@ def _try_one(command, case, allowed, plots=False):
 COMMON = dict(deadline=None, database=None, suppress_health_check=list(HealthCheck), print_blob=True)
 
 
+@pytest.fixture(scope="module", autouse=True)
+def _kernels_compiled():
+    """numba's first compile of the kernels check uses (a duty cycle's dynamic rows run the rotational
+    model) happens here, outside the 30 s alarm of ``_cli``: on a loaded machine a cold compile can
+    take longer, and an alarm that interrupts numba mid-compile leaves its library half built ("no
+    compiled object yet") for every later case of the process."""
+    for name in drivedyn.examples():
+        if name.startswith("study-"):
+            continue
+        try:
+            model = drivedyn.load(drivedyn.example_path(name))
+            if model.kind == "belt-drive" and model.duty_cycle is not None:
+                model = drivedyn.replace(model, {"duty_cycle.dynamic": True})
+            drivedyn.check(model)
+        except Exception:  # noqa: BLE001  (a check that refuses is the other tests' business)
+            pass
+
+
 @settings(max_examples=LONG or 120, derandomize=not LONG, **COMMON)
 @given(case=damaged_file())
 def test_check_never_ends_in_a_traceback(case):
