@@ -783,6 +783,10 @@ class Criteria(Spec):
     """Damping ratio of a span's first flap mode: sets the parametric threshold (tension modulation above 4 x it)
     and the direct response's size at resonance (assumed: 1-3 % is the usual range for belt spans; measure it
     when a crossing sits near the threshold)."""
+    parametric_spans_max: Annotated[int, Field(ge=0)] = 0
+    """Spans allowed inside a parametric-resonance tongue of their own (the run's tension fluctuation at the
+    frequency and depth where the span's transverse motion grows: seed 002, Mathieu and Floquet with
+    flap_damping_ratio; docs/criteria.md)."""
     resonance_crossings_max: Annotated[int, Field(ge=0)] | None = None
     """Crossings of the drive's rotational modes by excited orders allowed; none: listed, not judged."""
     entry_angle_max: limit("rad", "an entry angle is less than 90 deg: a larger limit can never fail", gt=0,
