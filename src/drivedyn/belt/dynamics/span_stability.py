@@ -12,9 +12,10 @@ equation, and the largest is the one that counts.
 
 The components of a steady window come from its spectrum: the tension less its mean and linear trend,
 Hann-windowed; the largest local peaks, their frequencies refined by a parabola through the log
-magnitudes of the three bins at each peak (exact for a Gaussian, within a few 1e-3 of a bin for the
-Hann window: Gade & Herlufsen, Bruel & Kjaer Technical Review 3, 1987), then all amplitudes at once by
-least squares on the unwindowed samples (mean, trend, a cosine and a sine per peak). A run-up's come
+magnitudes of the three bins at each peak (exact for a Gaussian; for the Hann window within 0.016 of
+a bin, tests/belt/test_span_stability.py: Gade & Herlufsen, Bruel & Kjaer Technical Review 3, 1987),
+then all amplitudes at once by least squares on the unwindowed samples (mean, trend, a cosine and a
+sine per peak: within 5e-4 of the amplitude for one sinusoid). A run-up's come
 from its order tracking (dynamics/runup.py): per crank-speed bin, the order amplitudes at k n / 60 Hz.
 """
 from __future__ import annotations
@@ -25,7 +26,7 @@ import numpy as np
 
 from ...mechanics.span.frequencies import moving_beam_spectrum
 from ...mechanics.span.quantities import SpanProperties, effective_tension
-from ...mechanics.span.tongues import TONGUES, nearest, place
+from ...mechanics.span.tongues import nearest, nearest_tongue, place, screen
 
 #: fluctuation components placed per span
 COMPONENTS = 3
@@ -77,7 +78,7 @@ def span_entry(sp: SpanProperties, T: float, V: float, components, zeta: float, 
                passing: float = 0.0, tol: float = 0.0) -> dict:
     """The summary entry of one span: mean tension, f1, each component's depth and the tongue it is
     nearest, the nearest of all, and whether any is inside a tongue. A component within ``tol`` Hz
-    (or 2 %) of a multiple of ``passing`` (the segments' passing frequency, Hz) is the segment
+    (or 2 %: the segments' length varies with the tension along the belt) of a multiple of ``passing`` (the segments' passing frequency, Hz) is the segment
     model's polygon effect: listed, not placed."""
     f1 = float(moving_beam_spectrum(np.asarray(T, float), sp.mass_per_length, sp.length, sp.bending_stiffness,
                                     np.asarray(V, float), 1)[..., 0])
@@ -91,8 +92,8 @@ def span_entry(sp: SpanProperties, T: float, V: float, components, zeta: float, 
     for fe, amp in components:
         depth = amp / N
         k = round(fe / passing) if passing > 0 else 0
-        artefact = k >= 1 and abs(fe - k * passing) <= k * max(tol, 0.02 * passing)
-        best = nearest([(fe, place(f1, fe, depth, zeta, n)) for n in TONGUES]) if fe > 0 and not artefact else None
+        artefact = k >= 1 and abs(fe - k * passing) <= max(tol, 0.02 * k * passing)
+        best = (fe, place(f1, fe, depth, zeta)) if fe > 0 and not artefact else None
         c = {"frequency": float(fe), "order": float(fe / f_driver) if f_driver > 0 else None,
              "amplitude": float(amp), "depth": depth}
         if artefact:
@@ -110,6 +111,13 @@ def span_entry(sp: SpanProperties, T: float, V: float, components, zeta: float, 
         e["nearest"] = {"frequency": best[0], "tongue": best[1].tongue, "tongue_centre": best[1].centre,
                         "open": best[1].open, "band": list(best[1].band) if best[1].band else None}
     return e
+
+
+def reach(f1, fe, depth) -> float:
+    """The share of the nearest tongue's centre between f_e and the widest the tongue can be at this
+    depth (tongues.screen): below 0 it may be inside, and needs the Floquet pass."""
+    n = nearest_tongue(f1, fe)
+    return abs(fe * n / (2.0 * f1) - 1.0) - screen(depth)
 
 
 def _span_properties(model, lay):
@@ -134,7 +142,7 @@ def steady(model, lay, ds, sel, f_driver, segments: int = 0) -> dict:
         mean, comps = largest_components(t, ten[:, q])
         V = abs(float(np.mean(vel[:, q])))
         passing = V * segments / lay.length if segments else 0.0
-        tol = 2.0 / (t[-1] - t[0]) if len(t) > 1 else 0.0        # two bins of the window's spectrum
+        tol = 1.0 / (t[-1] - t[0]) if len(t) > 1 else 0.0        # a bin of the window's spectrum
         out[name] = span_entry(props[name], mean, V, comps, zeta, f_driver, passing, tol)
     if out:
         out["_sampled_to"] = 0.5 / float(np.median(np.diff(t))) if len(t) > 1 else float("nan")
@@ -159,17 +167,31 @@ def runup(model, lay, ds, out_runup, crank) -> dict:
             continue
         amp = ds["runup_tension_order"].sel(span=name).values           # (bin, order)
         mean = ds["runup_tension_mean"].sel(span=name).values
-        entries = []
-        for b, n in enumerate(rpm):
-            fd = n / 60.0
-            comps = sorted(((k * fd, float(amp[b, o])) for o, k in enumerate(orders)), key=lambda c: -c[1])
-            e = span_entry(props[name], float(mean[b]), n / 60.0 * 2 * math.pi * r, comps[:COMPONENTS], zeta, fd)
-            entries.append((b, e))
-        ranked = [(b, e) for b, e in entries if e.get("tongue_distance") is not None]
-        b, e = min(ranked, key=lambda be: (not be[1]["inside"], not be[1]["nearest"]["open"],
-                                           be[1]["tongue_distance"])) if ranked else entries[0]
+        V = rpm / 60.0 * 2 * math.pi * r
+        sp = props[name]
+        f1 = moving_beam_spectrum(np.asarray(mean, float), sp.mass_per_length, sp.length, sp.bending_stiffness, V, 1)[:, 0]
+        N = effective_tension(np.asarray(mean, float), V, sp)
+        comps = [sorted(((k * n / 60.0, float(amp[b, o])) for o, k in enumerate(orders)), key=lambda c: -c[1])[:COMPONENTS]
+                 for b, n in enumerate(rpm)]
+        # the bins worth a Floquet pass: a component within reach of a tongue (tongues.screen), or
+        # else the one nearest; the rest cannot be inside one
+        key = np.full(len(rpm), np.inf)
+        for b in range(len(rpm)):
+            if math.isfinite(f1[b]) and f1[b] > 0 and N[b] > 0:
+                key[b] = min((reach(f1[b], fe, a / N[b]) for fe, a in comps[b] if fe > 0), default=np.inf)
+        # the Floquet pass on the components within reach; the bin nearest a tongue in full
+        placed = {}
+        for b in range(len(rpm)):
+            if key[b] < 0:
+                for fe, a in comps[b]:
+                    if fe > 0 and reach(f1[b], fe, a / N[b]) < 0:
+                        p = place(f1[b], fe, a / N[b], zeta)
+                        placed[b] = min(placed.get(b, (True, True, np.inf)), (not p.inside, not p.open, p.distance))
+        b = min(placed, key=placed.get) if placed else int(np.argmin(key))
+        e = span_entry(sp, float(mean[b]), float(V[b]), comps[b], zeta, rpm[b] / 60.0)
+        inside_rpm = [float(rpm[k]) for k, v in placed.items() if not v[0]]
         e = dict(e, rpm=float(rpm[b]))
-        e["inside_rpm"] = [float(rpm[k]) for k, x in entries if x["inside"]]
+        e["inside_rpm"] = inside_rpm
         out[name] = e
     return _finish(out)
 

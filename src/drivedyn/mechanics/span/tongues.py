@@ -33,8 +33,10 @@ from .mathieu import characteristic_values
 
 #: tongues judged: the principal (f_e ~ 2 f1) and the next (f_e ~ f1)
 TONGUES = (1, 2)
-#: points of the undamped band searched for the damped tongue (with the excitation's own frequency)
-SCAN = 9
+#: points across the undamped band where the damped tongue's multipliers are computed (an open
+#: tongue's edges then refined between them to EDGE_TOL of the frequency)
+SCAN = 21
+EDGE_TOL = 1e-7
 #: RK4 steps per free oscillation of the Floquet integration (floquet.multipliers: |lambda| to ~1e-6)
 STEPS = 48
 
@@ -103,43 +105,62 @@ def undamped_band(f1: float, depth: float, n: int):
     return 2.0 * f1 / math.sqrt(a_edges[1]), 2.0 * f1 / math.sqrt(a_edges[0])
 
 
-def place(f1: float, fe: float, depth: float, zeta: float, n: int) -> TonguePlace:
-    """The excitation (f_e Hz, depth e = dT / N) against tongue n of a span of first frequency f1
-    (Hz) and modal damping ratio zeta."""
-    rho = float(_rho(f1, [fe], depth, zeta)[0])
+def nearest_tongue(f1: float, fe: float) -> int:
+    """The tongue whose centre 2 f1 / n lies nearest f_e (in ratio)."""
+    return min(TONGUES, key=lambda n: abs(math.log(fe * n / (2.0 * f1))))
+
+
+def screen(depth: float) -> float:
+    """The share of its centre frequency 2 f1 / n within which tongue n's band at depth e surely lies
+    (e <= 2): the undamped band lies within e / 4 + O(e^2) of the centre for n = 1 and e^2 / 8 + O(e^4)
+    for n = 2 (first-order characteristic values, McLachlan 1947, sec. 4.13), damping only narrows it;
+    tests/span/test_tongues.py checks the bound on the exact edges. A component beyond it needs no
+    Floquet pass to be outside."""
+    return 0.5 * depth + 0.02
+
+
+def place(f1: float, fe: float, depth: float, zeta: float, n: int | None = None) -> TonguePlace:
+    """The excitation (f_e Hz, depth e = dT / N) against tongue n (default: the nearest,
+    :func:`nearest_tongue`) of a span of first frequency f1 (Hz) and modal damping ratio zeta."""
+    n = nearest_tongue(f1, fe) if n is None else n
     und = undamped_band(f1, depth, n)
+    if und is None:
+        rho = float(_rho(f1, [fe], depth, zeta)[0])
+        band = None
+    else:
+        # one Floquet pass: f_e and a grid across the undamped band, which holds the damped one
+        grid = np.linspace(und[0], und[1], SCAN)
+        r = _rho(f1, np.append(grid, fe), depth, zeta)
+        rho, r = float(r[-1]), r[:-1]
+        band = und if zeta <= 0 else _damped_band(f1, depth, zeta, grid, r)
     # growth at f_e belongs to this tongue where f_e is inside its undamped band (the tongues of one
     # depth do not overlap below e ~ 1: McLachlan 1947, fig. 8)
     inside = rho > UNSTABLE and und is not None and und[0] <= fe <= und[1]
-    band = None
-    if und is not None:
-        band = und if zeta <= 0 else _damped_band(f1, fe, depth, zeta, und, inside)
     if band is None:
-        dist = abs(fe - 2.0 * f1 / n) / fe
+        dist = float(abs(fe - 2.0 * f1 / n) / fe)
     elif band[0] <= fe <= band[1] or inside:
         dist = 0.0
     else:
-        dist = (band[0] - fe) / fe if fe < band[0] else (fe - band[1]) / fe
+        dist = float((band[0] - fe) / fe if fe < band[0] else (fe - band[1]) / fe)
     return TonguePlace(n, 2.0 * f1 / n, band, und, bool(inside), rho, dist)
 
 
-def _damped_band(f1, fe, depth, zeta, und, inside):
-    """The damped tongue's (f_low, f_high) within the undamped band ``und``, or None if closed."""
-    lo, hi = und
-    grid = np.linspace(lo, hi, SCAN + 2)[1:-1]
-    if inside and lo < fe < hi:
-        grid = np.sort(np.append(grid, fe))
-    r = _rho(f1, grid, depth, zeta)
+def _damped_band(f1, depth, zeta, grid, r):
+    """The damped tongue's (f_low, f_high) from the multipliers ``r`` on ``grid`` (across the
+    undamped band): each edge by Brent's method in the grid interval where r crosses UNSTABLE
+    (only for an open tongue); None if closed."""
     bad = np.nonzero(r > UNSTABLE)[0]
     if not len(bad):
         return None
+    i, j = bad[0], bad[-1]
 
     def g(f):
         return float(_rho(f1, [f], depth, zeta)[0]) - UNSTABLE
 
-    f_low = optimize.brentq(g, lo, grid[bad[0]], xtol=1e-9 * hi) if g(lo) < 0 else lo
-    f_high = optimize.brentq(g, grid[bad[-1]], hi, xtol=1e-9 * hi) if g(hi) < 0 else hi
-    return float(f_low), float(f_high)
+    tol = EDGE_TOL * float(grid[-1])
+    lo = optimize.brentq(g, grid[i - 1], grid[i], xtol=tol) if i > 0 else float(grid[0])
+    hi = optimize.brentq(g, grid[j], grid[j + 1], xtol=tol) if j < len(grid) - 1 else float(grid[-1])
+    return float(lo), float(hi)
 
 
 def nearest(places):
