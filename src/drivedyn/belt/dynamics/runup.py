@@ -44,7 +44,7 @@ def excitation_orders(model, j, rho) -> list[float]:
     accessory's own harmonics at its nominal speed ratio |rho_j / rho_k|."""
     orders = [o.order for o in model.pulleys[j].speed_orders]
     for k, p in enumerate(model.pulleys):
-        orders += [hm.order * abs(rho[j] / rho[k]) for hm in p.harmonics]
+        orders += [hm.order * abs(rho[j] / rho[k]) for hm in p.load_harmonics]
     return orders
 
 
