@@ -278,6 +278,13 @@ def evaluate(model, result):
         else:
             skipped["flap_crossings"] = "the crank declares no speed orders (criteria.flap_orders names more)"
 
+    # span stability from the run: each span's tension fluctuation on its Mathieu tongues
+    st = s.get("span_stability")
+    if st and st.get("spans"):
+        out.append(_span_stability(st, c))
+    elif "span_stability" not in s:
+        skipped["span_stability"] = "no steady window or run-up bins to read the span tensions from"
+
     # rotational resonances inside the speed range
     modes = s.get("modes", {}).get("frequencies_hz")
     if modes:
@@ -295,6 +302,35 @@ def evaluate(model, result):
                                               "criteria.resonance_crossings_max judges them)")
     _supplier_criteria(model, s, out, skipped)
     return out, skipped
+
+
+def _span_stability(st, c):
+    """Criterion: spans inside a tongue (dynamics/span_stability.py), where: those spans, else the
+    nearest one and how far."""
+    spans = st["spans"]
+
+    def at(n, e):
+        x = e.get("nearest") or {}
+        rpm = f" at {e['rpm']:.0f} rpm" if e.get("rpm") is not None else ""
+        what = (f"{x.get('frequency', float('nan')):.1f} Hz against tongue {x.get('tongue')} "
+                f"(2 f1 / {x.get('tongue')} = {x.get('tongue_centre', float('nan')):.1f} Hz)")
+        if e.get("inside"):
+            return f"{n}{rpm}: {what}, inside"
+        d = e.get("tongue_distance")
+        state = "open" if x.get("open") else "closed at this depth"
+        return f"{n}{rpm}: {what}, {state}, {100 * d:.0f} % off" if d is not None else f"{n}: {e.get('note', '')}"
+
+    inside = st.get("inside", [])
+    if inside:
+        where = "; ".join(at(n, spans[n]) for n in inside[:4]) + (f"; {len(inside) - 4} more" if len(inside) > 4 else "")
+    elif st.get("nearest_span"):
+        where = "nearest: " + at(st["nearest_span"], spans[st["nearest_span"]])
+    else:
+        where = ""
+    return Criterion("span_stability", len(inside), c.parametric_spans_max, "", "max",
+                     "spans inside a parametric-resonance tongue: a component of the run's span tension at the "
+                     "frequency and depth where the span's transverse motion grows (Mathieu tongues with damping "
+                     f"ratio {c.flap_damping_ratio:g}, principal and next)", where)
 
 
 def _flap_where(x):

@@ -279,6 +279,12 @@ class Pulley(Spec):
     harmonics: list[Harmonic] = []
     """Torque components amplitude sin(order theta + phase) on the pulley's own angle theta (an accessory's pulsating
     load, e.g. a compressor)."""
+    torque_angle: Optional[list[list]] = None
+    """Load torque over one turn of the pulley's own angle theta as rows [angle, torque] (a camshaft's valve-train
+    torque), counter-clockwise positive, linear between rows: the angles span exactly 360 deg and the last torque
+    repeats the first (one period); none: no such load. Turned at load time into its mean (added to torque) and its
+    harmonics (added to harmonics): its Fourier series up to order 40, the orders at least 1e-3 of the largest
+    (belt/angle_torque.py; drivedyn check lists them)."""
     speed_time: Optional[list[list]] = None
     """Prescribed speed over time as rows [time, speed] (counter-clockwise positive): makes this pulley the crank,
     driven kinematically; excludes torques, loads and clutches on it."""
@@ -342,10 +348,41 @@ class Pulley(Spec):
     def _st(cls, v):
         return None if v is None else table_rows(v, ("s", "rad/s"), "speed_time")
 
+    @field_validator("torque_angle")
+    @classmethod
+    def _ta(cls, v):
+        if v is None:
+            return None
+        from .angle_torque import check_closed
+
+        rows = table_rows(v, ("rad", "N*m"), "torque_angle")
+        check_closed(rows)
+        return rows
+
+    @property
+    def angle_load(self) -> tuple[float, list[Harmonic]]:
+        """(mean torque, harmonics) of ``torque_angle`` (belt/angle_torque.py); (0, []) without one."""
+        if self.torque_angle is None:
+            return 0.0, []
+        from .angle_torque import series
+
+        mean, hs = series(self.torque_angle)
+        return mean, [Harmonic(order=k, amplitude=a, phase=p) for k, a, p in hs]
+
+    @property
+    def load_harmonics(self) -> list[Harmonic]:
+        """The torque harmonics the pulley carries: ``harmonics`` and those of ``torque_angle``."""
+        return list(self.harmonics) + self.angle_load[1]
+
+    @property
+    def constant_torque(self) -> float:
+        """The constant torque the pulley carries: ``torque`` and the mean of ``torque_angle``."""
+        return self.torque + self.angle_load[0]
+
     @model_validator(mode="after")
     def _excitation(self):
         if self.speed_time is not None and (self.torque != 0 or self.torque_time or self.torque_speed
-                                            or self.viscous_torque or self.harmonics or self.drag
+                                            or self.viscous_torque or self.harmonics or self.torque_angle or self.drag
                                             or self.quadratic_torque or self.power or self.clutch):
             raise ValueError(f"pulley {self.name!r}: speed_time (prescribed speed) excludes torques, loads and clutches")
         if self.speed_orders and self.speed_time is None:
@@ -783,6 +820,10 @@ class Criteria(Spec):
     """Damping ratio of a span's first flap mode: sets the parametric threshold (tension modulation above 4 x it)
     and the direct response's size at resonance (assumed: 1-3 % is the usual range for belt spans; measure it
     when a crossing sits near the threshold)."""
+    parametric_spans_max: Annotated[int, Field(ge=0)] = 0
+    """Spans allowed inside a parametric-resonance tongue of their own (the run's tension fluctuation at the
+    frequency and depth where the span's transverse motion grows: seed 002, Mathieu and Floquet with
+    flap_damping_ratio; docs/criteria.md)."""
     resonance_crossings_max: Annotated[int, Field(ge=0)] | None = None
     """Crossings of the drive's rotational modes by excited orders allowed; none: listed, not judged."""
     entry_angle_max: limit("rad", "an entry angle is less than 90 deg: a larger limit can never fail", gt=0,

@@ -511,7 +511,7 @@ def _figures(ds, driver):
         r = ds["pulley_radius"].values
         jd = names.index(driver) if driver in names else 0
         own = {f"{p.name} {h.order:g}": h.order * r[jd] / r[names.index(p.name)]
-               for p in model.pulleys for h in (getattr(p, "harmonics", None) or []) if p.name in names}
+               for p in model.pulleys for h in (getattr(p, "load_harmonics", None) or []) if p.name in names}
         fig, ax = _fig(1, 5)
         fig.subplots_adjust(top=1 - 0.85 / fig.get_figheight())     # a two-line title and the status line above it
         plot_campbell(ds, md.frequencies_hz, driver, ax=ax[0], orders=orders, flap=flap, own_orders=own,

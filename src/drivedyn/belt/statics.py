@@ -207,6 +207,7 @@ def report_and_data(model):
         lines.append(f"{p.name:14s} {p.center[0] * 1e3:9.2f} {p.center[1] * 1e3:9.2f} {p.radius * 1e3:7.2f} {p.side:>6s} "
                      f"{math.degrees(lay.wrap[j]):9.2f} {np.hypot(*H):11.1f} {math.degrees(math.atan2(H[1], H[0])):11.1f} "
                      f"{sysm.init.penetration[j] * 1e3:10.4f}")
+    lines += angle_load_lines(model)
     lines += [""] + table_lines(installation_table(model, T0, lay))
     data = check_data(drive, sysm)
     for name, t in data.get("tensioners", {}).items():
@@ -238,6 +239,20 @@ def report_and_data(model):
               f"{sysm.step_limit * 1e6:.3f} us), {model.simulation.duration / sysm.step:.3g} steps for "
               f"{model.simulation.duration:g} s"]
     return "\n".join(lines), data
+
+
+def angle_load_lines(model) -> list:
+    """The torque_angle tables as the run applies them: mean and harmonics (belt/angle_torque.py)."""
+    out = []
+    for p in model.pulleys:
+        if p.torque_angle is None:
+            continue
+        mean, hs = p.angle_load
+        out += ["", f"{p.name}: torque_angle ({len(p.torque_angle)} rows) runs as mean {mean:.6g} N m (added to torque) "
+                    f"and {len(hs)} harmonics amplitude sin(order theta + phase) (added to harmonics):",
+                f"  {'order':>5s} {'amplitude N m':>14s} {'phase deg':>10s}"]
+        out += [f"  {h.order:5g} {h.amplitude:14.6g} {math.degrees(h.phase):10.3f}" for h in hs]
+    return out
 
 
 def _steady_lines(data, model) -> list:

@@ -120,6 +120,9 @@ def _belt(result) -> list[dict]:
                 "head": ["span", "tension min (N)", "mean (N)", "max (N)", "flap f1 (Hz)"], "rows": rows,
                 "note": "flap f1: first transverse frequency of the moving span at its running tension and belt speed"
                         + (" (range over the run-up bins)" if ru else "") + _resolution_note(s)})
+    st = span_stability_table(s.get("span_stability") or {}, bool(ru))
+    if st:
+        out.append(st)
     tens = s.get("tensioners", {})
     if tens:
         from ..core.model import loads
@@ -483,3 +486,39 @@ def _toothed(result) -> list[dict]:
         out.append({"title": "under load", "head": ["quantity", "value", "unit"],
                     "rows": _kv_rows([(k, ld[k]) for k in keys if k in ld], result.units, "load."), "note": ""})
     return out
+
+
+def span_stability_table(st: dict, runup: bool) -> dict | None:
+    """The spans' tension fluctuation on their parametric-resonance tongues (belt/dynamics/span_stability.py)."""
+    spans = st.get("spans") or {}
+    if not spans:
+        return None
+    rows = []
+    for name, e in spans.items():
+        comps = [f"{c['amplitude']:.3g} N at {c['frequency']:.1f} Hz"
+                 + (f" (order {c['order']:.2f})" if c.get("order") is not None else "")
+                 + (" [segments]" if c.get("note") else "") for c in e.get("components", [])]
+        x = e.get("nearest") or {}
+        d = e.get("tongue_distance")
+        if e.get("inside"):
+            verdict = "INSIDE"
+        elif d is None:
+            verdict = e.get("note", "-")
+        else:
+            verdict = f"{100 * d:.1f} % off" + ("" if x.get("open") else " (closed)")
+        tongue = (f"{x['tongue']}: {x['band'][0]:.1f} .. {x['band'][1]:.1f}" if x.get("band")
+                  else f"{x['tongue']}: at {x['tongue_centre']:.1f}" if x else "-")
+        rows.append([name + (f" @ {e['rpm']:.0f} rpm" if runup and e.get("rpm") is not None else ""),
+                     _f(e.get("tension_mean"), "{:.0f}"), _f(e.get("frequency_1"), "{:.1f}"),
+                     "; ".join(comps) or "-", tongue, verdict])
+    note = ("largest components of each span's tension fluctuation against its Mathieu tongues (n = 1: f ~ 2 f1, "
+            "n = 2: f ~ f1) at their depth dT / (T + EI pi^2/L^2 - m v^2), with criteria.flap_damping_ratio; "
+            "% off: how far the frequency must move to enter the tongue (closed: the depth is below the tongue's "
+            "threshold, counted to its centre)")
+    if runup:
+        note += "; run-up: the bin nearest a tongue, from the tracked orders"
+    elif st.get("sampled_to"):
+        note += f"; the window's samples resolve up to {st['sampled_to']:.0f} Hz"
+    return {"title": "span stability (tension fluctuation on the span's tongues)",
+            "head": ["span", "mean (N)", "f1 (Hz)", "largest components", "nearest tongue (Hz)", "distance"],
+            "rows": rows, "note": note}

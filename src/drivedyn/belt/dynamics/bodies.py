@@ -65,9 +65,9 @@ def pulleys_record(P, senses=None) -> BK.Pulleys:
     hm_off = np.zeros(len(P) + 1, dtype=np.int64)
     so_off = np.zeros(len(P) + 1, dtype=np.int64)
     for j, p in enumerate(P):
-        hm_off[j + 1] = hm_off[j] + len(p.harmonics)
+        hm_off[j + 1] = hm_off[j] + len(p.load_harmonics)
         so_off[j + 1] = so_off[j] + len(p.speed_orders)
-    hs = [hh for p in P for hh in p.harmonics]
+    hs = [hh for p in P for hh in p.load_harmonics]     # a torque_angle table's among them (model.Pulley)
     so = [o for p in P for o in p.speed_orders]
     senses = np.ones(len(P)) if senses is None else senses
     cl = [p.clutch for p in P]
@@ -76,7 +76,7 @@ def pulleys_record(P, senses=None) -> BK.Pulleys:
         r=f([p.radius for p in P]),
         inertia=f([p.inertia for p in P]), inv_i=f([1.0 / p.inertia for p in P]),
         mode=np.array([1 if p.speed_time is not None else 0 for p in P], dtype=np.int64),
-        tq_const=f([p.torque for p in P]), tq_visc=f([p.viscous_torque for p in P]),
+        tq_const=f([p.constant_torque for p in P]), tq_visc=f([p.viscous_torque for p in P]),
         tt_off=tt_off, tt_x=tt_x, tt_y=tt_y, ts_off=ts_off, ts_x=ts_x, ts_y=ts_y,
         hm_off=hm_off, hm_order=f([hh.order for hh in hs]),
         hm_amp=f([hh.amplitude for hh in hs]), hm_phase=f([hh.phase for hh in hs]),

@@ -140,4 +140,4 @@ def energy_balance(result, model, sel):
 
 
 def excited(model) -> bool:
-    return any(p.torque or p.torque_time or p.torque_speed or p.harmonics or p.speed_time for p in model.pulleys)
+    return any(p.torque or p.torque_time or p.torque_speed or p.harmonics or p.torque_angle or p.speed_time for p in model.pulleys)

@@ -79,6 +79,12 @@ UNITS = {
     "runup.order_peaks.arm_travel.*.amplitude": "rad", "runup.order_peaks.*.amplitude": "N",
     "runup.order_peaks.*.rpm": "rpm", "runup.speed_rpm": "rpm", "runup.sweep": "", "runup.span_tension_*": "N", "runup.hub_load_max.*": "N", "runup.slip.*": "1", "runup.gross_slip_share.*": "1",
     "runup.arm_travel_range.*": "rad", "runup.orders": "1", "runup.crank": "",
+    "span_stability.spans.*.tension_mean": "N", "span_stability.spans.*.effective_tension": "N",
+    "span_stability.spans.*.speed": "m/s", "span_stability.spans.*.length": "m",
+    "span_stability.spans.*.frequency_1": "Hz", "span_stability.spans.*.nearest.frequency": "Hz",
+    "span_stability.spans.*.nearest.tongue_centre": "Hz", "span_stability.spans.*.nearest.band": "Hz",
+    "span_stability.spans.*.rpm": "rpm", "span_stability.spans.*.inside_rpm": "rpm",
+    "span_stability.sampled_to": "Hz", "span_stability.*": "",
 }
 #: the rotational model's own keys besides :data:`UNITS`
 ROTATIONAL_UNITS = {"belt.unstretched_length": "m", "discretisation.step": "s", "discretisation.fastest_mode_bound_hz": "Hz"}
@@ -167,8 +173,21 @@ def run_summary(model, sysm, ds, solver, sel, window, disc) -> dict:
         "discretisation": disc,
         **tensioner_summary(ds, sysm, sel),
         **clutch_summary(ds, sel),
+        **span_stability_summary(model, sysm, ds, sel, abs(float(speed[d])) / (2 * math.pi)),
         "solver": solver,
     }
+
+
+def span_stability_summary(model, sysm, ds, sel, f_driver) -> dict:
+    """``span_stability`` of a steady window (dynamics/span_stability.py); a run-up's comes with its
+    bins (runup.add_runup)."""
+    from .runup import crank_index
+    from .span_stability import steady
+
+    if crank_index(model) is not None:
+        return {}
+    out = steady(model, sysm.layout, ds, sel, f_driver, int(getattr(sysm, "n", 0) or 0))
+    return {"span_stability": out} if out else {}
 
 
 def clutch_summary(ds, sel) -> dict:

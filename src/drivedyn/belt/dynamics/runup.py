@@ -44,7 +44,7 @@ def excitation_orders(model, j, rho) -> list[float]:
     accessory's own harmonics at its nominal speed ratio |rho_j / rho_k|."""
     orders = [o.order for o in model.pulleys[j].speed_orders]
     for k, p in enumerate(model.pulleys):
-        orders += [hm.order * abs(rho[j] / rho[k]) for hm in p.harmonics]
+        orders += [hm.order * abs(rho[j] / rho[k]) for hm in p.load_harmonics]
     return orders
 
 
@@ -98,7 +98,11 @@ def add_runup(ds, model, bin_width=None, up_only=False) -> dict:
     # one update: each assignment aligns the whole dataset again (2 ms apiece)
     ds.coords.update(coords)
     ds.update(variables)
-    return {"runup": out}
+    from ...mechanics.layout import compute_layout
+    from .span_stability import runup as span_runup
+
+    stab = span_runup(model, compute_layout(model), ds, out, out["crank"])
+    return {"runup": out, **({"span_stability": stab} if stab else {})}
 
 
 def runup_tables(model, t, ten, hub, speed, r, spans, pulleys, travel=None, bin_width=None, up_only=False,

@@ -270,7 +270,7 @@ def applied_torque(p, omega):
     """Mean torque on pulley p at steady speed omega: constant + the last torque_time value +
     the torque-speed table + viscous + bearing drag + pump + alternator power (the laws of
     ``_kernels._torque``); harmonics average out; a clutch is locked and passes its rotor's load."""
-    M = p.torque - p.viscous_torque * omega
+    M = p.constant_torque - p.viscous_torque * omega
     if p.torque_time:
         M += p.torque_time[-1][1]
     if p.torque_speed:   # extrapolated linearly beyond the ends, as the dynamic model reads it
