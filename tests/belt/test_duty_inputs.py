@@ -1,0 +1,90 @@
+"""The supplier report's inputs under bad values (belt/steady/duty.py, life.py, geometry/positions.py):
+each either reads right or is refused in one line naming the field and the numbers, never a
+traceback, a silent no-op or a life that passes by overflow."""
+import math
+
+import pytest
+
+import drivedyn
+from drivedyn.errors import ModelError
+
+
+def _ag0868(**changes):
+    """The AG0868 example, its dynamic and tolerance columns off (the static report only), changed."""
+    model = drivedyn.load(drivedyn.example_path("fead-ag0868"))
+    return drivedyn.replace(model, {"duty_cycle.dynamic": False, "duty_cycle.tolerance": False, **changes})
+
+
+def _refused(change, *words):
+    with pytest.raises(ModelError) as info:
+        drivedyn.check(_ag0868(**change))
+    text = str(info.value)
+    assert "\n" not in text and all(w in text for w in words), text
+    return text
+
+
+def test_a_duty_rows_load_on_the_crank_is_refused_like_an_unknown_pulley():
+    """The crank's torque is the balance of the others' (steady/duty.py): a power on it changed
+    nothing, silently."""
+    model = drivedyn.load(drivedyn.example_path("fead-ag0868"))
+    for value in ({"CRK": "2 kW"}, {"A_C": "1.3 kW", "CRK": "2 kW"}):
+        with pytest.raises(ModelError) as info:
+            drivedyn.replace(model, {"duty_cycle.rows.0.power": value})
+        text = str(info.value)
+        assert "duty_cycle.rows[0].power" in text and "'CRK' is the crank" in text and "A_C, TEN" in text, text
+    with pytest.raises(ModelError, match=r"duty_cycle.rows\[0\].torque: pulley 'CRK' is the crank"):
+        drivedyn.replace(model, {"duty_cycle.rows.0.torque": {"CRK": "10 N*m"}})
+    with pytest.raises(ModelError, match=r"duty_cycle.rows\[0\].power: no pulley named 'XYZ'"):
+        drivedyn.replace(model, {"duty_cycle.rows.0.power": {"XYZ": "1 W"}})
+
+
+@pytest.mark.parametrize("offset, where", [("60 mm", "beyond the free arm"), ("-60 mm", "beyond the load stop")])
+def test_a_belt_length_offset_the_drawn_arm_cannot_hold_is_refused(offset, where):
+    """The mean row read 1079.69 (959.69) mm of required belt for a 1020 mm belt and the duty cycle
+    went on unchanged; the docs say a tensioner that cannot hold the belt's band is refused."""
+    text = _refused({"belt.length_offset": offset}, "belt.length_offset", "1020.00 mm belt", where)
+    assert ("959.69" if offset == "60 mm" else "1079.69") in text
+
+
+def test_a_length_offset_within_the_band_still_reads():
+    data = drivedyn.analyses.analysis("belt-drive").check_data(_ag0868(**{"belt.length_offset": "0.3 mm"}))
+    assert data["supplier"]["belt"]["required_length"] == pytest.approx(1.01939, abs=2e-5)
+
+
+@pytest.mark.parametrize("change, words", [
+    ({"duty_cycle.temperature": 1e6}, ("duty_cycle.temperature", "[-60, 250]")),           # OverflowError
+    ({"duty_cycle.life.halving": 1e-20}, ("duty_cycle.life", "halving", "[1, 1000]")),       # OverflowError
+    ({"duty_cycle.life.reference_temperature": 1e29}, ("reference_temperature", "[-60, 250]")),  # B10 inf passed
+    ({"duty_cycle.life.constant": 1e29}, ("duty_cycle.life", "B10 = 1.619e+37 h", "outside 1e-30..1e30 h")),
+    ({"duty_cycle.life.exponent": 1e29}, ("exponent", "(0, 20]")),
+    ({"duty_cycle.life.tension_exponent": -1}, ("tension_exponent", "[0, 10]")),
+])
+def test_the_life_fit_is_refused_outside_its_domain(change, words):
+    _refused(change, *words)
+
+
+def test_an_infinite_life_never_passes_the_target():
+    """B10 = C / D with a damage sum that underflows was inf, and inf >= target passed."""
+    from drivedyn.belt.steady.life import belt_life
+
+    model = _ag0868(**{"duty_cycle.life.constant": 1e-30, "duty_cycle.life.exponent": 20.0})
+    life = belt_life(model, 355.9, [7.4] * len(model.duty_cycle.rows))
+    assert math.isfinite(life.b10_hours) and sum(life.pulley_share.values()) == pytest.approx(1.0)
+    with pytest.raises(ModelError, match="outside 1e-30..1e30 h"):
+        belt_life(_ag0868(**{"duty_cycle.life.constant": 1e30}), 1e-9, [7.4] * len(model.duty_cycle.rows))
+
+
+def test_the_life_in_logarithms_is_the_fits_formula():
+    """The log-space sum gives the fit's B10 written out (steady/life.py's docstring)."""
+    from drivedyn.belt.geometry.catalogue import effective_diameters
+    from drivedyn.belt.steady.life import belt_life
+
+    model = _ag0868()
+    fit, dc = model.duty_cycle.life, model.duty_cycle
+    speeds = [5.0 + k for k in range(len(dc.rows))]
+    d = effective_diameters(model) * 1e3
+    g = sum((fit.back_side_weight if p.side == "back" else 1.0) * x ** -fit.exponent for p, x in zip(model.pulleys, d))
+    rows = sum(r.share * v / model.belt.effective_length * 2 ** ((dc.temperature - fit.reference_temperature) / fit.halving)
+               for r, v in zip(dc.rows, speeds))
+    b10 = fit.constant / (g * rows * (350.0 / model.belt.ribs) ** fit.tension_exponent)
+    assert belt_life(model, 350.0, speeds).b10_hours == pytest.approx(b10, rel=1e-12)
