@@ -10,7 +10,6 @@ cached, runs again on the next resume.
 from __future__ import annotations
 
 import os
-import tempfile
 import time
 import uuid
 from dataclasses import dataclass, field
@@ -92,16 +91,17 @@ def prepare(study, out, first=None):
 
 def _out_folder(study, out) -> Path:
     """The study's output folder with its case cache, checked writable (one line if not)."""
+    from ..outputs import OutputError, check_folder
+
     out = Path(out) if out is not None else study.default_out()
     cache = out / "cases"
     try:     # the up-front check of the output folder: one line before any case runs
-        if out.exists() and not out.is_dir():
-            raise NotADirectoryError(20, "the output path is a file, not a folder")
-        cache.mkdir(parents=True, exist_ok=True)
+        check_folder(out, "the study's output folder")
+        check_folder(cache, "the study's output folder")
         if not (cache / TOKEN).exists():
             (cache / TOKEN).write_text(uuid.uuid4().hex)
-        with tempfile.TemporaryFile(dir=out):
-            pass
+    except OutputError as exc:
+        raise ModelError(str(exc)) from None
     except OSError as exc:
         raise ModelError(f"{out}: cannot write the study's output folder ({exc.strerror or exc})") from None
     return out
