@@ -88,3 +88,43 @@ def test_the_life_in_logarithms_is_the_fits_formula():
                for r, v in zip(dc.rows, speeds))
     b10 = fit.constant / (g * rows * (350.0 / model.belt.ribs) ** fit.tension_exponent)
     assert belt_life(model, 350.0, speeds).b10_hours == pytest.approx(b10, rel=1e-12)
+
+
+def _rows(n):
+    return [{"crank_speed": f"{800 + k % 1200} rpm", "share": 1.0 / n, "power": {"A_C": "1.5 kW"}} for k in range(n)]
+
+
+@pytest.mark.parametrize("n, tolerance", [(2001, False), (401, True)])
+def test_a_duty_cycle_beyond_the_balances_limit_is_refused_before_its_rows_are_read(n, tolerance):
+    """10 000 static rows (within the list limit) took about 11 minutes of check."""
+    import time
+
+    model = drivedyn.load(drivedyn.example_path("fead-ag0868"))
+    t0 = time.process_time()
+    with pytest.raises(ModelError) as info:
+        drivedyn.replace(model, {"duty_cycle": {"rows": _rows(n), "tolerance": tolerance}})
+    text = str(info.value)
+    assert "duty_cycle: rows:" in text and "steady balances" in text and "DRIVEDYN_MAX_BALANCES" in text, text
+    assert f"{n * (5 if tolerance else 1)} steady balances" in text and "\n" not in text
+    assert time.process_time() - t0 < 2.0
+
+
+def test_the_balances_limit_is_read_from_the_environment(monkeypatch):
+    monkeypatch.setenv("DRIVEDYN_MAX_BALANCES", "5")       # the example's 6 rows at 5 belt lengths: 30
+    with pytest.raises(ModelError, match="30 steady balances of duty rows, more than the 5"):
+        drivedyn.load(drivedyn.example_path("fead-ag0868"))
+    monkeypatch.setenv("DRIVEDYN_MAX_BALANCES", "inf")
+    assert len(drivedyn.load(drivedyn.example_path("fead-ag0868")).duty_cycle.rows) == 6
+
+
+def test_the_held_rows_steps_together_are_refused_before_any_row_is_solved(monkeypatch):
+    """2000 dynamic rows under DRIVEDYN_MAX_STEPS = 1e6 ran (each row's run fits; together 30 x over)."""
+    from drivedyn.belt.steady import duty
+
+    monkeypatch.setenv("DRIVEDYN_MAX_STEPS", "3e4")        # each held row: 6000 steps; the six: 36 000
+    monkeypatch.setattr(duty, "duty_cycle", lambda *a, **k: pytest.fail("the static rows were solved first"))
+    model = _ag0868(**{"duty_cycle.dynamic": True})
+    with pytest.raises(ModelError) as info:
+        drivedyn.check(model)
+    text = str(info.value)
+    assert "duty_cycle.dynamic: 3.6e+04 integration steps" in text and "6 held rows of 6000 steps" in text, text

@@ -700,6 +700,24 @@ class DutyCycle(Spec):
             raise ValueError(f"rows: the shares add up to {100 * total:.4g} %, not 100 %")
         return self
 
+    @model_validator(mode="before")
+    @classmethod
+    def _cost(cls, data):
+        """The cost before the work, counted before the rows are read (10 000 rows take seconds to
+        read): each row's running balance, again at each of the tolerance study's four belt lengths
+        (a held dynamic row's steps are counted when the drive is assembled, supplier.py)."""
+        from ..limits import balances_problem
+
+        if not isinstance(data, dict) or not isinstance(data.get("rows"), list):
+            return data
+        n, tolerance = len(data["rows"]), data.get("tolerance") is True
+        problem = balances_problem(n * (1 + 4 * tolerance), "rows", f"{n} rows" + (
+            " x 5 (the duty cycle and the tolerance study's four belt lengths)" if tolerance else "")
+            + ": fewer rows" + (", or tolerance = false" if tolerance else ""))
+        if problem:
+            raise ValueError(problem)
+        return data
+
 
 class Criteria(Spec):
     """Limits the verdict judges a belt run against (every field optional)."""
