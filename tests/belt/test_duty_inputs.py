@@ -128,3 +128,22 @@ def test_the_held_rows_steps_together_are_refused_before_any_row_is_solved(monke
         drivedyn.check(model)
     text = str(info.value)
     assert "duty_cycle.dynamic: 3.6e+04 integration steps" in text and "6 held rows of 6000 steps" in text, text
+
+
+def test_a_free_arm_at_the_drawn_arm_names_the_stops_not_the_belt_order():
+    """A free arm 0.001 deg from the drawn arm puts the load stop 48.4 deg away from the belt, where the
+    back-side idler leaves it: that read "the belt order does not make a simple loop"."""
+    text = _refused({"pulleys.2.arm.free_angle": "220.001 deg"}, "pulleys.2.arm.stops", "'TEN' at -48.4 deg",
+                    "load stop 48.4 deg", "takes the belt off its loop")
+    assert not text.split(": ", 1)[-1].startswith("pulleys: the belt order")
+
+
+def test_the_kind_cannot_change_through_an_override(capsys):
+    """--set kind=gear-train listed 20 problems of a belt model read as a gear train."""
+    from drivedyn.cli import main
+
+    code = main(["check", str(drivedyn.example_path("belt-5pk")), "--set", "kind=gear-train"])
+    err = capsys.readouterr().err.strip()
+    assert code == 2 and len(err.splitlines()) == 1 and "kind: the kind of a model cannot change" in err, err
+    assert "more problems" not in err
+    assert main(["check", str(drivedyn.example_path("belt-5pk")), "--set", "kind=belt-drive"]) == 0

@@ -312,7 +312,8 @@ def run(drive, progress=None):
     sysm = build(drive)
     sim = model.simulation
     nsamples, steps = planned(model, sysm)
-    h = sim.duration / nsamples / steps
+    interval = sim.duration / nsamples
+    h = interval / steps
     problem = steps_problem(steps * nsamples, "simulation.duration", "a shorter duration")
     if problem:
         raise ModelError(problem, field="simulation.duration")
