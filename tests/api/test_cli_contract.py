@@ -138,3 +138,26 @@ def test_the_verdict_says_what_each_criterion_judges(tmp_path, capsys):
     page = (tmp_path / "report.html").read_text()
     assert "what it judges" in page and "less the centrifugal tension" in page
     assert "solve: <span class=\"status" in page
+
+
+def test_an_output_name_too_long_for_the_file_system_is_one_line(tmp_path, capsys):
+    """A folder name over 255 bytes (ENAMETOOLONG) escaped as an OSError traceback from run, study,
+    plot and schema: the output path is checked in one place (outputs.check_folder)."""
+    import pytest
+
+    long = tmp_path / ("a" * 300)
+    commands = [["run", str(drivedyn.example_path("span-t10")), "-o", str(long), "-q"],
+                ["study", str(drivedyn.example_path("study-pretension")), "-o", str(long)],
+                ["examples", "belt-5pk", "--to", str(long)],
+                ["schema", "belt-drive", "-o", str(long)],
+                ["schema", "belt-drive", "-o", str(tmp_path / "no-such-folder" / "x.json")],
+                ["plot", str(long)]]
+    for args in commands:
+        t0 = time.perf_counter()
+        try:
+            code = main(args)
+        except OSError as exc:      # the old code's traceback
+            pytest.fail(f"{args[0]}: {type(exc).__name__}: {exc}")
+        err = capsys.readouterr().err.strip()
+        assert code == 2 and len(err.splitlines()) == 1 and err.startswith("drivedyn: error: "), (args[0], err)
+        assert ("too long" in err or "No such file" in err) and time.perf_counter() - t0 < 5, (args[0], err)

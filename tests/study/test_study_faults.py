@@ -133,3 +133,31 @@ def test_case_timeout_in_the_study_file(write_study):
         values = ["0.4 kN"]
     """))
     assert study.spec.case_timeout == 120.0
+
+
+def test_ctrl_c_ends_the_study_in_its_one_line(write_study, tmp_path):
+    """Ctrl-C reaches every process of the terminal's group: the workers died with it and the
+    scheduler and client printed Dask's CommClosedError lines and tracebacks before the one line.
+    Now the workers ignore it (the client stops them) and the closing is quiet."""
+    import subprocess
+    import sys
+
+    path = write_study(STUDY)
+    err = tmp_path / "stderr"
+    with open(err, "w") as fh:
+        proc = subprocess.Popen([sys.executable, "-m", "drivedyn", "study", str(path), "-o", str(tmp_path / "out"),
+                                 "--workers", "1"], stdout=subprocess.DEVNULL, stderr=fh, start_new_session=True)
+    try:
+        deadline = time.monotonic() + 120
+        while "dask scheduler" not in err.read_text() and time.monotonic() < deadline and proc.poll() is None:
+            time.sleep(0.2)
+        time.sleep(4)                    # the worker warming up or running a case
+        os.killpg(proc.pid, signal.SIGINT)     # what the terminal sends on Ctrl-C
+        code = proc.wait(timeout=120)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+    text = err.read_text()
+    assert code == 130, text
+    assert "Traceback" not in text and "CommClosedError" not in text and " - ERROR - " not in text, text
+    assert text.strip().splitlines()[-1].startswith("drivedyn: error: interrupted; finished cases are kept")

@@ -135,3 +135,12 @@ def test_a_garbled_case_limit_reads_as_the_other_limits_do(write_study, monkeypa
     else:
         with pytest.raises(drivedyn.ModelError, match="more than the 100000 cases"):
             load_study(path)
+
+
+@pytest.mark.parametrize("name", ["study-tensioner-design", "study-pretension"])
+def test_an_output_path_that_is_a_file_is_the_only_line(name, tmp_path):
+    """An optimisation printed three lines of its header and a progress bar before refusing."""
+    blocker = tmp_path / "a-file"
+    blocker.write_text("")
+    code, err, seconds = cli("study", drivedyn.example_path(name), "-o", blocker)
+    assert code == 2 and err.strip() == last_line(err) and "is a file, not a folder" in err and seconds < 5, err

@@ -709,9 +709,15 @@ class DutyRow(Spec):
     @field_validator("temperature")
     @classmethod
     def _t(cls, v):
-        if v is not None and not -60 <= v <= 250:
-            raise ValueError(f"must lie in [-60, 250] deg C, got {v}")
-        return v
+        return None if v is None else _temperature(v)
+
+
+def _temperature(v):
+    """An ambient temperature in deg C within [-60, 250] (a rubber belt's range and more; the life
+    fit's 2^((theta - theta_ref) / halving) stays within double precision over it)."""
+    if not -60 <= v <= 250:
+        raise ValueError(f"must lie in [-60, 250] deg C, got {v}")
+    return v
 
 
 class Life(Spec):
@@ -723,27 +729,33 @@ class Life(Spec):
 
     exponent: float = 5.6
     """Exponent on the effective diameter d_e (mm) in the damage rate: small pulleys dominate the damage (MFSim fit to
-    Gates reports, steady/life.py)."""
+    Gates reports, steady/life.py; in (0, 20])."""
     back_side_weight: float = 0.31
     """Weight w of a back-side pulley against a grooved one in the damage sum (in [0, 10])."""
     tension_exponent: float = 0.96
-    """Exponent on the design tension per rib T_design / ribs (N) in the damage rate."""
+    """Exponent on the design tension per rib T_design / ribs (N) in the damage rate (in [0, 10])."""
     constant: float = 1.475304e-4
-    """Constant of the fit: B10 life (hours) = constant / damage rate."""
+    """Constant of the fit: B10 life (hours) = constant / damage rate (> 0)."""
     reference_temperature: float = 80.0
-    """Temperature (deg C) at which the fit's life holds unchanged."""
+    """Temperature (deg C) at which the fit's life holds unchanged (in [-60, 250], the duty cycle's temperatures)."""
     halving: float = 23.0
-    """Temperature rise (deg C) that halves the life."""
+    """Temperature rise (deg C) that halves the life (in [1, 1000]; the fit's 23: rubber's life halves every 10-25
+    deg C)."""
     target: Optional[quantity("s", gt=0)] = None
     """B10 life the verdict asks for; none: the life is reported, not judged."""
 
     @model_validator(mode="after")
     def _positive(self):
-        for k in ("exponent", "constant", "halving"):
-            if not getattr(self, k) > 0:
-                raise ValueError(f"{k} must be > 0, got {getattr(self, k)}")
-        if not 0 <= self.back_side_weight <= 10:
-            raise ValueError(f"back_side_weight must lie in [0, 10], got {self.back_side_weight}")
+        # the fit's domain: a constant of either sign or 0 gives no life; a halving below 1 deg C puts
+        # 2^(310 / halving) past double precision over the temperatures allowed
+        bounds = {"exponent": (0, 20, False), "tension_exponent": (0, 10, True), "halving": (1, 1000, True),
+                  "back_side_weight": (0, 10, True), "reference_temperature": (-60, 250, True)}
+        for k, (lo, hi, closed) in bounds.items():
+            v = getattr(self, k)
+            if not ((lo <= v if closed else lo < v) and v <= hi):
+                raise ValueError(f"{k} must lie in {'[' if closed else '('}{lo:g}, {hi:g}], got {v:g}")
+        if not self.constant > 0:
+            raise ValueError(f"constant must be > 0, got {self.constant:g}")
         return self
 
 
@@ -769,9 +781,14 @@ class DutyCycle(Spec):
     """The tolerance study: the duty cycle at every reachable position-table row (replaced, longest, nominal and
     shortest belt), both conventions (supplier.py; about half a second per row)."""
     temperature: float = 80.0
-    """Ambient temperature in deg C of every row that gives none."""
+    """Ambient temperature in deg C of every row that gives none (-60..250)."""
     life: Life = Life()
     """The belt-life fit (rib fatigue) and its target."""
+
+    @field_validator("temperature")
+    @classmethod
+    def _t(cls, v):
+        return _temperature(v)
 
     @model_validator(mode="after")
     def _rows(self):
@@ -781,6 +798,24 @@ class DutyCycle(Spec):
         if not 0.98 <= total <= 1.02:
             raise ValueError(f"rows: the shares add up to {100 * total:.4g} %, not 100 %")
         return self
+
+    @model_validator(mode="before")
+    @classmethod
+    def _cost(cls, data):
+        """The cost before the work, counted before the rows are read (10 000 rows take seconds to
+        read): each row's running balance, again at each of the tolerance study's four belt lengths
+        (a held dynamic row's steps are counted when the drive is assembled, supplier.py)."""
+        from ..limits import balances_problem
+
+        if not isinstance(data, dict) or not isinstance(data.get("rows"), list):
+            return data
+        n, tolerance = len(data["rows"]), data.get("tolerance") is True
+        problem = balances_problem(n * (1 + 4 * tolerance), "rows", f"{n} rows" + (
+            " x 5 (the duty cycle and the tolerance study's four belt lengths)" if tolerance else "")
+            + ": fewer rows" + (", or tolerance = false" if tolerance else ""))
+        if problem:
+            raise ValueError(problem)
+        return data
 
 
 class Criteria(Spec):
@@ -961,11 +996,18 @@ class Model(Spec):
     def _duty_names(self, names):
         if self.duty_cycle is None:
             return
+        # the crank (a prescribed speed) takes no load of its own: the rows set its speed and it
+        # delivers what the others take (steady/duty.py), so a load on it would change nothing
+        driven = [p.name for p in self.pulleys if p.speed_time is None]
         for k, row in enumerate(self.duty_cycle.rows):
             for what in ("power", "torque"):
                 for n in getattr(row, what):
+                    if n in names and n not in driven:
+                        raise ValueError(f"duty_cycle.rows[{k}].{what}: pulley {n!r} is the crank (its speed is "
+                                         "prescribed, speed_time): it delivers what the other pulleys take and carries "
+                                         f"no load of its own (loaded pulleys: {', '.join(driven)})")
                     if n not in names:
-                        raise ValueError(f"duty_cycle.rows[{k}].{what}: no pulley named {n!r} (have: {', '.join(names)})")
+                        raise ValueError(f"duty_cycle.rows[{k}].{what}: no pulley named {n!r} (have: {', '.join(driven)})")
             both = set(row.power) & set(row.torque)
             if both:
                 raise ValueError(f"duty_cycle.rows[{k}]: give power or torque for {sorted(both)}, not both")

@@ -76,6 +76,8 @@ def report_data(drive) -> dict:
         from .steady.duty import duty_cycle
         from .steady.life import belt_life
 
+        if model.duty_cycle.dynamic:
+            dynamic_cost(drive)            # the held rows' steps, before the static rows are solved
         design = tables[0].design_tension if tables else _installation_tension(drive)
         rows = duty_cycle(drive, design)
         out["duty"] = {"design_tension": design, "idler_drag": model.duty_cycle.idler_drag,
@@ -132,30 +134,12 @@ def _dynamic_rows(drive) -> list[dict]:
     from ..core.errors import SolverError
     from ..core.window import in_window
     from .rotational.simulate import run
-    from .steady.duty import belt_speed, crank_of, row_power
 
     model = drive.model
     dc = model.duty_cycle
-    c = crank_of(model)
-    lay = drive.layout
     out = []
     for row in dc.rows:
-        w_c = math.copysign(row.crank_speed, model.pulleys[c].speed_time[-1][1] or 1.0)
-        pulleys = []
-        for j, p in enumerate(model.pulleys):
-            if j == c:
-                pulleys.append(p.model_copy(update={"speed_time": [[0.0, 0.0], [RAMP, w_c], [RAMP + HOLD, w_c]]}))
-                continue
-            w = abs(belt_speed(drive, row.crank_speed) / lay.rho[j])
-            P = row_power(row, p.name, w, dc.idler_drag)
-            pulleys.append(p.model_copy(update={
-                "torque": 0.0, "torque_time": None, "torque_speed": None, "power": 0.0, "quadratic_torque": 0.0,
-                "harmonics": [], "viscous_torque": P / w ** 2}))
-        held = model.model_copy(update={
-            "pulleys": pulleys,
-            "simulation": model.simulation.model_copy(update={"model": "rotational", "runup": "time",
-                                                              "duration": RAMP + HOLD, "step": None}),
-            "output": model.output.model_copy(update={"steady_window": (RAMP + HOLD - WINDOW, RAMP + HOLD)})})
+        held = _held(drive, row)
         try:
             r = run(held)
         except SolverError as exc:
@@ -178,6 +162,50 @@ def _dynamic_rows(drive) -> list[dict]:
              "note": ""}
         out.append(e)
     return out
+
+
+def _held(drive, row):
+    """The model of a duty row held in the rotational model (dynamic_duty)."""
+    from .steady.duty import belt_speed, crank_of, row_power
+
+    model = drive.model
+    dc = model.duty_cycle
+    c = crank_of(model)
+    lay = drive.layout
+    w_c = math.copysign(row.crank_speed, model.pulleys[c].speed_time[-1][1] or 1.0)
+    pulleys = []
+    for j, p in enumerate(model.pulleys):
+        if j == c:
+            pulleys.append(p.model_copy(update={"speed_time": [[0.0, 0.0], [RAMP, w_c], [RAMP + HOLD, w_c]]}))
+            continue
+        w = abs(belt_speed(drive, row.crank_speed) / lay.rho[j])
+        P = row_power(row, p.name, w, dc.idler_drag)
+        pulleys.append(p.model_copy(update={
+            "torque": 0.0, "torque_time": None, "torque_speed": None, "power": 0.0, "quadratic_torque": 0.0,
+            "harmonics": [], "viscous_torque": P / w ** 2}))
+    return model.model_copy(update={
+        "pulleys": pulleys,
+        "simulation": model.simulation.model_copy(update={"model": "rotational", "runup": "time",
+                                                          "duration": RAMP + HOLD, "step": None}),
+        "output": model.output.model_copy(update={"steady_window": (RAMP + HOLD - WINDOW, RAMP + HOLD)})})
+
+
+def dynamic_cost(drive) -> None:
+    """The held rows' integration steps together (each row's run is the same length on the same
+    stable step: the first row's times the rows) against the steps limit, before any row is
+    evaluated (report_data calls it before the static rows)."""
+    from ..errors import ModelError
+    from ..limits import steps_problem
+    from .rotational.simulate import build, planned
+
+    rows = drive.model.duty_cycle.rows
+    held = _held(drive, rows[0])
+    samples, per_sample = planned(held, build(held))
+    problem = steps_problem(float(samples) * per_sample * len(rows), "duty_cycle.dynamic",
+                            f"{len(rows)} held rows of {samples * per_sample} steps each (the rotational model over "
+                            f"{RAMP + HOLD:g} s): fewer rows, or dynamic = false")
+    if problem:
+        raise ModelError(problem)
 
 
 TOLERANCE_ROWS = ("replace", "max belt", "mean", "min belt")

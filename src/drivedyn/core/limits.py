@@ -3,8 +3,8 @@
 A model that asks for more than these limits is refused when it is read (or, for the belt's step,
 when the drive is assembled, before the solve), with one line giving the estimate, the limit and
 how to change it. The limits are set for a workstation; a batch machine raises them through the
-environment (``DRIVEDYN_MAX_STEPS``, ``DRIVEDYN_MAX_BYTES``; studies: ``DRIVEDYN_MAX_CASES``).
-docs/limits.md lists them.
+environment (``DRIVEDYN_MAX_STEPS``, ``DRIVEDYN_MAX_BYTES``, ``DRIVEDYN_MAX_BALANCES``; studies:
+``DRIVEDYN_MAX_CASES``). docs/limits.md lists them.
 """
 from __future__ import annotations
 
@@ -16,6 +16,9 @@ MAX_STEPS = 1e9
 #: most bytes of arrays a run may hold (its samples and frames, as estimated from the model):
 #: 2 GB, or half of the machine's memory if that is less
 MAX_BYTES = 2e9
+#: most steady balances of duty rows one check or run solves (a supplier report's running arm, by
+#: creep theory: 40-70 ms each on examples/fead-ag0868.toml, so 2000 are one to two minutes)
+MAX_BALANCES = 2000
 
 
 def _env(name: str, default: float) -> float:
@@ -60,3 +63,16 @@ def bytes_problem(nbytes: float, what: str, fix: str) -> str | None:
         return None
     return (f"{what}: the results would take about {nbytes / 1e9:.3g} GB, more than the {limit / 1e9:.3g} GB "
             f"allowed ({fix}, or set DRIVEDYN_MAX_BYTES)")
+
+
+def max_balances() -> float:
+    return _env("DRIVEDYN_MAX_BALANCES", MAX_BALANCES)
+
+
+def balances_problem(count: float, what: str, fix: str) -> str | None:
+    """None if ``count`` steady balances fit the limit, else the one-line refusal."""
+    limit = max_balances()
+    if count <= limit:
+        return None
+    return (f"{what}: {count:.6g} steady balances of duty rows, more than the {limit:.6g} a check or run may solve "
+            f"(40-70 ms each; {fix}, or set DRIVEDYN_MAX_BALANCES)")

@@ -448,6 +448,11 @@ def replace(model, overrides: dict):
     """
     data = to_dict(model)
     for path, value in overrides.items():
+        if path.strip() == "kind" and value != data.get("kind"):
+            # a belt drive's fields read as a gear train's would list every field as a problem
+            raise ModelError(f"the kind of a model cannot change (this is a {data.get('kind')} model, {value!r} "
+                             "asked): write a model file of that kind (drivedyn examples lists one of each)",
+                             field="kind")
         set_path(data, path, value)
     return from_dict(data, source="override")
 

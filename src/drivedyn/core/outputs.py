@@ -75,7 +75,7 @@ def replace_write(path, write) -> Path:
             tmp.unlink(missing_ok=True)
         except OSError:
             pass
-        raise OutputError(f"{path}: cannot write: {_describe(exc)}") from None
+        raise OutputError(f"{_shown(path)}: cannot write: {_describe(exc)}") from None
     except BaseException:
         try:
             tmp.unlink(missing_ok=True)
@@ -96,6 +96,31 @@ def write_text(path, text: str) -> Path:
     return write_bytes(path, text.encode("utf-8"))
 
 
+def check_folder(path, what: str = "the output folder") -> Path:
+    """The up-front check of an output folder (``drivedyn run -o``, a study's, ``examples --to``): it
+    is created (with its parents) and a file can be made in it, else an :class:`OutputError` of one
+    line naming it and why. Every OSError counts, a name too long for the file system (ENAMETOOLONG:
+    more than 255 bytes in one name) as much as a file in the way or a folder without permission."""
+    path = Path(path)
+    import tempfile
+
+    try:
+        if path.exists() and not path.is_dir():
+            raise NotADirectoryError(20, "the path is a file, not a folder")
+        path.mkdir(parents=True, exist_ok=True)
+        with tempfile.TemporaryFile(dir=path):
+            pass
+    except OSError as exc:
+        raise OutputError(f"{_shown(path)}: cannot write {what} ({_describe(exc)})") from None
+    return path
+
+
+def _shown(path) -> str:
+    """A path as a message shows it: whole, or, past 300 characters, its start and end."""
+    text = str(path)
+    return text if len(text) <= 300 else f"{text[:120]}...{text[-120:]} ({len(text)} characters)"
+
+
 def make_folder(path) -> Path:
     """Create the folder ``path`` (and its parents); an OSError becomes an :class:`OutputError`."""
     path = Path(path)
@@ -104,5 +129,5 @@ def make_folder(path) -> Path:
             raise NotADirectoryError(20, "a file is in the way")
         path.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        raise OutputError(f"{path}: cannot create the folder: {_describe(exc)}") from None
+        raise OutputError(f"{_shown(path)}: cannot create the folder: {_describe(exc)}") from None
     return path

@@ -38,16 +38,12 @@ def _named(path: Path, exc: Exception) -> str:
 
 def check_outdir(out: Path) -> None:
     """Refuse an output folder that cannot be written, before any solve (one line, exit 2)."""
-    import tempfile
+    from .outputs import OutputError, check_folder
 
-    if out.exists() and not out.is_dir():
-        _fail(f"{out}: the output path is a file, not a folder (-o names a folder)")
     try:
-        out.mkdir(parents=True, exist_ok=True)
-        with tempfile.TemporaryFile(dir=out):
-            pass
-    except OSError as exc:
-        _fail(f"{out}: cannot write the output folder ({exc.strerror or exc})")
+        check_folder(out)
+    except OutputError as exc:
+        _fail(str(exc))
 
 
 def _write_failed(out: Path, exc: OSError, since: float):
@@ -379,7 +375,12 @@ def schema(kind: str = typer.Argument(..., help="Model kind: belt-drive, gear-tr
     if out is None:
         typer.echo(text)
     else:
-        out.write_text(text + "\n", encoding="utf-8")
+        from .outputs import write_text
+
+        try:
+            write_text(out, text + "\n")      # one line naming the file if it cannot be written
+        except OSError as exc:
+            _fail(str(exc))
         typer.echo(str(out))
 
 
@@ -389,8 +390,13 @@ def plot(outdir: Path = typer.Argument(..., help="Folder written by 'drivedyn ru
     from .. import api
     from ..core.results import open_result
 
-    if not (outdir / "results.nc").exists():
+    try:
+        found = (outdir / "results.nc").is_file()
+    except OSError as exc:        # a name too long for the file system, a folder without permission
+        _fail(f"{outdir}: cannot read the folder ({exc.strerror or exc})")
+    if not found:
         _fail(f"{outdir}: no results.nc here (run 'drivedyn run MODEL -o {outdir}' first)")
+    check_outdir(outdir)          # the plots are written into it
     try:
         res = open_result(outdir)
     except (OSError, ValueError) as exc:

@@ -63,7 +63,7 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
         where = client.scheduler.address if getattr(client, "scheduler", None) else "?"
         nw = len(client.scheduler_info().get("workers", {}))
         console.print(f"dask scheduler {where} with {nw} worker(s); dashboard: "
-                      + (link if link and _has_dashboard(client) else "none (install bokeh for one)"))
+                      + (link if link and _has_dashboard(client) else "none"))
 
     with bar:
         res = run_study(study, outdir, scheduler=scheduler, workers=workers, retry_failed=retry_failed,
@@ -105,6 +105,10 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
     from ..study.execute import run_optimisation
     from ..study.optimise import on_bounds
 
+    if not dry_run:       # the output folder refused before the header, as the grid's (execute.prepare)
+        from .execute import _out_folder
+
+        out = _out_folder(study, out)
     opt = study.spec.optimise
     names = ", ".join(p.label for p in study.spec.parameters)
     console.print(escape(f"study {study.name}: {opt.sense} {opt.objective} over {names} "
@@ -152,6 +156,9 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
 
 
 def _has_dashboard(client) -> bool:
-    import importlib.util
-
-    return importlib.util.find_spec("bokeh") is not None
+    """Whether the scheduler serves a dashboard (a scheduler started apart may have none, and one
+    without bokeh never has)."""
+    try:
+        return "dashboard" in (client.scheduler_info().get("services") or {})
+    except Exception:      # the line is cosmetic: never fail a study for it
+        return False

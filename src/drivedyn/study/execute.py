@@ -9,8 +9,8 @@ cached, runs again on the next resume.
 """
 from __future__ import annotations
 
+import contextlib
 import os
-import tempfile
 import time
 import uuid
 from dataclasses import dataclass, field
@@ -56,12 +56,56 @@ def default_workers() -> int:
 
 def _local_cluster(workers):
     import logging
+    import signal
+    import threading
 
     from distributed import LocalCluster
 
-    # ":0": a free port, so two studies (or a notebook's cluster) never fight over 8787
-    return LocalCluster(n_workers=workers or default_workers(), threads_per_worker=1, processes=True,
-                        dashboard_address=":0", silence_logs=logging.ERROR)
+    # Ctrl-C reaches every process of the terminal's foreground group: the workers, started here with
+    # SIGINT ignored (inherited through exec; Python leaves an ignored SIGINT alone), stay up for the
+    # client to stop them, rather than each dying with its own CommClosedError tracebacks
+    main = threading.current_thread() is threading.main_thread()
+    old = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    try:
+        # ":0": a free port, so two studies (or a notebook's cluster) never fight over 8787. Dask's own
+        # log lines silenced below CRITICAL: a case records its own failure (cases.run_case), a lost
+        # worker is the case's status "lost", and a worker stopped mid-case (Ctrl-C) logs its
+        # heartbeat's CommClosedError tracebacks, which say nothing to the study's user
+        return LocalCluster(n_workers=workers or default_workers(), threads_per_worker=1, processes=True,
+                            dashboard_address=":0", silence_logs=logging.CRITICAL)
+    finally:
+        if main:
+            signal.signal(signal.SIGINT, old)
+
+
+@contextlib.contextmanager
+def _quiet_logs():
+    """Dask's loggers silenced for the block (after Ctrl-C: the cancelled tasks' and closed
+    connections' lines say nothing the interruption's one line does not)."""
+    import logging
+
+    quiet = [logging.getLogger(n) for n in ("distributed", "tornado", "asyncio")]
+    levels = [lg.level for lg in quiet]
+    for lg in quiet:
+        lg.setLevel(logging.CRITICAL + 1)
+    try:
+        yield
+    finally:
+        for lg, lv in zip(quiet, levels):
+            lg.setLevel(lv)
+
+
+def _close(client, cluster, interrupted: bool) -> None:
+    """Close the client and the cluster made here; after Ctrl-C quietly, whatever the closing meets."""
+    with _quiet_logs() if interrupted else contextlib.nullcontext():
+        for part in (client, cluster):
+            if part is None:
+                continue
+            try:
+                part.close()
+            except Exception:
+                if not interrupted:
+                    raise
 
 
 def _executing(prefix):
@@ -92,16 +136,17 @@ def prepare(study, out, first=None):
 
 def _out_folder(study, out) -> Path:
     """The study's output folder with its case cache, checked writable (one line if not)."""
+    from ..outputs import OutputError, check_folder
+
     out = Path(out) if out is not None else study.default_out()
     cache = out / "cases"
     try:     # the up-front check of the output folder: one line before any case runs
-        if out.exists() and not out.is_dir():
-            raise NotADirectoryError(20, "the output path is a file, not a folder")
-        cache.mkdir(parents=True, exist_ok=True)
+        check_folder(out, "the study's output folder")
+        check_folder(cache, "the study's output folder")
         if not (cache / TOKEN).exists():
             (cache / TOKEN).write_text(uuid.uuid4().hex)
-        with tempfile.TemporaryFile(dir=out):
-            pass
+    except OutputError as exc:
+        raise ModelError(str(exc)) from None
     except OSError as exc:
         raise ModelError(f"{out}: cannot write the study's output folder ({exc.strerror or exc})") from None
     return out
@@ -212,13 +257,14 @@ def run_optimisation(study, out=None, *, client=None, scheduler=None, workers=No
             progress(dict(counts, running=0))
         return records
 
+    interrupted = False
     try:
         optimum = run_optimise(study, execute)
+    except KeyboardInterrupt:
+        interrupted = True
+        raise
     finally:
-        if own_client is not None:
-            own_client.close()
-        if own_cluster is not None:
-            own_cluster.close()
+        _close(own_client, own_cluster, interrupted)
     evals = optimum.evaluations
     cases = [e.case for e in evals]
     design = Design([p.label for p in study.spec.parameters], False, {}, [c.values for c in cases])
@@ -303,6 +349,7 @@ def _client(client, scheduler, workers):
 
 def _execute(study, todo, cases, cache, series, records, counts, client, scheduler, workers, progress, on_client):
     client, own_client, own_cluster = _client(client, scheduler, workers)
+    interrupted = False
     try:
         if on_client:
             on_client(client)
@@ -338,17 +385,23 @@ def _execute(study, todo, cases, cache, series, records, counts, client, schedul
                     progress(dict(counts))
                 if futures and not finished:
                     time.sleep(0.1)
+        except KeyboardInterrupt:
+            interrupted = True
+            with _quiet_logs():
+                for f in futures:
+                    f.cancel()
+            raise
         finally:
             for f in futures:
                 f.cancel()
         counts["running"] = 0
         if progress:
             progress(dict(counts))
+    except KeyboardInterrupt:
+        interrupted = True
+        raise
     finally:
-        if own_client is not None:
-            own_client.close()
-        if own_cluster is not None:
-            own_cluster.close()
+        _close(own_client, own_cluster, interrupted)
 
 
 def _collect_one(future, key, cache, toml):

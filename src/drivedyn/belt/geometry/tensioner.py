@@ -142,10 +142,18 @@ def equilibrium(model, drawn=None, sense=None) -> Equilibrium:
     def centres(qv):
         return {j: centre(model, j, q, s) for j, q, s in zip(idx, qv, sense)}
 
+    def layout_at(m, qv):
+        try:
+            return compute_layout(m)
+        except ModelError as exc:
+            # the drawn layout passed: at this travel (a stop, or on the way to it) the tensioner takes
+            # the belt off its loop, and the fault is the tensioner's travel, not the belt order
+            _off_the_loop(model, idx, qv, str(exc).split(": ", 1)[-1])
+
     def loads(qv, tension):
         """Generalised load on each tensioner (spring + belt) at travel qv under a uniform tension."""
         m = moved_to(model, centres(qv), L0_chain)
-        lay = compute_layout(m)
+        lay = layout_at(m, qv)
         return generalised_loads(model, idx, sense, qv, lay.hub_load_static(tension(m, lay)))
 
     def t_cont(m, lay):
@@ -216,6 +224,31 @@ def _jacobian(f, x, h=1e-7):
         xp[k] += h
         J[:, k] = (f(xp) - f0) / h
     return J
+
+
+def _off_the_loop(model, idx, qv, why):
+    """A tensioner travel (within the stops) at which the belt no longer makes its loop: one line
+    naming the tensioner, the travel and its stops (for an arm with supplier data, the free arm and
+    the load stop they come from)."""
+    parts = []
+    for j, q in zip(idx, qv):
+        p = model.pulleys[j]
+        t = p.tensioner
+        if p.arm is not None:
+            text = (f"{p.name!r} at {math.degrees(q):.4g} deg from the drawn arm (stops {math.degrees(t.stops[0]):.4g} / "
+                    f"{math.degrees(t.stops[1]):.4g} deg")
+            if p.arm.free_angle is not None:
+                stop = p.arm.load_stop if p.arm.load_stop is not None else t.stops[1] - t.stops[0]
+                text += (f": the free arm {math.degrees(t.stops[1]):.4g} deg into the belt, the load stop "
+                         f"{math.degrees(stop):.4g} deg from it")
+            parts.append(text + ")")
+        else:
+            parts.append(f"{p.name!r} at {q * 1e3:.4g} mm from its drawn place (stops {t.stops[0] * 1e3:.4g} / "
+                         f"{t.stops[1] * 1e3:.4g} mm)")
+    j = idx[0]
+    what = "arm" if model.pulleys[j].arm is not None else "slider"
+    raise ModelError(f"the tensioner {', '.join(parts)} takes the belt off its loop ({why}): its stops must lie "
+                     "where the belt still wraps the pulleys", field=f"pulleys.{j}.{what}.stops")
 
 
 def _no_equilibrium(model, j, q, why):

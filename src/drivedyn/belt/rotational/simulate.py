@@ -297,6 +297,13 @@ def new_states(sysm: RotSystem):
     return S, W, RS, RW
 
 
+def planned(model, sysm) -> tuple[int, int]:
+    """(samples, steps per sample) of a run of ``model`` on its system ``sysm`` (``build``)."""
+    sim, out = model.simulation, model.output
+    nsamples = max(1, int(round(sim.duration / out.interval)))
+    return nsamples, max(1, int(math.ceil(sim.duration / nsamples / (sim.step or sysm.step))))
+
+
 def run(drive, progress=None):
     """Integrate ``drive`` (geometry.drive.Drive, or a model) with the rotational model."""
     from ...core.limits import steps_problem
@@ -304,10 +311,9 @@ def run(drive, progress=None):
     drive = resolve(drive)
     model = drive.model
     sysm = build(drive)
-    sim, out = model.simulation, model.output
-    nsamples = max(1, int(round(sim.duration / out.interval)))
+    sim = model.simulation
+    nsamples, steps = planned(model, sysm)
     interval = sim.duration / nsamples
-    steps = max(1, int(math.ceil(interval / (sim.step or sysm.step))))
     h = interval / steps
     problem = steps_problem(steps * nsamples, "simulation.duration", "a shorter duration")
     if problem:

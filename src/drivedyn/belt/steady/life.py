@@ -40,21 +40,41 @@ class BeltLife:
 
 
 def belt_life(model, design_tension: float, belt_speeds) -> BeltLife:
-    """B10 of the model's belt over its duty cycle; ``belt_speeds`` (m/s) per duty row."""
+    """B10 of the model's belt over its duty cycle; ``belt_speeds`` (m/s) per duty row.
+
+    Summed in logarithms (each factor can leave double precision on its own where the others bring
+    it back); a B10 that is not a finite positive number of hours is refused, never judged."""
+    from ...errors import ModelError
+
     dc, belt = model.duty_cycle, model.belt
     fit = dc.life
     d_mm = effective_diameters(model) * 1e3
-    geo = {p.name: (fit.back_side_weight if p.side == "back" else 1.0) * d ** -fit.exponent
-           for p, d in zip(model.pulleys, d_mm)}
+    log_geo = {p.name: (math.log(fit.back_side_weight) if p.side == "back" else 0.0) - fit.exponent * math.log(d)
+               if (p.side != "back" or fit.back_side_weight > 0) else -math.inf
+               for p, d in zip(model.pulleys, d_mm)}
     L = belt.effective_length
-    passes = [r.share * v / L for r, v in zip(dc.rows, belt_speeds)]
     # each row at its own temperature (the cycle's where a row gives none)
-    temp = [2.0 ** (((r.temperature if r.temperature is not None else dc.temperature) - fit.reference_temperature)
-                    / fit.halving) for r in dc.rows]
-    rows = [p * t for p, t in zip(passes, temp)]
-    g = sum(geo.values())
-    D = g * sum(rows) * (design_tension / belt.ribs) ** fit.tension_exponent
+    log_rows = [math.log(r.share * v / L) + math.log(2.0) * ((r.temperature if r.temperature is not None
+                                                             else dc.temperature) - fit.reference_temperature) / fit.halving
+                for r, v in zip(dc.rows, belt_speeds)]
+    log_g, log_r = _log_sum(log_geo.values()), _log_sum(log_rows)
+    log_d = log_g + log_r + fit.tension_exponent * math.log(design_tension / belt.ribs)
+    log_b10 = math.log(fit.constant) - log_d
+    if not math.log(1e-30) < log_b10 < math.log(1e30):    # a damage sum of 0 or past double precision too
+        val = f"{math.exp(log_b10):.4g}" if abs(log_b10) < 700 else f"e^{log_b10:.4g}"
+        raise ModelError(f"the belt-life fit gives B10 = {val} h, outside 1e-30..1e30 h: the drive lies outside the "
+                         f"fit's domain (design tension {design_tension:.4g} N over {belt.ribs} ribs, effective "
+                         f"diameters {min(d_mm):.4g}-{max(d_mm):.4g} mm; steady/life.py)", field="duty_cycle.life")
     # the range as the source prints it, to its 0.1 mm (AG0868's crank, 175.01 mm, lies in it)
     out = [p.name for p, d in zip(model.pulleys, d_mm) if not FIT_RANGE[0] * 1e3 - 0.05 <= d <= FIT_RANGE[1] * 1e3 + 0.05]
-    return BeltLife(fit.constant / D if D > 0 else math.inf, {n: x / g for n, x in geo.items()},
-                    [x / sum(rows) for x in rows], not out, out)
+    return BeltLife(math.exp(log_b10), {n: math.exp(x - log_g) for n, x in log_geo.items()},
+                    [math.exp(x - log_r) for x in log_rows], not out, out)
+
+
+def _log_sum(logs) -> float:
+    """log(sum(exp(x))) of finite or -inf logarithms, without leaving double precision."""
+    logs = list(logs)
+    top = max(logs)
+    if top == -math.inf:
+        return top
+    return top + math.log(sum(math.exp(x - top) for x in logs))

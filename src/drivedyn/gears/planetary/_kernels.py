@@ -168,7 +168,9 @@ def _integrate(y, h, n_settle, n_window, p, fmax, fmin, fmean, halves, qs, out_f
                 for j in range(g * half, (g + 1) * half):
                     mean += fq[j] / half
                 for j in range(g * half, (g + 1) * half):
-                    qs[j, 2] = max(qs[j, 2], fq[j] / mean)
+                    # a mean of 0 (a stage whose torque is round-off beside its pin errors' forces):
+                    # no share is defined, and an infinite one fails any limit
+                    qs[j, 2] = max(qs[j, 2], fq[j] / mean if mean != 0.0 else np.inf)
             for j in range(m):
                 f = fm[j]
                 fmax[j] = max(fmax[j], f)
@@ -178,7 +180,7 @@ def _integrate(y, h, n_settle, n_window, p, fmax, fmin, fmean, halves, qs, out_f
                 halves[j, c + 1] = min(halves[j, c + 1], f)
                 qs[j, 0] = max(qs[j, 0], fq[j])
                 qs[j, 1] = min(qs[j, 1], fq[j])
-                qs[j, 3] = max(qs[j, 3], f / fq[j])
+                qs[j, 3] = max(qs[j, 3], f / fq[j] if fq[j] != 0.0 else np.inf)
                 if record:
                     out_f[s - n_settle, j] = f
                     out_q[s - n_settle, j] = fq[j]

@@ -372,6 +372,54 @@ def _timing(sys_: StageSystem, dyn, speeds, f_hi, settle):
     return fm, h, n_settle, n_window
 
 
+def solvable(sys_: StageSystem, p: tuple, where: str) -> None:
+    """Refuse, before the integration, a stage whose quasi-static solve double precision cannot do:
+    the kernel factors Ks + sum_j k_j G_j G_j^T + s_reg w w^T at every step (Cholesky), which is at
+    least its value at each mesh's least stiffness; scaled to a unit diagonal, its condition number
+    must stay below 1e12 (a 1e-29 N/m sun mesh beside 5e8 divided by zero in the kernel)."""
+    from .planetary import _SPREAD
+
+    w, s_reg = p[-2], p[-1]
+    A = sys_.stiffness(sys_.kt.min(axis=1)) + s_reg * np.outer(w, w)
+    d = np.diag(A)
+    cond = math.inf
+    if np.all(np.isfinite(A)) and np.all(d > 0):
+        scale = 1.0 / np.sqrt(d)
+        with np.errstate(all="ignore"):
+            cond = float(np.linalg.cond(A * np.outer(scale, scale)))
+    if not cond < 1e12:
+        raise ModelError(f"the stage's time integration cannot be solved (condition number {cond:.3g} of its "
+                         f"stiffness matrix): {_SPREAD}", field=f"{where}.dynamics")
+
+
+#: a force range in the window below this share of the force is the integration's round-off (K_v is
+#: 1 to that many digits): no growth is read from it (a constant stiffness gave K_v = 1 + 2e-10 and a
+#: "growth" of 1.27, the ratio of two round-off ranges)
+ROUND_OFF = 1e-9
+
+
+def window_growth(halves) -> np.ndarray:
+    """Per mesh, the second half's force range over the first half's (halves: m x 4, max and min of
+    each half), NaN where both ranges are round-off beside the force (ROUND_OFF)."""
+    first, second = halves[:, 0] - halves[:, 1], halves[:, 2] - halves[:, 3]
+    size = np.abs(halves).max(axis=1)
+    real = np.maximum(first, second) > ROUND_OFF * size
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(real, second / first, np.nan)
+
+
+def _cost(steps: float, nbytes: float, h, ns, nw, where: str) -> None:
+    """The run's steps (its own settle and window, and the sweep's) and bytes against the limits."""
+    from ..limits import bytes_problem, steps_problem
+
+    fix = "a longer dynamics.step, fewer steps_per_cycle or window_cycles, a shorter settle or a smaller sweep count"
+    what = (f"{where}.dynamics: a step of {float(h[0]):.3g} s over {float(ns[0]):.3g} settling and "
+            f"{float(nw[0]):.3g} window steps")
+    problem = steps_problem(steps, what, fix) or bytes_problem(nbytes, what, fix)
+    if problem:
+        raise ModelError(problem)
+
+
 def speed_range(sys_: StageSystem, dyn, f_hi: float) -> tuple[float, float]:
     """Default sweep range: up to 1.3 x the speed where the mesh frequency meets the highest mode."""
     hi = dyn.speed_max or 1.3 * f_hi / sys_.mesh_frequency(1.0)
@@ -398,11 +446,19 @@ def run(spec, where: str = "planetary", progress=None) -> tuple[dict, dict]:
     settle = dyn.settle if dyn.settle is not None else float(min(5 * decay.max(initial=0.0), 0.5))
     f_hi = 1.3 * f_top          # the stiffness peaks raise the frequencies: a step for the stiffest instant
     p = params(sys_)
-    q0 = sys_.static_start()
-    _, F = sys_.static()
+    solvable(sys_, p, where)
+    fm, h, ns, nw = _timing(sys_, dyn, [omega], f_hi, settle)
     N = sys_.planets
     m = 2 * N
-    fm, h, ns, nw = _timing(sys_, dyn, [omega], f_hi, settle)
+    steps, nbytes = float(ns[0] + nw[0]), 3 * 2 * 8 * m * float(nw[0])
+    if dyn.sweep:
+        lo_s, hi_s = speed_range(sys_, dyn, f_top)
+        speeds = np.linspace(lo_s, hi_s, dyn.count)
+        _, hs, nss, nws = _timing(sys_, dyn, speeds, f_hi, settle)
+        steps += float(np.sum(nss.astype(float) + nws))
+    _cost(steps, nbytes, h, ns, nw, where)
+    q0 = sys_.static_start()
+    _, F = sys_.static()
     y = np.concatenate([q0, sys_.phi * omega])
     fmax, fmin, fmean, halves, qs = np.zeros(m), np.zeros(m), np.zeros(m), np.zeros((m, 4)), np.zeros((m, 4))
     out_f, out_q = np.zeros((int(nw[0]), m)), np.zeros((int(nw[0]), m))
@@ -415,8 +471,7 @@ def run(spec, where: str = "planetary", progress=None) -> tuple[dict, dict]:
                          "dynamics.step", field=f"{where}.dynamics")
     kv = fmax / qs[:, 0]
     shift = qs[:, 0] / F
-    with np.errstate(divide="ignore", invalid="ignore"):
-        growth = (halves[:, 2] - halves[:, 3]) / (halves[:, 0] - halves[:, 1])
+    growth = window_growth(halves)
 
     def per(x):
         return [float(v) for v in x[:N]], [float(v) for v in x[N:]]
@@ -449,9 +504,6 @@ def run(spec, where: str = "planetary", progress=None) -> tuple[dict, dict]:
     arrays = {"time": np.arange(int(nw[0])) * float(h[0]), "force": out_f, "force_quasi_static": out_q,
               "force_nominal": F, "mesh_names": sys_.mesh_names, "speed": float(omega), "mesh_frequency_hz": float(fm[0])}
     if dyn.sweep:
-        lo_s, hi_s = speed_range(sys_, dyn, f_top)
-        speeds = np.linspace(lo_s, hi_s, dyn.count)
-        _, hs, nss, nws = _timing(sys_, dyn, speeds, f_hi, settle)
         ns_ = len(speeds)
         smax, smin, smean = np.zeros((ns_, m)), np.zeros((ns_, m)), np.zeros((ns_, m))
         shalves, sqs = np.zeros((ns_, m, 4)), np.zeros((ns_, m, 4))
