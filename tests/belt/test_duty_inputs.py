@@ -6,7 +6,7 @@ import math
 import pytest
 
 import drivedyn
-from drivedyn.errors import ModelError
+from drivedyn.core.errors import ModelError
 
 
 def _ag0868(**changes):
@@ -47,7 +47,7 @@ def test_a_belt_length_offset_the_drawn_arm_cannot_hold_is_refused(offset, where
 
 
 def test_a_length_offset_within_the_band_still_reads():
-    data = drivedyn.analyses.analysis("belt-drive").check_data(_ag0868(**{"belt.length_offset": "0.3 mm"}))
+    data = drivedyn.core.analyses.analysis("belt-drive").check_data(_ag0868(**{"belt.length_offset": "0.3 mm"}))
     assert data["supplier"]["belt"]["required_length"] == pytest.approx(1.01939, abs=2e-5)
 
 
@@ -140,7 +140,7 @@ def test_a_free_arm_at_the_drawn_arm_names_the_stops_not_the_belt_order():
 
 def test_the_kind_cannot_change_through_an_override(capsys):
     """--set kind=gear-train listed 20 problems of a belt model read as a gear train."""
-    from drivedyn.cli import main
+    from drivedyn.front.cli import main
 
     code = main(["check", str(drivedyn.example_path("belt-5pk")), "--set", "kind=gear-train"])
     err = capsys.readouterr().err.strip()

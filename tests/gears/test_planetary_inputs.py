@@ -1,4 +1,4 @@
-"""A planetary stage's time integration (gears/planetary_dynamics.py) under bad input: a step that
+"""A planetary stage's time integration (gears/planetary/dynamics.py) under bad input: a step that
 asks for more steps than a run may take, stiffnesses that double precision cannot solve, a torque
 that is round-off beside the pin errors' forces, and a constant stiffness whose force ranges are
 round-off: a result or one line naming the field, before any memory is asked for, never a
@@ -8,7 +8,7 @@ import time
 import pytest
 
 import drivedyn
-from drivedyn.errors import ModelError
+from drivedyn.core.errors import ModelError
 
 
 def _stage(**changes):
@@ -50,7 +50,7 @@ def test_a_floating_sun_on_planet_pins_of_no_stiffness_is_refused_before_the_int
     model = drivedyn.load(drivedyn.example_path("gears-gearbox"))
     model = drivedyn.replace(model, {"planetary.lateral.planet_bearing_stiffness": "1e-20 N/m",
                                      "planetary.dynamics": {"model": "lateral", "speed": "12.1 rpm"}})
-    from drivedyn.gears.planetary_dynamics import run
+    from drivedyn.gears.planetary.dynamics import run
 
     with pytest.raises(ModelError, match="planetary.dynamics: the stage's time integration cannot be solved"):
         run(model.planetary)
@@ -58,7 +58,7 @@ def test_a_floating_sun_on_planet_pins_of_no_stiffness_is_refused_before_the_int
 
 def test_a_torque_of_round_off_beside_the_pin_errors_ends_in_a_result():
     """The quasi-static share divided by a mean force of exactly 0 (ZeroDivisionError in the kernel)."""
-    from drivedyn.gears.planetary_dynamics import run
+    from drivedyn.gears.planetary.dynamics import run
 
     summary, _ = run(_stage(**{"planetary.torque": "1e-29 N*m"}).planetary)
     assert summary["kv"]["sun-planet"] > 0
@@ -69,7 +69,7 @@ def test_no_window_growth_is_read_from_round_off():
     as a growing window, and the run warned kv-unstable."""
     import numpy as np
 
-    from drivedyn.gears.planetary_dynamics import window_growth
+    from drivedyn.gears.planetary.dynamics import window_growth
 
     halves = np.array([[1000.0 + 2e-7, 1000.0, 1000.0 + 2.5e-7, 1000.0],     # round-off: no growth
                        [1100.0, 900.0, 1300.0, 700.0]])                      # a real range that grows

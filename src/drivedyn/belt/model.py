@@ -805,7 +805,7 @@ class DutyCycle(Spec):
         """The cost before the work, counted before the rows are read (10 000 rows take seconds to
         read): each row's running balance, again at each of the tolerance study's four belt lengths
         (a held dynamic row's steps are counted when the drive is assembled, supplier.py)."""
-        from ..limits import balances_problem
+        from ..core.limits import balances_problem
 
         if not isinstance(data, dict) or not isinstance(data.get("rows"), list):
             return data

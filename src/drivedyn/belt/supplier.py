@@ -194,8 +194,8 @@ def dynamic_cost(drive) -> None:
     """The held rows' integration steps together (each row's run is the same length on the same
     stable step: the first row's times the rows) against the steps limit, before any row is
     evaluated (report_data calls it before the static rows)."""
-    from ..errors import ModelError
-    from ..limits import steps_problem
+    from ..core.errors import ModelError
+    from ..core.limits import steps_problem
     from .rotational.simulate import build, planned
 
     rows = drive.model.duty_cycle.rows

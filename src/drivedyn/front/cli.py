@@ -38,7 +38,7 @@ def _named(path: Path, exc: Exception) -> str:
 
 def check_outdir(out: Path) -> None:
     """Refuse an output folder that cannot be written, before any solve (one line, exit 2)."""
-    from .outputs import OutputError, check_folder
+    from ..core.outputs import OutputError, check_folder
 
     try:
         check_folder(out)
@@ -375,7 +375,7 @@ def schema(kind: str = typer.Argument(..., help="Model kind: belt-drive, gear-tr
     if out is None:
         typer.echo(text)
     else:
-        from .outputs import write_text
+        from ..core.outputs import write_text
 
         try:
             write_text(out, text + "\n")      # one line naming the file if it cannot be written

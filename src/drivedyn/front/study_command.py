@@ -106,7 +106,7 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
     from ..study.optimise import on_bounds
 
     if not dry_run:       # the output folder refused before the header, as the grid's (execute.prepare)
-        from .execute import _out_folder
+        from ..study.execute import _out_folder
 
         out = _out_folder(study, out)
     opt = study.spec.optimise

@@ -136,7 +136,7 @@ def prepare(study, out, first=None):
 
 def _out_folder(study, out) -> Path:
     """The study's output folder with its case cache, checked writable (one line if not)."""
-    from ..outputs import OutputError, check_folder
+    from ..core.outputs import OutputError, check_folder
 
     out = Path(out) if out is not None else study.default_out()
     cache = out / "cases"

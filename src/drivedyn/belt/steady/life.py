@@ -44,7 +44,7 @@ def belt_life(model, design_tension: float, belt_speeds) -> BeltLife:
 
     Summed in logarithms (each factor can leave double precision on its own where the others bring
     it back); a B10 that is not a finite positive number of hours is refused, never judged."""
-    from ...errors import ModelError
+    from ...core.errors import ModelError
 
     dc, belt = model.duty_cycle, model.belt
     fit = dc.life

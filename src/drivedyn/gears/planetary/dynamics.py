@@ -377,7 +377,7 @@ def solvable(sys_: StageSystem, p: tuple, where: str) -> None:
     the kernel factors Ks + sum_j k_j G_j G_j^T + s_reg w w^T at every step (Cholesky), which is at
     least its value at each mesh's least stiffness; scaled to a unit diagonal, its condition number
     must stay below 1e12 (a 1e-29 N/m sun mesh beside 5e8 divided by zero in the kernel)."""
-    from .planetary import _SPREAD
+    from .stage import _SPREAD
 
     w, s_reg = p[-2], p[-1]
     A = sys_.stiffness(sys_.kt.min(axis=1)) + s_reg * np.outer(w, w)
@@ -410,7 +410,7 @@ def window_growth(halves) -> np.ndarray:
 
 def _cost(steps: float, nbytes: float, h, ns, nw, where: str) -> None:
     """The run's steps (its own settle and window, and the sweep's) and bytes against the limits."""
-    from ..limits import bytes_problem, steps_problem
+    from ...core.limits import bytes_problem, steps_problem
 
     fix = "a longer dynamics.step, fewer steps_per_cycle or window_cycles, a shorter settle or a smaller sweep count"
     what = (f"{where}.dynamics: a step of {float(h[0]):.3g} s over {float(ns[0]):.3g} settling and "
