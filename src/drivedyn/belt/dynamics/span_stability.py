@@ -75,12 +75,13 @@ def largest_components(t, x, count=COMPONENTS):
 
 
 def span_entry(sp: SpanProperties, T: float, V: float, components, zeta: float, f_driver: float,
-               passing: float = 0.0, tol: float = 0.0) -> dict:
+               passing: float = 0.0, tol: float = 0.0, f1: float | None = None) -> dict:
     """The summary entry of one span: mean tension, f1, each component's depth and the tongue it is
     nearest, the nearest of all, and whether any is inside a tongue. A component within ``tol`` Hz
     (or 2 %: the segments' length varies with the tension along the belt) of a multiple of ``passing`` (the segments' passing frequency, Hz) is the segment
-    model's polygon effect: listed, not placed."""
-    f1 = float(moving_beam_spectrum(np.asarray(T, float), sp.mass_per_length, sp.length, sp.bending_stiffness,
+    model's polygon effect: listed, not placed. ``f1``: the span's first frequency if already known
+    (moving_beam_spectrum at T and V)."""
+    f1 = f1 if f1 is not None else float(moving_beam_spectrum(np.asarray(T, float), sp.mass_per_length, sp.length, sp.bending_stiffness,
                                     np.asarray(V, float), 1)[..., 0])
     N = float(effective_tension(T, V, sp))
     e = {"tension_mean": float(T), "speed": float(V), "effective_tension": N, "frequency_1": f1,
@@ -185,10 +186,10 @@ def runup(model, lay, ds, out_runup, crank) -> dict:
             if key[b] < 0:
                 for fe, a in comps[b]:
                     if fe > 0 and reach(f1[b], fe, a / N[b]) < 0:
-                        p = place(f1[b], fe, a / N[b], zeta)
+                        p = place(f1[b], fe, a / N[b], zeta, refine=False)
                         placed[b] = min(placed.get(b, (True, True, np.inf)), (not p.inside, not p.open, p.distance))
         b = min(placed, key=placed.get) if placed else int(np.argmin(key))
-        e = span_entry(sp, float(mean[b]), float(V[b]), comps[b], zeta, rpm[b] / 60.0)
+        e = span_entry(sp, float(mean[b]), float(V[b]), comps[b], zeta, rpm[b] / 60.0, f1=float(f1[b]))
         inside_rpm = [float(rpm[k]) for k, v in placed.items() if not v[0]]
         e = dict(e, rpm=float(rpm[b]))
         e["inside_rpm"] = inside_rpm

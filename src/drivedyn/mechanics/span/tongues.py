@@ -116,12 +116,14 @@ def screen(depth: float) -> float:
     for n = 2 (first-order characteristic values, McLachlan 1947, sec. 4.13), damping only narrows it;
     tests/span/test_tongues.py checks the bound on the exact edges. A component beyond it needs no
     Floquet pass to be outside."""
-    return 0.5 * depth + 0.02
+    return 0.3 * depth + 0.01
 
 
-def place(f1: float, fe: float, depth: float, zeta: float, n: int | None = None) -> TonguePlace:
+def place(f1: float, fe: float, depth: float, zeta: float, n: int | None = None, refine: bool = True) -> TonguePlace:
     """The excitation (f_e Hz, depth e = dT / N) against tongue n (default: the nearest,
-    :func:`nearest_tongue`) of a span of first frequency f1 (Hz) and modal damping ratio zeta."""
+    :func:`nearest_tongue`) of a span of first frequency f1 (Hz) and modal damping ratio zeta.
+    ``refine=False``: an open tongue's edges interpolated linearly on the SCAN grid, not refined
+    (within a grid step: to rank many places, then refine the one kept)."""
     n = nearest_tongue(f1, fe) if n is None else n
     und = undamped_band(f1, depth, n)
     if und is None:
@@ -132,7 +134,7 @@ def place(f1: float, fe: float, depth: float, zeta: float, n: int | None = None)
         grid = np.linspace(und[0], und[1], SCAN)
         r = _rho(f1, np.append(grid, fe), depth, zeta)
         rho, r = float(r[-1]), r[:-1]
-        band = und if zeta <= 0 else _damped_band(f1, depth, zeta, grid, r)
+        band = und if zeta <= 0 else _damped_band(f1, depth, zeta, grid, r, refine)
     # growth at f_e belongs to this tongue where f_e is inside its undamped band (the tongues of one
     # depth do not overlap below e ~ 1: McLachlan 1947, fig. 8)
     inside = rho > UNSTABLE and und is not None and und[0] <= fe <= und[1]
@@ -145,14 +147,20 @@ def place(f1: float, fe: float, depth: float, zeta: float, n: int | None = None)
     return TonguePlace(n, 2.0 * f1 / n, band, und, bool(inside), rho, dist)
 
 
-def _damped_band(f1, depth, zeta, grid, r):
+def _damped_band(f1, depth, zeta, grid, r, refine=True):
     """The damped tongue's (f_low, f_high) from the multipliers ``r`` on ``grid`` (across the
     undamped band): each edge by Brent's method in the grid interval where r crosses UNSTABLE
-    (only for an open tongue); None if closed."""
+    (only for an open tongue; ``refine=False``: interpolated linearly there); None if closed."""
     bad = np.nonzero(r > UNSTABLE)[0]
     if not len(bad):
         return None
     i, j = bad[0], bad[-1]
+    if not refine:
+        def cross(k):
+            g0, g1 = r[k] - UNSTABLE, r[k + 1] - UNSTABLE
+            return float(grid[k] + (grid[k + 1] - grid[k]) * g0 / (g0 - g1))
+
+        return (cross(i - 1) if i > 0 else float(grid[0])), (cross(j) if j < len(grid) - 1 else float(grid[-1]))
 
     def g(f):
         return float(_rho(f1, [f], depth, zeta)[0]) - UNSTABLE
