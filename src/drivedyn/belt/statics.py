@@ -227,6 +227,13 @@ def report_and_data(model):
             lines.append(f"tensioner {name} (slider) at rest: travel {t['slide'] * 1e3:.3f} mm into the belt, spring "
                          f"force {t['spring_force']:.2f} N, hub load {t['hub_load']:.1f} N, belt tension {t['tension']:.1f} N")
     lines += [""] + _steady_lines(data, model)
+    if model.belt.teeth is not None:
+        from .steady.tooth_loads import tooth_lines, tooth_table
+
+        st = data["steady"]["pulleys"]
+        tens = {n: (r["tension_in"], r["tension_out"], r["torque"]) for n, r in st.items()}
+        data["teeth"] = tooth_table(model, lay, sysm.init.seg_length * sysm.n, tens, T0)
+        lines += tooth_lines(data["teeth"])
     if "supplier" in data:
         from .supplier import report_lines
 
@@ -281,7 +288,10 @@ def _steady_lines(data, model) -> list:
         out.append(f"{name:14s} {p['torque']:9.3f} {p['tension_in']:8.1f} {p['tension_out']:8.1f} {arc_s:>9s} "
                    f"{share:>8s} {100 * p['creep']:8.4f} {m_s:>7s} {mt_s:>12s}")
     out.append("  " + ", ".join(f"span {n} {s['tension']:.1f} N" for n, s in st["spans"].items()))
-    if st["gross_slip"]:
+    grooved = {q.name for q in model.pulleys if q.teeth}
+    if st["gross_slip"] and st["gross_slip"] in grooved:
+        out.append("  the grooved pulleys carry their load by their teeth (the teeth section), not by friction")
+    elif st["gross_slip"]:
         out.append(f"  no steady state: pulley {st['gross_slip']} slips grossly under these loads (slip arc > wrap)")
     elif st["slip_margin"] is not None:
         out.append(f"  slip margin {st['slip_margin']:.3f}: the loads x {st['slip_margin']:.3f} make pulley "

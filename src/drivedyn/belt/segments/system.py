@@ -112,6 +112,11 @@ def _to_place(drive):
         return model, None
     target = model.belt.pretension
     placed = model
+    if target is None and model.belt.teeth is not None:
+        # a toothed belt's length is its teeth x pitch, which its chain carries one pitch per tooth on
+        # the grooved pulleys (geometry/teeth.py: chain_radius)
+        check_length(model, drive.layout)
+        return model, None          # placed at its length (segments of pitch / nodes_per_tooth); the tension follows
     if target is None:
         from ..steady.creep import drive_of, tensions
 
@@ -182,7 +187,13 @@ def _build(model, drive, settle: bool, before_settle=None) -> BeltSystem:
 
         for j, q in enumerate(model.pulleys):
             if q.teeth:
-                P.r[j] = chain_radius(q.radius, model)
+                # and, as the belt's cord does not sink into its grooves, lifted by the contact's static
+                # penetration at the installation tension (N per segment T l / r = c1 p^2 + c2 p), which
+                # would otherwise widen the chain's spacing by l p / r per segment
+                Nseg = init.tension * init.seg_length / q.radius
+                c1, c2 = float(pl.contact.c1[0]), float(pl.contact.c2[0])
+                pen = Nseg / c2 if c1 == 0 else (-c2 + math.sqrt(c2 * c2 + 4 * c1 * Nseg)) / (2 * c1)
+                P.r[j] = chain_radius(q.radius, model) + pen
     A = arms_record(drawn, drive.senses)   # travel measured from the drawn centres
     span_mid = np.array([sp.midpoint for sp in layout.spans])
     span_geo = np.array([[*sp.midpoint, math.cos(sp.angle), math.sin(sp.angle)] for sp in layout.spans])
