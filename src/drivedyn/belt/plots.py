@@ -452,6 +452,40 @@ def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), r
     return ax
 
 
+def plot_tooth_map(ds, name, ax, window=None):
+    """The loads of the teeth in mesh on grooved pulley ``name`` through time: a map over the groove
+    positions (the pulley's fixed-frame angle) and time, over the steady window."""
+    m = list(ds["toothed_pulley"].values).index(name)
+    t = ds["time"].values
+    sel = np.ones(len(t), bool) if window is None else (t >= window[0]) & (t <= window[1])
+    z = int(ds["grooves"].values[m])
+    q = ds["tooth_load"].values[sel, m, :z]
+    lim = float(np.nanmax(np.abs(q))) if np.isfinite(q).any() else 1.0
+    mesh = ax.pcolormesh((np.arange(z) + 0.5) * 360.0 / z, t[sel], q, cmap="RdBu_r", vmin=-lim, vmax=lim,
+                         shading="nearest")
+    ax.set_xlim(0.0, 360.0)
+    ax.set_ylabel("time (s)")
+    ax.set_title(f"tooth loads on {name} ({z} grooves): largest {lim:.1f} N", fontsize=10)
+    return mesh
+
+
+def plot_phase_error(ds, ax, window=None):
+    """Each grooved pulley's angle against its tooth ratio to the first (the crank), in crank degrees."""
+    t = ds["time"].values
+    sel = np.ones(len(t), bool) if window is None else (t >= window[0]) & (t <= window[1])
+    names = list(ds["toothed_pulley"].values)
+    first = names[0]
+    crank = np.degrees(ds["angle"].sel(pulley=first).values[sel])
+    crank = crank - crank[0] if len(crank) else crank
+    for m, name in enumerate(names[1:], start=1):
+        e = ds["phase_error"].values[sel, m]
+        ax.plot(crank, e - e.mean(), lw=1.0, label=f"{name}: {e.max() - e.min():.2f} deg peak to peak")
+    ax.set_xlabel(f"{first} angle over the window (deg)")
+    ax.set_ylabel(f"phase error ({first} deg)")
+    ax.set_title(f"transmission error against the tooth ratio to {first} (mean taken off)", fontsize=10)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8, frameon=False)
+
+
 def _figures(ds, driver):
     """The standard figures as (file name, function that draws it), in writing order."""
     jobs = []
@@ -556,7 +590,27 @@ def _figures(ds, driver):
                      shrink=0.5 if wide else 0.8, aspect=40 if wide else 30, pad=0.01)
         return fig
 
+    def teeth():
+        names = list(ds["toothed_pulley"].values)
+        window = ds.attrs.get("steady_window")
+        fig, ax = _fig(len(names), 2.4)
+        ax = np.atleast_1d(ax)
+        for k, name in enumerate(names):
+            mesh = plot_tooth_map(ds, name, ax[k], window)
+            fig.colorbar(mesh, ax=ax[k], label="tooth load (N)", fraction=0.05, pad=0.01)
+        ax[-1].set_xlabel("groove position (deg, counter-clockwise from +x)")
+        return fig
+
+    def phase():
+        fig, ax = _fig(1)
+        plot_phase_error(ds, np.atleast_1d(ax)[0], ds.attrs.get("steady_window"))
+        return fig
+
     jobs += [("speeds.png", speeds), ("tensions.png", tensions)]
+    if "tooth_load" in ds:
+        jobs.append(("teeth.png", teeth))
+        if ds.sizes.get("toothed_pulley", 0) > 1:
+            jobs.append(("phase_error.png", phase))
     if "tracked" in ds.coords:            # the segment model's tracked segments (not the rotational model)
         jobs.append(("segment_forces.png", segment_forces))
     if np.isfinite(ds["energy_residual"].values).any():     # a periodic run-up has no one energy balance
