@@ -167,6 +167,9 @@ class Oval(PitchCurve):
     def _extremes(self):
         return self.r0 * (1 - abs(self.e)), self.r0 * (1 + abs(self.e))
 
+    def cumulative(self, phi):
+        return self.r0 * phi if self.e == 0 else super().cumulative(phi)
+
     def __repr__(self):
         return f"Oval({self.r0!r}, {self.e!r}, phase={self.phase!r}, order={self.n})"
 
@@ -263,7 +266,19 @@ def convexity(curve: PitchCurve, points: int = CHECK_POINTS) -> tuple[float, flo
     k = curvature(curve, phi)
     r = curve.radii(phi)
     i, j = int(np.argmin(k)), int(np.argmin(r))
-    return float(k[i]), float(phi[i]), float(r[j]), float(phi[j])
+    # the smallest curvature refined between the grid's neighbours (golden sections)
+    lo, hi = float(phi[i - 1]) - (TWO_PI if i == 0 else 0.0), float(phi[(i + 1) % len(phi)]) + (TWO_PI if i == len(phi) - 1 else 0.0)
+    f = lambda x: float(curvature(curve, x))
+    g = (math.sqrt(5) - 1) / 2
+    for _ in range(50):
+        a, b = hi - g * (hi - lo), lo + g * (hi - lo)
+        if f(a) < f(b):
+            hi = b
+        else:
+            lo = a
+    at = 0.5 * (lo + hi)
+    kmin = min(f(at), float(k[i]))
+    return kmin, (at if kmin < k[i] else float(phi[i])) % TWO_PI, float(r[j]), float(phi[j])
 
 
 def check_convex(curve: PitchCurve) -> None:
@@ -334,7 +349,7 @@ def support(curve: PitchCurve, alpha: float, theta: float = 0.0) -> tuple[float,
             break
         phi = nxt
     r, dr, _ = curve.r(phi)
-    return phi, r * r / math.hypot(r, dr)
+    return phi, r / math.sqrt(1.0 + (dr / r) ** 2)
 
 
 def arc_length(curve: PitchCurve, phi0: float, phi1: float) -> float:
