@@ -250,6 +250,60 @@ def _supplier_arm(name, center, arm):
     return arm.model_copy(update=upd)
 
 
+class PitchCurve(Spec):
+    """A non-circular pitch curve (an oval crank sprocket, a pulley's ovality): the radius of the belt's pitch line
+    against the pulley's own angle phi, counter-clockwise from the pulley's reference line, which points along +x as
+    drawn (mechanics/pitch_curves.py). It turns with the pulley. ``drivedyn check`` reports the belt path on it over
+    a turn; the dynamic models still run on the circle of the pulley's radius."""
+
+    kind: Literal["oval", "table"]
+    """"oval": r = radius (1 + ovality cos(order (phi - phase))), the order-th term of the curve's Fourier series (order
+    2: to first order in the ovality the centred ellipse of semi-axes radius (1 +- ovality), the elliptical crank
+    pulley of Actuators 14(8) 371, 2025); "table": the periodic cubic spline through ``rows``."""
+    ovality: Annotated[float, Field(ge=0, lt=1)] = 0.0
+    """Oval: the relative amplitude e of the radius, (r_max - r_min) / (r_max + r_min); convex (followed by a belt)
+    below 1 / (order^2 + 1), 0.2 for order 2."""
+    phase: quantity("rad") = 0.0
+    """Oval: the pulley's own angle of a longest radius (of the first of its ``order`` long axes), counter-clockwise
+    from +x as drawn."""
+    order: Annotated[int, Field(ge=2, le=24)] = 2
+    """Oval: the number of long axes round the curve, the order of the span lengths' modulation on the pulley's own
+    turn (2: an oval, 3: a trilobe)."""
+    rows: Optional[list[list]] = None
+    """Table: rows [angle, radius] over one turn of the pulley's own angle ("0 deg", "30.2 mm"; numbers in rad and m),
+    the angles spanning exactly 360 deg and the last radius repeating the first; the pulley's radius is the table's
+    mean radius (within 0.5 %)."""
+
+    @field_validator("rows")
+    @classmethod
+    def _rows(cls, v):
+        if v is None:
+            return None
+        from ..mechanics.pitch_curves import check_table
+
+        rows = table_rows(v, ("rad", "m"), "rows")
+        check_table(rows, radius_tol=1e-6)
+        return rows
+
+    @model_validator(mode="after")
+    def _kind(self):
+        if self.kind == "table" and self.rows is None:
+            raise ValueError('kind "table" needs rows = [[angle, radius], ...] over one turn')
+        if self.kind == "oval" and self.rows is not None:
+            raise ValueError('rows belong to kind = "table"; an oval is given by ovality, phase and order')
+        if self.kind == "table" and (self.ovality != 0 or self.phase != 0 or self.order != 2):
+            raise ValueError('ovality, phase and order belong to kind = "oval"; a table gives its rows')
+        return self
+
+    def curve(self, radius: float):
+        """The mechanics/pitch_curves.py curve of a pulley of this radius."""
+        from ..mechanics.pitch_curves import Oval, Table
+
+        if self.kind == "oval":
+            return Oval(radius, self.ovality, self.phase, self.order)
+        return Table(self.rows)
+
+
 class Pulley(Spec):
     """A pulley or idler, in belt order. Counter-clockwise is positive for angles and torques."""
 
@@ -306,6 +360,10 @@ class Pulley(Spec):
     """Grooves of a toothed pulley (with belt.teeth): its radius must be the pitch radius teeth x pitch / (2 pi)
     within 0.5 %; none: a smooth pulley or idler (friction contact, the belt's back on a back-side idler).
     The pitch radius is where the belt's tension member runs."""
+    pitch_curve: Optional[PitchCurve] = None
+    """A non-circular pitch curve (an oval crank sprocket, a table of radius against angle) on which ``drivedyn check``
+    follows the belt path over a turn (mechanics/curve_layout.py); none: the circle of ``radius``. The dynamic models
+    run on the circle of ``radius`` (the oval's mean radius) for now."""
     clutch: Optional[Clutch] = None
     """An overrunning clutch or decoupler between this pulley and its accessory's rotor; none: the loads act on the
     pulley itself."""
@@ -405,7 +463,31 @@ class Pulley(Spec):
                                  f"its centre, radius {self.radius * 1e3:.3g} mm)")
             if self.arm.free_angle is not None:
                 object.__setattr__(self, "arm", _supplier_arm(self.name, self.center, self.arm))
+        if self.pitch_curve is not None:
+            self._pitch_curve()
         return self
+
+    def _pitch_curve(self):
+        from ..mechanics.pitch_curves import check_convex
+
+        c = self.curve
+        if self.pitch_curve.kind == "table":
+            mean = c.mean_radius
+            if abs(mean - self.radius) > 0.005 * mean:
+                raise ValueError(f"pitch_curve.rows: pulley {self.name!r}: the table's mean radius is {mean * 1e3:.4f} mm "
+                                 f"but radius is {self.radius * 1e3:.4f} mm (more than 0.5 % apart): give radius = "
+                                 f"\"{mean * 1e3:.4f} mm\"")
+        try:
+            check_convex(c)
+        except ValueError as exc:
+            raise ValueError(f"pitch_curve: pulley {self.name!r}: {exc}") from None
+
+    @property
+    def curve(self):
+        """The pulley's pitch curve (mechanics/pitch_curves.py): its ``pitch_curve``, else the circle of ``radius``."""
+        from ..mechanics.pitch_curves import Circle
+
+        return Circle(self.radius) if self.pitch_curve is None else self.pitch_curve.curve(self.radius)
 
     @property
     def tensioner(self):
@@ -954,6 +1036,15 @@ class Model(Spec):
             raise ValueError("belt.teeth: no pulley has grooves (give teeth = N on the pulleys the belt's teeth engage)")
         for k, q in enumerate(self.pulleys):
             if q.teeth is None:
+                continue
+            if q.pitch_curve is not None:      # the curve's length holds the teeth
+                per = q.curve.perimeter
+                if abs(per - q.teeth * pitch) > 0.005 * q.teeth * pitch:
+                    fit = max(round(per / pitch), 1)
+                    raise ValueError(f"pulleys[{k}].teeth: pulley {q.name!r} has {q.teeth} grooves of the {teeth.profile} "
+                                     f"pitch {pitch * 1e3:.4g} mm, {q.teeth * pitch * 1e3:.4f} mm of pitch line, but its "
+                                     f"pitch curve is {per * 1e3:.4f} mm long (more than 0.5 % apart): {fit} grooves fit, "
+                                     f"or a radius of {q.radius * q.teeth * pitch / per * 1e3:.4f} mm")
                 continue
             r = q.teeth * pitch / (2 * math.pi)
             if abs(q.radius - r) > 0.005 * r:

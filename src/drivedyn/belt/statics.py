@@ -86,6 +86,10 @@ def check_data(model, sysm=None) -> dict:
                   "shapes": md.shapes, "participation": md.participation},
         **({"supplier": supplier.report_data(drive)} if supplier.wanted(model) else {}),
     }
+    from .geometry import pitch_turn
+
+    if pitch_turn.wanted(model):     # the belt path on the pitch curves over a turn, on check's centres
+        out["pitch_curves"] = pitch_turn.turn_data(model, lay.centers)
     from .criteria import judge_check
 
     return {**judge_check(drive.model, out), **out}       # the verdict first
@@ -153,7 +157,11 @@ CHECK_UNITS = {"steady.spans.*.tension": "N", "steady.pulleys.*.torque": "N*m", 
                "supplier.duty_dynamic.arm_travel*": "rad", "supplier.duty_dynamic.*": "",
                "supplier.tolerance.tension": "N", "supplier.tolerance.slip_factor*": "1",
                "supplier.tolerance.hub_load*": "N", "supplier.tolerance.stop_clearance": "1",
-               "supplier.tolerance.rows_not_carried": "rad/s", "supplier.tolerance.position": ""}
+               "supplier.tolerance.rows_not_carried": "rad/s", "supplier.tolerance.position": "",
+               "pitch_curves.pulley": "", "pitch_curves.turns": "1", "pitch_curves.positions": "1",
+               "pitch_curves.curves.*.kind": "", "pitch_curves.curves.*.ratio": "1", "pitch_curves.curves.*": "m",
+               "pitch_curves.*.order": "1", "pitch_curves.*.*.order": "1", "pitch_curves.pulleys.*.wrap.*": "rad",
+               "pitch_curves.*": "m"}
 
 
 def check_json(model) -> str:
@@ -234,6 +242,10 @@ def report_and_data(model):
         tens = {n: (r["tension_in"], r["tension_out"], r["torque"]) for n, r in st.items()}
         data["teeth"] = tooth_table(model, lay, sysm.init.seg_length * sysm.n, tens, T0)
         lines += tooth_lines(data["teeth"])
+    if "pitch_curves" in data:
+        from .geometry.pitch_turn import turn_lines
+
+        lines += [""] + turn_lines(data["pitch_curves"])
     if "supplier" in data:
         from .supplier import report_lines
 
