@@ -1041,10 +1041,13 @@ class Model(Spec):
                 per = q.curve.perimeter
                 if abs(per - q.teeth * pitch) > 0.005 * q.teeth * pitch:
                     fit = max(round(per / pitch), 1)
+                    fits = f"{fit} grooves fit, or " if abs(per - fit * pitch) <= 0.005 * fit * pitch else ""
+                    scale = (f"a radius of {q.radius * q.teeth * pitch / per * 1e3:.4f} mm" if q.pitch_curve.kind == "oval"
+                             else f"the table's radii x {q.teeth * pitch / per:.6f}")
                     raise ValueError(f"pulleys[{k}].teeth: pulley {q.name!r} has {q.teeth} grooves of the {teeth.profile} "
                                      f"pitch {pitch * 1e3:.4g} mm, {q.teeth * pitch * 1e3:.4f} mm of pitch line, but its "
-                                     f"pitch curve is {per * 1e3:.4f} mm long (more than 0.5 % apart): {fit} grooves fit, "
-                                     f"or a radius of {q.radius * q.teeth * pitch / per * 1e3:.4f} mm")
+                                     f"pitch curve is {per * 1e3:.4f} mm long (more than 0.5 % apart): {fits}{scale} "
+                                     "fits the grooves")
                 continue
             r = q.teeth * pitch / (2 * math.pi)
             if abs(q.radius - r) > 0.005 * r:
