@@ -142,3 +142,17 @@ def test_check_reports_the_ranges_over_a_turn(tmp_path, capsys):
         np.ptp(turn.length), abs=1e-12)
     assert json.loads(out)["units"]["pitch_curves.pulleys.crank.wrap.min"] == "rad"
     assert json.loads(out)["units"]["pitch_curves.spans.crank-cam.amplitude"] == "m"
+
+
+def test_plot_of_the_turn(tmp_path):
+    from drivedyn.belt.geometry.pitch_turn import turn_of
+    from drivedyn.belt.plots import plot_pitch_turn
+    from drivedyn.core.plotting import figure, savefig
+
+    turn = turn_of(drivedyn.loads(HTD.replace("CURVE", OVAL)), points=90)
+    fig, ax = figure()
+    lines = plot_pitch_turn(turn, ax[0, 0])
+    assert len(lines) == 3
+    # the drawn change of the crank-cam span is the span's own over the turn
+    assert np.ptp(lines[1].get_ydata()) == pytest.approx(np.ptp(turn.spans[:, 0]) * 1e3)
+    assert savefig(fig, tmp_path / "pitch.png").stat().st_size > 0

@@ -793,3 +793,25 @@ def animate(ds, path, max_frames=60) -> Path:
 
     anim = FuncAnimation(fig, draw, frames=len(idx), blit=False)
     return plotting.save_animation(anim, path, writer=PillowWriter(fps=10), dpi=70)
+
+
+def plot_pitch_turn(turn, ax=None):
+    """The belt path on non-circular pitch curves over a turn (a mechanics.curve_turn.Turn, e.g.
+    geometry/pitch_turn.turn_of(model)): the belt length's and each span's change from its mean
+    against the turned pulley's angle (mm), legends with the ranges."""
+    ax = plotting.ax_or_new(ax)
+    deg = np.degrees(turn.theta - turn.theta[0])
+    name = turn.names[turn.pulley]
+    out = ax.plot(deg, (turn.length - turn.length.mean()) * 1e3, color="k", lw=1.5,
+                  label=f"belt length {turn.length.mean() * 1e3:.2f} mm, range {np.ptp(turn.length) * 1e3:.3f} mm")
+    for i, sp in enumerate(turn.span_names):
+        s = turn.spans[:, i]
+        out += ax.plot(deg, (s - s.mean()) * 1e3, color=f"C{i % 10}", lw=1,
+                       label=f"span {sp} {s.mean() * 1e3:.2f} mm, range {np.ptp(s) * 1e3:.3f} mm")
+    ax.set_xlabel(f"angle of {name} (deg)")
+    ax.set_ylabel("change from the mean (mm)")
+    ax.set_title(f"belt path on the pitch curves over {turn.turns} turn(s) of {name}")
+    ax.set_xlim(0, 360 * turn.turns)
+    ax.legend(fontsize=7, loc="best")
+    ax.grid(alpha=0.3)
+    return out
