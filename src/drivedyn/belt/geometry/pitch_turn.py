@@ -17,6 +17,8 @@ from ...mechanics.curve_turn import over_a_turn, ratios_of, whole_turns
 
 #: positions per turn of the turned pulley (2 deg: the order content up to order 90)
 POINTS = 180
+#: below this amplitude (m, rad) a quantity is reported as unchanged over the turn (round-off)
+FLAT = 1e-10
 
 
 def wanted(model) -> bool:
@@ -52,6 +54,8 @@ def turn_of(model, centers=None, points: int = POINTS):
 def _stats(turn, values) -> dict:
     values = np.asarray(values, float)
     order, amp = turn.dominant(values)
+    if amp < FLAT:       # a quantity the curves leave unchanged: no order to name
+        order, amp = None, 0.0
     return {"min": float(values.min()), "max": float(values.max()), "mean": float(values.mean()),
             "order": order, "amplitude": amp}
 
@@ -87,12 +91,15 @@ def turn_lines(data: dict) -> list:
         out.append(f"  {name}: {c['kind']}, radius {c['radius_min'] * mm:.3f}-{c['radius_max'] * mm:.3f} mm, "
                    f"perimeter {c['perimeter'] * mm:.3f} mm, {c['ratio']:+.4g} turns per turn of {data['pulley']}")
     L = data["belt_length"]
-    out.append(f"  belt path length {L['min'] * mm:.3f}-{L['max'] * mm:.3f} mm (range {(L['max'] - L['min']) * mm:.4f} mm, "
-               f"largest order {L['order']:g} of {data['pulley']}, amplitude {L['amplitude'] * mm:.4f} mm)")
+    largest = ("" if L["order"] is None else
+               f", largest order {L['order']:g} of {data['pulley']}, amplitude {L['amplitude'] * mm:.4f} mm")
+    out.append(f"  belt path length {L['min'] * mm:.3f}-{L['max'] * mm:.3f} mm (range {(L['max'] - L['min']) * mm:.4f} mm"
+               f"{largest})")
     out.append(f"  {'span':24s} {'min mm':>9s} {'max mm':>9s} {'range mm':>9s} {'order':>6s} {'ampl. mm':>9s}")
     for name, s in data["spans"].items():
+        order = "-" if s["order"] is None else f"{s['order']:g}"
         out.append(f"  {name:24s} {s['min'] * mm:9.3f} {s['max'] * mm:9.3f} {(s['max'] - s['min']) * mm:9.4f} "
-                   f"{s['order']:6g} {s['amplitude'] * mm:9.4f}")
+                   f"{order:>6s} {s['amplitude'] * mm:9.4f}")
     out.append(f"  {'pulley':14s} {'wrap deg':>15s} {'r_eff in mm':>17s} {'r_eff out mm':>17s}")
     for name, p in data["pulleys"].items():
         w, ri, ro = p["wrap"], p["radius_in"], p["radius_out"]
