@@ -117,18 +117,16 @@ def _table(model, j, s, d_eff, offset) -> PositionTable:
     targets = {"replace": nominal + tol + wear, "max belt": nominal + tol, "min belt": nominal - tol}
     fixed = {"free arm": 0.0, "mean": rel_drawn, "load stop": load_stop}      # rows at a known arm angle
     lo_len, hi_len = rebl(load_stop), rebl(0.0)          # the arm's reach in required belt length
-    # the drawn arm is the nominal belt's (the mean row): belt.length_offset must put a belt within
-    # its tolerance there (the reports' own mean rows lie within 0.4 mm of their nominal length)
-    L, band = belt.effective_length, max(tol, 0.5e-3)
-    if abs(nominal - L) > band:
-        where = ("beyond the free arm" if L > hi_len else "beyond the load stop" if L < lo_len
-                 else "at another arm angle than the drawn one")
-        raise ModelError(f"the drawn tensioner {p.name!r} holds a required belt length of {nominal * 1e3:.2f} mm "
-                         f"(effective drive length {(nominal + offset) * 1e3:.2f} mm less the offset "
-                         f"{offset * 1e3:.2f} mm), outside the {L * 1e3:.2f} mm belt's band {(L - band) * 1e3:.2f}-"
-                         f"{(L + band) * 1e3:.2f} mm: the drawn arm is the nominal belt's position, and a "
-                         f"{L * 1e3:.2f} mm belt lies {where} (the arm reaches {lo_len * 1e3:.2f}-{hi_len * 1e3:.2f} mm)",
-                         field="belt.length_offset")
+    # the belt is the part: the tensioner finds the installed position from its length; a belt the arm
+    # cannot hold between its load stop and its free arm (a length_offset of +-60 mm read a required
+    # length of 1079.69 mm for a 1020 mm belt) is refused with the arm's reach
+    L = belt.effective_length
+    if not min(lo_len, hi_len) <= L <= max(lo_len, hi_len):
+        where = "beyond the free arm" if L > max(lo_len, hi_len) else "beyond the load stop"
+        raise ModelError(f"the {L * 1e3:.2f} mm belt lies {where} of tensioner {p.name!r}: with the offset "
+                         f"{offset * 1e3:.2f} mm the arm reaches required belt lengths of {lo_len * 1e3:.2f}-"
+                         f"{hi_len * 1e3:.2f} mm (the drawn arm holds {nominal * 1e3:.2f} mm)",
+                         field="belt.length_offset" if belt.length_offset else "belt.effective_length")
     rows, unreached = [], {}
     for name in ROWS:
         if name in fixed:
