@@ -197,8 +197,10 @@ class Work(NamedTuple):
     pul_dw: np.ndarray       # (nk) each pulley's speed change over the last step (the implicit scheme's explicit pulleys)
     # a synchronous belt's teeth (segments/_teeth.py), per segment (n; size 0 without teeth): the tooth's load
     # (N, + against a belt running ahead of its groove), its pulley (-1: none), its groove, the hold T p / R (N);
-    # tooth_stat (4): steps, jumps, time and pulley of the last jump
+    # tooth_qs: its spring's load before the climb limit; tooth_stat (8): steps, jumps, time and pulley of the
+    # last jump, tooth-steps at the climb limit, time and pulley of the first, unused
     tooth_q: np.ndarray
+    tooth_qs: np.ndarray
     tooth_j: np.ndarray
     tooth_g: np.ndarray
     tooth_hold: np.ndarray

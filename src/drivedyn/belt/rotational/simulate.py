@@ -274,8 +274,8 @@ def new_states(sysm: RotSystem):
                lin_x=z((0, 9)), lin_r=z((0, 3)), lin_sig=e, lin_gam=e, lin_fk=e, lin_fa=e, lin_far=e, lin_fnx=e, lin_fny=e,
                lin_geo=e, lin_u=z((0, 0, 3)), lin_zslot=np.zeros(0, np.int64), lin_zc=z((0, 0, 3)), lin_g=z((nk, nk + 1)),
                lin_stat=z(4), cand_j=np.zeros(0, np.int64), cand_skip=np.zeros(0, np.int64), lin_st=e,
-               lin_cnt=np.zeros(4, np.int64), pul_dw=z(nk), tooth_q=e, tooth_j=np.zeros(0, np.int64),
-               tooth_g=np.zeros(0, np.int64), tooth_hold=e, tooth_stat=z(4))
+               lin_cnt=np.zeros(4, np.int64), pul_dw=z(nk), tooth_q=e, tooth_qs=e, tooth_j=np.zeros(0, np.int64),
+               tooth_g=np.zeros(0, np.int64), tooth_hold=e, tooth_stat=z(8))
     T = sysm.rest_tension
     EA = R.EA
     c1, c2 = R.c1, R.c2

@@ -362,7 +362,7 @@ def _advance(nsteps, t, h, B, Ct, P, A, S, W, lin, semi, X):
                     S.om[j] = X.wsave[j]
         if semi is not None:
             if Ct.teeth:
-                _teeth(n, nk, t, Ct, S, P.r, W.fx, W.fy, W.jfk, W.jdx, W.jdy, W.tooth_q, W.tooth_j, W.tooth_g,
+                _teeth(n, nk, t, Ct, S, P.r, W.fx, W.fy, W.jfk, W.jdx, W.jdy, W.tooth_q, W.tooth_qs, W.tooth_j, W.tooth_g,
                        W.tooth_hold, W.tooth_stat, X.tq_belt, hubx, huby)
             pcd, pfr = _contacts_semi(n, nk, h, hg, hvb, X.hm, X.hi, W.fx, W.fy, W.mz, Ct, S, P.r, W.cand_j,
                                       W.cand_skip, W.seg_n, W.seg_t, W.seg_p, X.sj, X.sq, X.tq_belt, hubx, huby)

@@ -23,9 +23,11 @@ from .records import STAGE
 
 
 @njit(**STAGE)
-def _teeth(n, nk, t, Ct, S, pr, fx, fy, jfk, jdx, jdy, tq, tj, tg, thold, tstat, tq_belt, hubx, huby):
+def _teeth(n, nk, t, Ct, S, pr, fx, fy, jfk, jdx, jdy, tq, tqs, tj, tg, thold, tstat, tq_belt, hubx, huby):
     """Stage: add each tooth's force to its segment (fx, fy) and to its pulley's belt torque and hub
-    force; record its load (tq, N), pulley (tj, -1: none), groove (tg) and hold (thold, N)."""
+    force; record its load (tq, N), its spring's load before the climb limit (tqs), pulley (tj, -1: none),
+    groove (tg) and hold (thold, N); tstat: steps, jumps, time and pulley of the last jump, tooth-steps
+    at the climb limit, time and pulley of the first."""
     band = Ct.tband
     hp = 0.5 * Ct.tplay
     two_pi = 2.0 * math.pi
@@ -53,6 +55,7 @@ def _teeth(n, nk, t, Ct, S, pr, fx, fy, jfk, jdx, jdy, tq, tj, tg, thold, tstat,
         if jn < 0:
             tj[i] = -1
             tq[i] = 0.0
+            tqs[i] = 0.0
             continue
         j = jn
         d = math.sqrt(d2)
@@ -80,12 +83,15 @@ def _teeth(n, nk, t, Ct, S, pr, fx, fy, jfk, jdx, jdy, tq, tj, tg, thold, tstat,
         T = 0.5 * (max(jfk[i] * math.sqrt(jdx[i] * jdx[i] + jdy[i] * jdy[i]), 0.0)
                    + max(jfk[ib] * math.sqrt(jdx[ib] * jdx[ib] + jdy[ib] * jdy[ib]), 0.0))
         hold = T * Ct.tpitch / pr[j]
+        tqs[i] = Q
         if Ct.tclimb > 0.0:
             qmax = hold / Ct.tclimb
-            if Q > qmax:
-                Q = qmax
-            elif Q < -qmax:
-                Q = -qmax
+            if Q > qmax or Q < -qmax:
+                Q = qmax if Q > 0.0 else -qmax
+                if tstat[4] == 0.0:        # the first tooth to climb: when and where
+                    tstat[5] = t
+                    tstat[6] = j
+                tstat[4] += 1.0
         tq[i] = Q
         thold[i] = hold
         fx[i] += Q * sa

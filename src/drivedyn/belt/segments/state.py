@@ -48,8 +48,8 @@ def new_work(sysm, state=None) -> BK.Work:
                   span_joint=span_joint, track=np.ascontiguousarray(sysm.track, dtype=np.int64),
                   lin_d=z((nl, 9)), lin_o=z((nl, 9)), lin_e=z((nl, 9)), lin_dinv=z((nl, 9)), lin_y=z((nl, 9)),
                   lin_x=z((nl, 9)), lin_r=z((nl, 3)), lin_sig=z(nl), lin_gam=z(nl), lin_fk=z(nl), lin_fa=z(nl), lin_far=z(nl), lin_fnx=z(nl), lin_fny=z(nl), lin_geo=z(nl), lin_u=z((nk if nl else 0, nl, 3)), lin_zslot=np.full(nl, -1, dtype=np.int64), lin_zc=z((2 * K.ZMAX if nl else 0, nl, 3)), lin_g=z((nk, nk + 1)), lin_stat=z(4), cand_j=np.full(n, -1, dtype=np.int64), cand_skip=np.zeros(n, dtype=np.int64), lin_st=z(nl), lin_cnt=np.zeros(4, dtype=np.int64), pul_dw=z(nk),
-                  tooth_q=z(nt), tooth_j=np.full(nt, -1, dtype=np.int64), tooth_g=np.zeros(nt, dtype=np.int64),
-                  tooth_hold=z(nt), tooth_stat=z(4))
+                  tooth_q=z(nt), tooth_qs=z(nt), tooth_j=np.full(nt, -1, dtype=np.int64), tooth_g=np.zeros(nt, dtype=np.int64),
+                  tooth_hold=z(nt), tooth_stat=z(8))
 
 
 def clear_accumulators(W: BK.Work):

@@ -24,6 +24,8 @@ class TeethRecorder:
         self.margin = np.full((ns, self.nk), np.nan)
         self.in_mesh = np.zeros((ns, self.nk), dtype=np.int64)
         self.jumps = np.zeros(ns)
+        self.climbs = np.zeros(ns)             # tooth-steps at the climb limit so far
+        self.first_climb = None
         self.last_jump = np.full((ns, 2), np.nan)
         self.belt_torque = np.zeros((ns, self.nk))     # sum of Q d of the teeth, instantaneous
         self.climb = float(C.tclimb)
@@ -43,11 +45,14 @@ class TeethRecorder:
         d = np.hypot(S.x[i] - S.cx[j], S.y[i] - S.cy[j])
         np.add.at(self.belt_torque[k], j, q * d)
         if self.climb > 0:
+            # against the spring's load before the climb limit: below 1 while a tooth climbs
             with np.errstate(divide="ignore"):
-                m = W.tooth_hold[i] / (self.climb * np.abs(q))
+                m = W.tooth_hold[i] / (self.climb * np.abs(W.tooth_qs[i]))
             for jj in np.unique(j):
                 self.margin[k, jj] = float(np.min(m[j == jj]))
         self.jumps[k] = W.tooth_stat[1]
+        self.climbs[k] = W.tooth_stat[4]
+        self.first_climb = (float(W.tooth_stat[5]), int(W.tooth_stat[6])) if W.tooth_stat[4] > 0 else None
         self.last_jump[k] = W.tooth_stat[2:4] if W.tooth_stat[1] > 0 else np.nan
 
 
@@ -134,6 +139,9 @@ def summary(ds, rec: TeethRecorder, sel, sysm, model) -> dict:
         row["phase_error_orders"] = _orders_of(th0, e)
     jumps = int(ds["tooth_jumps"].values[-1]) if ds.sizes["time"] else 0
     out["jumps"] = jumps
+    out["climbing_steps"] = int(rec.climbs[ds.sizes["time"] - 1]) if ds.sizes["time"] else 0
+    if rec.first_climb is not None:
+        out["first_climb_time"], out["first_climb_pulley"] = rec.first_climb[0], names[rec.first_climb[1]]
     if jumps:
         t_last, j_last = rec.last_jump[ds.sizes["time"] - 1]
         out["last_jump_time"] = float(t_last)
