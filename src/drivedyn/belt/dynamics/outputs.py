@@ -179,13 +179,10 @@ def run_summary(model, sysm, ds, solver, sel, window, disc) -> dict:
 
 
 def span_stability_summary(model, sysm, ds, sel, f_driver) -> dict:
-    """``span_stability`` of a steady window (dynamics/span_stability.py); a run-up's comes with its
-    bins (runup.add_runup)."""
-    from .runup import crank_index
+    """``span_stability`` of a steady window (dynamics/span_stability.py); a run-up's, with its bins
+    (runup.add_runup), takes its place (a crank held at one speed has no bins: its window is read)."""
     from .span_stability import steady
 
-    if crank_index(model) is not None:
-        return {}
     out = steady(model, sysm.layout, ds, sel, f_driver, int(getattr(sysm, "n", 0) or 0))
     return {"span_stability": out} if out else {}
 
