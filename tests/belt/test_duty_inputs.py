@@ -146,3 +146,35 @@ def test_the_kind_cannot_change_through_an_override(capsys):
     assert code == 2 and len(err.splitlines()) == 1 and "kind: the kind of a model cannot change" in err, err
     assert "more problems" not in err
     assert main(["check", str(drivedyn.example_path("belt-5pk")), "--set", "kind=belt-drive"]) == 0
+
+
+def test_a_pivot_inside_another_pulley_is_refused():
+    """A pivot 67 mm from the crank's centre (radius 88.7 mm) was accepted and the arm drawn through it."""
+    model = drivedyn.load(drivedyn.example_path("fead-ag0868"))
+    with pytest.raises(ModelError) as info:
+        drivedyn.replace(model, {"pulleys.2.arm.pivot": ["67 mm", "0 mm"], "pulleys.2.arm.free_angle": None,
+                                 "pulleys.2.arm.free_torque": None, "pulleys.2.arm.load_stop": None})
+    text = str(info.value)
+    assert "pulleys[2].arm.pivot" in text and "inside pulley 'CRK' (67 mm from its centre, radius 88.71 mm)" in text, text
+
+
+@pytest.mark.parametrize("rate, per_rad", [("0.4 N*m/deg", 0.4 * 180 / math.pi), ("0.4 N*m/rad", 0.4), (0.4, 0.4)])
+def test_a_torsional_rate_reads_per_its_angle(rate, per_rad):
+    model = _ag0868(**{"pulleys.2.arm.rate": rate})
+    assert model.pulleys[2].arm.rate == pytest.approx(per_rad, rel=1e-12)
+
+
+def test_a_torsional_rate_without_an_angle_in_its_unit_is_refused():
+    """"0.4 N*m" read per radian: a spring 57 times softer than meant, and every duty row failed."""
+    with pytest.raises(ModelError) as info:
+        _ag0868(**{"pulleys.2.arm.rate": "0.4 N*m"})
+    text = str(info.value)
+    assert "pulleys[2].arm.rate" in text and "no angle in its unit" in text and "'0.4 N*m/deg'" in text, text
+
+
+def test_check_says_what_a_pulleys_power_takes_at_its_speed():
+    """A pulley's power is an alternator's electrical output with a cut-in (a pump given 500 W carried
+    23 W at 1000 rpm): check says so, with the shaft power it takes at its speed."""
+    text = drivedyn.check(drivedyn.load(drivedyn.example_path("fead-runup")))
+    line = next(ln for ln in text.splitlines() if "alternator.power" in ln)
+    assert "electrical output" in line and "cut_in_speed 1003 rpm" in line and "769.2 W of shaft power" in line, line

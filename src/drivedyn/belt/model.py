@@ -351,11 +351,14 @@ class Pulley(Spec):
     quadratic_torque: quantity("N*m*s^2/rad^2", ge=0) = 0.0
     """Quadratic load coefficient c of a pump or fan: torque -c omega |omega|."""
     power: quantity("W", ge=0) = 0.0
-    """Electrical power an alternator delivers: torque -power / (efficiency omega) above the cut-in speed."""
+    """Electrical power an alternator delivers (not shaft power: the shaft takes power / efficiency), by the alternator
+    law: none below cut_in_speed (955 rpm by default), rising linearly to the full at twice it; a pump or fan is
+    quadratic_torque or torque_speed. A duty row's power (duty_cycle.rows) is shaft power."""
     efficiency: float = 1.0
     """Efficiency of the alternator (in (0, 1]): the shaft power is power / efficiency."""
     cut_in_speed: quantity("rad/s", gt=0) = 100.0
-    """Alternator cut-in speed: no electrical load below it, rising linearly to the full power at twice it."""
+    """Alternator cut-in speed (100 rad/s, 955 rpm): no electrical load below it, rising linearly to the full power at
+    twice it."""
     teeth: Optional[Annotated[int, Field(ge=8, le=400)]] = None
     """Grooves of a toothed pulley (with belt.teeth): its radius must be the pitch radius teeth x pitch / (2 pi)
     within 0.5 %; none: a smooth pulley or idler (friction contact, the belt's back on a back-side idler).
@@ -781,7 +784,8 @@ class DutyRow(Spec):
     """Share of the running time spent at this row (the rows' shares add up to 1; 0: the row is evaluated and shown,
     and carries no share of the belt's damage)."""
     power: dict[str, quantity("W", ge=0)] = {}
-    """Accessory loads as powers, by pulley name."""
+    """Accessory loads as shaft powers (W, at the row's speed, no cut-in; an alternator's is its electrical output /
+    efficiency), by pulley name."""
     torque: dict[str, quantity("N*m", ge=0)] = {}
     """Accessory loads as torques, by pulley name (magnitudes opposing the rotation); a pulley has power or torque,
     not both."""
@@ -1008,6 +1012,7 @@ class Model(Spec):
         if self.output.steady_window is not None and self.output.steady_window[1] > self.simulation.duration * (1 + 1e-9):
             raise ValueError("output.steady_window ends after simulation.duration")
         self._teeth()
+        self._pivots()
         self._clutch_on_driver()
         self._reversing()
         self._cost()
@@ -1070,6 +1075,18 @@ class Model(Spec):
         if self.belt.segments != "auto":
             raise ValueError("belt.segments: a toothed belt has teeth.count x teeth.nodes_per_tooth segments; leave "
                              "segments out (or \"auto\")")
+
+    def _pivots(self):
+        """A tensioner arm's pivot inside another pulley (its own is checked with the pulley) was
+        accepted and the arm drawn through that pulley."""
+        for k, p in enumerate(self.pulleys):
+            if p.arm is None:
+                continue
+            for q in self.pulleys:
+                d = math.hypot(p.arm.pivot[0] - q.center[0], p.arm.pivot[1] - q.center[1])
+                if q is not p and not d > q.radius:
+                    raise ValueError(f"pulleys[{k}].arm.pivot: the arm pivot of pulley {p.name!r} lies inside pulley "
+                                     f"{q.name!r} ({d * 1e3:.4g} mm from its centre, radius {q.radius * 1e3:.4g} mm)")
 
     def _reversing(self):
         """A periodic run-up holds the crank at speeds of one direction; a speed table that changes

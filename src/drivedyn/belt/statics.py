@@ -282,13 +282,22 @@ def _steady_lines(data, model) -> list:
             "at rest": "at rest (no load)"}[st["state"]]
     out = [f"steady state (creep theory, belt length kept; driver {st['driver']}): {what}"]
     out += ["  " + n for n in st["notes"]]
+    rpm = 30 / math.pi
     for p in model.pulleys:     # a swept prescribed speed: say which speed check evaluates
         speeds = sorted({abs(r[1]) for r in (p.speed_time or [])} - {0.0})
         if len(speeds) > 1:
-            rpm = 30 / math.pi
             out.append(f"  evaluated at the last row of {p.name}.speed_time, {abs(p.speed_time[-1][1]) * rpm:.0f} rpm; "
                        f"the table runs {speeds[0] * rpm:.0f}-{speeds[-1] * rpm:.0f} rpm, and the lowest running speed "
                        "(idle) is often the critical one for slip: the run judges every speed bin")
+    for p in model.pulleys:     # the alternator law of ``power`` (a pump given a power carried almost none)
+        if p.power > 0:
+            w = abs(st["belt_speed"]) / p.radius
+            shaft = p.power / p.efficiency
+            now = shaft * min(w / p.cut_in_speed - 1.0, 1.0) if w > p.cut_in_speed else 0.0
+            out.append(f"  {p.name}.power {p.power:.4g} W is an alternator's electrical output (shaft power / efficiency "
+                       f"{shaft:.4g} W): none below its cut_in_speed {p.cut_in_speed * rpm:.0f} rpm, rising to the full at "
+                       f"{2 * p.cut_in_speed * rpm:.0f} rpm; here at {w * rpm:.0f} rpm it takes {now:.4g} W of shaft power "
+                       "(a pump or fan: quadratic_torque or torque_speed)")
     out.append(f"{'pulley':14s} {'load N m':>9s} {'T in N':>8s} {'T out N':>8s} {'slip arc':>9s} {'of wrap':>8s} "
                f"{'creep %':>8s} {'margin':>7s} {'slips at N m':>12s}")
     for name, p in st["pulleys"].items():

@@ -97,10 +97,25 @@ def _factor(unit_text: str, unit: str) -> float | None:
     return one if math.isfinite(one) and two == 2.0 * one else None
 
 
+#: SI units per angle, in which the angle is dimensionless to pint (and SI): a text without an angle
+#: ("0.4 N*m" for a torsional rate) would read per radian, 57.3 times softer than per degree, silently
+PER_ANGLE = {"N*m/rad"}
+_ANGLE = re.compile(r"(?<![A-Za-z])(rad|radians?|deg|degrees?|rev|revolutions?|turns?|arcmin|arcsec|grad|gon)(?![A-Za-z])")
+
+
+def _check_angle(text: str, unit: str) -> None:
+    if unit in PER_ANGLE and re.search(r"[A-Za-z]", text) and not _ANGLE.search(text):
+        num = text.split()[0] if text.split() else text
+        raise ModelError(f"{text!r} has no angle in its unit, and a torsional rate is per angle: write "
+                         f"'{num} {unit}' or, as suppliers print it, '{num} {unit.replace('rad', 'deg')}' (per degree "
+                         "it is 57.3 times stiffer)")
+
+
 def _parse(text: str, unit: str) -> float:
     if len(text) > MAX_LENGTH:
         raise ModelError(f"cannot read a {len(text)}-character string as a quantity (expected e.g. '1.5 {unit}')")
     _check_powers(text)
+    _check_angle(text, unit)
     m = _SIMPLE.fullmatch(text)
     if m is not None:
         number, unit_text = float(m.group(1)), (m.group(2) or "").strip()
