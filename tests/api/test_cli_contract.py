@@ -161,3 +161,30 @@ def test_an_output_name_too_long_for_the_file_system_is_one_line(tmp_path, capsy
         err = capsys.readouterr().err.strip()
         assert code == 2 and len(err.splitlines()) == 1 and err.startswith("drivedyn: error: "), (args[0], err)
         assert ("too long" in err or "No such file" in err) and time.perf_counter() - t0 < 5, (args[0], err)
+
+
+def test_a_very_long_name_in_a_diagnostic_prints_at_once():
+    """The terminal library folds one unbroken word in quadratic time: a 100 000-character pulley name
+    took 232 s to print its diagnostic lines. Every long word is shortened for the terminal
+    (outputs.shorten_words: its start, '~' and a stable hash; the files keep it whole)."""
+    import io
+    from types import SimpleNamespace
+
+    from rich.console import Console
+
+    from drivedyn.cli import _print_status
+
+    name = "n" * 30_000
+    d = SimpleNamespace(code="gross-slip", text=f"pulley {name} slips over its whole wrap", value=1.0, limit=0.0,
+                        unit="1", quantity=f"pulleys.{name}.slip")
+    result = SimpleNamespace(status="warning", message=f"{name} warned", diagnostics=[d])
+    console = Console(file=io.StringIO(), width=80)
+    t0 = time.process_time()
+    _print_status(console, result)
+    assert time.process_time() - t0 < 5.0          # 30 000 characters took about 30 s
+    text = console.file.getvalue().replace("\n", "")
+    assert "gross-slip" in text and "slips over its whole wrap" in text and name not in text, text[:200]
+    from drivedyn.outputs import shorten_words
+
+    assert shorten_words(f"a {name} b") == f"a {shorten_words(name)} b" and len(shorten_words(name)) == 300
+    assert shorten_words("short words stay") == "short words stay"

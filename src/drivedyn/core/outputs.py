@@ -40,6 +40,19 @@ def shorten(text: str, limit: int) -> str:
     return text[: limit - 11] + "~" + _hash(text)
 
 
+#: longest unbroken word the terminal is given (names are data: the terminal library folds one
+#: long word in a time that grows with the square of its length, 100 000 characters took 232 s)
+MAX_WORD = 300
+
+
+def shorten_words(text: str, limit: int = MAX_WORD) -> str:
+    """``text`` with every run of characters without white space longer than ``limit`` shortened
+    (:func:`shorten`: its start, '~' and a stable hash); the files written keep names whole."""
+    if len(text) <= limit:
+        return text
+    return re.sub(r"\S{%d,}" % (limit + 1), lambda m: shorten(m.group(0), limit), text)
+
+
 def file_stem(name: str, limit: int = MAX_STEM) -> str:
     """A file name stem for a user name: letters, digits, '.', '_', '-' kept, others as '_'."""
     safe = re.sub(r"[^A-Za-z0-9._-]", "_", name).strip(".") or "_"

@@ -245,9 +245,18 @@ def _print_table(console, table):
             console.width = narrow
 
 
+def _text(text) -> str:
+    """Text for the terminal: rich markup escaped, every long word shortened (names are data: the
+    terminal library folds one long word in quadratic time; outputs.shorten_words)."""
+    from rich.markup import escape
+
+    from .outputs import shorten_words
+
+    return escape(shorten_words(str(text)))
+
+
 def _print_overview(console, result):
     """The verdict table, then the tables per object (overview.py); the full summary is --all."""
-    from rich.markup import escape
     from rich.table import Table
 
     from .overview import tables, verdict_table
@@ -259,29 +268,29 @@ def _print_overview(console, result):
         for h in v["head"][:-1]:
             t.add_column(h, justify="right" if h in ("value", "limit") else "left", overflow="fold")
         for r in v["rows"]:
-            cells = [escape(str(c)) for c in r[:-1]]
+            cells = [_text(str(c)) for c in r[:-1]]
             cells[4] = f"[green]{cells[4]}[/green]" if r[4] == "pass" else f"[red]{cells[4]}[/red]"
             t.add_row(*cells)
         _print_table(console, t)
         # what each criterion judges (span_tension is the tension less m v^2, not a span's minimum)
         for r in v["rows"]:
             if r[6]:
-                console.print(escape(f"  {r[0]}: {r[6]}"), style="dim", soft_wrap=not console.is_terminal)
+                console.print(_text(f"  {r[0]}: {r[6]}"), style="dim", soft_wrap=not console.is_terminal)
     else:
         console.print(f"verdict: [{style}]{v['verdict']}[/{style}]")
     if v["note"]:
-        console.print(escape(f"not judged: {v['note']}"), soft_wrap=not console.is_terminal)
+        console.print(_text(f"not judged: {v['note']}"), soft_wrap=not console.is_terminal)
     for tb in tables(result):
         if not tb["rows"]:
             continue
-        t = Table(title=escape(tb["title"]), title_justify="left")
+        t = Table(title=_text(tb["title"]), title_justify="left")
         for h in tb["head"]:
-            t.add_column(escape(h), overflow="fold")     # a narrow terminal folds a name, not cuts it
+            t.add_column(_text(h), overflow="fold")     # a narrow terminal folds a name, not cuts it
         for r in tb["rows"]:
-            t.add_row(*[escape(str(c)) for c in r])
+            t.add_row(*[_text(str(c)) for c in r])
         _print_table(console, t)
         if tb.get("note"):
-            console.print(escape(tb["note"]), style="dim", soft_wrap=not console.is_terminal)
+            console.print(_text(tb["note"]), style="dim", soft_wrap=not console.is_terminal)
     console.print("full summary: summary.json, or drivedyn run --all", style="dim")
 
 
@@ -291,7 +300,6 @@ def _print_summary(console, result):
     from .overview import compact
     from ..core.results import flatten, number_text
 
-    from rich.markup import escape
 
     from ..core.outputs import shorten
 
@@ -305,28 +313,27 @@ def _print_summary(console, result):
         if k.startswith(("runup.", "flap.")) and isinstance(v, list):
             continue              # per crank-speed bin: the run-up table, summary.json
         unit = result.units.get(k, "")
-        k = escape(shorten(k, 120))
+        k = _text(shorten(k, 120))
         numeric = isinstance(v, (int, float, list, tuple)) and not isinstance(v, bool)
         if isinstance(v, float):
             v = number_text(v, unit if "speed" in k else "")      # rpm beside speeds, not beside frequencies
         elif isinstance(v, (list, tuple)):
             v = compact(v)
-        table.add_row(k, escape(shorten(str(v), 200)), "" if unit == "1" or not numeric else unit)
+        table.add_row(k, _text(shorten(str(v), 200)), "" if unit == "1" or not numeric else unit)
     _print_table(console, table)
 
 
 def _print_status(console, result):
     """The status line, then one line per diagnostic (code, text, value against limit)."""
-    from rich.markup import escape
 
     style = {"success": "green", "warning": "yellow", "failed": "red"}[result.status]
-    console.print(f"status: [{style}]{result.status}[/{style}]" + escape(f" ({result.message})" if result.message else ""))
+    console.print(f"status: [{style}]{result.status}[/{style}]" + _text(f" ({result.message})" if result.message else ""))
     for d in result.diagnostics:
         numbers = ""
         if d.value is not None and d.limit is not None:
             unit = "" if d.unit in ("", "1") else f" {d.unit}"
             numbers = f" ({d.quantity} = {d.value:.4g}{unit}, limit {d.limit:.4g}{unit})"
-        console.print(f"  [yellow]{d.code}[/yellow]: " + escape(d.text + numbers))
+        console.print(f"  [yellow]{d.code}[/yellow]: " + _text(d.text + numbers))
 
 
 @app.command()

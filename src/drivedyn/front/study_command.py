@@ -22,7 +22,7 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
     from ..study.cases import prune as prune_cache
     from ..study.execute import prepare, run_study
 
-    from rich.markup import escape
+    escape = _escape
 
     console = Console(stderr=True)
     from ..study.spec import Study, load_study
@@ -99,7 +99,7 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
 def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console, dry_run=False, report=True) -> int:
     """``drivedyn study`` of an optimisation: a progress bar over the budget, then the best design
     (``dry_run``: the design variables, objective and constraints, nothing run)."""
-    from rich.markup import escape
+    escape = _escape
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
     from ..study.execute import run_optimisation
@@ -153,6 +153,15 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
     console.print(escape(f"wrote {res.path}, {Path(res.path).parent / 'best.toml'}"
                          + (f" and {len(res.plots)} plot(s)" if res.plots else "")))
     return 0
+
+
+def _escape(text) -> str:
+    """Text for the terminal: rich markup escaped, every long word shortened (outputs.shorten_words)."""
+    from rich.markup import escape
+
+    from ..outputs import shorten_words
+
+    return escape(shorten_words(str(text)))
 
 
 def _has_dashboard(client) -> bool:
