@@ -253,10 +253,18 @@ def report_and_data(model):
     from .criteria import verdict_lines
 
     lines = verdict_lines(data) + [""] + lines
-    lines += ["", "static: no load, no gravity sag; span frequencies of the belt at rest (taut beam, pinned ends).",
-              f"integration: {integrator(model)}, step {sysm.step * 1e6:.3f} us (stability limit "
-              f"{sysm.step_limit * 1e6:.3f} us), {model.simulation.duration / sysm.step:.3g} steps for "
-              f"{model.simulation.duration:g} s"]
+    lines += ["", "static: no load, no gravity sag; span frequencies of the belt at rest (taut beam, pinned ends)."]
+    from .segments.system import RKF45_STAGES, rkf45_step
+
+    h_f = rkf45_step(model, sysm.init.tension) if integrator(model) == "rkf45" else None
+    duration = model.simulation.duration
+    if h_f is not None:      # its step is the friction law's, not the chain's (system.rkf45_step)
+        lines.append(f"integration: rkf45 (explicit, adaptive): the friction law limits its step to about {h_f:.2g} s, "
+                     f"{duration / h_f:.3g} steps of {RKF45_STAGES} stages for {duration:g} s (the semi-implicit "
+                     f"scheme's stable step {sysm.step_limit * 1e6:.3f} us: {duration / sysm.step_limit:.3g} steps)")
+    else:
+        lines.append(f"integration: {integrator(model)}, step {sysm.step * 1e6:.3f} us (stability limit "
+                     f"{sysm.step_limit * 1e6:.3f} us), {duration / sysm.step:.3g} steps for {duration:g} s")
     return "\n".join(lines), data
 
 

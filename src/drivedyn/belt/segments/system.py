@@ -67,6 +67,26 @@ class BeltSystem:
         return self.belt, self.contact, self.pulleys, self.arms
 
 
+#: evaluations of the chain per rkf45 step (Fehlberg's 4(5) pair): what its step costs against the
+#: single-evaluation schemes' steps the steps limit counts
+RKF45_STAGES = 6
+
+
+def rkf45_step(model, tension: float) -> float | None:
+    """rkf45's stable step (s) under the friction law, or None (no friction or no tension).
+
+    Explicit: a sticking segment's friction force mu N v / velocity_threshold is a damper of rate
+    mu N / dv on its mass m = rho l, with N = T l / r on a pulley of radius r; explicit Runge-Kutta
+    schemes are stable for h < ~2.8 m / (mu N / dv) = 2.8 rho r dv / (mu T) (the real-axis stability
+    limit of RK4/5, Hairer & Wanner, Solving ODEs II, IV.2). On examples/belt-5pk.toml it is about
+    1.3e-10 s (the run's own step control went to 7e-11 s)."""
+    mu = max([model.friction.coefficient] + [z.coefficient for z in model.friction.zones])
+    r = min(p.radius for p in model.pulleys)
+    if not (mu > 0 and tension > 0):
+        return None
+    return 2.8 * model.belt.mass_per_length * r * model.friction.velocity_threshold / (mu * tension)
+
+
 #: steps rkf45 takes within one output interval before it gives up (``build`` refuses a model whose
 #: friction law needs more)
 MAX_STEPS_PER_SAMPLE = 2_000_000
@@ -306,17 +326,15 @@ def _place(model, drive) -> Placed:
 
     steps = model.simulation.duration / min(step, model.output.interval)
     if integrator(model) == "rkf45":
-        # explicit: a sticking segment's friction force mu N v / velocity_threshold is a damper of
-        # rate mu N / dv on its mass m = rho l, with N = T l / r on a pulley of radius r; explicit
-        # Runge-Kutta schemes are stable for h < ~2.8 m / (mu N / dv) = 2.8 rho r dv / (mu T)
-        # (the real-axis stability limit of RK4/5, Hairer & Wanner, Solving ODEs II, IV.2)
-        mu = max([model.friction.coefficient] + [z.coefficient for z in model.friction.zones])
-        r = min(p.radius for p in model.pulleys)
-        if mu > 0 and init.tension > 0:
-            h_f = 2.8 * belt.mass_per_length * r * model.friction.velocity_threshold / (mu * init.tension)
-            if model.simulation.duration / h_f > max_steps():
+        h_f = rkf45_step(model, init.tension)
+        if h_f is not None:
+            # each rkf45 step is six evaluations of the whole chain (and its rejected attempts more):
+            # counted as six steps of the limit, which is set by the single-evaluation schemes' steps
+            cost = RKF45_STAGES * model.simulation.duration / h_f
+            if cost > max_steps():
                 raise ModelError(f"rkf45 is explicit: the friction law's slope (mu N / velocity_threshold) limits its "
-                                 f"step to about {h_f:.2g} s, {model.simulation.duration / h_f:.2g} steps for "
+                                 f"step to about {h_f:.2g} s, {model.simulation.duration / h_f:.2g} steps of "
+                                 f"{RKF45_STAGES} stages each ({cost:.2g} counted) for "
                                  f"{model.simulation.duration:g} s, more than the {max_steps():.3g} a run may take: use "
                                  "the implicit or semi-implicit scheme, or a larger friction.velocity_threshold "
                                  "(or set DRIVEDYN_MAX_STEPS)", field="simulation.method")
