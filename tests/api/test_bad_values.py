@@ -164,3 +164,13 @@ def test_a_ratio_bound_is_not_printed_with_unit_one():
         assert str(exc).endswith("criteria.stop_clearance_min: must be >= 0, got -1"), str(exc)
     else:
         raise AssertionError("a negative clearance was accepted")
+
+
+def test_a_refusal_is_one_line_whatever_its_message_carries():
+    """A refusal that wraps another library's error text (a linear-algebra failure of a planetary
+    stage with extreme stiffnesses) ended in a multi-line error: a ModelError is one line."""
+    exc = ModelError("the stage's lateral modes cannot be solved: LinAlgError:\n  the leading minor\tof order 3\r\n"
+                     "is not positive definite", field="planetary.lateral")
+    assert str(exc) == ("planetary.lateral: the stage's lateral modes cannot be solved: LinAlgError: the leading minor "
+                        "of order 3 is not positive definite")
+    assert str(ModelError("plain")) == "plain"

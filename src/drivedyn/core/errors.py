@@ -15,6 +15,9 @@ class ModelError(DrivedynError, ValueError):
 
     def __init__(self, message: str, field: str | None = None):
         self.field = field
+        # one line whatever the message carries (a linear-algebra error's text, a quoted value):
+        # line breaks and runs of white space become single spaces
+        message = " ".join(str(message).split()) if any(c in str(message) for c in "\n\r\t\v\f") else str(message)
         super().__init__(f"{field}: {message}" if field else message)
 
 
