@@ -252,20 +252,37 @@ def plot_campbell(ds, ax=None, orders=(1, 2, 3, 4, 5)):
     return arts
 
 
+#: what each model's static load sharing is, in a figure's title: the verdict's K_gamma is the
+#: lateral-torsional model's when the stage has one (planetary.analyse), else the torsional model's
+LOAD_MODEL = {True: "lateral-torsional model, as the verdict reads it", False: "torsional model, the sun held on its axis"}
+
+
+def _loads(ax, p, sun, ring, title):
+    arts = [ax.bar(p - 0.18, sun, 0.36, label="sun-planet"), ax.bar(p + 0.18, ring, 0.36, label="ring-planet")]
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.set(xlabel="planet", ylabel="static mesh force (N)", xticks=p, title=title)
+    ax.legend()
+    return arts
+
+
+def _modes(ax, f, title):
+    from matplotlib.ticker import MaxNLocator
+
+    art = ax.stem(np.arange(1, len(f) + 1), f)
+    ax.set(xlabel="mode", ylabel="natural frequency (Hz)", title=title)
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))      # modes are counted: 1, 2, 3, not 1.5
+    return [art]
+
+
 def plot_planet_loads(ds, ax=None):
-    """Static sun-planet and ring-planet mesh force of each planet."""
+    """Static sun-planet and ring-planet mesh force of each planet, of the model the verdict reads."""
     if ax is None:
         _, ax = _figure()
         ax = ax[0, 0]
-    p = ds.planet.values
-    a = ax.bar(p - 0.18, ds.sun_planet_force.values, 0.36, label="sun-planet")
-    b = ax.bar(p + 0.18, ds.ring_planet_force.values, 0.36, label="ring-planet")
-    ax.axhline(0.0, color="k", lw=0.6)
-    ax.set_xlabel("planet")
-    ax.set_ylabel("static mesh force (N)")
-    ax.set_xticks(p)
-    ax.legend()
-    return [a, b]
+    lateral = "lateral_sun_planet_force" in ds and "lateral_ring_planet_force" in ds
+    pre = "lateral_" if lateral else ""
+    return _loads(ax, ds.planet.values, ds[f"{pre}sun_planet_force"].values, ds[f"{pre}ring_planet_force"].values,
+                  f"load sharing ({LOAD_MODEL[lateral]})")
 
 
 def plot_planetary_modes(ds, ax=None):
@@ -273,11 +290,7 @@ def plot_planetary_modes(ds, ax=None):
     if ax is None:
         _, ax = _figure()
         ax = ax[0, 0]
-    f = ds.natural_frequency.values
-    art = ax.stem(np.arange(1, len(f) + 1), f)
-    ax.set_xlabel("mode")
-    ax.set_ylabel("natural frequency (Hz)")
-    return [art]
+    return _modes(ax, ds.natural_frequency.values, "modes (torsional model, fixed member held)")
 
 
 def _stage_labels(ds, suffix: str) -> list[str]:
@@ -287,15 +300,11 @@ def _stage_labels(ds, suffix: str) -> list[str]:
 
 def plot_stage_loads(ds, label, axes):
     """A gearbox stage's static planet forces and natural frequencies (2 axes)."""
-    p = ds[f"{label}_planet"].values
-    arts = [axes[0].bar(p - 0.18, ds[f"{label}_sun_planet_force"].values, 0.36, label="sun-planet"),
-            axes[0].bar(p + 0.18, ds[f"{label}_ring_planet_force"].values, 0.36, label="ring-planet")]
-    axes[0].axhline(0.0, color="k", lw=0.6)
-    axes[0].set(xlabel="planet", ylabel="static mesh force (N)", xticks=p, title=f"{label}: load sharing")
-    axes[0].legend()
-    f = ds[f"{label}_natural_frequency"].values
-    arts.append(axes[1].stem(np.arange(1, len(f) + 1), f))
-    axes[1].set(xlabel="mode", ylabel="natural frequency (Hz)", title=f"{label}: modes (torsional model)")
+    lateral = f"{label}_lateral_sun_planet_force" in ds
+    pre = f"{label}_lateral_" if lateral else f"{label}_"
+    arts = _loads(axes[0], ds[f"{label}_planet"].values, ds[f"{pre}sun_planet_force"].values,
+                  ds[f"{pre}ring_planet_force"].values, f"{label}: load sharing\n({LOAD_MODEL[lateral]})")
+    arts += _modes(axes[1], ds[f"{label}_natural_frequency"].values, f"{label}: modes (torsional model)")
     return arts
 
 

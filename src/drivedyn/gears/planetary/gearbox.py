@@ -159,6 +159,12 @@ def stage_arrays(result, label: str, a: dict, loads: bool = True) -> None:
                                                     "static ring-planet mesh force")
         ds[f"{label}_natural_frequency"] = variable(a["f"], (f"{label}_mode",), "Hz",
                                                     "natural frequency of the stage (fixed member held)")
+        if "lateral" in a:      # the load sharing the verdict reads (a floating sun's): the figure draws it
+            la = a["lateral"]
+            ds[f"{label}_lateral_sun_planet_force"] = variable(la["forces"]["sun_planet_force"], (planet,), "N",
+                                                               "static sun-planet mesh force, lateral-torsional model")
+            ds[f"{label}_lateral_ring_planet_force"] = variable(la["forces"]["ring_planet_force"], (planet,), "N",
+                                                                "static ring-planet mesh force, lateral-torsional model")
         ds = ds.assign_coords({planet: np.arange(1, len(a["forces"]["share"]) + 1)})
     d = a.get("dynamics")
     if d is not None:
@@ -205,6 +211,8 @@ def run_stage(model, progress=None):
                                                    "natural frequency of the lateral-torsional model")
         ds["lateral_sun_planet_force"] = variable(la["forces"]["sun_planet_force"], ("planet",), "N",
                                                   "static sun-planet mesh force, lateral-torsional model")
+        ds["lateral_ring_planet_force"] = variable(la["forces"]["ring_planet_force"], ("planet",), "N",
+                                                   "static ring-planet mesh force, lateral-torsional model")
     r = Result(kind="gear-train", ds=ds, summary={})
     add_stages(r, model, None, first=(summary, a), progress=progress)
     r.units = unit_map(r.summary, tors.PLANETARY_UNITS)
