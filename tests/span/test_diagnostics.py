@@ -69,3 +69,19 @@ def test_operating_point_in_a_tongue_warns():
     calm = drivedyn.run(span(**{"operation.speed": 0.3}))
     assert calm.summary["floquet_multiplier"] <= 1 + 1e-6
     assert not [x for x in calm.diagnostics if x.code == "parametric-resonance"]
+
+
+def test_the_operating_point_table_reads_in_words_and_hz():
+    """The span's table printed summary ids (natural_frequency_hz, v_critical) and the excitation in
+    rad/s (740) beside frequencies in Hz; the belt and gear tables read in words and engineering units."""
+    import math
+
+    from drivedyn.overview import tables
+
+    r = drivedyn.run(drivedyn.load(drivedyn.example_path("span-t10")))
+    table = next(t for t in tables(r) if t["title"] == "span at the operating point")
+    rows = {row[0]: row for row in table["rows"]}
+    assert "natural_frequency_hz" not in rows and "v_critical" not in rows
+    exc = rows["excitation frequency (tooth passing)"]
+    assert exc[2] == "Hz" and float(exc[1]) == pytest.approx(r.summary["excitation_frequency"] / (2 * math.pi), rel=1e-4)
+    assert rows["first natural frequency"][2] == "Hz" and rows["critical speed of the span"][2] == "m/s"

@@ -458,12 +458,30 @@ def _stage_tables(label: str, pl: dict, units: dict, prefix: str) -> list[dict]:
     return out
 
 
+#: the span's operating point in words and engineering units, as the belt and gear tables read:
+#: (summary key, words, unit shown, factor from the summary's SI value)
+SPAN_ROWS = [("pretension", "belt tension (pretension)", "N", 1.0), ("speed", "belt speed", "m/s", 1.0),
+             ("v_critical", "critical speed of the span", "m/s", 1.0),
+             ("natural_frequency_hz", "first natural frequency", "Hz", 1.0),
+             ("excitation_frequency", "excitation frequency (tooth passing)", "Hz", 1.0 / (2 * math.pi)),
+             ("frequency_ratio", "excitation over the first natural frequency", "", 1.0),
+             ("floquet_multiplier", "largest Floquet multiplier per excitation period", "", 1.0),
+             ("stability", "stability", "", 1.0)]
+
+
 def _span(result) -> list[dict]:
+    from .results import number_text
+
     s = result.summary
-    keys = ["pretension", "speed", "v_critical", "natural_frequency_hz", "excitation_frequency", "frequency_ratio",
-            "floquet_multiplier", "stability"]
-    out = [{"title": "span at the operating point", "head": ["quantity", "value", "unit"],
-            "rows": _kv_rows([(k, s[k]) for k in keys if k in s], result.units), "note": ""}]
+    rows = []
+    for key, words, unit, factor in SPAN_ROWS:
+        v = s.get(key)
+        if key not in s:
+            continue
+        text = str(v) if isinstance(v, (str, bool)) or v is None else number_text(float(v) * factor, unit)
+        rows.append([words, text, unit])
+    out = [{"title": "span at the operating point", "head": ["quantity", "value", "unit"], "rows": rows,
+            "note": "every value in SI: summary.json (excitation_frequency in rad/s)"}]
     fr = s.get("frequencies", {})
     if fr:
         n = max(len(v) for v in fr.values())
