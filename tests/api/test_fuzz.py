@@ -624,3 +624,191 @@ def test_a_plain_float_field_refuses_nan_through_the_python_api_too():
 
     with pytest.raises(Exception, match="finite"):
         Friction(coefficient=float("nan"))
+
+
+# The newest features as a new user meets them (the supplier report's duty cycle and life, the
+# tensioner's supplier data, planetary stage time runs, output paths, --set): one value spoiled at a
+# time with the mutations above and with the values those features were found to mishandle
+# (docs/limits.md lists what each now refuses). check of the duty cycle runs on AG0868 without its
+# dynamic and tolerance columns (about a second; the two flags are mutated too), a planetary run on
+# the example stage without its sweep (one to two seconds).
+
+DUTY_BASE = _merge(BASES["fead-ag0868"], {"duty_cycle": {"dynamic": False, "tolerance": False}})
+#: the values the duty cycle, the life fit, the belt's catalogue data and the tensioner's supplier
+#: data were found to mishandle, each at its field: loads on the crank, offsets the arm cannot hold,
+#: temperatures and fit constants out of the fit's domain, rates without an angle, pivots inside a
+#: pulley, a free arm at the drawn arm, more rows than the balances' limit
+R0 = ("duty_cycle", "rows", 0)
+LIFE = ("duty_cycle", "life")
+ARM = ("pulleys", 2, "arm")
+DUTY_TARGETED = [(R0 + ("power",), v) for v in ({"CRK": "2 kW"}, {"A_C": "1.3 kW", "CRK": "2 kW"}, {"TEN": "1 kW"},
+                                                {"A_C": "1e9 W"}, {"A_C": "1e29 W"}, {})] + [
+    (R0 + ("torque",), {"CRK": "10 N*m"}), (R0 + ("torque",), {"A_C": "1e29 N*m"}),
+    (R0 + ("crank_speed",), "1e29 rpm"), (R0 + ("crank_speed",), "1 rpm"), (R0 + ("temperature",), 1e6),
+    (R0 + ("temperature",), 250.0)] + [
+    (("belt", "length_offset"), v) for v in ("60 mm", "-60 mm", "0.3 mm", "5 mm", "-5.5 mm", "1e29 m")] + [
+    (("duty_cycle", "temperature"), v) for v in (1e6, -1e6, 250.0, -60.0, 1e29)] + [
+    (LIFE + ("halving",), v) for v in (1e-20, 1.0, 1e29, 0.5)] + [
+    (LIFE + ("reference_temperature",), v) for v in (1e29, -1e29, 250.0)] + [
+    (LIFE + ("constant",), 1e29), (LIFE + ("constant",), 1e-29), (LIFE + ("exponent",), 1e29), (LIFE + ("exponent",), 20.0),
+    (LIFE + ("exponent",), 1e-29), (LIFE + ("tension_exponent",), 1e29), (LIFE + ("tension_exponent",), 10.0),
+    (LIFE + ("back_side_weight",), 0.0), (LIFE + ("target",), "1e29 h"), (LIFE + ("target",), "1 s")] + [
+    (ARM + ("rate",), v) for v in ("0.4 N*m", "0.4 N*m/deg", "1e29 N*m/rad")] + [
+    (ARM + ("pivot",), v) for v in (["67 mm", "0 mm"], ["126.06 mm", "62.15 mm"], ["263 mm", "15 mm"])] + [
+    (ARM + ("free_angle",), v) for v in ("220.001 deg", "220 deg", "190 deg", "100 deg", "40 deg")] + [
+    (ARM + ("load_stop",), v) for v in ("1 deg", "100 deg", "180 deg")] + [
+    (ARM + ("free_torque",), "1e29 N*m"), (ARM + ("free_torque",), "0 N*m"), (("belt", "length_tolerance"), "40 mm"),
+    (("belt", "length_tolerance"), "0 mm"), (("belt", "wear_allowance"), 0.09), (("duty_cycle", "rows"), "rows-2001"),
+    (("duty_cycle", "rows"), "rows-one"), (("duty_cycle", "dynamic"), True), (("duty_cycle", "tolerance"), True),
+    (("duty_cycle", "acceleration"), "1e29 rpm/s"), (("duty_cycle", "acceleration"), "1e-29 rpm/s"),
+    (("duty_cycle", "idler_drag"), "1e29 W")]
+
+
+def _duty_paths(data):
+    return [p for p in _leaves(data) if p[0] == "duty_cycle" or (p[0] == "pulleys" and "arm" in p)
+            or (p[0] == "belt" and len(p) > 1 and p[1] in ("effective_length", "length_tolerance", "wear_allowance",
+                                                            "length_offset", "ribs", "profile"))]
+
+
+def _duty_value(value):
+    if value == "rows-2001":          # past the balances' limit: refused before the rows are read
+        return [{"crank_speed": "1000 rpm", "share": 1 / 2001, "power": {"A_C": "1 kW"}}] * 2001
+    if value == "rows-one":
+        return [{"crank_speed": "1000 rpm", "share": "100 %", "power": {"A_C": "1 kW"}}]
+    return copy.deepcopy(value)
+
+
+@st.composite
+def duty_section(draw):
+    """(example, description, file bytes): a value the duty cycle's features were found to mishandle
+    at its field (two in three), or one of MUTATIONS at any of their values."""
+    data = copy.deepcopy(DUTY_BASE)
+    if draw(st.integers(0, 2)):
+        path, value = draw(st.sampled_from(DUTY_TARGETED))
+        what = value if isinstance(value, str) and value.startswith("rows") else repr(value)
+        value = _duty_value(value)
+    else:
+        path = draw(st.sampled_from(_duty_paths(data)))
+        k = draw(st.integers(0, len(MUTATIONS) - 1))
+        value, what = _mutated(_get(data, path), k), NAMES[k]
+    _get(data, path[:-1])[path[-1]] = value
+    return "fead-duty", f"{'.'.join(map(str, path))} <- {what}", tomli_w.dumps(data).encode("utf-8")
+
+
+@settings(max_examples=LONG // 5 or 30, derandomize=not LONG, **COMMON)
+@given(case=duty_section())
+def test_duty_cycle_inputs_never_end_in_a_traceback(case):
+    _try("check", case, allowed=(0, 2))
+
+
+PLANETARY_BASE = _merge(BASES["gears-planetary"], {"planetary": {"dynamics": {"sweep": False}}})
+#: the values a planetary stage's time run was found to mishandle, each at its field: its own step,
+#: degenerate stiffnesses, a torque of round-off beside the pin errors, a constant stiffness
+PD = ("planetary", "dynamics")
+PLANETARY_TARGETED = [(PD + ("step",), v) for v in ("1e-15 s", "1e-9 s", "1 s")] + [
+    (("planetary", k), v) for k in ("sun_planet_stiffness", "ring_planet_stiffness")
+    for v in ("1e-29 N/m", "1e29 N/m", "1e-3 N/m")] + [
+    (("planetary", "torque"), "1e-29 N*m"), (("planetary", "torque"), "1e29 N*m"),
+    (PD + ("stiffness_model",), "constant"), (PD + ("stiffness_model",), "rectangular"),
+    (("planetary", "position_errors"), []), (("planetary", "position_errors"), ["1 mm", 0.0, 0.0, 0.0]),
+    (("planetary", "position_errors"), ["1e29 m", 0.0, 0.0, 0.0]), (PD + ("steps_per_cycle",), 16),
+    (PD + ("steps_per_cycle",), 10_000), (PD + ("window_cycles",), 2), (PD + ("window_cycles",), 10_000),
+    (PD + ("settle",), "1e-29 s"), (PD + ("settle",), "1e29 s"), (PD + ("speed",), "1e-29 rpm"),
+    (PD + ("speed",), "1e29 rpm"), (PD + ("speed",), "1 rpm"), (("planetary", "planet_inertia"), "1e-29 kg*m^2"),
+    (("planetary", "sun_inertia"), "1e29 kg*m^2"), (PD + ("damping_ratio",), 0.0), (PD + ("damping_ratio",), 0.99),
+    (PD + ("engagement",), 0.45), (PD + ("model",), "lateral")]
+
+
+def _planetary_paths(data):
+    return [p for p in _leaves(data) if p[0] == "planetary" and not COST & {str(q) for q in p}]
+
+
+@st.composite
+def planetary_run(draw):
+    """(example, description, file bytes): a value a planetary time run was found to mishandle at its
+    field (two in three), or a plausible one (SOLVABLE) at any of the stage's values."""
+    data = copy.deepcopy(PLANETARY_BASE)
+    if draw(st.integers(0, 2)):
+        path, value = draw(st.sampled_from(PLANETARY_TARGETED))
+        value, what = copy.deepcopy(value), repr(value)
+    else:
+        path = draw(st.sampled_from(_planetary_paths(data)))
+        k = draw(st.sampled_from(SOLVABLE))
+        value, what = _mutated(_get(data, path), k), NAMES[k]
+    _get(data, path[:-1])[path[-1]] = value
+    return "gears-planetary", f"{'.'.join(map(str, path))} <- {what}", tomli_w.dumps(data).encode("utf-8")
+
+
+@settings(max_examples=LONG // 10 or 8, derandomize=not LONG, **COMMON)
+@given(case=planetary_run())
+def test_planetary_time_runs_never_end_in_a_traceback(case):
+    _try("run", case, allowed=(0, 1, 2))
+
+
+#: --set as a new user writes it: keys that do not exist, change the kind or the version, address a
+#: list out of range; values of the wrong type, unit or size
+SET_KEYS = ["kind", "schema_version", "belt.pretension", "belt.no_such_field", "pulleys.99.radius", "pulleys.CRK.radius",
+            "pulleys.TEN.arm.rate", "pulleys.TEN.arm.pivot", "duty_cycle.temperature", "duty_cycle.rows.0.power",
+            "duty_cycle.life.halving", "belt.length_offset", "simulation.method", "", "a..b", "=", "x" * 300]
+SET_VALUES = ["gear-train", "span-stability", "belt-drive", "2", "0", "-1", "nan", "inf", "1e308", '"0.4 N*m"', '"60 mm"',
+              '{CRK = "2 kW"}', '["67 mm", "0 mm"]', '"rkf45"', "[]", "{}", '"' + "y" * 300 + '"', "= =", "'unclosed"]
+
+
+@settings(max_examples=LONG // 5 or 20, derandomize=not LONG, **COMMON)
+@given(key=st.sampled_from(SET_KEYS), value=st.sampled_from(SET_VALUES))
+def test_set_never_ends_in_a_traceback(key, value):
+    case = ("fead-duty", f"--set {key[:40]}={value[:40]}", tomli_w.dumps(DUTY_BASE).encode("utf-8"))
+    _try_set(case, f"{key}={value}")
+
+
+def _try_set(case, item):
+    name, what, content = case
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / f"{name}.toml"
+        path.write_bytes(content)
+        code, err, out, seconds = _cli(["check", str(path), "--set", item], 30)
+    _record(example=name, mutation=what, command="check --set", exit=code, seconds=round(seconds, 3))
+    assert code in (0, 2) and "Traceback" not in err + out, f"{what}: exit {code}: {err[-300:]}"
+    if code == 2:
+        lines = [ln for ln in err.strip().splitlines() if ln.startswith("drivedyn: error:")]
+        assert len(lines) == 1 and err.strip().endswith(lines[0].strip()), f"{what}: not one line: {err!r}"
+        assert "more problems" not in err or not item.startswith("kind="), f"{what}: {err!r}"
+
+
+#: output paths as a new user gives them: a name over 255 bytes, a file in the way, a folder under a
+#: file, a folder without write permission (where the user is not root), a parent that does not exist
+OUT_KINDS = ["long-name", "long-path", "a-file", "under-a-file", "missing-parent", "read-only"]
+OUT_COMMANDS = ["run", "study", "plot", "schema", "examples"]
+
+
+@settings(max_examples=LONG // 5 or 15, derandomize=not LONG, **COMMON)
+@given(command=st.sampled_from(OUT_COMMANDS), kind=st.sampled_from(OUT_KINDS))
+def test_an_output_path_never_ends_in_a_traceback(command, kind):
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        (tmp / "a-file").write_text("")
+        ro = tmp / "read-only"
+        ro.mkdir()
+        ro.chmod(0o500)
+        target = {"long-name": tmp / ("o" * 300), "long-path": tmp.joinpath(*(["p" * 200] * 25)), "a-file": tmp / "a-file",
+                  "under-a-file": tmp / "a-file" / "out", "missing-parent": tmp / "no" / "such" / "out.json",
+                  "read-only": ro / "out"}[kind]
+        writable = kind == "missing-parent" or (kind == "read-only" and os.access(ro, os.W_OK))   # root writes anywhere
+        args = {"run": ["run", str(MODELS["span-t10"]), "-o", str(target), "-q", "--no-plots"],
+                # a writable folder would run the whole optimisation: listed instead
+                "study": ["study", str(STUDIES["study-tensioner-design"]), "-o", str(target)]
+                + (["--dry-run"] if writable else []),
+                "plot": ["plot", str(target)], "schema": ["schema", "belt-drive", "-o", str(target)],
+                "examples": ["examples", "belt-5pk", "--to", str(target)]}[command]
+        try:
+            code, err, out, seconds = _cli(args, 60)
+        finally:
+            ro.chmod(0o700)
+    _record(example=command, mutation=kind, command=command, exit=code, seconds=round(seconds, 3))
+    where = f"{command} -o <{kind}>"
+    assert "Traceback" not in err + out, f"{where}: {err[-500:]}"
+    assert code in (0, 2), f"{where}: exit {code}: {err[-300:]}"
+    if code == 2:
+        lines = [ln for ln in err.strip().splitlines() if ln.startswith("drivedyn: error:")]
+        assert len(lines) == 1 and err.strip().endswith(lines[0].strip()), f"{where}: not one line: {err!r}"
+        assert seconds < REFUSAL_SECONDS, f"{where}: refused after {seconds:.1f} s"

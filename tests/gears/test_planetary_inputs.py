@@ -78,3 +78,13 @@ def test_no_window_growth_is_read_from_round_off():
     result = drivedyn.run(_stage(**{"planetary.dynamics.stiffness_model": "constant", "planetary.position_errors": []}))
     assert "kv-unstable" not in [d.code for d in result.diagnostics]
     assert result.summary["planetary"]["dynamics"]["window_growth"] is None
+
+
+@pytest.mark.parametrize("limit", [None, "inf"])
+def test_a_speed_that_asks_for_more_steps_than_an_integer_holds_is_refused(monkeypatch, limit):
+    """dynamics.speed = 1e-29 rpm: 1e36 window steps came back negative from int64 (ValueError:
+    negative dimensions); with the limit lifted too."""
+    if limit:
+        monkeypatch.setenv("DRIVEDYN_MAX_STEPS", limit)
+    text = _one_line(_stage(**{"planetary.dynamics.speed": "1e-29 rpm"}), "planetary.dynamics", "a higher dynamics.speed")
+    assert "integration steps" in text or "GB" in text

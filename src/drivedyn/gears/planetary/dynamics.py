@@ -367,8 +367,11 @@ def _timing(sys_: StageSystem, dyn, speeds, f_hi, settle):
     fm = np.array([sys_.mesh_frequency(w) for w in speeds])
     h_max = dyn.step if dyn.step is not None else 1.0 / (20.0 * f_hi)
     h = np.minimum(h_max, 1.0 / (fm * dyn.steps_per_cycle))
-    n_settle = np.ceil(np.maximum(settle, 20.0 / fm) / h).astype(np.int64)
-    n_window = np.ceil(dyn.window_cycles / fm / h).astype(np.int64)
+    # as floats: a speed of 1e-29 rpm asks for 1e31 steps, past int64 (it came back negative); the
+    # counts are checked against the limits (_cost) before they become the kernel's integers
+    with np.errstate(over="ignore", divide="ignore"):
+        n_settle = np.ceil(np.maximum(settle, 20.0 / fm) / h)
+        n_window = np.ceil(dyn.window_cycles / fm / h)
     return fm, h, n_settle, n_window
 
 
@@ -412,10 +415,14 @@ def _cost(steps: float, nbytes: float, h, ns, nw, where: str) -> None:
     """The run's steps (its own settle and window, and the sweep's) and bytes against the limits."""
     from ...core.limits import bytes_problem, steps_problem
 
-    fix = "a longer dynamics.step, fewer steps_per_cycle or window_cycles, a shorter settle or a smaller sweep count"
+    fix = ("a higher dynamics.speed (the window is window_cycles mesh periods), a longer dynamics.step, fewer "
+           "steps_per_cycle or window_cycles, a shorter settle or a smaller sweep count")
     what = (f"{where}.dynamics: a step of {float(h[0]):.3g} s over {float(ns[0]):.3g} settling and "
             f"{float(nw[0]):.3g} window steps")
-    problem = steps_problem(steps, what, fix) or bytes_problem(nbytes, what, fix)
+    problem = (steps_problem(steps if math.isfinite(steps) else math.inf, what, fix)
+               or bytes_problem(nbytes if math.isfinite(nbytes) else math.inf, what, fix))
+    if not problem and not steps < 2.0 ** 62:     # DRIVEDYN_MAX_STEPS = inf: still no count a kernel can take
+        problem = f"{what}: {steps:.3g} integration steps, more than any run can take ({fix})"
     if problem:
         raise ModelError(problem)
 
@@ -455,8 +462,10 @@ def run(spec, where: str = "planetary", progress=None) -> tuple[dict, dict]:
         lo_s, hi_s = speed_range(sys_, dyn, f_top)
         speeds = np.linspace(lo_s, hi_s, dyn.count)
         _, hs, nss, nws = _timing(sys_, dyn, speeds, f_hi, settle)
-        steps += float(np.sum(nss.astype(float) + nws))
+        steps += float(np.sum(nss + nws))
     _cost(steps, nbytes, h, ns, nw, where)
+    if dyn.sweep:
+        nss, nws = nss.astype(np.int64), nws.astype(np.int64)
     q0 = sys_.static_start()
     _, F = sys_.static()
     y = np.concatenate([q0, sys_.phi * omega])
