@@ -174,3 +174,50 @@ def test_a_refusal_is_one_line_whatever_its_message_carries():
     assert str(exc) == ("planetary.lateral: the stage's lateral modes cannot be solved: LinAlgError: the leading minor "
                         "of order 3 is not positive definite")
     assert str(ModelError("plain")) == "plain"
+
+
+# The newest features the same way: every value of the supplier report's duty cycle and life fit,
+# the belt's catalogue data and the tensioner's supplier data (AG0868, its dynamic and tolerance
+# columns off: a check in under a second), and of a planetary stage with its time integration
+# (check reads it; tests/api/test_fuzz.py runs it), each replaced by one bad value.
+NEWER = {"fead-ag0868": lambda p: p[0] == "duty_cycle" or (p[0] == "pulleys" and "arm" in p)
+         or (p[0] == "belt" and p[1] in ("profile", "ribs", "effective_length", "length_tolerance", "wear_allowance")),
+         "gears-planetary": lambda p: p[0] == "planetary"}
+
+
+def _edge_values(v):
+    """Values just inside the read bounds (1e-30..1e30 in SI), which reach the solvers: they found the
+    life fit's overflows and the planetary kernel's divisions by zero."""
+    if isinstance(v, bool) or not isinstance(v, (int, float, str)):
+        return []
+    if isinstance(v, str):
+        if " " not in v:
+            return []
+        unit = v.split(" ", 1)[1]
+        return [f"1e29 {unit}", f"1e-29 {unit}"]
+    return [1e29, 1e-29]
+
+
+@pytest.mark.parametrize("name", list(NEWER))
+def test_a_bad_value_in_the_newer_sections_is_refused_cleanly(name):
+    base = tomllib.loads(drivedyn.example_path(name).read_text())
+    if name == "fead-ag0868":
+        base["duty_cycle"].update(dynamic=False, tolerance=False)
+    tried = refused = 0
+    for i, (path, value) in enumerate(_leaves(base)):
+        if not NEWER[name](path) or path[-1] in ("dynamic", "tolerance"):
+            continue
+        for bad in _edge_values(value):
+            data = copy.deepcopy(base)
+            _set(data, path, bad)
+            tried += 1
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    drivedyn.check(from_dict(data, source=name))
+            except ModelError as exc:
+                refused += 1
+                assert "\n" not in str(exc).strip(), (path, bad, str(exc))
+            except Exception as exc:  # pragma: no cover - the failure message is the point
+                pytest.fail(f"{name}: {'.'.join(map(str, path))} = {bad!r}: {type(exc).__name__}: {exc}")
+    assert tried >= 20 and refused >= tried // 3, (tried, refused)
