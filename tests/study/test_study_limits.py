@@ -144,3 +144,17 @@ def test_an_output_path_that_is_a_file_is_the_only_line(name, tmp_path):
     blocker.write_text("")
     code, err, seconds = cli("study", drivedyn.example_path(name), "-o", blocker)
     assert code == 2 and err.strip() == last_line(err) and "is a file, not a folder" in err and seconds < 5, err
+
+
+def test_the_dashboard_line_reads_the_schedulers_services():
+    """A scheduler started apart without a dashboard was announced with a dashboard link."""
+    from drivedyn.study.command import _has_dashboard
+
+    class Client:
+        def __init__(self, services):
+            self.services = services
+
+        def scheduler_info(self):
+            return {"services": self.services}
+
+    assert _has_dashboard(Client({"dashboard": 8787})) and not _has_dashboard(Client({}))
