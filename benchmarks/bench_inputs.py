@@ -29,8 +29,8 @@ def main(repeats=5):
     import tomli_w
 
     import drivedyn
-    from drivedyn.model import table_rows
-    from drivedyn.units import registry, to_si
+    from drivedyn.core.model import table_rows
+    from drivedyn.core.units import registry, to_si
 
     registry()          # built once (most of a second in a fresh environment): start-up, not reading
     rows = [[f"{k / 7:.6g} rpm", f"{k % 13} kN*m"] for k in range(10_000)]

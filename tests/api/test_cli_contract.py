@@ -172,7 +172,7 @@ def test_a_very_long_name_in_a_diagnostic_prints_at_once():
 
     from rich.console import Console
 
-    from drivedyn.cli import _print_status
+    from drivedyn.front.cli import _print_status
 
     name = "n" * 30_000
     d = SimpleNamespace(code="gross-slip", text=f"pulley {name} slips over its whole wrap", value=1.0, limit=0.0,
@@ -184,7 +184,7 @@ def test_a_very_long_name_in_a_diagnostic_prints_at_once():
     assert time.process_time() - t0 < 5.0          # 30 000 characters took about 30 s
     text = console.file.getvalue().replace("\n", "")
     assert "gross-slip" in text and "slips over its whole wrap" in text and name not in text, text[:200]
-    from drivedyn.outputs import shorten_words
+    from drivedyn.core.outputs import shorten_words
 
     assert shorten_words(f"a {name} b") == f"a {shorten_words(name)} b" and len(shorten_words(name)) == 300
     assert shorten_words("short words stay") == "short words stay"

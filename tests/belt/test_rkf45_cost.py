@@ -5,7 +5,7 @@ and the run went past 5 minutes (3.8e6 steps of six stages)."""
 import pytest
 
 import drivedyn
-from drivedyn.errors import ModelError
+from drivedyn.core.errors import ModelError
 
 
 def _rkf45(duration="0.5 ms"):

@@ -76,7 +76,7 @@ def test_the_operating_point_table_reads_in_words_and_hz():
     rad/s (740) beside frequencies in Hz; the belt and gear tables read in words and engineering units."""
     import math
 
-    from drivedyn.overview import tables
+    from drivedyn.front.overview import tables
 
     r = drivedyn.run(drivedyn.load(drivedyn.example_path("span-t10")))
     table = next(t for t in tables(r) if t["title"] == "span at the operating point")

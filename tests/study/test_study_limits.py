@@ -148,7 +148,7 @@ def test_an_output_path_that_is_a_file_is_the_only_line(name, tmp_path):
 
 def test_the_dashboard_line_reads_the_schedulers_services():
     """A scheduler started apart without a dashboard was announced with a dashboard link."""
-    from drivedyn.study.command import _has_dashboard
+    from drivedyn.front.study_command import _has_dashboard
 
     class Client:
         def __init__(self, services):

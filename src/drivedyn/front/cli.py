@@ -250,7 +250,7 @@ def _text(text) -> str:
     terminal library folds one long word in quadratic time; outputs.shorten_words)."""
     from rich.markup import escape
 
-    from .outputs import shorten_words
+    from ..core.outputs import shorten_words
 
     return escape(shorten_words(str(text)))
 

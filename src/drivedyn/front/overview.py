@@ -470,7 +470,7 @@ SPAN_ROWS = [("pretension", "belt tension (pretension)", "N", 1.0), ("speed", "b
 
 
 def _span(result) -> list[dict]:
-    from .results import number_text
+    from ..core.results import number_text
 
     s = result.summary
     rows = []

@@ -159,7 +159,7 @@ def _escape(text) -> str:
     """Text for the terminal: rich markup escaped, every long word shortened (outputs.shorten_words)."""
     from rich.markup import escape
 
-    from ..outputs import shorten_words
+    from ..core.outputs import shorten_words
 
     return escape(shorten_words(str(text)))
 
