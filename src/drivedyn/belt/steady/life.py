@@ -54,8 +54,10 @@ def belt_life(model, design_tension: float, belt_speeds) -> BeltLife:
                for p, d in zip(model.pulleys, d_mm)}
     L = belt.effective_length
     # each row at its own temperature (the cycle's where a row gives none)
+    # (a row of no share, or no belt speed, carries no damage: log 0 = -inf)
     log_rows = [math.log(r.share * v / L) + math.log(2.0) * ((r.temperature if r.temperature is not None
                                                              else dc.temperature) - fit.reference_temperature) / fit.halving
+                if r.share * v > 0 else -math.inf
                 for r, v in zip(dc.rows, belt_speeds)]
     log_g, log_r = _log_sum(log_geo.values()), _log_sum(log_rows)
     log_d = log_g + log_r + fit.tension_exponent * math.log(design_tension / belt.ribs)
