@@ -94,7 +94,6 @@ def belt_teeth(model, path_length: float | None = None) -> BeltTeeth | None:
                      climb_factor(phi_, t.flank_friction), t.nodes_per_tooth, t.damping_ratio)
 
 
-
 def chain_radius(radius: float, model) -> float:
     """The contact radius at which the segment model's chain of straight segments carries its teeth at
     the grooves' spacing: a segment of length l whose centre rides at radius r_c spans 2 atan(l / 2 r_c)

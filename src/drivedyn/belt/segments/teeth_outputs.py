@@ -16,7 +16,7 @@ class TeethRecorder:
     """Per sample: tooth loads by slot, the smallest jump margin and the teeth in mesh per pulley, jumps so far."""
 
     def __init__(self, ns, sysm):
-        C, P = sysm.contact, sysm.pulleys
+        C = sysm.contact
         self.z = np.asarray(C.gz)
         self.nk = len(self.z)
         zmax = int(self.z.max())
@@ -30,7 +30,6 @@ class TeethRecorder:
         self.belt_torque = np.zeros((ns, self.nk))     # sum of Q d of the teeth, instantaneous
         self.climb = float(C.tclimb)
         self.teeth = np.flatnonzero(np.asarray(C.tk) > 0)
-        self.r = np.asarray(P.r)
 
     def sample(self, k, S, W):
         i = self.teeth
