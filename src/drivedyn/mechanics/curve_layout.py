@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.errors import ModelError
+from .layout import loop_orientation, refuse_overlaps, refuse_spans_through
 from .pitch_curves import Circle, PitchCurve, support
 
 #: the span equation is solved to this (m)
@@ -83,19 +84,11 @@ class CurveLayout:
         return np.array([s.radius0 for s in self.spans])
 
 
-def _orientation(centers) -> int:
-    # the shoelace sign, as mechanics/layout.py decides a loop's sense
-    x, y = centers[:, 0], centers[:, 1]
-    area = 0.5 * np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)
-    return -1 if area < -1e-12 else 1
-
-
 def senses(centers, sides, orientation=None) -> tuple[int, list[int]]:
     """(orientation, sigma per pulley) from the sides "inside"/"back", as mechanics/layout.py decides them."""
     centers = np.asarray(centers, float)
-    inside = [k for k, s in enumerate(sides) if s == "inside"]
     if orientation is None:
-        orientation = _orientation(centers[inside]) if len(inside) >= 3 else _orientation(centers)
+        orientation = loop_orientation(centers, sides)
     return orientation, [orientation if s == "inside" else -orientation for s in sides]
 
 
@@ -146,12 +139,7 @@ def layout_at(names, centers, curves, sides, angles=None, orientation=None) -> C
     orientation, sig = senses(centers, sides, orientation)
     cx, cy = centers[:, 0].tolist(), centers[:, 1].tolist()
     rmin = [c.min_radius for c in curves]
-    for a in range(nk):
-        for b in range(a + 1, nk):
-            d = math.hypot(cx[b] - cx[a], cy[b] - cy[a])
-            if d < rmin[a] + rmin[b]:
-                raise ModelError(f"pulleys {names[a]!r} and {names[b]!r} overlap (centre distance {d * 1e3:.1f} mm "
-                                 f"< sum of their smallest radii {(rmin[a] + rmin[b]) * 1e3:.1f} mm)", field="pulleys")
+    refuse_overlaps(names, cx, cy, rmin, "their smallest radii")
     spans = []
     th = angles.tolist()
     for k in range(nk):
@@ -183,15 +171,7 @@ def layout_at(names, centers, curves, sides, angles=None, orientation=None) -> C
         bad = [names[j] for j in range(nk) if wrap[j] <= 1e-9 or wrap[j] >= 2 * math.pi - 1e-9]
         raise ModelError("the belt order does not make a simple loop" + (f" (no wrap on {', '.join(bad)})" if bad else "")
                          + ": list pulleys in belt order and check each side", field="pulleys")
-    for sp in spans:      # a span must not cut through another pulley (its smallest radius)
-        (x0, y0), (x1, y1) = sp.p0, sp.p1
-        ex, ey = x1 - x0, y1 - y0
-        for j in range(nk):
-            if j in (sp.start, sp.end):
-                continue
-            t = min(max(((cx[j] - x0) * ex + (cy[j] - y0) * ey) / max(sp.length ** 2, 1e-300), 0.0), 1.0)
-            if math.hypot(x0 + t * ex - cx[j], y0 + t * ey - cy[j]) < rmin[j] * (1 - 1e-9):
-                raise ModelError(f"span {sp.name} passes through pulley {names[j]!r}", field="pulleys")
+    refuse_spans_through(spans, names, cx, cy, rmin)     # through another pulley's smallest radius
     length = sum(sp.length for sp in spans) + float(np.sum(arc))
     rho = np.array([s * c.mean_radius for s, c in zip(sig, curves)])
     return CurveLayout(tuple(names), centers, curves, angles, rho, orientation, tuple(spans), wrap, arc_start, arc,

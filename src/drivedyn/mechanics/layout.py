@@ -74,24 +74,49 @@ def _orientation(centers: np.ndarray) -> int:
     return -1 if area < -1e-12 else 1
 
 
+def loop_orientation(centers: np.ndarray, sides) -> int:
+    """+1 counter-clockwise, -1 clockwise: the shoelace sign of the inside pulleys' centres (of all,
+    with fewer than three inside)."""
+    inside = [k for k, s in enumerate(sides) if s == "inside"]
+    return _orientation(centers[inside]) if len(inside) >= 3 else _orientation(centers)
+
+
+def refuse_overlaps(names, cx, cy, radii, what: str = "radii") -> None:
+    """ModelError (field "pulleys") for two pulleys closer than the sum of ``radii`` (named ``what``)."""
+    nk = len(names)
+    for a in range(nk):
+        for b in range(a + 1, nk):
+            d = math.hypot(cx[b] - cx[a], cy[b] - cy[a])
+            if d < radii[a] + radii[b]:
+                raise ModelError(f"pulleys {names[a]!r} and {names[b]!r} overlap (centre distance {d * 1e3:.1f} mm "
+                                 f"< sum of {what} {(radii[a] + radii[b]) * 1e3:.1f} mm)", field="pulleys")
+
+
+def refuse_spans_through(spans, names, cx, cy, radii) -> None:
+    """ModelError (field "pulleys") for a span that cuts through another pulley's circle of ``radii``."""
+    for sp in spans:
+        (x0, y0), (x1, y1) = sp.p0, sp.p1
+        ex, ey = x1 - x0, y1 - y0
+        for j in range(len(names)):
+            if j in (sp.start, sp.end):
+                continue
+            t = min(max(((cx[j] - x0) * ex + (cy[j] - y0) * ey) / max(sp.length ** 2, 1e-300), 0.0), 1.0)
+            if math.hypot(x0 + t * ex - cx[j], y0 + t * ey - cy[j]) < radii[j] * (1 - 1e-9):
+                raise ModelError(f"span {sp.name} passes through pulley {names[j]!r}", field="pulleys")
+
+
 def layout_from(names, centers, radii, sides, orientation=None) -> Layout:
     """Compute the belt path. ``sides`` holds "inside" or "back" per pulley, in belt order."""
     centers = np.asarray(centers, float)
     radii = np.asarray(radii, float)
     nk = len(names)
-    inside_idx = [k for k in range(nk) if sides[k] == "inside"]
     if orientation is None:
-        orientation = _orientation(centers[inside_idx]) if len(inside_idx) >= 3 else _orientation(centers)
+        orientation = loop_orientation(centers, sides)
     rho = np.array([orientation * r if s == "inside" else -orientation * r for r, s in zip(radii, sides)])
 
     # the checks on plain floats: a design loop builds hundreds of layouts per model (tensioner tables)
     cx, cy, rr = centers[:, 0].tolist(), centers[:, 1].tolist(), radii.tolist()
-    for a in range(nk):
-        for b in range(a + 1, nk):
-            d = math.hypot(cx[b] - cx[a], cy[b] - cy[a])
-            if d < rr[a] + rr[b]:
-                raise ModelError(f"pulleys {names[a]!r} and {names[b]!r} overlap (centre distance {d * 1e3:.1f} mm "
-                                 f"< sum of radii {(radii[a] + radii[b]) * 1e3:.1f} mm)", field="pulleys")
+    refuse_overlaps(names, cx, cy, rr)
 
     spans, betas = [], []
     for k in range(nk):
@@ -127,17 +152,7 @@ def layout_from(names, centers, radii, sides, orientation=None) -> Layout:
         raise ModelError("the belt order does not make a simple loop" + (f" (no wrap on {', '.join(bad)})" if bad else "")
                          + ": list pulleys in belt order and check each side" + hint, field="pulleys")
 
-    # spans must not cut through other pulleys
-    for sp in spans:
-        (x0, y0), (x1, y1) = sp.p0, sp.p1
-        ex, ey = x1 - x0, y1 - y0
-        for j in range(nk):
-            if j in (sp.start, sp.end):
-                continue
-            t = min(max(((cx[j] - x0) * ex + (cy[j] - y0) * ey) / max(sp.length ** 2, 1e-300), 0.0), 1.0)
-            dist = math.hypot(x0 + t * ex - cx[j], y0 + t * ey - cy[j])
-            if dist < rr[j] * (1 - 1e-9):
-                raise ModelError(f"span {sp.name} passes through pulley {names[j]!r}", field="pulleys")
+    refuse_spans_through(spans, names, cx, cy, rr)      # spans must not cut through other pulleys
 
     length = sum(sp.length for sp in spans) + float(np.sum(radii * wrap))
     return Layout(tuple(names), centers, radii, rho, orientation, tuple(spans), wrap, arc_start, length)
