@@ -129,9 +129,13 @@ def _teeth_criteria(c, teeth, out, skipped):
                              "steady window (below 1 it climbs)", n))
     else:
         skipped["jump_margin"] = "the flank is self-locking (flank angle at or below the flank friction angle): no jump"
-    where = f"last at t = {teeth['last_jump_time']:.4g} s on {teeth['last_jump_pulley']}" if teeth["jumps"] else "none"
-    out.append(Criterion("tooth_jumps", teeth["jumps"], c.tooth_jumps_max, "", "max",
-                         "teeth that changed groove during the run (jumped)", where))
+    if teeth["jumps"] is None:
+        skipped["tooth_jumps"] = ("the rotational model's teeth cannot change groove: its jump margin judges them "
+                                  "(simulation.model = \"segments\" counts the jumps)")
+    else:
+        where = f"last at t = {teeth['last_jump_time']:.4g} s on {teeth['last_jump_pulley']}" if teeth["jumps"] else "none"
+        out.append(Criterion("tooth_jumps", teeth["jumps"], c.tooth_jumps_max, "", "max",
+                             "teeth that changed groove during the run (jumped)", where))
     peak = max(((p["max_tooth_load"], n) for n, p in teeth["pulleys"].items()), default=None)
     if c.tooth_load_max is None:
         skipped["tooth_load"] = "no rated tooth load given (criteria.tooth_load_max)"

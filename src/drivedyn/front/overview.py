@@ -184,8 +184,11 @@ def _teeth_table(th: dict) -> dict:
         rows.append([name, str(p["teeth"]), _f(p["teeth_in_mesh"], "{:.1f}"), _f(p["max_tooth_load"], "{:.1f}"),
                      _f(p["max_tooth_load_angle"], "{:.0f}"), _f(p["jump_margin_min"], "{:.2f}"),
                      "-" if ratio is None else f"{ratio:.6f} ({p['tooth_ratio']:.6f})"])
-    jumps = f"{th['jumps']} jump(s), the last at t = {th['last_jump_time']:.4g} s on {th['last_jump_pulley']}" \
-        if th["jumps"] else "no tooth jumped"
+    if th["jumps"] is None:       # the rotational model's chains: no groove change to count
+        jumps = "the rotational model's quasi-static chains (no play, no jump: the margin judges)"
+    else:
+        jumps = f"{th['jumps']} jump(s), the last at t = {th['last_jump_time']:.4g} s on {th['last_jump_pulley']}" \
+            if th["jumps"] else "no tooth jumped"
     return {"title": f"teeth ({th['profile']}, {th['count']} teeth of {th['pitch'] * 1e3:.4g} mm; over the steady window)",
             "head": ["pulley", "grooves", "teeth in mesh", "largest tooth load (N)", "at (deg)", "jump margin",
                      "speed ratio (tooth ratio)"],

@@ -21,9 +21,11 @@ def installed_length(model, lay: Layout) -> float:
 
 
 def belt_content(model, lay: Layout, T: float) -> float:
-    """Unstretched belt the path of ``lay`` holds at a uniform tension T at rest."""
+    """Unstretched belt the path of ``lay`` holds at a uniform tension T at rest (a synchronous belt's
+    pitch line runs on a grooved pulley's pitch radius: it sinks into the smooth ones only)."""
     EA = model.belt.axial_stiffness
-    sunk = float(np.sum(lay.wrap * penetration(T / np.abs(lay.rho), model.contact.stiffness_quadratic,
+    smooth = np.array([not p.teeth for p in model.pulleys], dtype=float)
+    sunk = float(np.sum(smooth * lay.wrap * penetration(T / np.abs(lay.rho), model.contact.stiffness_quadratic,
                                                 model.contact.stiffness_linear)))
     return (lay.length - sunk) / (1 + T / EA)
 

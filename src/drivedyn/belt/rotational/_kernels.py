@@ -56,6 +56,18 @@ class Rot(NamedTuple):
     tw: np.ndarray           # (na, ng, nk) wrap angle
     ncell: np.ndarray        # per wrap: cells of its belt (elastic-plastic law; _cells_*)
     p0: np.ndarray           # per wrap: the depth the belt's content is measured from (m; _content)
+    # a synchronous belt (rotational/teeth.py): per wrap 1 where the belt's teeth hold it in grooves
+    # (no creep, no slip: the belt passes at the grooves' rate, pr = belt pitch / groove pitch of
+    # unstretched belt per unit of pitch line), and the quasi-static tooth chain's end compliances
+    # (m/N: first end's motion = ga dT_in + gb dT_out, the last end's = gc dT_in + gd dT_out)
+    grooved: np.ndarray
+    pr: np.ndarray
+    ga: np.ndarray
+    gb: np.ndarray
+    gc: np.ndarray
+    gd: np.ndarray
+    chain: bool              # any grooved wrap
+    trest: float             # the rest tension the chains' energy is counted from (N)
 
 
 #: Gauss-Legendre nodes and weights on [0, 1] for the belt's depth along a slip arc (steady/creep.py uses
@@ -171,6 +183,8 @@ class RotState(NamedTuple):
     Tc: np.ndarray           # (nk, ncell max): ... and its tension (N)
     wsum: np.ndarray         # per wrap: the sum of its cells' content per unit arc (``_content``)
     dz: np.ndarray           # (nk, ncell max): the cells' last bristle increment (m): sliding on, or turning
+    cw0: np.ndarray          # per grooved wrap: the tensions its tooth chain holds at its first and last end (N)
+    cw1: np.ndarray
 
 
 class RotWork(NamedTuple):
@@ -428,7 +442,7 @@ def _tension(EA, L, u):
 
 
 @njit(cache=True, inline="always")
-def _return_map(nk, EA, m, mu, u, vs, L, wrap, slip, h, passes):
+def _return_map(nk, EA, m, mu, u, vs, L, wrap, slip, h, passes, grooved):
     """Gross slip: where a wrap's tension ratio (T_hi - c) / (T_lo - c) exceeds e^(mu theta), the
     belt slides over the whole wrap from the slack to the tight span until the ratio is at the
     limit (Coulomb's law on the wrap, as a return map; Gauss-Seidel over the wraps, which share
@@ -439,6 +453,8 @@ def _return_map(nk, EA, m, mu, u, vs, L, wrap, slip, h, passes):
     for _ in range(passes):
         moved = False
         for k in range(nk):
+            if grooved[k]:             # teeth in grooves: no slip (a tooth climbs instead: rotational/teeth.py)
+                continue
             ji = (k - 1) % nk          # the span arriving at pulley k (belt order)
             jo = k
             v = 0.5 * (vs[ji] + vs[jo])
@@ -475,6 +491,16 @@ def _return_map(nk, EA, m, mu, u, vs, L, wrap, slip, h, passes):
     return P
 
 
+@njit(cache=True, inline="always")
+def _chain_energy(ga, gb, gc, gd, T0, t_in, t_out):
+    """Energy of a tooth chain (J) held at end tensions t_in, t_out, counted from the rest state (both
+    ends at T0): the work of its end tensions over the ends' motions (linear: the mean of each end's
+    tension at rest and now)."""
+    x0 = ga * (t_in - T0) + gb * (t_out - T0)
+    x1 = gc * (t_in - T0) + gd * (t_out - T0)
+    return 0.5 * ((t_out + T0) * x1 - (t_in + T0) * x0)
+
+
 @njit(cache=True)
 def energy(R, P, A, S, RS, RW):
     """Mechanical energy (J): pulleys, rotors and arms; tensioner springs; the spans' and the
@@ -488,7 +514,8 @@ def _energy_at(R, P, A, S, RS, RW):
     """``energy`` with RW's geometry already that of the state (as the step leaves it)."""
     E = 0.0
     for k in range(R.nk):
-        E += 0.5 * P.inertia[k] * S.om[k] ** 2
+        if P.mode[k] == 0:        # a prescribed pulley's work is its belt torque's (as the segment model's)
+            E += 0.5 * P.inertia[k] * S.om[k] ** 2
         if P.cl_kind[k] > 0:
             E += 0.5 * P.cl_ir[k] * S.omr[k] ** 2
             if P.cl_kind[k] == 2:
@@ -502,7 +529,7 @@ def _energy_at(R, P, A, S, RS, RW):
             E += 0.5 * R.EA * eps * eps * uj
         ji = (j - 1) % R.nk
         e_in = RW.L[ji] / RS.u[ji] - 1.0
-        if e_in > 0.0:
+        if e_in > 0.0 and not R.grooved[j]:      # a tooth chain's energy is its eb
             E += 0.5 * R.EA * e_in * e_in * RS.W[j]
         E += RS.eb[j]
     return E
@@ -534,6 +561,8 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     ncell, zc, Tc, Kc, Fc, Xc, Yc, cpw, p0 = R.ncell, RS.zc, RS.Tc, RW.Kc, RW.Fc, RW.Xc, RW.Yc, RW.cp, R.p0
     ca, cb, ccw, cd, Tw0, Tw1, eww, offw, m0w, m1w = RW.ca, RW.cb, RW.cc, RW.cd, RW.Tw0, RW.Tw1, RW.ew, RW.off, RW.m0, RW.m1
     ebw = RW.eb0
+    chain, grooved, pr, ga, gb, gc, gd, trest = R.chain, R.grooved, R.pr, R.ga, R.gb, R.gc, R.gd, R.trest
+    cw0, cw1 = RS.cw0, RS.cw1
     wsw = RS.wsum
     dzw = RS.dz
     om, q, qd = S.om, S.q, S.qd
@@ -574,6 +603,8 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 _cells_respond(nk, ncell, EA, c1, c2, m, mu, dmax, rho, om, wrap, zc, Tc, Kc, Fc, Xc, Yc, cpw, ca, cb,
                                ccw, cd, Tw0, Tw1, eww, dzw)
                 _cells_couple(nk, EA, L, u, T, ca, cb, ccw, cd, Tw0, Tw1, bm, bv, offw, m0w, m1w)
+            elif chain:            # the grooved wraps' tooth chains give where the spans pull
+                _cells_couple(nk, EA, L, u, T, ga, gb, gc, gd, cw0, cw1, bm, bv, offw, m0w, m1w)
             for j in range(nk):
                 Tj = T[j]
                 if Tj < 0.0:          # a slack span carries nothing (the belt buckles)
@@ -591,6 +622,13 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 for k in range(nk):
                     ebw[k] = eb[k]
                 _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Fc, Tw0, Tw1, eww, eb, dzw)
+            elif chain:
+                for k in range(nk):
+                    if grooved[k]:
+                        ebw[k] = eb[k]
+                        cw0[k] = T[(k - 1) % nk]
+                        cw1[k] = T[k]
+                        eb[k] = _chain_energy(ga[k], gb[k], gc[k], gd[k], trest, cw0[k], cw1[k])
             for k in range(nk):
                 ji = (k - 1) % nk
                 vw = rho[k] * om[k]
@@ -647,6 +685,17 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                     P_fr += (T[k] * (fb[k] * (1.0 + eo) * h + m1w[k]) - T[ji] * (fa[k] * (1.0 + ei) * h + m0w[k])) / h \
                         - tq[k] * om[k] - (eb[k] - ebw[k]) / h
                     continue
+                if grooved[k]:
+                    # teeth in grooves: the belt passes at the grooves' rate, one belt pitch per groove (no
+                    # creep); the chain's ends moved the spans already. Its power balance: the strain the
+                    # belt takes from one span to the other through the chain (zero around the loop in a
+                    # steady state)
+                    fa[k] = vw * pr[k]
+                    fb[k] = fa[k]
+                    Wc[k] += m0w[k] - m1w[k]
+                    P_fr += (T[k] * (fb[k] * (1.0 + eo) * h + m1w[k]) - T[ji] * (fa[k] * (1.0 + ei) * h + m0w[k])) / h \
+                        - tq[k] * om[k] - (eb[k] - ebw[k]) / h
+                    continue
                 # the belt arrives in adhesion: it moves with the pulley at the friction's radius
                 # (r, or r - p(T_in)) at the strain of the span it comes from; the wrap's content
                 # relaxes to its steady value over one passage
@@ -671,8 +720,9 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 k1 = (j + 1) % nk
                 eps = Tm[j] / EA
                 # the tangent points' travel: belt rolled from the span onto its pulleys (adhesion)
-                d0 = (t0[j] - rt0[j]) / (1.0 + eps)
-                d1 = (t1[j] - rt1[j]) / (1.0 + eps)
+                # (onto a grooved pulley: one belt pitch per groove)
+                d0 = (t0[j] - rt0[j]) * pr[j] if grooved[j] else (t0[j] - rt0[j]) / (1.0 + eps)
+                d1 = (t1[j] - rt1[j]) * pr[k1] if grooved[k1] else (t1[j] - rt1[j]) / (1.0 + eps)
                 rt0[j] = t0[j]
                 rt1[j] = t1[j]
                 u_old = u[j]
@@ -682,8 +732,8 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 # (the rate once the return map has acted; without the belt the wraps let out, which the
                 # step's tensions took in implicitly: the damper acting on it a step late runs away at
                 # large belt.axial_damping)
-                ud[j] = u_old + offw[j] if dmax > 0.0 else u_old
-                vs[j] = 0.5 * (fb[j] + fa[k1] + (m1w[j] + m0w[k1]) / h) * (1.0 + eps) if dmax > 0.0 else \
+                ud[j] = u_old + offw[j] if dmax > 0.0 or chain else u_old
+                vs[j] = 0.5 * (fb[j] + fa[k1] + (m1w[j] + m0w[k1]) / h) * (1.0 + eps) if dmax > 0.0 or chain else \
                     0.5 * (fb[j] + fa[k1]) * (1.0 + eps)
             if dmax > 0.0:
                 # the cells' belt as it now is (their wrap's arc, depth and stretch at this speed): what
@@ -695,7 +745,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                     u[(k - 1) % nk] -= 0.5 * res
                     u[k] -= 0.5 * res
                     Wc[k] = wn
-            P_sl = _return_map(nk, EA, m, mu, u, vs, L, wrap, slip, h, passes) if passes > 0 else 0.0
+            P_sl = _return_map(nk, EA, m, mu, u, vs, L, wrap, slip, h, passes, grooved) if passes > 0 else 0.0
             for j in range(nk):
                 ud[j] = (u[j] - ud[j]) / h
             for k in range(nk):

@@ -113,7 +113,7 @@ class _Drive:
     def get(self):
         S, RS = self.S, self.RS
         return np.concatenate([S.om[self.dyn], S.omr[self.cl], S.dcp[self.cl], S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp,
-                               RS.ed, RS.zc.ravel(), RS.Tc.ravel(), RS.wsum, RS.dz.ravel()])
+                               RS.ed, RS.zc.ravel(), RS.Tc.ravel(), RS.wsum, RS.dz.ravel(), RS.cw0, RS.cw1])
 
     def set(self, x):
         S, RS = self.S, self.RS
@@ -125,9 +125,12 @@ class _Drive:
         for arr in (S.q, S.qd, RS.u, RS.W, RS.ud, RS.vs, RS.Tp, RS.ed):
             arr[:] = x[k:k + len(arr)]
             k += len(arr)
-        for arr in (RS.zc, RS.Tc, RS.wsum, RS.dz):
+        for arr in (RS.zc, RS.Tc, RS.wsum, RS.dz, RS.cw0, RS.cw1):
             arr.ravel()[:] = x[k:k + arr.size]
             k += arr.size
+        R = self.sysm.R
+        for j in np.flatnonzero(R.grooved):      # a tooth chain's energy follows from its end tensions
+            RS.eb[j] = RK._chain_energy(R.ga[j], R.gb[j], R.gc[j], R.gd[j], R.trest, RS.cw0[j], RS.cw1[j])
         # the belt rolled onto the span ends is a function of the travel: no spurious transfer at
         # the next step when an iterate moves the tensioner
         RW = self.RW
@@ -148,7 +151,8 @@ class _Drive:
                                sysm.rest_tension * np.ones(R.nk), 100 * du / R.L * abs(w),
                                R.dmax * np.ones(self.RS.zc.size) + 1e-12,
                                sysm.rest_tension * np.ones(self.RS.Tc.size), np.maximum(self.sysm.R.ncell, 1.0),
-                               R.dmax * np.ones(self.RS.dz.size) + 1e-12])
+                               R.dmax * np.ones(self.RS.dz.size) + 1e-12,
+                               sysm.rest_tension * np.ones(2 * R.nk)])
 
 
 def _anderson(phi, x0, scale, tol, memory=MEMORY, max_iter=MAX_ITER):

@@ -58,6 +58,7 @@ from ..dynamics import _bodies as BK
 from ..dynamics.bodies import arms_record, pulleys_record, running_senses
 from ..dynamics.frequencies import add_flap_and_modes
 from . import _kernels as RK
+from . import teeth as TT
 from ..geometry import tensioner as TN
 from ...mechanics.layout import Layout, compute_layout
 from ..steady.modes import rolled_on
@@ -94,6 +95,8 @@ class RotSystem:
     L0: float              # unstretched belt length (m)
     step: float
     omega_max: float       # bound on the fastest mode (rad/s)
+    wraps: list = ()       # a synchronous belt's grooved wraps (teeth.Wrap)
+    belt_teeth: object = None
 
 
 def rolling_radii(model, lay: Layout, tension: float) -> np.ndarray:
@@ -162,12 +165,20 @@ def build(drive) -> RotSystem:
         raise ModelError("the belt is slack at rest: belt.length too long or no pretension", field="belt")
     q0, dq, tL, t0, t1, tdx, tdy, tw = _tables(model, lay, idx, sense, rest_q) if idx else (
         np.zeros(0), np.ones(0), *(np.zeros((0, 4, len(lay.spans))) for _ in range(5)), np.zeros((0, 4, len(lay.names))))
+    wraps, bt = [], None
+    if belt.teeth is not None:
+        from ..geometry.teeth import belt_teeth
+
+        bt = belt_teeth(model, lay.length)
+        wraps = TT.chains(model, lay, L0, bt, T_rest)
     R = RK.Rot(nk=len(lay.names), rho=lay.rho.astype(float), EA=float(belt.axial_stiffness),
                bax=float(belt.axial_damping), m=float(belt.mass_per_length),
                mu=np.full(len(lay.names), float(model.friction.coefficient)),
                c1=float(model.contact.stiffness_quadratic), c2=float(model.contact.stiffness_linear),
                centre=model.friction.radius == "centre",
-               dmax=float(model.friction.displacement_limit) if model.friction.law == "elastic-plastic" else 0.0,
+               # (a synchronous belt's smooth wraps relax to their creep state: the cells hold none of its teeth)
+               dmax=float(model.friction.displacement_limit) if model.friction.law == "elastic-plastic" and not wraps
+               else 0.0,
                L=np.array([sp.length for sp in lay.spans]),
                dx=np.array([math.cos(sp.angle) for sp in lay.spans]), dy=np.array([math.sin(sp.angle) for sp in lay.spans]),
                wrap=lay.wrap.astype(float), q0=q0, dq=dq, tL=tL, t0=t0, t1=t1, tdx=tdx, tdy=tdy, tw=tw,
@@ -175,7 +186,8 @@ def build(drive) -> RotSystem:
                               dtype=np.int64),
                p0=np.array([0.0 if model.friction.radius == "centre" else
                             float(penetration(T_rest / abs(r), model.contact.stiffness_quadratic, model.contact.stiffness_linear))
-                            for r in lay.rho]))
+                            for r in lay.rho]),
+               **TT.kernel_fields(len(lay.names), wraps, float(belt.axial_stiffness)), trest=float(T_rest))
     P = pulleys_record(model.pulleys, running_senses(model, drawn))
     A = arms_record(model, sense)
     # the belt's mass, lumped: each wrap's belt and a third of each adjoining span's
@@ -194,7 +206,7 @@ def build(drive) -> RotSystem:
         A = A._replace(par=par, inertia=A.inertia + add)
     w_max = _omega_bound(R, P, A, rest_q, T_rest)
     h = STEP_OMEGA / w_max
-    return RotSystem(model, lay, R, P, A, rest_q, T_rest, L0, h, w_max)
+    return RotSystem(model, lay, R, P, A, rest_q, T_rest, L0, h, w_max, wraps, bt)
 
 
 def _omega_bound(R, P, A, rest_q, T) -> float:
@@ -286,8 +298,11 @@ def new_states(sysm: RotSystem):
         Wc = wsum * np.abs(R.rho) * R.wrap / R.ncell
     else:
         Wc = np.array([RK.wrap_content(abs(R.rho[j]), R.wrap[j], T, T, 0.0, R.mu[j], EA, c1, c2) for j in range(nk)])
+    for w in sysm.wraps:        # the grooved wraps: the belt on the pitch line at the rest tension
+        Wc[w.pulley] = w.radius * R.wrap[w.pulley] / (1 + T / EA)
     RS = RK.RotState(u=R.L / (1 + T / EA), W=Wc, ud=z(nk), vs=z(nk), t0=z(nk), t1=z(nk), Tp=np.full(nk, T), ed=z(nk),
-                     eb=z(nk), zc=z((nk, nc)), Tc=np.full((nk, nc), T), dz=z((nk, nc)), wsum=wsum)
+                     eb=z(nk), zc=z((nk, nc)), Tc=np.full((nk, nc), T), dz=z((nk, nc)), wsum=wsum,
+                     cw0=np.full(nk, T), cw1=np.full(nk, T))
     RW = RK.RotWork(L=z(nk), Ld=z(nk), t0=z(nk), t1=z(nk), dx=z(nk), dy=z(nk), wrap=z(nk), T=z(nk), Tm=z(nk), wm=z(nk), a=z(nk), b=z(nk),
                     tq=z(nk), hubx=z(nk), huby=z(nk), slip=z(nk), acc_T=z(nk), acc_v=z(nk), acc_slip=z(nk),
                     acc_gross=z(nk), acc_diss=z(6), bm=z((nk, nk)), bv=z(nk), ex=z(nk),
@@ -425,6 +440,8 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_mod
     for j, nm in enumerate(names):
         p = summary["pulleys"][nm]
         p["sliding_share"] = float(gross[:, j].mean()) if len(gross) else float("nan")
+    if sysm.wraps:
+        ds = TT.add_teeth(ds, summary, model, sysm, sel)
     ds.attrs["steady_window"] = [float(window[0]), float(window[1])]
     ds.attrs["animation"] = 0
     if ns:

@@ -11,6 +11,8 @@ import math
 
 import numpy as np
 
+from ..dynamics.phase import phase_error, phase_rows
+
 
 class TeethRecorder:
     """Per sample: tooth loads by slot, the smallest jump margin and the teeth in mesh per pulley, jumps so far."""
@@ -73,15 +75,10 @@ def variables(ds, rec: TeethRecorder, ns, sysm):
     ds["tooth_torque"] = variable(rec.belt_torque[:ns][:, tp], ("time", "toothed_pulley"), "N m",
                                   "sum of the tooth loads x their radius, at the sample")
     ds = ds.assign_coords(toothed_pulley=[names[j] for j in tp], groove_slot=np.arange(rec.load.shape[2]))
-    # transmission (phase) error of each grooved pulley against the first (the crank), in the first's
-    # degrees: theta_j - (z_0 / z_j) theta_0 scaled by z_j / z_0; its start value taken off
+    # transmission (phase) error of each grooved pulley against the first (the crank), in the first's degrees
     th = ds["angle"].values
     a = tp[0]
-    pe = np.zeros((ns, len(tp)))
-    for m, j in enumerate(tp):
-        if m and ns:
-            e = (th[:, j] - rec.z[a] / rec.z[j] * th[:, a]) * rec.z[j] / rec.z[a]
-            pe[:, m] = np.degrees(e - e[0])
+    pe = phase_error(th, tp, rec.z[tp])
     ds["phase_error"] = variable(pe, ("time", "toothed_pulley"), "deg",
                                  f"angle of the pulley against its tooth ratio to {names[a]}, in {names[a]}'s degrees "
                                  "(transmission error; from its value at the start)")
@@ -127,15 +124,8 @@ def summary(ds, rec: TeethRecorder, sel, sysm, model) -> dict:
                 out["pulleys"][names[j]]["speed_ratio"] = float((th[-1, j] - th[0, j]) / turn)
                 out["pulleys"][names[j]]["tooth_ratio"] = float(rec.z[a] / rec.z[j])
     # phase error over the steady window: peak to peak and its largest orders of the first pulley's turn
-    th0 = ds["angle"].values[sel, tp[0]] if len(tp) else np.zeros(0)
-    for m, name in enumerate(ds["toothed_pulley"].values.tolist()):
-        if m == 0 or not sel.any():
-            continue
-        e = ds["phase_error"].values[sel, m]
-        row = out["pulleys"][name]
-        row["phase_error_pp"] = float(e.max() - e.min())
-        row["phase_error_mean"] = float(e.mean())
-        row["phase_error_orders"] = _orders_of(th0, e)
+    phase_rows(out["pulleys"], ds["toothed_pulley"].values.tolist(), ds["angle"].values[:, tp[0]] if len(tp) else th[:, 0],
+               ds["phase_error"].values, sel)
     jumps = int(ds["tooth_jumps"].values[-1]) if ds.sizes["time"] else 0
     out["jumps"] = jumps
     out["climbing_steps"] = int(rec.climbs[ds.sizes["time"] - 1]) if ds.sizes["time"] else 0
@@ -148,20 +138,3 @@ def summary(ds, rec: TeethRecorder, sel, sysm, model) -> dict:
         first = int(np.argmax(ds["tooth_jumps"].values > 0))
         out["first_jump_time"] = float(ds["time"].values[first])
     return out
-
-
-def _orders_of(theta, e, n=3):
-    """The n largest orders of e over the angle theta (rad, turning steadily), by a least-squares fit of
-    cosines and sines at the half orders up to 12 (a cam drive's content: the crank's orders)."""
-    turns = abs(theta[-1] - theta[0]) / (2 * math.pi) if len(theta) > 1 else 0.0
-    if turns < 1.0:
-        return []
-    phi = theta - theta[0]
-    orders = np.arange(0.5, 12.01, 0.5)
-    cols = [np.ones_like(phi)]
-    for k in orders:
-        cols += [np.cos(k * phi), np.sin(k * phi)]
-    coef, *_ = np.linalg.lstsq(np.column_stack(cols), e - e.mean(), rcond=None)
-    amp = np.hypot(coef[1::2], coef[2::2])
-    top = np.argsort(amp)[::-1][:n]
-    return [{"order": float(orders[i]), "amplitude": float(amp[i])} for i in top if amp[i] > 0]
