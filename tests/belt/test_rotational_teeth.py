@@ -3,6 +3,7 @@ tooth chain, the belt passing its grooves one pitch per groove. Against the quas
 chain of mechanics/teeth/loadshare.py (solved there by its own Newton iteration) and Gerbert's
 closed form for the linear chain, the tooth ratio, the energy balance and the periodic run-up."""
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -10,7 +11,7 @@ import pytest
 import drivedyn
 from drivedyn.mechanics.teeth.loadshare import Chain, solve, teeth_in_mesh
 
-from test_teeth import HTD
+HTD = (Path(__file__).parent / "htd8m-teeth.toml").read_text()
 
 
 @pytest.fixture(scope="module")

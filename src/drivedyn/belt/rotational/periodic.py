@@ -331,7 +331,7 @@ def run(drive, progress=None, keys=None):
                             max(residual), TOLERANCE, "1")
     if keys is None:
         add_flap_and_modes(drive.model, result)
-        RT.extremes_estimate(result, RT.PERIODIC_SHARE)
+        RT.extremes_estimate(result, RT.TIMING_SHARE if sysm.wraps else RT.PERIODIC_SHARE, teeth=bool(sysm.wraps))
     if failure:
         raise SolverError(failure + f" (periodic solutions kept for {done} of {len(speeds)} speeds)", partial=result)
     return result

@@ -365,7 +365,7 @@ def run(drive, progress=None):
     o["t"][:k] = (np.arange(k) + 1) * interval      # exact sample times
     result = _assemble(model, sysm, o, k, steps * k, h, wall, failure)
     add_flap_and_modes(model, result)       # the estimate reads them (_absorbs); the verdict too
-    extremes_estimate(result, TIME_SHARE)
+    extremes_estimate(result, TIMING_SHARE if sysm.wraps else TIME_SHARE, teeth=bool(sysm.wraps))
     if failure:
         raise SolverError(failure + f" (results kept up to t = {o['t'][k - 1] if k else 0.0:.6g} s)", partial=result)
     return result
@@ -455,6 +455,15 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_mod
     return result
 
 
+#: ... for a synchronous belt (teeth.py's chains): against the segment model on examples/timing-cam-drive.toml
+#: held at 1500-4000 rpm (benchmarks/bench_timing_rotational.py), its extremes sat within 1.41 of the rotational
+#: half band at 2000 rpm and 2.13 at 2500 rpm against two segments per tooth (1.4-4.4 against one, whose
+#: mean tension sits 13 % above two's and four's: its polygon), 0.3-0.6 above the drive's first mode; at it
+#: (3000 rpm) the rotational chains, without the teeth's play and the lands' friction, ring to slack spans
+#: where the segment model's stay above 97 N (1.3-1.7 of the rotational band against one segment per tooth;
+#: two and four diverge there): with a margin
+TIMING_SHARE = 2.5
+
 #: a wrap that slides as a whole for more than this share of the window is in gross slip
 GROSS_SHARE = 0.02
 
@@ -515,7 +524,7 @@ def _absorbs(summary, span, where) -> bool:
     return any(abs(f[key][k] - fm) <= FLAP_NEAR * fm for key in ("f1", "f2") if key in f for fm in modes)
 
 
-def extremes_estimate(result, share):
+def extremes_estimate(result, share, teeth=False):
     """summary.discretisation.estimate for the rotational model: each span tension extreme's
     uncertainty against the segment model, share x its half band (ARM_SPAN_SHARE at least where a
     span's flap may take a drive mode's energy: _absorbs), and the ``model-accuracy`` diagnostic
@@ -567,7 +576,9 @@ def extremes_estimate(result, share):
         rel, sp, where, lo, u = worst
         result.diagnose("model-accuracy", f"rotational model: span {sp}'s minimum {lo:.0f} N at {where} may be off by "
                         f"+-{u:.0f} N ({100 * rel:.0f} %) against the segment model (it lacks the spans' flap, which "
-                        "takes energy from the drive's modes, and the belt's axial waves)"
+                        "takes energy from the drive's modes, and the belt's axial waves"
+                        + ("; its tooth chains lack the teeth's play and the lands' friction, which damp a timing "
+                           "drive's resonance" if teeth else "") + ")"
                         + (f"; its arm travel range may be {ARM_TRAVEL_FACTOR:g} times off where {', '.join(sorted(absorbing))} "
                            "may take a mode by its flap" if absorbing else "")
                         + f"; its slips may be off by {100 * est['slip_absolute']:.2g} points"
