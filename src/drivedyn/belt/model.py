@@ -490,9 +490,12 @@ class Pulley(Spec):
             raise ValueError(f"pulley {self.name!r}: a tensioner pulley cannot have a prescribed speed")
         if self.arm is not None:
             d = ((self.center[0] - self.arm.pivot[0]) ** 2 + (self.center[1] - self.arm.pivot[1]) ** 2) ** 0.5
-            if not d > self.radius:
-                raise ValueError(f"pulley {self.name!r}: arm.pivot lies inside the pulley ({d * 1e3:.3g} mm from "
-                                 f"its centre, radius {self.radius * 1e3:.3g} mm)")
+            # an eccentric tensioner's pivot lies inside its pulley (a timing drive's 5 mm arm): only an arm of
+            # no length, which cannot move the pulley, is refused
+            if not d > 1e-3 * self.radius:
+                raise ValueError(f"pulley {self.name!r}: arm.pivot lies at the pulley's centre ({d * 1e3:.3g} mm from "
+                                 "it): the arm cannot move the pulley (an eccentric tensioner's pivot lies off the "
+                                 "centre by its arm's length)")
             if self.arm.free_angle is not None:
                 object.__setattr__(self, "arm", _supplier_arm(self.name, self.center, self.arm))
         if self.pitch_curve is not None:
