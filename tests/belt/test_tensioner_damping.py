@@ -167,7 +167,7 @@ def test_hydraulic_tensioner_pumps_into_the_belt():
     st = Stage(m)
     w, h = 2 * math.pi * freq, 1e-5
     t_end, t_avg = 0.5, 0.2                 # the last 6 periods, after the mean's drift (c / k ~ 0.02 s)
-    n_end, n_avg = int(round(t_end / h)), int(round(t_avg / h))
+    n_end, n_avg = round(t_end / h), round(t_avg / h)
     xs, vs = [], []
     for n in range(n_end):
         st.step(-PRELOAD + F1 * math.sin(w * (n + 1) * h), h)   # the spring's equilibrium at q = 0
