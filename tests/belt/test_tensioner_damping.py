@@ -31,6 +31,7 @@ from drivedyn.belt.dynamics.bodies import arms_record
 from drivedyn.belt.dynamics.checks import ENERGY_LIMIT
 from drivedyn.core.errors import ModelError
 from drivedyn.core.model import from_dict, to_dict
+from drivedyn.mechanics.layout import compute_layout
 
 MASS, RATE, PRELOAD = 0.5, 5000.0, 340.0     # the slider: kg, N/m, N
 
@@ -245,3 +246,31 @@ def test_bad_damping_input_is_one_line(change, words):
         from_dict(d)
     msg = str(e.value)
     assert "\n" not in msg and words in msg, msg
+
+
+def test_an_eccentric_arm_balances_the_spans_moment_about_its_pivot():
+    """An eccentric tensioner (a timing drive's: its pivot inside its pulley, 6 mm off the idler's centre)
+    at rest: its spring torque equals the moment of the span tensions about the pivot (the balance
+    tests/belt/test_tensioner.py checks on a long arm)."""
+    pivot = (-0.020, -0.136)                      # the idler's centre (-20, -130) mm, radius 31 mm
+    d = to_dict(accessory(arm={}))
+    d["pulleys"][3]["arm"].update({"pivot": [pivot[0], pivot[1]], "preload": "1.6 N*m", "rate": "2 N*m/rad"})
+    d["simulation"] = {"duration": 0.05}
+    d["output"] = {"interval": "1 ms", "frames": 2, "segments": [0]}
+    m = from_dict(d)
+    r = drivedyn.run(m)
+    t = r.summary["tensioners"]["idler"]
+    assert t["travel_max"] - t["travel_min"] < 1e-8 and np.abs(r.ds["speed"].values).max() < 1e-5   # at rest
+    psi = t["arm_angle_mean"]
+    c = (pivot[0] + 0.006 * math.cos(psi), pivot[1] + 0.006 * math.sin(psi))
+    pulleys = [p.model_copy(update={"center": c}) if k == 3 else p for k, p in enumerate(m.pulleys)]
+    lay = compute_layout(m.model_copy(update={"pulleys": pulleys}))
+    F = np.zeros(2)
+    for sp in lay.spans:
+        u = np.array([math.cos(sp.angle), math.sin(sp.angle)])
+        T = r.summary["spans"][sp.name]["tension_mean"]
+        F += T * u if sp.start == 3 else 0.0      # the leaving span pulls the pulley along it
+        F -= T * u if sp.end == 3 else 0.0        # the arriving span pulls it back
+    M = (c[0] - pivot[0]) * F[1] - (c[1] - pivot[1]) * F[0]
+    spring = 1.6 - 2.0 * t["travel_mean"]
+    assert abs(t["travel_mean"]) < 0.5 and abs(abs(M) - spring) < 0.01 * spring, (M, spring, t["travel_mean"])
