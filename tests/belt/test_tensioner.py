@@ -179,7 +179,7 @@ def test_slider_equilibrium_and_fixed_force():
 
 
 @pytest.mark.parametrize("change, words", [
-    ({"arm": {"pivot": ["-20 mm", "-140 mm"]}}, "pivot lies inside the pulley"),
+    ({"arm": {"pivot": ["-20 mm", "-130 mm"]}}, "pivot lies at the pulley's centre"),
     ({"arm": {"preload": "1 N*m", "rate": "0 N*m/rad"}}, "spring cannot hold the belt"),
     ({"arm": {"stops": ["-0.001 rad", "0.5 rad"], "preload": "20 N*m"}}, "stop"),
     ({"arm": {"damping": "-1 N*m*s/rad"}}, "damping"),

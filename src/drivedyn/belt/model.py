@@ -105,7 +105,16 @@ class _Tensioner(Spec):
 
     friction_asymmetry: float = 1.0
     """Coulomb friction moving away from the belt over friction moving into it (1: symmetric; an asymmetric damper
-    resists belt-tightening less)."""
+    resists belt-tightening less: its friction in the loading sense, away from the belt, is the larger, Liu and Serkh,
+    Gates, US 6,609,988)."""
+    friction_share: float = 0.0
+    """Friction of a damper the spring itself presses, as a share of the spring's load, added to friction (both then
+    x friction_asymmetry moving away from the belt): the mechanical automatic tensioner whose damping shoe or bushing
+    carries the torsion spring's reaction, so that its hysteresis loop widens with the spring torque (the loops Bastien,
+    Michon, Manin and Dufour, J. Sound Vib. 302 (2007) 841, and Long, Yin, Zhao and Shangguan, Adv. Mech. Eng. 11
+    (2019), doi 10.1177/1687814019890228, measure). With friction 0 the loop runs at spring x (1 + share x
+    friction_asymmetry) loading (away from the belt) and spring x (1 - share) unloading. In [0, 1); 0: friction
+    alone."""
     spring_table: Optional[list[list]] = None
     """The spring as a table of rows [travel, load] (arm: rad, N*m; slider: m, N; travel from the drawn position,
     positive into the belt; at least 2 rows); replaces preload and rate."""
@@ -115,6 +124,14 @@ class _Tensioner(Spec):
     def _asym(cls, v):
         if not 0 < v <= 100:
             raise ValueError(f"must lie in (0, 100], got {v}")
+        return v
+
+    @field_validator("friction_share")
+    @classmethod
+    def _share(cls, v):
+        if not 0 <= v < 1:
+            raise ValueError(f"must lie in [0, 1) (a share of the spring's load; at 1 the spring cannot move the "
+                             f"arm against it), got {v}")
         return v
 
     @model_validator(mode="after")
@@ -146,7 +163,13 @@ class Arm(_Tensioner):
     rate: quantity("N*m/rad", ge=0) = 0.0
     """Torsional rate of the spring: its torque falls by rate x travel as the arm swings into the belt."""
     damping: quantity("N*m*s/rad", ge=0) = 0.0
-    """Viscous damping of the arm about its pivot."""
+    """Viscous damping of the arm about its pivot (moving into the belt only, when damping_away is given)."""
+    damping_away: Optional[quantity("N*m*s/rad", ge=0)] = None
+    """Viscous damping of the arm moving away from the belt, when it differs from damping: a hydraulic tensioner
+    (its check valve closes as the belt pushes the plunger back, the oil leaks out through the plunger's clearance:
+    the high damping; it refills through the valve as the plunger extends into the belt: damping, the low). Under a
+    steady load the arm leaks down at the load over damping_away (a leak-down test's load x time / travel gives it).
+    None: damping both ways."""
     friction: quantity("N*m", ge=0) = 0.0
     """Coulomb friction torque of the arm's damper moving into the belt (away from it: x friction_asymmetry)."""
     friction_speed: quantity("rad/s", gt=0) = 0.01
@@ -196,7 +219,13 @@ class Slider(_Tensioner):
     rate: quantity("N/m", ge=0) = 0.0
     """Spring rate: the force falls by rate x travel as the slider moves into the belt; 0: a constant-force tensioner."""
     damping: quantity("N*s/m", ge=0) = 0.0
-    """Viscous damping of the slide."""
+    """Viscous damping of the slide (moving into the belt only, when damping_away is given)."""
+    damping_away: Optional[quantity("N*s/m", ge=0)] = None
+    """Viscous damping of the slide moving away from the belt, when it differs from damping: a hydraulic tensioner's
+    plunger (its check valve closes as the belt pushes it back, the oil leaks out through its clearance: the high
+    damping; it refills through the valve as the plunger extends: damping, the low). Under a steady load the plunger
+    leaks down at the load over damping_away (a leak-down test's load x time / stroke gives it). None: damping both
+    ways."""
     friction: quantity("N", ge=0) = 0.0
     """Coulomb friction force of the slide moving into the belt (away from it: x friction_asymmetry)."""
     friction_speed: quantity("m/s", gt=0) = 1e-3
@@ -461,9 +490,12 @@ class Pulley(Spec):
             raise ValueError(f"pulley {self.name!r}: a tensioner pulley cannot have a prescribed speed")
         if self.arm is not None:
             d = ((self.center[0] - self.arm.pivot[0]) ** 2 + (self.center[1] - self.arm.pivot[1]) ** 2) ** 0.5
-            if not d > self.radius:
-                raise ValueError(f"pulley {self.name!r}: arm.pivot lies inside the pulley ({d * 1e3:.3g} mm from "
-                                 f"its centre, radius {self.radius * 1e3:.3g} mm)")
+            # an eccentric tensioner's pivot lies inside its pulley (a timing drive's 5 mm arm): only an arm of
+            # no length, which cannot move the pulley, is refused
+            if not d > 1e-3 * self.radius:
+                raise ValueError(f"pulley {self.name!r}: arm.pivot lies at the pulley's centre ({d * 1e3:.3g} mm from "
+                                 "it): the arm cannot move the pulley (an eccentric tensioner's pivot lies off the "
+                                 "centre by its arm's length)")
             if self.arm.free_angle is not None:
                 object.__setattr__(self, "arm", _supplier_arm(self.name, self.center, self.arm))
         if self.pitch_curve is not None:

@@ -67,9 +67,10 @@ class Arms(NamedTuple):
     from the drawn position, positive into the belt): a pivoted arm (kind 0; q in rad, the centre
     at pivot + length (cos psi, sin psi), psi = psi0 + sgn q) or a slider (kind 1; q in m, the
     centre at (px, py) + q (dx, dy)). Generalised load on q: spring (preload - rate q, or the
-    table over q when it has rows), stops (penalty kstop, damping cstop), viscous damping, Coulomb
-    friction (fric moving into the belt, fric x asym moving away; Threlfall-regularised over fv),
-    and the belt's hub force projected on d centre / dq."""
+    table over q when it has rows), stops (penalty kstop, damping cstop), viscous damping (visc
+    moving into the belt, visc_away moving away: a hydraulic tensioner's check valve), Coulomb
+    friction (fric + fshare x |spring load| moving into the belt, x asym moving away; Threlfall-
+    regularised over fv), and the belt's hub force projected on d centre / dq."""
     na: int
     pulley: np.ndarray       # int64
     kind: np.ndarray         # int64: 0 arm, 1 slider
@@ -91,6 +92,8 @@ class Arms(NamedTuple):
     qmax: np.ndarray
     kstop: np.ndarray
     cstop: np.ndarray
+    visc_away: np.ndarray    # viscous damping moving away from the belt (as visc)
+    fshare: np.ndarray       # friction per unit spring load (a damper the spring presses)
     tab_off: np.ndarray      # spring tables over q (flattened, see ``tables``)
     tab_x: np.ndarray
     tab_y: np.ndarray
@@ -100,11 +103,11 @@ class Arms(NamedTuple):
 # columns of Arms.par (the time loop passes one array: a call with more than 30 arguments cannot
 # be inlined, and an array passed to a function that is not inlined costs reference counting)
 (ARM_PSI0, ARM_SGN, ARM_LEN, ARM_PX, ARM_PY, ARM_DX, ARM_DY, ARM_IN, ARM_PRE, ARM_RATE, ARM_VISC, ARM_FRIC,
- ARM_ASYM, ARM_FV, ARM_QMIN, ARM_QMAX, ARM_KSTOP, ARM_CSTOP, ARM_NPAR) = range(19)
+ ARM_ASYM, ARM_FV, ARM_QMIN, ARM_QMAX, ARM_KSTOP, ARM_CSTOP, ARM_VISC_AWAY, ARM_FSHARE, ARM_NPAR) = range(21)
 
 
 ARM_FIELDS = ("psi0", "sgn", "length", "px", "py", "dx", "dy", "inertia", "preload", "rate", "visc", "fric",
-              "asym", "fv", "qmin", "qmax", "kstop", "cstop")
+              "asym", "fv", "qmin", "qmax", "kstop", "cstop", "visc_away", "fshare")
 
 
 class State(NamedTuple):
@@ -320,16 +323,16 @@ def _arm_centre(a, q, kind, par):
 @njit(cache=True, inline="always")
 def _spring_load(a, q, par, tab_off, tab_x, tab_y):
     """Spring load on the travel coordinate (into the belt positive): table or preload - rate q,
-    plus the stops' penalty. Returns (load, on a stop)."""
+    plus the stops' penalty. Returns (load, on a stop, the spring's part of the load)."""
     if tab_off[a + 1] > tab_off[a]:
         Q = table(tab_x, tab_y, tab_off[a], tab_off[a + 1], q, True)
     else:
         Q = par[a, ARM_PRE] - par[a, ARM_RATE] * q
     if q < par[a, ARM_QMIN]:
-        return Q + par[a, ARM_KSTOP] * (par[a, ARM_QMIN] - q), True
+        return Q + par[a, ARM_KSTOP] * (par[a, ARM_QMIN] - q), True, Q
     if q > par[a, ARM_QMAX]:
-        return Q - par[a, ARM_KSTOP] * (q - par[a, ARM_QMAX]), True
-    return Q, False
+        return Q - par[a, ARM_KSTOP] * (q - par[a, ARM_QMAX]), True, Q
+    return Q, False, Q
 
 
 @njit(cache=True)
@@ -376,21 +379,32 @@ def _spring_energy(a, q, tab_off, tab_x, tab_y, preload, rate, qmin, qmax, kstop
 def _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cvx, cvy, hubx, huby, h):
     """One semi-implicit step of every tensioner under the belt's hub forces of this step: the
     spring and stops explicit, viscous and stop damping and the regularised Coulomb friction
-    implicit in the new rate (the same scalar solve as the belt friction). Moves the pulley
-    centres. Returns the power dissipated. Inlined, on plain arrays: as a separate function (or
-    reading the record's fields) it cost 12 % per step (measured, six-pulley FEAD)."""
+    implicit in the new rate (the same scalar solve as the belt friction). Damping and friction
+    that differ with the sense of motion take the sense of v = qd + h Q / I: every term of the
+    implicit balance qd (1 + h c / I) + h fr mu(qd) / I = v has the sign of qd, so the new rate
+    moves as v does. The friction's load-proportional part reads the spring's load at the step's
+    start (explicit, as the spring). Moves the pulley centres. Returns the power dissipated.
+    Inlined, on plain arrays: as a separate function (or reading the record's fields) it cost
+    12 % per step (measured, six-pulley FEAD)."""
     P_diss = 0.0
     for a in range(na):
         j = pulley[a]
         q = sq[a]
         _, _, jx, jy = _arm_centre(a, q, kind, par)
-        Q, on_stop = _spring_load(a, q, par, tab_off, tab_x, tab_y)
+        Q, on_stop, Qs = _spring_load(a, q, par, tab_off, tab_x, tab_y)
         Q += hubx[j] * jx + huby[j] * jy            # the belt pushes the pulley out (Q < 0)
-        c = par[a, ARM_VISC] + (par[a, ARM_CSTOP] if on_stop else 0.0)
         hI = h / par[a, ARM_IN]
+        v = sqd[a] + hI * Q
+        fr = par[a, ARM_FRIC] + par[a, ARM_FSHARE] * abs(Qs)
+        if v >= 0.0:       # moving into the belt
+            c = par[a, ARM_VISC]
+        else:              # away from it: the asymmetric damper's loading sense
+            c = par[a, ARM_VISC_AWAY]
+            fr *= par[a, ARM_ASYM]
+        if on_stop:
+            c += par[a, ARM_CSTOP]
         den = 1.0 + hI * c
-        w0 = (sqd[a] + hI * Q) / den
-        fr = par[a, ARM_FRIC] if w0 >= 0.0 else par[a, ARM_FRIC] * par[a, ARM_ASYM]
+        w0 = v / den
         fv = par[a, ARM_FV]
         qd = solve_threlfall(w0, hI * fr / den, fv)
         P_diss += c * qd * qd + fr * threlfall(qd, fv) * qd

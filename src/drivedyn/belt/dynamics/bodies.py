@@ -50,7 +50,9 @@ def arms_record(model, sense=None) -> BK.Arms:
                   visc=f([t.damping for t in T]), fric=f([t.friction for t in T]),
                   asym=f([t.friction_asymmetry for t in T]), fv=f([t.friction_speed for t in T]),
                   qmin=f([t.stops[0] for t in T]), qmax=f([t.stops[1] for t in T]),
-                  kstop=f([t.stop_stiffness for t in T]), cstop=f([t.stop_damping for t in T]))
+                  kstop=f([t.stop_stiffness for t in T]), cstop=f([t.stop_damping for t in T]),
+                  visc_away=f([t.damping if t.damping_away is None else t.damping_away for t in T]),
+                  fshare=f([t.friction_share for t in T]))
     par = np.ascontiguousarray(np.column_stack([fields[k] for k in BK.ARM_FIELDS]).reshape(len(idx), BK.ARM_NPAR))
     return BK.Arms(na=len(idx), pulley=np.array(idx, dtype=np.int64), kind=np.array(kind, dtype=np.int64),
                   tab_off=off, tab_x=tx, tab_y=ty, par=par, **fields)
