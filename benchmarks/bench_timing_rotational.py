@@ -17,7 +17,11 @@ def held(model, rpm, kind, nodes):
     m = drivedyn.replace(model, {"simulation.model": kind, "pulleys.CRK.speed_time": [[0.0, 0.0], [0.1, w]],
                                  "belt.teeth.nodes_per_tooth": nodes})
     t0 = time.perf_counter()
-    res = drivedyn.run(m)
+    try:
+        res = drivedyn.run(m)
+    except drivedyn.SolverError as exc:       # the segment model may diverge at a resonance: say so
+        print(f"  {kind} at {rpm:.0f} rpm: {exc}")
+        return None, time.perf_counter() - t0
     return res, time.perf_counter() - t0
 
 
@@ -36,6 +40,8 @@ def main():
         rr, wr = held(model, rpm, "rotational", a.nodes)
         rs, ws = held(model, rpm, "segments", a.nodes)
         walls["rotational"].append(wr)
+        if rs is None:
+            continue
         walls["segments"].append(ws)
         line = []
         for sp, v in rr.summary["spans"].items():

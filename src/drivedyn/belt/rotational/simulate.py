@@ -455,13 +455,12 @@ def _assemble(model, sysm: RotSystem, o, ns, nsteps, h, wall, failure, runup_mod
     return result
 
 
-#: ... for a synchronous belt (teeth.py's chains): against the segment model on examples/timing-cam-drive.toml
-#: held at 1500-4000 rpm (benchmarks/bench_timing_rotational.py), its extremes sat within 1.41 of the rotational
-#: half band at 2000 rpm and 2.13 at 2500 rpm against two segments per tooth (1.4-4.4 against one, whose
-#: mean tension sits 13 % above two's and four's: its polygon), 0.3-0.6 above the drive's first mode; at it
-#: (3000 rpm) the rotational chains, without the teeth's play and the lands' friction, ring to slack spans
-#: where the segment model's stay above 97 N (1.3-1.7 of the rotational band against one segment per tooth;
-#: two and four diverge there): with a margin
+#: ... for a synchronous belt (teeth.py's chains): against the segment model at two segments per tooth on
+#: examples/timing-cam-drive.toml held at 1500-4000 rpm (benchmarks/bench_timing_rotational.py), its
+#: extremes sat within 0.03-0.8 of the rotational half band on most spans, 1.7 on the short crank-cam span
+#: at 1500-2000 rpm and 2.35 on CAM1-CAM2 at 3000 rpm; with the tensioner held fixed (no damper) at its
+#: first mode (3000 rpm) the chains, without the teeth's play and the lands' friction, ring to slack spans
+#: where the segment model's stay above 97 N (1.3-1.7 of the band): with a margin
 TIMING_SHARE = 2.5
 
 #: a wrap that slides as a whole for more than this share of the window is in gross slip
