@@ -68,6 +68,23 @@ class Rot(NamedTuple):
     gd: np.ndarray
     chain: bool              # any grooved wrap
     trest: float             # the rest tension the chains' energy is counted from (N)
+    # non-circular grooved pulleys (pitch_curves.py; rotational/curves.py): per curve its pulley, the
+    # period of its geometry in its angle, the belt's sense, perimeter / 2 pi, and tables over one period
+    # (cubic, periodic): changes from the circle layout of span lengths, directions and wraps, the
+    # effective radii where the belt arrives and leaves, and the periodic part of the arc positions of
+    # the arriving and leaving tangent points on the curve (S + perimeter theta / 2 pi)
+    cpul: np.ndarray
+    cP: np.ndarray
+    csig: np.ndarray
+    cper: np.ndarray
+    cL: np.ndarray           # (nc, N, nspan)
+    cdx: np.ndarray
+    cdy: np.ndarray
+    cw: np.ndarray           # (nc, N, nk)
+    crin: np.ndarray         # (nc, N)
+    crout: np.ndarray
+    cse: np.ndarray
+    csx: np.ndarray
 
 
 #: Gauss-Legendre nodes and weights on [0, 1] for the belt's depth along a slip arc (steady/creep.py uses
@@ -162,11 +179,80 @@ def _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld
         dy[j] /= n
 
 
+@njit(cache=True, inline="always")
+def _periodic(tab, a, th, P):
+    """The cubic through tab[a]'s four nodes about th on its period P (N nodes), and its derivative in th."""
+    n = tab.shape[1]
+    d = P / n
+    x = (th % P) / d
+    i = int(math.floor(x))
+    wm, w0, w1, w2, dm, d0, d1, d2 = _cubic(x - i)
+    im, i1, i2 = (i - 1) % n, (i + 1) % n, (i + 2) % n
+    i = i % n
+    v = wm * tab[a, im] + w0 * tab[a, i] + w1 * tab[a, i1] + w2 * tab[a, i2]
+    return v, (dm * tab[a, im] + d0 * tab[a, i] + d1 * tab[a, i1] + d2 * tab[a, i2]) / d
+
+
+@njit(cache=True, inline="always")
+def _periodic_row(tab, a, j, th, P):
+    """``_periodic`` of tab[a, :, j]."""
+    n = tab.shape[1]
+    d = P / n
+    x = (th % P) / d
+    i = int(math.floor(x))
+    wm, w0, w1, w2, dm, d0, d1, d2 = _cubic(x - i)
+    im, i1, i2 = (i - 1) % n, (i + 1) % n, (i + 2) % n
+    i = i % n
+    v = wm * tab[a, im, j] + w0 * tab[a, i, j] + w1 * tab[a, i1, j] + w2 * tab[a, i2, j]
+    return v, (dm * tab[a, im, j] + d0 * tab[a, i, j] + d1 * tab[a, i1, j] + d2 * tab[a, i2, j]) / d
+
+
+@njit(cache=True, inline="always")
+def _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, th, om, L, Ld, dx, dy, wrap, rin, rout):
+    """The non-circular pulleys' share of the geometry at their angles th (rates om): span lengths (and
+    rates), directions, wraps and the effective radii rin, rout (|rho| on a circle). Called after
+    ``_geometry``, which normalised the directions: they are normalised again."""
+    nk = rho.shape[0]
+    for k in range(nk):
+        rin[k] = abs(rho[k])
+        rout[k] = rin[k]
+    nc = cpul.shape[0]
+    if nc == 0:
+        return
+    ns = L.shape[0]
+    for a in range(nc):
+        k = cpul[a]
+        t, w, P = th[k], om[k], cP[a]
+        for j in range(ns):
+            v, dv = _periodic_row(cL, a, j, t, P)
+            L[j] += v
+            Ld[j] += dv * w
+            dx[j] += _periodic_row(cdx, a, j, t, P)[0]
+            dy[j] += _periodic_row(cdy, a, j, t, P)[0]
+        for j in range(nk):
+            wrap[j] += _periodic_row(cw, a, j, t, P)[0]
+        rin[k] = _periodic(crin, a, t, P)[0]
+        rout[k] = _periodic(crout, a, t, P)[0]
+    for j in range(ns):
+        n = math.sqrt(dx[j] * dx[j] + dy[j] * dy[j])
+        dx[j] /= n
+        dy[j] /= n
+
+
+@njit(cache=True, inline="always")
+def _arc_position(tab, per, a, th, P):
+    """Arc position on curve a's pitch line of a tangent point at the pulley's angle th (m, from its
+    value at 0): the table's periodic part less perimeter th / 2 pi."""
+    return _periodic(tab, a, th, P)[0] - per[a] * th
+
+
 @njit(cache=True)
-def geometry(R, q, qd, L, Ld, t0, t1, dx, dy, wrap):
-    """``_geometry`` on the Rot record."""
+def geometry(R, q, qd, L, Ld, t0, t1, dx, dy, wrap, th, om, rin, rout):
+    """``_geometry`` and ``_curve_geometry`` on the Rot record."""
     _geometry(R.L, R.dx, R.dy, R.wrap, R.q0, R.dq, R.tL, R.t0, R.t1, R.tdx, R.tdy, R.tw, q, qd, L, Ld, t0, t1,
               dx, dy, wrap)
+    _curve_geometry(R.rho, R.cpul, R.cP, R.cL, R.cdx, R.cdy, R.cw, R.crin, R.crout, th, om, L, Ld, dx, dy, wrap,
+                    rin, rout)
 
 
 class RotState(NamedTuple):
@@ -228,6 +314,9 @@ class RotWork(NamedTuple):
     off: np.ndarray          # per span: belt the wraps let into it this step (m, unstretched)
     m0: np.ndarray           # per wrap: its first and last end's motion this step (m, forward positive)
     m1: np.ndarray
+    rin: np.ndarray          # per pulley: effective radius where the belt arrives and leaves (m; |rho| on a circle)
+    rout: np.ndarray
+    thb: np.ndarray          # per pulley: its angle at the step's start (rad)
 
 
 @njit(cache=True, inline="always")
@@ -505,7 +594,7 @@ def _chain_energy(ga, gb, gc, gd, T0, t_in, t_out):
 def energy(R, P, A, S, RS, RW):
     """Mechanical energy (J): pulleys, rotors and arms; tensioner springs; the spans' and the
     wraps' strain energy (a wrap at its arriving span's strain)."""
-    geometry(R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap)
+    geometry(R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap, S.th, S.om, RW.rin, RW.rout)
     return _energy_at(R, P, A, S, RS, RW)
 
 
@@ -563,6 +652,9 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     ebw = RW.eb0
     chain, grooved, pr, ga, gb, gc, gd, trest = R.chain, R.grooved, R.pr, R.ga, R.gb, R.gc, R.gd, R.trest
     cw0, cw1 = RS.cw0, RS.cw1
+    cpul, cP, csig, cper, cL, cdx, cdy, cw, crin, crout, cse, csx = (R.cpul, R.cP, R.csig, R.cper, R.cL, R.cdx, R.cdy,
+                                                                    R.cw, R.crin, R.crout, R.cse, R.csx)
+    rin, rout, thb = RW.rin, RW.rout, RW.thb
     wsw = RS.wsum
     dzw = RS.dz
     om, q, qd = S.om, S.q, S.qd
@@ -571,6 +663,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     # the geometry of this state: after the first step, the one the last step left (the travel
     # moves only in the tensioners' stage, whose geometry the belt's stage computes)
     _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap)
+    _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, S.th, om, L, Ld, dx, dy, wrap, rin, rout)
     interval = steps * h
     work = out_work[k0 - 1] if k0 > 0 else 0.0
     for ks in range(k0, k1):
@@ -641,18 +734,22 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                     ri = r - sunk_depth((T[ji] - c) / r, c1, c2)
                     tq[k] = (ro * (T[k] - c) - ri * (T[ji] - c)) * (1.0 if rho[k] >= 0.0 else -1.0)
                 else:
-                    tq[k] = rho[k] * (T[k] - T[ji])
+                    # each span's pull on its lever arm (the effective radius: |rho| on a circle)
+                    tq[k] = (rout[k] * T[k] - rin[k] * T[ji]) * (1.0 if rho[k] >= 0.0 else -1.0)
                 # the wrap's pressure (T - c) / r: the hub carries the spans' pull less the belt's
                 # centrifugal force on the wrap
                 hubx[k] = (T[k] - c) * dx[k] - (T[ji] - c) * dx[ji]
                 huby[k] = (T[k] - c) * dy[k] - (T[ji] - c) * dy[ji]
             # --- tensioners and pulleys: the segment model's stages
+            for k in range(nk):
+                thb[k] = S.th[k]
             P_arm = BK._step_arms(na, apul, akind, apar, atoff, atx, aty, q, qd, scx, scy, scvx, scvy, hubx, huby, h)
             diss_cl = BK._step_pulleys(t, h, tq, hubx, huby, P, S, W)
             for k in range(nk):
                 wm[k] = wrap[k]
             # --- the belt: fluxes through the wraps at the new speeds, contents updated
             _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap)
+            _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, S.th, om, L, Ld, dx, dy, wrap, rin, rout)
             P_fr = 0.0
             for k in range(nk):
                 wm[k] = 0.5 * (wm[k] + wrap[k])      # the wraps at the step's middle
@@ -692,7 +789,15 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                     # steady state)
                     fa[k] = vw * pr[k]
                     fb[k] = fa[k]
-                    Wc[k] += m0w[k] - m1w[k]
+                    for a in range(cpul.shape[0]):
+                        if cpul[a] == k:
+                            # on a pitch curve: the belt the turning curve carries past each tangent point
+                            # (its arc position moves by S(theta) there, not r dtheta)
+                            fa[k] = csig[a] * pr[k] * (_arc_position(cse, cper, a, thb[k], cP[a])
+                                                       - _arc_position(cse, cper, a, S.th[k], cP[a])) / h
+                            fb[k] = csig[a] * pr[k] * (_arc_position(csx, cper, a, thb[k], cP[a])
+                                                       - _arc_position(csx, cper, a, S.th[k], cP[a])) / h
+                    Wc[k] += h * (fa[k] - fb[k]) + m0w[k] - m1w[k]
                     P_fr += (T[k] * (fb[k] * (1.0 + eo) * h + m1w[k]) - T[ji] * (fa[k] * (1.0 + ei) * h + m0w[k])) / h \
                         - tq[k] * om[k] - (eb[k] - ebw[k]) / h
                     continue

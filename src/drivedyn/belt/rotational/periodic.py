@@ -134,7 +134,7 @@ class _Drive:
         # the belt rolled onto the span ends is a function of the travel: no spurious transfer at
         # the next step when an iterate moves the tensioner
         RW = self.RW
-        RK.geometry(self.sysm.R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap)
+        RK.geometry(self.sysm.R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap, S.th, S.om, RW.rin, RW.rout)
         RS.t0[:], RS.t1[:] = RW.t0, RW.t1
 
     def scale(self, w):

@@ -58,6 +58,7 @@ from ..dynamics import _bodies as BK
 from ..dynamics.bodies import arms_record, pulleys_record, running_senses
 from ..dynamics.frequencies import add_flap_and_modes
 from . import _kernels as RK
+from . import curves as CV
 from . import teeth as TT
 from ..geometry import tensioner as TN
 from ...mechanics.layout import Layout, compute_layout
@@ -97,6 +98,7 @@ class RotSystem:
     omega_max: float       # bound on the fastest mode (rad/s)
     wraps: list = ()       # a synchronous belt's grooved wraps (teeth.Wrap)
     belt_teeth: object = None
+    curves: object = None  # non-circular grooved pulleys (curves.Curves)
 
 
 def rolling_radii(model, lay: Layout, tension: float) -> np.ndarray:
@@ -161,6 +163,9 @@ def build(drive) -> RotSystem:
     idx, sense = list(drive.tensioners), list(drive.senses)
     belt = model.belt
     rest_q, T_rest, lay = drive.rest
+    curves = CV.tables(model, lay)      # non-circular grooved pulleys (None: all circles)
+    if curves is not None:
+        T_rest = CV.rest_tension(model, curves, L0)
     if not T_rest > 0:
         raise ModelError("the belt is slack at rest: belt.length too long or no pretension", field="belt")
     q0, dq, tL, t0, t1, tdx, tdy, tw = _tables(model, lay, idx, sense, rest_q) if idx else (
@@ -187,7 +192,8 @@ def build(drive) -> RotSystem:
                p0=np.array([0.0 if model.friction.radius == "centre" else
                             float(penetration(T_rest / abs(r), model.contact.stiffness_quadratic, model.contact.stiffness_linear))
                             for r in lay.rho]),
-               **TT.kernel_fields(len(lay.names), wraps, float(belt.axial_stiffness)), trest=float(T_rest))
+               **TT.kernel_fields(len(lay.names), wraps, float(belt.axial_stiffness)), trest=float(T_rest),
+               **CV.kernel_fields(curves, len(lay.names), len(lay.spans)))
     P = pulleys_record(model.pulleys, running_senses(model, drawn))
     A = arms_record(model, sense)
     # the belt's mass, lumped: each wrap's belt and a third of each adjoining span's
@@ -206,7 +212,7 @@ def build(drive) -> RotSystem:
         A = A._replace(par=par, inertia=A.inertia + add)
     w_max = _omega_bound(R, P, A, rest_q, T_rest)
     h = STEP_OMEGA / w_max
-    return RotSystem(model, lay, R, P, A, rest_q, T_rest, L0, h, w_max, wraps, bt)
+    return RotSystem(model, lay, R, P, A, rest_q, T_rest, L0, h, w_max, wraps, bt, curves)
 
 
 def _omega_bound(R, P, A, rest_q, T) -> float:
@@ -300,7 +306,12 @@ def new_states(sysm: RotSystem):
         Wc = np.array([RK.wrap_content(abs(R.rho[j]), R.wrap[j], T, T, 0.0, R.mu[j], EA, c1, c2) for j in range(nk)])
     for w in sysm.wraps:        # the grooved wraps: the belt on the pitch line at the rest tension
         Wc[w.pulley] = w.radius * R.wrap[w.pulley] / (1 + T / EA)
-    RS = RK.RotState(u=R.L / (1 + T / EA), W=Wc, ud=z(nk), vs=z(nk), t0=z(nk), t1=z(nk), Tp=np.full(nk, T), ed=z(nk),
+    span0 = R.L
+    if sysm.curves is not None:     # the path on the curves at their rest angles
+        span0 = sysm.curves.spans0
+        for w in sysm.wraps:
+            Wc[w.pulley] = sysm.curves.arcs0[w.pulley] / (1 + T / EA)
+    RS = RK.RotState(u=span0 / (1 + T / EA), W=Wc, ud=z(nk), vs=z(nk), t0=z(nk), t1=z(nk), Tp=np.full(nk, T), ed=z(nk),
                      eb=z(nk), zc=z((nk, nc)), Tc=np.full((nk, nc), T), dz=z((nk, nc)), wsum=wsum,
                      cw0=np.full(nk, T), cw1=np.full(nk, T))
     RW = RK.RotWork(L=z(nk), Ld=z(nk), t0=z(nk), t1=z(nk), dx=z(nk), dy=z(nk), wrap=z(nk), T=z(nk), Tm=z(nk), wm=z(nk), a=z(nk), b=z(nk),
@@ -308,7 +319,8 @@ def new_states(sysm: RotSystem):
                     acc_gross=z(nk), acc_diss=z(6), bm=z((nk, nk)), bv=z(nk), ex=z(nk),
                     Xc=z((nk, nc)), Yc=z((nk, nc)), Kc=z((nk, nc)), Fc=z((nk, nc)), cp=z(nc), ca=z(nk), cb=z(nk), cc=z(nk),
                     cd=z(nk), eb0=z(nk),
-                    Tw0=z(nk), Tw1=z(nk), ew=z(nk), off=z(nk), m0=z(nk), m1=z(nk))
+                    Tw0=z(nk), Tw1=z(nk), ew=z(nk), off=z(nk), m0=z(nk), m1=z(nk), rin=np.abs(R.rho), rout=np.abs(R.rho),
+                    thb=z(nk))
     return S, W, RS, RW
 
 
