@@ -165,9 +165,16 @@ def _escape(text) -> str:
 
 
 def _has_dashboard(client) -> bool:
-    """Whether the scheduler serves a dashboard (a scheduler started apart may have none, and one
-    without bokeh never has)."""
+    """Whether the scheduler serves a dashboard. A scheduler started apart with ``--no-dashboard``
+    still lists its HTTP server (health, metrics) as the service "dashboard", whose /status answers
+    404; the dashboard is the Bokeh application attached to that server (distributed's
+    ``Scheduler(dashboard=...)``), asked of the scheduler itself."""
+    def served(dask_scheduler=None):     # nested: sent by value, the scheduler need not hold drivedyn
+        return bool(getattr(getattr(dask_scheduler, "http_application", None), "applications", None))
+
     try:
-        return "dashboard" in (client.scheduler_info().get("services") or {})
+        if "dashboard" not in (client.scheduler_info().get("services") or {}):
+            return False
+        return bool(client.run_on_scheduler(served))
     except Exception:      # the line is cosmetic: never fail a study for it
         return False
