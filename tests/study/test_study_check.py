@@ -63,7 +63,7 @@ def test_study_report_in_a_browser(client, write_study, tmp_path):
     import shutil
     import subprocess
 
-    from drivedyn.front.report import write_study_report
+    from drivedyn.front.study_report import write_study_report
 
     path = write_study(STUDY)
     res = run_study(path, out=tmp_path / "out", client=client, plots=True)

@@ -64,7 +64,7 @@ summary = ["steady.slip_margin", "steady.pulleys.*.creep"]
     assert json.loads(ds.attrs["parameter_names"]) == [label, "name"]
     assert len(res.plots) == 3 and all(len(p.name) <= 110 for p in res.plots)
     assert any(v.startswith("steady.pulleys.ppp") and "~" in v for v in ds.data_vars)   # shortened, hashed
-    from drivedyn.front.report import write_study_report
+    from drivedyn.front.study_report import write_study_report
 
     assert write_study_report(res, study, tmp_path / "out").stat().st_size > 1000
 

@@ -69,17 +69,17 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
         res = run_study(study, outdir, scheduler=scheduler, workers=workers, retry_failed=retry_failed,
                         plots=plots, progress=progress, on_client=on_client)
     c = res.counts
-    if res.ds.attrs.get("unmatched_outputs"):
-        console.print(f"[yellow]warning:[/] outputs.summary pattern(s) matching no summary key: {res.ds.attrs['unmatched_outputs']}")
+    for line in unmatched_lines(res.ds):
+        console.print("[yellow]warning:[/] " + escape(line))
     warned = c.get("warning", 0)
     console.print(f"{c['total']} cases: {c['success']} succeeded, {warned} warned, "
                   f"{c['total'] - c['success'] - warned} did not ({c['ran']} run now, {c['cached']} from the cache)")
     sts = res.ds["status"].values.ravel()
     msgs = res.ds["message"].values.ravel()
     bad = ~np.isin(sts, COMPLETED)
-    from .report import _case_names
+    from ..study.shown import case_names
 
-    names = np.array(_case_names(res.ds), dtype=object)
+    names = np.array(case_names(res.ds), dtype=object)
     for label, mask, colour in (("warned", sts == "warning", "yellow"), ("did not finish", bad, "red")):
         for s, m, nm in list(zip(sts[mask], msgs[mask], names[mask]))[:5]:
             console.print(f"  [{colour}]{s}[/]: {escape(str(nm))}: {escape(str(m))}")
@@ -90,7 +90,7 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
         console.print(f"pruned {n} cached case(s) of other models ({size / 1e6:.1f} MB)")
     console.print(escape(f"wrote {res.path}" + (f" and {len(res.plots)} plot(s) in {Path(res.path).parent / 'plots'}" if res.plots else "")))
     if report:
-        from .report import write_study_report
+        from .study_report import write_study_report
 
         console.print(f"report: {write_study_report(res, study_file, Path(res.path).parent)}")
     return 0 if not bad.any() else 1
@@ -132,17 +132,19 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
     console.print(f"{n} designs evaluated ({res.counts['ran']} run now, {res.counts['cached']} from the cache), {feasible} feasible")
     hits = on_bounds(study, o.values) if o.values is not None else []
     if report:
-        from .report import write_optimisation_report
+        from .study_report import write_optimisation_report
 
         console.print(escape(f"report: {write_optimisation_report(res, study, study_file, Path(res.path).parent, hits)}"))
     if o.values is None:
         console.print("[red]no feasible design[/]: widen the ranges, loosen the constraints or raise the budget")
         console.print(escape(f"wrote {res.path}"))
         return 1
-    units = study.units
+    from .study_report import study_unit
+
     console.print(escape(f"best: {opt.objective} = {o.objective:.6g}"))
     for k, v in o.values.items():
-        console.print(escape(f"  {k} = {v:.6g} {units.get(k, '') or ''}".rstrip()) if isinstance(v, float) else escape(f"  {k} = {v}"))
+        unit, scale = study_unit(study, k)
+        console.print(escape(f"  {k} = {v * scale:.6g} {unit}".rstrip()) if isinstance(v, float) else escape(f"  {k} = {v}"))
     for h in hits:
         console.print("[yellow]" + escape(f"  {h['name']} sits on the {h['side']} bound of its range ({h['bound']:.6g} "
                                           f"{h['unit']}): the optimum may lie outside it; widen the range") + "[/]")
@@ -153,6 +155,16 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
     console.print(escape(f"wrote {res.path}, {Path(res.path).parent / 'best.toml'}"
                          + (f" and {len(res.plots)} plot(s)" if res.plots else "")))
     return 0
+
+
+def unmatched_lines(ds) -> list[str]:
+    """One line per ``outputs.summary`` pattern that matched no summary key, with what would."""
+    import json
+
+    near = json.loads(ds.attrs.get("unmatched_near") or "{}")
+    pats = near or {p.strip(): "" for p in ds.attrs.get("unmatched_outputs", "").split(",") if p.strip()}
+    return [f"outputs.summary: {p!r} matches no summary key" + (f"; near: {hint}" if hint else "")
+            for p, hint in pats.items()]
 
 
 def _escape(text) -> str:

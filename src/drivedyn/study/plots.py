@@ -78,8 +78,11 @@ def plot_key(ds, key, fig=None):
         raise KeyError(f"{key!r} is not in the study Dataset" + (f" (did you mean {', '.join(close)}?)" if close else ""))
     if not _numeric(ds, key):
         raise TypeError(f"{key!r} is not numeric and cannot be plotted")
-    var = ds[key]
     params = parameter_names(ds)
+    from .shown import in_shown_units
+
+    ds = in_shown_units(ds, [key] + [p for p in params if p in ds.variables])   # deg and rpm as the study writes them
+    var = ds[key]
     fig = fig or Figure(figsize=(6.4, 4.8), layout="constrained")
     ok, marks = _masks(ds)
     grid = "case" not in var.dims

@@ -405,10 +405,15 @@ class Study:
         The base model with the study's ``overrides`` applied.
     units : dict
         Parameter label -> SI unit of its values ("" when unknown or dimensionless).
+    shown : dict
+        Parameter label -> (unit, value per SI value) of the unit the study file writes its values
+        in, where that is not SI ("1000 rpm": ("rpm", 9.549)): how the report and plots show it.
     """
 
-    def __init__(self, spec: StudySpec, text: str, path: Path | None, base_path: Path, base, units: dict):
+    def __init__(self, spec: StudySpec, text: str, path: Path | None, base_path: Path, base, units: dict,
+                 shown: dict | None = None):
         self.spec, self.text, self.path, self.base_path, self.base, self.units = spec, text, path, base_path, base, units
+        self.shown = shown or {}
 
     @property
     def name(self) -> str:
@@ -479,7 +484,7 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
             base = from_dict(raw, source=f"{source}: overrides")
         except ModelError as exc:
             raise ModelError(str(exc)) from None
-    units = {}
+    units, shown = {}, {}
     for k, p in enumerate(spec.parameters):
         unit = None
         for q in p.paths:
@@ -494,6 +499,12 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
                 raise ModelError(f"{source}: parameters[{k}].unit: cannot read {p.unit!r} as a unit") from None
             unit = p.unit
         units[p.label] = unit or ""
+        if unit:
+            from .shown import written_unit
+
+            written = written_unit(list(p.values or ()) + list(p.range or ()) + [p.mean, p.std], unit)
+            if written is not None and written[0] != unit:
+                shown[p.label] = written
         # read every given value now, so a bad unit fails before the cluster starts
         for what in ("values", "range", "mean", "std"):
             v = getattr(p, what)
@@ -514,7 +525,7 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
         _check_bounds(spec, base, source)
     if text is None:
         text = tomli_w.dumps(data)
-    return Study(spec, text, path, base_path, base, units)
+    return Study(spec, text, path, base_path, base, units, shown)
 
 
 def key_unit(units: dict, pattern: str) -> str | None:
