@@ -70,7 +70,7 @@ def test_study_report_in_a_browser(client, write_study, tmp_path):
     report = write_study_report(res, path, tmp_path / "out")
     html = report.read_text()
     n = int(re.search(r'data-images="(\d+)"', html).group(1))
-    assert n == len(res.plots) >= 1 and "cases success" in html
+    assert n == len(res.plots) >= 1 and "4 cases: 4 succeeded" in html
     browser = shutil.which("chromium") or shutil.which("chromium-browser")
     if browser is None:
         pytest.skip("no Chromium on this machine (.ci/run installs it)")

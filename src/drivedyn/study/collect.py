@@ -2,7 +2,8 @@
 
 Grid studies get one dimension per parameter; sampled designs a ``case`` dimension with the
 parameters as coordinates along it. Each collected summary key becomes a variable named by its
-dotted key (``pulleys.driven.slip``), NaN where a case has no value; lists of fixed length get an
+dotted key (``pulleys.driven.slip``; a space as ``_``, the key itself in ``long_name``), NaN where a
+case has no value; the rows of a table by index (``supplier.duty.rows.0.belt_speed``); lists of fixed length get an
 extra dimension ``<key>.i``. Per case: ``status``, ``message``, ``diagnostics`` (codes),
 ``case_key`` (the cache key) and ``wall_time``. ``attrs`` hold the study text and the base model text.
 """
@@ -72,7 +73,9 @@ def _kind_of(values):
 def _safe(name: str) -> str:
     from ..core.outputs import nc_name
 
-    return nc_name(name)  # HDF5 reads "/" as a group separator; names over 200 characters shortened
+    # HDF5 reads "/" as a group separator; names over 200 characters shortened; a space (a position
+    # table's "free arm" row) written as "_", so that every variable is one word (long_name keeps the key)
+    return nc_name(name.replace(" ", "_"))
 
 
 def assemble(study, design, cases, records, cache) -> xr.Dataset:
