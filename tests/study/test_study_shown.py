@@ -107,7 +107,7 @@ summary = ["supplier.duty.rows.*.belt_speed", "supplier.duty.rows.*.crank_speed"
 
 def test_duty_rows_are_collected_by_index_with_their_units(client, write_study, tmp_path):
     """The rows were one list value each: no pattern reached them ("matching no summary key")."""
-    from drivedyn.front.study_command import unmatched_lines
+    from drivedyn.study.collect import unmatched_lines
 
     res = run_study(write_study(STUDY), out=tmp_path / "out", client=client, plots=False)
     ds = res.ds

@@ -69,6 +69,8 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
         res = run_study(study, outdir, scheduler=scheduler, workers=workers, retry_failed=retry_failed,
                         plots=plots, progress=progress, on_client=on_client)
     c = res.counts
+    from ..study.collect import unmatched_lines
+
     for line in unmatched_lines(res.ds):
         console.print("[yellow]warning:[/] " + escape(line))
     warned = c.get("warning", 0)
@@ -155,16 +157,6 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
     console.print(escape(f"wrote {res.path}, {Path(res.path).parent / 'best.toml'}"
                          + (f" and {len(res.plots)} plot(s)" if res.plots else "")))
     return 0
-
-
-def unmatched_lines(ds) -> list[str]:
-    """One line per ``outputs.summary`` pattern that matched no summary key, with what would."""
-    import json
-
-    near = json.loads(ds.attrs.get("unmatched_near") or "{}")
-    pats = near or {p.strip(): "" for p in ds.attrs.get("unmatched_outputs", "").split(",") if p.strip()}
-    return [f"outputs.summary: {p!r} matches no summary key" + (f"; near: {hint}" if hint else "")
-            for p, hint in pats.items()]
 
 
 def _escape(text) -> str:

@@ -145,7 +145,7 @@ def result_tables(ds, names) -> list[dict]:
 
 def parameter_rows(ds) -> list[dict]:
     """The study's parameters, their values in the study's units and the model fields they set."""
-    from ..study.plots import parameter_names
+    from ..study.shown import parameter_names
 
     rows = []
     for p in parameter_names(ds):
@@ -169,8 +169,8 @@ def write_study_report(res, study_file, outdir) -> Path:
     the criteria and every collected key over the cases, the parameters, every study plot, and the
     study file."""
     from ..core.outputs import file_stem, write_text
+    from ..study.collect import unmatched_lines
     from .report import _figures, render
-    from .study_command import unmatched_lines
 
     ds = res.ds
     c = res.counts

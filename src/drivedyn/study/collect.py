@@ -54,6 +54,14 @@ def near_keys(pattern: str, keys, n: int = 3) -> str:
     return ""
 
 
+def unmatched_lines(ds) -> list[str]:
+    """One line per ``outputs.summary`` pattern that matched no summary key, with what would."""
+    near = json.loads(ds.attrs.get("unmatched_near") or "{}")
+    pats = near or {p.strip(): "" for p in ds.attrs.get("unmatched_outputs", "").split(",") if p.strip()}
+    return [f"outputs.summary: {p!r} matches no summary key" + (f"; near: {hint}" if hint else "")
+            for p, hint in pats.items()]
+
+
 def _kind_of(values):
     """'float', 'str', ('list', n) or None for the non-None values of one summary key."""
     vals = [v for v in values if v is not None]

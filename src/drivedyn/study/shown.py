@@ -7,7 +7,6 @@ value per SI value) beside it.
 from __future__ import annotations
 
 import math
-import re
 
 #: SI unit of a summary key -> (the unit engineers read, its value per SI value)
 ENGINEERING = {
@@ -21,27 +20,13 @@ ENGINEERING = {
     "Pa": ("MPa", 1e-6),
 }
 
-_WRITTEN = re.compile(r"\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*(\S.*?)\s*")
+def parameter_names(ds) -> list[str]:
+    """The study's parameters, exactly (``parameter_names``: JSON; older files: comma-separated)."""
+    import json
 
-
-def written_unit(values, unit: str) -> tuple[str, float] | None:
-    """(unit, shown value per SI value) of the first of ``values`` written with a unit that
-    reads in ``unit`` proportionally ("1000 rpm" for rad/s: ("rpm", 9.549)); None if none is (plain
-    numbers are SI; an offset unit such as degC is not a scale)."""
-    from ..core.errors import ModelError
-    from .spec import to_number
-
-    for x in values:
-        m = _WRITTEN.fullmatch(x) if isinstance(x, str) else None
-        if not m:
-            continue
-        try:
-            one, two = to_number(f"1 {m.group(1)}", unit), to_number(f"2 {m.group(1)}", unit)
-        except ModelError:
-            continue
-        if isinstance(one, float) and one > 0 and math.isclose(two, 2 * one, rel_tol=1e-9):
-            return m.group(1), 1 / one
-    return None
+    if "parameter_names" in ds.attrs:
+        return list(json.loads(ds.attrs["parameter_names"]))
+    return [p.strip() for p in ds.attrs.get("parameters", "").split(",") if p.strip()]
 
 
 def shown_unit(ds, name) -> tuple[str, float]:
@@ -95,8 +80,6 @@ def case_names(ds) -> list[str]:
     ``status.ravel()``: a grid's cases by their coordinates, a sampled design's by the parameters
     along ``case`` (in the study's units)."""
     import itertools
-
-    from .plots import parameter_names
 
     dims = list(ds["status"].dims)
     if dims == ["case"]:

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import re
 from pathlib import Path
 from typing import Any, Literal, Optional, Union
 
@@ -500,8 +501,6 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
             unit = p.unit
         units[p.label] = unit or ""
         if unit:
-            from .shown import written_unit
-
             written = written_unit(list(p.values or ()) + list(p.range or ()) + [p.mean, p.std], unit)
             if written is not None and written[0] != unit:
                 shown[p.label] = written
@@ -526,6 +525,26 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
     if text is None:
         text = tomli_w.dumps(data)
     return Study(spec, text, path, base_path, base, units, shown)
+
+
+_WRITTEN = re.compile(r"\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*(\S.*?)\s*")
+
+
+def written_unit(values, unit: str) -> tuple[str, float] | None:
+    """(unit, shown value per SI value) of the first of ``values`` written with a unit that
+    reads in ``unit`` proportionally ("1000 rpm" for rad/s: ("rpm", 9.549)); None if none is (plain
+    numbers are SI; an offset unit such as degC is not a scale)."""
+    for x in values:
+        m = _WRITTEN.fullmatch(x) if isinstance(x, str) else None
+        if not m:
+            continue
+        try:
+            one, two = to_number(f"1 {m.group(1)}", unit), to_number(f"2 {m.group(1)}", unit)
+        except ModelError:
+            continue
+        if isinstance(one, float) and one > 0 and math.isclose(two, 2 * one, rel_tol=1e-9):
+            return m.group(1), 1 / one
+    return None
 
 
 def key_unit(units: dict, pattern: str) -> str | None:
