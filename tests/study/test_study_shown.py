@@ -138,3 +138,11 @@ def test_a_misspelt_pattern_gets_the_close_keys():
     assert "spans.a-b.tension_mean" in near_keys("spans.a-b.tension_men", keys)
     assert near_keys("pulleys.driven", keys).startswith("pulleys.driven.slip (keys below it")
     assert near_keys("zzz.qqq", keys) == ""
+
+
+def test_a_dry_run_lists_the_cases_in_the_study_units(capsys, tmp_path):
+    from drivedyn.front.cli import main
+
+    assert main(["study", str(drivedyn.example_path("study-gears-clocking")), "--dry-run", "-o", str(tmp_path / "o")]) == 0
+    err = capsys.readouterr().err
+    assert "clocking_angle=120 deg, drive.speed=1000 rpm" in err and "rad" not in err, err

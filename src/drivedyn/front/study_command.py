@@ -40,7 +40,7 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
                   + escape(f"{study.spec.sampler.method} ({shape}) = {total} cases, {distinct}"))
     if dry_run:
         for c in cases[:50]:
-            console.print(escape(f"  {c.index:4d} {c.key[:12]}  " + ", ".join(f"{k}={v}" for k, v in c.values.items()))
+            console.print(escape(f"  {c.index:4d} {c.key[:12]}  " + ", ".join(_shown(study, k, v) for k, v in c.values.items()))
                           + (f"  [red]invalid: {escape(c.message)}[/]" if c.toml is None else ""))
         if total > 50:
             console.print(f"  ... and {total - 50} more")
@@ -157,6 +157,14 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
     console.print(escape(f"wrote {res.path}, {Path(res.path).parent / 'best.toml'}"
                          + (f" and {len(res.plots)} plot(s)" if res.plots else "")))
     return 0
+
+
+def _shown(study, label, v) -> str:
+    """'drive.speed=1000 rpm': a case's value in the unit the study writes it in (plain numbers: as given)."""
+    if label in study.shown and isinstance(v, float):
+        unit, scale = study.shown[label]
+        return f"{label}={v * scale:.6g} {unit}"
+    return f"{label}={v}"
 
 
 def _escape(text) -> str:
