@@ -701,6 +701,22 @@ def test_duty_cycle_inputs_never_end_in_a_traceback(case):
     _try("check", case, allowed=(0, 2))
 
 
+#: duty-cycle values past what a belt can be (docs/limits.md): each must be refused, not solved and
+#: marked (a 1e29 rpm row read "no running balance")
+DUTY_ABSURD = [(R0 + ("crank_speed",), "1e29 rpm"), (R0 + ("power",), {"A_C": "1e29 W"}),
+               (R0 + ("torque",), {"A_C": "1e29 N*m"}), (("duty_cycle", "acceleration"), "1e29 rpm/s")]
+
+
+@pytest.mark.parametrize("path, value", DUTY_ABSURD)
+def test_absurd_duty_inputs_are_refused_naming_their_field(path, value):
+    data = copy.deepcopy(DUTY_BASE)
+    if path[-1] == "torque":
+        data["duty_cycle"]["rows"][0]["power"] = {}
+    _get(data, path[:-1])[path[-1]] = copy.deepcopy(value)
+    case = ("fead-duty", f"{'.'.join(map(str, path))} <- {value!r}", tomli_w.dumps(data).encode("utf-8"))
+    assert _try_one("check", case, allowed=(2,)) == 2
+
+
 PLANETARY_BASE = _merge(BASES["gears-planetary"], {"planetary": {"dynamics": {"sweep": False}}})
 #: the values a planetary stage's time run was found to mishandle, each at its field: its own step,
 #: degenerate stiffnesses, a torque of round-off beside the pin errors, a constant stiffness

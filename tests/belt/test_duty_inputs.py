@@ -178,3 +178,56 @@ def test_check_says_what_a_pulleys_power_takes_at_its_speed():
     text = drivedyn.check(drivedyn.load(drivedyn.example_path("fead-runup")))
     line = next(ln for ln in text.splitlines() if "alternator.power" in ln)
     assert "electrical output" in line and "cut_in_speed 1003 rpm" in line and "769.2 W of shaft power" in line, line
+
+
+def _belt_bounds():
+    model = _ag0868()
+    crank = next(p for p in model.pulleys if p.speed_time is not None)
+    ea, m = model.belt.axial_stiffness, model.belt.mass_per_length
+    return model, crank, ea, math.sqrt(ea / m)
+
+
+def test_a_duty_rows_speed_past_the_belts_wave_speed_is_refused():
+    """A 1e29 rpm row was solved and marked "no running balance". The bound is where the
+    centrifugal tension m v^2 alone equals EA: v = sqrt(EA / m) (1256 m/s here, 135 000 rpm)."""
+    _, crank, _, c = _belt_bounds()
+    for rpm in ("1e29 rpm", f"{1.01 * c / crank.radius * 30 / math.pi} rpm"):
+        text = _refused({"duty_cycle.rows.1.crank_speed": rpm}, "duty_cycle.rows[1].crank_speed", "sqrt(EA / m)",
+                        f"{c:.4g} m/s")
+        assert "stretch it by its own length" in text
+    # just below it the row is read and solved: creep theory marks it not carried (the belt lifts off)
+    data = drivedyn.check(_ag0868(**{"duty_cycle.rows.1.crank_speed": f"{0.99 * c / crank.radius * 30 / math.pi} rpm"}))
+    assert "duty_rows_carried" in data
+
+
+@pytest.mark.parametrize("what, value, words", [
+    ("power", lambda v, ea, r: f"{1.01 * ea * v} W", "duty_cycle.rows[0].power: "),
+    ("torque", lambda v, ea, r: f"{1.01 * ea * r} N*m", "duty_cycle.rows[0].torque: "),
+])
+def test_a_duty_rows_load_past_the_belts_stiffness_is_refused(what, value, words):
+    """A row's load asks the span for P / v (or M / r): at EA the span would be stretched by its
+    own length."""
+    model, crank, ea, _ = _belt_bounds()
+    v = model.duty_cycle.rows[0].crank_speed * crank.radius
+    r = next(p.radius for p in model.pulleys if p.name == "A_C")
+    text = _refused({"duty_cycle.rows.0.power": {}, f"duty_cycle.rows.0.{what}": {"A_C": value(v, ea, r)}}, words,
+                    "pulley 'A_C'", f"EA = {ea:.4g} N")
+    assert "stretched by its own length" in text
+
+
+def test_a_duty_cycles_acceleration_past_the_belts_stiffness_is_refused():
+    model, crank, ea, _ = _belt_bounds()
+    per = sum(p.inertia * crank.radius / p.radius ** 2 for p in model.pulleys if p is not crank)
+    _refused({"duty_cycle.acceleration": f"{1.01 * ea / per} rad/s^2"}, "duty_cycle.acceleration", "their inertias")
+    drivedyn.check(_ag0868(**{"duty_cycle.acceleration": f"{0.5 * ea / per} rad/s^2"}))
+
+
+def test_the_command_line_refuses_a_1e29_rpm_row_in_one_line(tmp_path):
+    import subprocess
+    import sys
+
+    p = subprocess.run([sys.executable, "-m", "drivedyn", "check", str(drivedyn.example_path("fead-ag0868")),
+                        "--set", "duty_cycle.rows.0.crank_speed=1e29 rpm"], capture_output=True, text=True,
+                       timeout=120, check=False)
+    assert p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1, p.stderr
+    assert "duty_cycle.rows[0].crank_speed: 1e+29 rpm" in p.stderr

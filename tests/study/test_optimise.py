@@ -111,7 +111,7 @@ def test_an_optimum_on_a_bound_is_said(client, write_study, tmp_path):
     """Without the constraints the least pretension is the range's lower end (200 N): the
     optimum may lie outside the design space, which the command prints and report.html lists
     (before, the best design was printed without a word, and the report was not written)."""
-    from drivedyn.front.report import write_optimisation_report
+    from drivedyn.front.study_report import write_optimisation_report
     from drivedyn.study.optimise import on_bounds
 
     text = STUDY.replace('constraints = [{ key = "steady.slip_margin", min = 1.5 }, { key = "steady.pulleys.*.slip_arc", '

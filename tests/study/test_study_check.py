@@ -63,14 +63,14 @@ def test_study_report_in_a_browser(client, write_study, tmp_path):
     import shutil
     import subprocess
 
-    from drivedyn.front.report import write_study_report
+    from drivedyn.front.study_report import write_study_report
 
     path = write_study(STUDY)
     res = run_study(path, out=tmp_path / "out", client=client, plots=True)
     report = write_study_report(res, path, tmp_path / "out")
     html = report.read_text()
     n = int(re.search(r'data-images="(\d+)"', html).group(1))
-    assert n == len(res.plots) >= 1 and "cases success" in html
+    assert n == len(res.plots) >= 1 and "4 cases: 4 succeeded" in html
     browser = shutil.which("chromium") or shutil.which("chromium-browser")
     if browser is None:
         pytest.skip("no Chromium on this machine (.ci/run installs it)")

@@ -64,7 +64,7 @@ summary = ["steady.slip_margin", "steady.pulleys.*.creep"]
     assert json.loads(ds.attrs["parameter_names"]) == [label, "name"]
     assert len(res.plots) == 3 and all(len(p.name) <= 110 for p in res.plots)
     assert any(v.startswith("steady.pulleys.ppp") and "~" in v for v in ds.data_vars)   # shortened, hashed
-    from drivedyn.front.report import write_study_report
+    from drivedyn.front.study_report import write_study_report
 
     assert write_study_report(res, study, tmp_path / "out").stat().st_size > 1000
 
@@ -157,4 +157,21 @@ def test_the_dashboard_line_reads_the_schedulers_services():
         def scheduler_info(self):
             return {"services": self.services}
 
-    assert _has_dashboard(Client({"dashboard": 8787})) and not _has_dashboard(Client({}))
+        def run_on_scheduler(self, fn):
+            raise OSError("no scheduler here")
+
+    assert not _has_dashboard(Client({}))
+
+
+@pytest.mark.parametrize("dashboard", [False, True])
+def test_a_scheduler_without_a_dashboard_gets_no_link(dashboard):
+    """`dask scheduler --no-dashboard` keeps its HTTP server, listed as the service "dashboard"
+    (its /status answers 404): the link was printed. Its Bokeh application is what serves one."""
+    from distributed import Client, LocalCluster
+
+    from drivedyn.front.study_command import _has_dashboard
+
+    with LocalCluster(n_workers=0, processes=False, dashboard_address=":0",
+                      scheduler_kwargs={"dashboard": dashboard}) as cluster, Client(cluster) as client:
+        assert "dashboard" in client.scheduler_info()["services"]      # what the old check read
+        assert _has_dashboard(client) is dashboard

@@ -1049,6 +1049,7 @@ class Model(Spec):
         self._reversing()
         self._cost()
         self._duty_names(names)
+        self._duty_bounds()
         return self
 
     def _teeth(self):
@@ -1154,6 +1155,45 @@ class Model(Spec):
             both = set(row.power) & set(row.torque)
             if both:
                 raise ValueError(f"duty_cycle.rows[{k}]: give power or torque for {sorted(both)}, not both")
+
+    def _duty_bounds(self):
+        """A duty row's speed and loads, and the cycle's acceleration, within what a belt can be: its
+        belt speed below the belt's longitudinal wave speed c = sqrt(EA / m), at which the centrifugal
+        tension m v^2 alone equals EA (the belt stretched by its own length), and the span force a
+        load or the acceleration asks (P / v, M / r, sum J alpha r_c / r^2) below EA. Past either no belt and no model of one holds (a 1e29 rpm row was solved and
+        marked "no running balance"); within them creep theory says what the row carries."""
+        if self.duty_cycle is None:
+            return
+        crank = next((p for p in self.pulleys if p.speed_time is not None), None)
+        if crank is None:
+            return
+        ea, m = self.belt.axial_stiffness, self.belt.mass_per_length
+        c = math.sqrt(ea / m)
+        radius = {p.name: p.radius for p in self.pulleys}
+        alpha = self.duty_cycle.acceleration
+        if alpha is not None:
+            # the belt force that speeds every other pulley up with the crank: sum J_n alpha r_c / r_n^2
+            force = sum(p.inertia * alpha * crank.radius / p.radius ** 2 for p in self.pulleys if p is not crank)
+            if force >= ea:
+                raise ValueError(f"duty_cycle.acceleration: {alpha * 30 / math.pi:.4g} rpm/s of the crank asks the belt "
+                                 f"for {force:.3g} N to speed the other pulleys up with it (their inertias), not below "
+                                 f"its axial stiffness EA = {ea:.4g} N (a span stretched by its own length)")
+        for k, row in enumerate(self.duty_cycle.rows):
+            v = row.crank_speed * crank.radius
+            if v >= c:
+                raise ValueError(f"duty_cycle.rows[{k}].crank_speed: {row.crank_speed * 30 / math.pi:.4g} rpm runs the "
+                                 f"belt at {v:.3g} m/s on the crank's {crank.radius * 1e3:.4g} mm radius, not below the "
+                                 f"{c:.4g} m/s (sqrt(EA / m)) at which its centrifugal tension m v^2 alone would "
+                                 "stretch it by its own length")
+            for what, load in (("power", row.power), ("torque", row.torque)):
+                for n, x in load.items():
+                    force = x / v if what == "power" else x / radius.get(n, math.inf)
+                    if force >= ea:
+                        unit = "W" if what == "power" else "N*m"
+                        raise ValueError(f"duty_cycle.rows[{k}].{what}: {x:.4g} {unit} on pulley {n!r} asks the belt "
+                                         f"for a span force of {force:.3g} N at {row.crank_speed * 30 / math.pi:.4g} "
+                                         f"rpm, not below its axial stiffness EA = {ea:.4g} N (a span stretched by its "
+                                         "own length)")
 
     def _clutch_on_driver(self):
         """An overrunning clutch or decoupler carries drive from the belt into an accessory; on the

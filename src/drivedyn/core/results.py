@@ -123,19 +123,21 @@ def open_result(outdir) -> Result:
                   diagnostics=diagnostics, units=units)
 
 
-def unit_map(summary: dict, patterns: dict) -> dict:
+def unit_map(summary: dict, patterns: dict, rows: bool = False) -> dict:
     """Units of the dotted keys of ``summary`` from ``patterns`` (fnmatch pattern -> unit; the
-    first pattern that matches a key wins)."""
+    first pattern that matches a key wins). ``rows``: the keys of ``flatten(summary, rows=True)``,
+    a row's key read against the patterns without its index (the patterns name a table's rows
+    as ``supplier.duty.rows.belt_speed``)."""
     rx, units = _pattern_regex(tuple(patterns.items()))
     out = {}
-    for key in flatten(summary):
+    for key, template in _flat_keys(summary, "", "", rows):
         if rx is not None:
-            m = rx.match(key)
+            m = rx.match(template)
             if m:
                 out[key] = units[m.lastindex - 1]
             continue
         for pat, unit in patterns.items():
-            if fnmatch.fnmatchcase(key, pat):
+            if fnmatch.fnmatchcase(template, pat):
                 out[key] = unit
                 break
     return out
@@ -151,15 +153,38 @@ def _pattern_regex(items: tuple):
     return (rx if rx.groups == len(items) else None), [unit for _, unit in items]
 
 
-def flatten(d: dict, prefix: str = "") -> dict:
+def flatten(d: dict, prefix: str = "", rows: bool = False) -> dict:
+    """``d`` with dotted keys (``pulleys.driver.slip``). ``rows``: a list of tables (a supplier
+    report's duty rows) descends too, by index (``supplier.duty.rows.0.belt_speed``), as a study
+    collects it; else it is one value."""
     out = {}
     for k, v in d.items():
         key = f"{prefix}.{k}" if prefix else str(k)
         if isinstance(v, dict):
-            out.update(flatten(v, key))
+            out.update(flatten(v, key, rows))
+        elif rows and _is_rows(v):
+            for i, x in enumerate(v):
+                out.update(flatten(x, f"{key}.{i}", rows))
         else:
             out[key] = v
     return out
+
+
+def _is_rows(v) -> bool:
+    return isinstance(v, list) and bool(v) and all(isinstance(x, dict) for x in v)
+
+
+def _flat_keys(d: dict, prefix: str, template: str, rows: bool):
+    """(key, key without its row indices) of ``flatten(d, rows=rows)``, in its order."""
+    for k, v in d.items():
+        key, tpl = (f"{prefix}.{k}", f"{template}.{k}") if prefix else (str(k), str(k))
+        if isinstance(v, dict):
+            yield from _flat_keys(v, key, tpl, rows)
+        elif rows and _is_rows(v):
+            for i, x in enumerate(v):
+                yield from _flat_keys(x, f"{key}.{i}", tpl, rows)
+        else:
+            yield key, tpl
 
 
 def _clean(obj):

@@ -40,7 +40,7 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
                   + escape(f"{study.spec.sampler.method} ({shape}) = {total} cases, {distinct}"))
     if dry_run:
         for c in cases[:50]:
-            console.print(escape(f"  {c.index:4d} {c.key[:12]}  " + ", ".join(f"{k}={v}" for k, v in c.values.items()))
+            console.print(escape(f"  {c.index:4d} {c.key[:12]}  " + ", ".join(_shown(study, k, v) for k, v in c.values.items()))
                           + (f"  [red]invalid: {escape(c.message)}[/]" if c.toml is None else ""))
         if total > 50:
             console.print(f"  ... and {total - 50} more")
@@ -69,17 +69,19 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
         res = run_study(study, outdir, scheduler=scheduler, workers=workers, retry_failed=retry_failed,
                         plots=plots, progress=progress, on_client=on_client)
     c = res.counts
-    if res.ds.attrs.get("unmatched_outputs"):
-        console.print(f"[yellow]warning:[/] outputs.summary pattern(s) matching no summary key: {res.ds.attrs['unmatched_outputs']}")
+    from ..study.collect import unmatched_lines
+
+    for line in unmatched_lines(res.ds):
+        console.print("[yellow]warning:[/] " + escape(line))
     warned = c.get("warning", 0)
     console.print(f"{c['total']} cases: {c['success']} succeeded, {warned} warned, "
                   f"{c['total'] - c['success'] - warned} did not ({c['ran']} run now, {c['cached']} from the cache)")
     sts = res.ds["status"].values.ravel()
     msgs = res.ds["message"].values.ravel()
     bad = ~np.isin(sts, COMPLETED)
-    from .report import _case_names
+    from ..study.shown import case_names
 
-    names = np.array(_case_names(res.ds), dtype=object)
+    names = np.array(case_names(res.ds), dtype=object)
     for label, mask, colour in (("warned", sts == "warning", "yellow"), ("did not finish", bad, "red")):
         for s, m, nm in list(zip(sts[mask], msgs[mask], names[mask]))[:5]:
             console.print(f"  [{colour}]{s}[/]: {escape(str(nm))}: {escape(str(m))}")
@@ -90,7 +92,7 @@ def main(study_file, out=None, scheduler=None, workers=None, retry_failed=False,
         console.print(f"pruned {n} cached case(s) of other models ({size / 1e6:.1f} MB)")
     console.print(escape(f"wrote {res.path}" + (f" and {len(res.plots)} plot(s) in {Path(res.path).parent / 'plots'}" if res.plots else "")))
     if report:
-        from .report import write_study_report
+        from .study_report import write_study_report
 
         console.print(f"report: {write_study_report(res, study_file, Path(res.path).parent)}")
     return 0 if not bad.any() else 1
@@ -132,17 +134,19 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
     console.print(f"{n} designs evaluated ({res.counts['ran']} run now, {res.counts['cached']} from the cache), {feasible} feasible")
     hits = on_bounds(study, o.values) if o.values is not None else []
     if report:
-        from .report import write_optimisation_report
+        from .study_report import write_optimisation_report
 
         console.print(escape(f"report: {write_optimisation_report(res, study, study_file, Path(res.path).parent, hits)}"))
     if o.values is None:
         console.print("[red]no feasible design[/]: widen the ranges, loosen the constraints or raise the budget")
         console.print(escape(f"wrote {res.path}"))
         return 1
-    units = study.units
+    from .study_report import study_unit
+
     console.print(escape(f"best: {opt.objective} = {o.objective:.6g}"))
     for k, v in o.values.items():
-        console.print(escape(f"  {k} = {v:.6g} {units.get(k, '') or ''}".rstrip()) if isinstance(v, float) else escape(f"  {k} = {v}"))
+        unit, scale = study_unit(study, k)
+        console.print(escape(f"  {k} = {v * scale:.6g} {unit}".rstrip()) if isinstance(v, float) else escape(f"  {k} = {v}"))
     for h in hits:
         console.print("[yellow]" + escape(f"  {h['name']} sits on the {h['side']} bound of its range ({h['bound']:.6g} "
                                           f"{h['unit']}): the optimum may lie outside it; widen the range") + "[/]")
@@ -155,6 +159,14 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
     return 0
 
 
+def _shown(study, label, v) -> str:
+    """'drive.speed=1000 rpm': a case's value in the unit the study writes it in (plain numbers: as given)."""
+    if label in study.shown and isinstance(v, float):
+        unit, scale = study.shown[label]
+        return f"{label}={v * scale:.6g} {unit}"
+    return f"{label}={v}"
+
+
 def _escape(text) -> str:
     """Text for the terminal: rich markup escaped, every long word shortened (outputs.shorten_words)."""
     from rich.markup import escape
@@ -165,9 +177,16 @@ def _escape(text) -> str:
 
 
 def _has_dashboard(client) -> bool:
-    """Whether the scheduler serves a dashboard (a scheduler started apart may have none, and one
-    without bokeh never has)."""
+    """Whether the scheduler serves a dashboard. A scheduler started apart with ``--no-dashboard``
+    still lists its HTTP server (health, metrics) as the service "dashboard", whose /status answers
+    404; the dashboard is the Bokeh application attached to that server (distributed's
+    ``Scheduler(dashboard=...)``), asked of the scheduler itself."""
+    def served(dask_scheduler=None):     # nested: sent by value, the scheduler need not hold drivedyn
+        return bool(getattr(getattr(dask_scheduler, "http_application", None), "applications", None))
+
     try:
-        return "dashboard" in (client.scheduler_info().get("services") or {})
+        if "dashboard" not in (client.scheduler_info().get("services") or {}):
+            return False
+        return bool(client.run_on_scheduler(served))
     except Exception:      # the line is cosmetic: never fail a study for it
         return False

@@ -258,15 +258,14 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
                 result = analysis(model.kind).run_lean(model, keys, progress=_deadline(timeout))
             if result is None:
                 result = run(model, progress=_deadline(timeout))
-        summary, ds, diagnostics, units = result.flat_summary(), result.ds, result.diagnostics, result.units
+        summary, ds, diagnostics, units = _flat(result, model.kind, mode)
         status, message = result.status, result.message
         if status == "warning":  # the diagnostics, one line
             message = "; ".join(d.line() for d in diagnostics)
     except SolverError as exc:
         status, message = "failed", _one_line(exc)
         if exc.partial is not None:
-            summary, ds, diagnostics = exc.partial.flat_summary(), exc.partial.ds, exc.partial.diagnostics
-            units = exc.partial.units
+            summary, ds, diagnostics, units = _flat(exc.partial, model.kind, mode)
     except ModelError as exc:
         status, message = "invalid", _one_line(exc)
     except Stopped as exc:  # an analysis that keeps nothing when stopped
@@ -292,6 +291,22 @@ def run_case(toml: str, key: str, cache_dir: str, token: str, series: list[str],
         return read_record(cache, key, series) or record
     record["series_data"] = sub  # the client writes it
     return record
+
+
+def _flat(result, kind: str, mode: str):
+    """(summary, ds, diagnostics, units) of a case's result, its summary flattened with the rows of
+    its tables by index (a supplier report's duty rows: ``supplier.duty.rows.0.belt_speed``, which
+    a study's outputs.summary collects), their units read from the analysis's tables."""
+    from ..core.analyses import analysis
+    from ..core.results import flatten, unit_map
+
+    summary = flatten(result.summary, rows=True)
+    units = dict(result.units)
+    a = analysis(kind)
+    patterns = {**a.summary_units(mode), **a.summary_units("check")}
+    for k, u in unit_map(result.summary, patterns, rows=True).items():
+        units.setdefault(k, u)
+    return summary, result.ds, result.diagnostics, units
 
 
 #: the analyses this process has warmed (warm_worker: once per process, not per batch of cases)

@@ -2,7 +2,8 @@
 
 Grid studies get one dimension per parameter; sampled designs a ``case`` dimension with the
 parameters as coordinates along it. Each collected summary key becomes a variable named by its
-dotted key (``pulleys.driven.slip``), NaN where a case has no value; lists of fixed length get an
+dotted key (``pulleys.driven.slip``; a space as ``_``, the key itself in ``long_name``), NaN where a
+case has no value; the rows of a table by index (``supplier.duty.rows.0.belt_speed``); lists of fixed length get an
 extra dimension ``<key>.i``. Per case: ``status``, ``message``, ``diagnostics`` (codes),
 ``case_key`` (the cache key) and ``wall_time``. ``attrs`` hold the study text and the base model text.
 """
@@ -28,6 +29,39 @@ def _selected(keys, patterns):
     return out
 
 
+def near_keys(pattern: str, keys, n: int = 3) -> str:
+    """What would match an ``outputs.summary`` pattern that matches none of ``keys``: the keys below
+    it (a table's values, ``pulleys.driven.*`` under ``pulleys.driven``), else the closest spellings,
+    else the keys under its longest leading part that exists; '' if nothing is near."""
+    import difflib
+
+    def listed(found, more=""):
+        shown = ", ".join(found[:n]) + (f" and {len(found) - n} more" if len(found) > n else "")
+        return shown + more
+
+    below = [k for k in keys if fnmatch.fnmatchcase(k, pattern + ".*")]
+    if below:
+        return listed(below, f" (keys below it: write {pattern + '.*'!r})")
+    close = difflib.get_close_matches(pattern, keys, n=n, cutoff=0.6)
+    if close:
+        return listed(close)
+    parts = pattern.split(".")
+    for m in range(len(parts) - 1, 0, -1):
+        head = ".".join(parts[:m])
+        under = [k for k in keys if k.startswith(head + ".")]
+        if under and not any(c in head for c in "*?["):
+            return listed(under, f" (under {head!r})")
+    return ""
+
+
+def unmatched_lines(ds) -> list[str]:
+    """One line per ``outputs.summary`` pattern that matched no summary key, with what would."""
+    near = json.loads(ds.attrs.get("unmatched_near") or "{}")
+    pats = near or {p.strip(): "" for p in ds.attrs.get("unmatched_outputs", "").split(",") if p.strip()}
+    return [f"outputs.summary: {p!r} matches no summary key" + (f"; near: {hint}" if hint else "")
+            for p, hint in pats.items()]
+
+
 def _kind_of(values):
     """'float', 'str', ('list', n) or None for the non-None values of one summary key."""
     vals = [v for v in values if v is not None]
@@ -47,7 +81,9 @@ def _kind_of(values):
 def _safe(name: str) -> str:
     from ..core.outputs import nc_name
 
-    return nc_name(name)  # HDF5 reads "/" as a group separator; names over 200 characters shortened
+    # HDF5 reads "/" as a group separator; names over 200 characters shortened; a space (a position
+    # table's "free arm" row) written as "_", so that every variable is one word (long_name keeps the key)
+    return nc_name(name.replace(" ", "_"))
 
 
 def assemble(study, design, cases, records, cache) -> xr.Dataset:
@@ -115,6 +151,9 @@ def assemble(study, design, cases, records, cache) -> xr.Dataset:
     for p in study.spec.parameters:
         ds[p.label].attrs.update(units=study.units.get(p.label, ""), long_name=", ".join(p.paths),
                                  paths=", ".join(p.paths))
+        if p.label in getattr(study, "shown", {}):     # the unit the study file writes it in (shown.py)
+            unit, scale = study.shown[p.label]
+            ds[p.label].attrs.update(shown_units=unit, shown_scale=scale)
     counts = {s: int((status == s).sum()) for s in STATUSES}
     sp = study.spec
     ds.attrs.update(
@@ -125,6 +164,7 @@ def assemble(study, design, cases, records, cache) -> xr.Dataset:
         parameter_names=json.dumps(design.labels),    # exact (a name may hold a comma)
         summary_keys="\n".join(summary_keys), series=", ".join(sp.outputs.series),
         unmatched_outputs=", ".join(unmatched),
+        unmatched_near=json.dumps({p: near_keys(p, keys_seen) for p in unmatched}),
         drivedyn_version=__version__, created=_dt.datetime.now().isoformat(timespec="seconds"),
         **{f"cases_{s}": v for s, v in counts.items()},
     )

@@ -14,6 +14,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .shown import parameter_names
+
 
 def _label(ds, name):
     """'critical speed margin (m/s)': the key's last part in words, its unit ('ratio' for '1')."""
@@ -24,15 +26,6 @@ def _label(ds, name):
         return f"{name} ({unit})" if unit else name
     words = str(var.attrs.get("long_name", name)).split(".")[-1].replace("_", " ")
     return f"{words} ({unit})" if unit else words
-
-
-def parameter_names(ds) -> list[str]:
-    """The study's parameters, exactly (``parameter_names``: JSON; older files: comma-separated)."""
-    import json
-
-    if "parameter_names" in ds.attrs:
-        return list(json.loads(ds.attrs["parameter_names"]))
-    return [p.strip() for p in ds.attrs.get("parameters", "").split(",") if p.strip()]
 
 
 def _numeric(ds, name):
@@ -78,8 +71,11 @@ def plot_key(ds, key, fig=None):
         raise KeyError(f"{key!r} is not in the study Dataset" + (f" (did you mean {', '.join(close)}?)" if close else ""))
     if not _numeric(ds, key):
         raise TypeError(f"{key!r} is not numeric and cannot be plotted")
-    var = ds[key]
     params = parameter_names(ds)
+    from .shown import in_shown_units
+
+    ds = in_shown_units(ds, [key] + [p for p in params if p in ds.variables])   # deg and rpm as the study writes them
+    var = ds[key]
     fig = fig or Figure(figsize=(6.4, 4.8), layout="constrained")
     ok, marks = _masks(ds)
     grid = "case" not in var.dims

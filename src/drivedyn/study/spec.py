@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import re
 from pathlib import Path
 from typing import Any, Literal, Optional, Union
 
@@ -405,10 +406,15 @@ class Study:
         The base model with the study's ``overrides`` applied.
     units : dict
         Parameter label -> SI unit of its values ("" when unknown or dimensionless).
+    shown : dict
+        Parameter label -> (unit, value per SI value) of the unit the study file writes its values
+        in, where that is not SI ("1000 rpm": ("rpm", 9.549)): how the report and plots show it.
     """
 
-    def __init__(self, spec: StudySpec, text: str, path: Path | None, base_path: Path, base, units: dict):
+    def __init__(self, spec: StudySpec, text: str, path: Path | None, base_path: Path, base, units: dict,
+                 shown: dict | None = None):
         self.spec, self.text, self.path, self.base_path, self.base, self.units = spec, text, path, base_path, base, units
+        self.shown = shown or {}
 
     @property
     def name(self) -> str:
@@ -479,7 +485,7 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
             base = from_dict(raw, source=f"{source}: overrides")
         except ModelError as exc:
             raise ModelError(str(exc)) from None
-    units = {}
+    units, shown = {}, {}
     for k, p in enumerate(spec.parameters):
         unit = None
         for q in p.paths:
@@ -494,6 +500,10 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
                 raise ModelError(f"{source}: parameters[{k}].unit: cannot read {p.unit!r} as a unit") from None
             unit = p.unit
         units[p.label] = unit or ""
+        if unit:
+            written = written_unit(list(p.values or ()) + list(p.range or ()) + [p.mean, p.std], unit)
+            if written is not None and written[0] != unit:
+                shown[p.label] = written
         # read every given value now, so a bad unit fails before the cluster starts
         for what in ("values", "range", "mean", "std"):
             v = getattr(p, what)
@@ -514,7 +524,27 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
         _check_bounds(spec, base, source)
     if text is None:
         text = tomli_w.dumps(data)
-    return Study(spec, text, path, base_path, base, units)
+    return Study(spec, text, path, base_path, base, units, shown)
+
+
+_WRITTEN = re.compile(r"\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*(\S.*?)\s*")
+
+
+def written_unit(values, unit: str) -> tuple[str, float] | None:
+    """(unit, shown value per SI value) of the first of ``values`` written with a unit that
+    reads in ``unit`` proportionally ("1000 rpm" for rad/s: ("rpm", 9.549)); None if none is (plain
+    numbers are SI; an offset unit such as degC is not a scale)."""
+    for x in values:
+        m = _WRITTEN.fullmatch(x) if isinstance(x, str) else None
+        if not m:
+            continue
+        try:
+            one, two = to_number(f"1 {m.group(1)}", unit), to_number(f"2 {m.group(1)}", unit)
+        except ModelError:
+            continue
+        if isinstance(one, float) and one > 0 and math.isclose(two, 2 * one, rel_tol=1e-9):
+            return m.group(1), 1 / one
+    return None
 
 
 def key_unit(units: dict, pattern: str) -> str | None:

@@ -338,6 +338,17 @@ def _place(model, drive) -> Placed:
                                  f"{model.simulation.duration:g} s, more than the {max_steps():.3g} a run may take: use "
                                  "the implicit or semi-implicit scheme, or a larger friction.velocity_threshold "
                                  "(or set DRIVEDYN_MAX_STEPS)", field="simulation.method")
+            # and each stage evaluates every segment: its cost in time is steps x stages x segments
+            from ...core.limits import evaluations_problem
+
+            problem = evaluations_problem(cost * n, f"rkf45 is explicit: the friction law's slope (mu N / "
+                                          f"velocity_threshold) limits its step to about {h_f:.2g} s, "
+                                          f"{model.simulation.duration / h_f:.2g} steps of {RKF45_STAGES} stages "
+                                          f"of {n} segments for {model.simulation.duration:g} s",
+                                          "use the implicit or semi-implicit scheme, a larger "
+                                          "friction.velocity_threshold or a shorter simulation.duration")
+            if problem:
+                raise ModelError(problem, field="simulation.method")
             per_sample = min(model.output.interval, model.simulation.duration) / h_f
             if per_sample > MAX_STEPS_PER_SAMPLE:
                 # (else it ran for minutes, at 0 % on the progress line, before it gave up)
