@@ -26,10 +26,13 @@ def verdict_table(summary: dict) -> dict:
             "rows": rows, "note": note, "verdict": verdict}
 
 
-def tables(result) -> list[dict]:
-    """The per-object tables of a result (after the verdict)."""
+def tables(result, supplier=True) -> list[dict]:
+    """The per-object tables of a result (after the verdict); ``supplier=False``: a belt drive's without
+    the supplier report's static tables (report.html lays them out first, supplier_page.py)."""
     fn = {"belt-drive": _belt, "gear-train": _gears, "span-stability": _span, "toothed-mesh": _toothed}.get(result.kind)
     try:
+        if fn is _belt:
+            return _belt(result, supplier)
         return fn(result) if fn else []
     except Exception as exc:      # a partial result may lack what a table needs: say so, never fail the output
         return [{"title": "results", "head": [], "rows": [], "note": f"no overview ({exc})"}]
@@ -63,7 +66,7 @@ def _resolution_note(s) -> str:
     return ""
 
 
-def _belt(result) -> list[dict]:
+def _belt(result, supplier=True) -> list[dict]:
     from ..belt.dynamics.frequencies import judged
 
     s, ds = result.summary, result.ds
@@ -172,7 +175,8 @@ def _belt(result) -> list[dict]:
         out.append(inst)
     if ru:
         out.append(runup_table(s))
-    out += supplier_tables(s.get("supplier") or {})
+    sup = s.get("supplier") or {}
+    out += supplier_tables(sup) if supplier else [t for t in [duty_dynamic_table(sup)] if t]
     return out
 
 
@@ -230,7 +234,24 @@ def supplier_tables(sup: dict) -> list[dict]:
             "note": f"fixed arm (the supplier's convention): the span into the tensioner held at "
                     f"{duty['design_tension']:.1f} N, hub loads the vector sum of T; running arm: the installed "
                     "belt length kept, hub loads from T - m v^2 (docs/supplier-report.md)"})
-    dyn = sup.get("duty_dynamic")
+    dyn = duty_dynamic_table(sup)
+    if dyn:
+        out.append(dyn)
+    life = sup.get("life")
+    if life:
+        out.append({"title": "belt life (rib fatigue)", "head": ["B10 (h)", "target (h)", "pulley shares", "row shares"],
+                    "rows": [[f"{life['b10_hours']:.0f}", _f(life["target_hours"], "{:.0f}"),
+                              ", ".join(f"{n} {100 * v:.1f} %" for n, v in life["pulley_share"].items()),
+                              ", ".join(f"{100 * v:.0f} %" for v in life["row_share"])]],
+                    "note": "a fit to supplier reports (belt/steady/life.py): within 2.4 % RMS where every pulley's "
+                            "effective diameter lies in 79.6-175 mm" + ("" if life["in_range"] else
+                            f"; outside it here ({', '.join(life['out_of_range'])}): expect about 0.55 x")})
+    return out
+
+
+def duty_dynamic_table(sup: dict) -> dict | None:
+    """The duty rows held in the rotational model (belt/supplier.py's dynamic_duty)."""
+    dyn, duty = sup.get("duty_dynamic"), sup.get("duty")
     if dyn and duty and duty["rows"]:
         names = list(duty["rows"][0]["fixed_arm"]["hub_load"])
         rows = []
@@ -243,20 +264,11 @@ def supplier_tables(sup: dict) -> list[dict]:
                         + [f"{e['hub_load_mean'][n]:.0f} / {e['hub_load_peak'][n]:.0f}" for n in names]
                         + [_f(min(e["slip_margin"].values(), default=None), "{:.2f}"), arm or "-",
                            e["status"] + (f" ({', '.join(e['diagnostics'])})" if e["diagnostics"] else "")])
-        out.append({"title": "duty cycle from the dynamics: hub loads mean / peak", "head": [
+        return {"title": "duty cycle from the dynamics: hub loads mean / peak", "head": [
             "crank (rpm)"] + [f"{n} (N)" for n in names] + ["min slip margin", "arm travel (deg)", "status"],
             "rows": rows, "note": "the rotational model held at each row's speed with its loads and the crank's "
-                                  "declared orders (docs/supplier-report.md)"})
-    life = sup.get("life")
-    if life:
-        out.append({"title": "belt life (rib fatigue)", "head": ["B10 (h)", "target (h)", "pulley shares", "row shares"],
-                    "rows": [[f"{life['b10_hours']:.0f}", _f(life["target_hours"], "{:.0f}"),
-                              ", ".join(f"{n} {100 * v:.1f} %" for n, v in life["pulley_share"].items()),
-                              ", ".join(f"{100 * v:.0f} %" for v in life["row_share"])]],
-                    "note": "a fit to supplier reports (belt/steady/life.py): within 2.4 % RMS where every pulley's "
-                            "effective diameter lies in 79.6-175 mm" + ("" if life["in_range"] else
-                            f"; outside it here ({', '.join(life['out_of_range'])}): expect about 0.55 x")})
-    return out
+                                  "declared orders (docs/supplier-report.md)"}
+    return None
 
 
 def _installation(s, ds) -> dict | None:

@@ -141,14 +141,14 @@ def _figures(files, captions=None) -> list[dict]:
 
 
 def render(title, kind, status, message, diagnostics, headline, results, figures, model_rows, model_toml, source="",
-           extra="", table=None, model_heading="Model", verdict=None, tables=(), model_note="") -> str:
+           extra="", table=None, model_heading="Model", verdict=None, tables=(), model_note="", supplier=None) -> str:
     from jinja2 import Environment, PackageLoader, select_autoescape
 
     env = Environment(loader=PackageLoader("drivedyn.front", "templates"), autoescape=select_autoescape(["html", "j2"]))
     return env.get_template("report.html.j2").render(
         title=title, kind=kind, status=status, message=message, diagnostics=diagnostics, headline=headline, results=results,
         figures=figures, model_rows=model_rows, model_toml=model_toml, source=source, extra=extra, table=table,
-        model_heading=model_heading, verdict=verdict, tables=list(tables), model_note=model_note,
+        model_heading=model_heading, verdict=verdict, tables=list(tables), model_note=model_note, supplier=supplier,
         version=__version__, written=_dt.datetime.now().isoformat(timespec="seconds"))
 
 
@@ -159,8 +159,15 @@ def write_report(result, outdir, files, model=None, source="") -> Path:
     outdir = Path(outdir)
     if model is None and "model_toml" in result.ds.attrs:
         model = loads(result.ds.attrs["model_toml"])
+    from . import supplier_page
     from .overview import tables, verdict_table
 
+    # a drive with a supplier's report: its results and tables first, the dynamics after them
+    supplier = None
+    if result.kind == "belt-drive" and supplier_page.wanted(result.summary):
+        supplier = {"results": supplier_page.results(result.summary),
+                    "tables": supplier_page.tables(result.summary, model),
+                    "margins": supplier_page.margins_sentence(result.summary)}
     flat = {k: v for k, v in result.flat_summary().items()
             if not (k.startswith(("runup.", "flap.")) and isinstance(v, list))}
     html = render(
@@ -170,7 +177,8 @@ def write_report(result, outdir, files, model=None, source="") -> Path:
         results=_rows(flat, result.units), figures=_figures(files),
         model_rows=_model_rows(model) if model is not None else [],
         model_toml=dumps(model) if model is not None else "", source=str(source),
-        verdict=verdict_table(result.summary), tables=tables(result), model_note=model_note(result))
+        verdict=verdict_table(result.summary), tables=tables(result, supplier=supplier is None),
+        model_note=model_note(result), supplier=supplier)
     from ..core.outputs import write_text
 
     return write_text(outdir / "report.html", html)
