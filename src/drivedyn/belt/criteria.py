@@ -33,6 +33,17 @@ def speed_range(ds, summary, driver) -> tuple[float, float]:
     return (float(n.min()), float(n.max())) if n.size else (0.0, 0.0)
 
 
+def judged_speed_range(model, ds, summary, driver) -> tuple[float, float]:
+    """The crank speeds the rotational resonances are listed over (rpm): the run's, widened to the
+    duty cycle's rows where the model has one (the drive runs at those speeds in service)."""
+    lo, hi = speed_range(ds, summary, driver)
+    dc = getattr(model, "duty_cycle", None)
+    if dc is not None and dc.rows:
+        w = [abs(r.crank_speed) * RPM for r in dc.rows]
+        lo, hi = (min(w), max(w)) if hi <= 0 else (min(lo, min(w)), max(hi, max(w)))
+    return lo, hi
+
+
 def add_supplier(model, result) -> None:
     """summary.supplier: the supplier's report tables (supplier.py), for a model that asks for them."""
     from . import supplier
@@ -293,16 +304,17 @@ def evaluate(model, result):
     modes = s.get("modes", {}).get("frequencies_hz")
     if modes:
         orders = flapmod.excited_orders(model, driver, c.flap_amplitude_min, c.flap_orders)
-        lo, hi = speed_range(ds, s, driver)
+        lo, hi = judged_speed_range(model, ds, s, driver)
+        over = "the run's speeds" + (" and the duty cycle's" if model.duty_cycle is not None else "")
         xs = [{"mode": i + 1, "order": k, "rpm": 60 * f / k, "frequency_hz": f}
               for i, f in enumerate(modes) for k in orders if lo <= 60 * f / k <= hi]
         if c.resonance_crossings_max is not None:
             out.append(Criterion("resonance_crossings", len(xs), c.resonance_crossings_max, "", "max",
-                                 "crossings of the drive's rotational modes by the crank orders inside the run's "
-                                 "speed range", "; ".join(f"mode {x['mode']} ({x['frequency_hz']:.0f} Hz) order "
+                                 f"crossings of the drive's rotational modes by the crank orders inside "
+                                 f"{lo:.0f}-{hi:.0f} rpm ({over})", "; ".join(f"mode {x['mode']} ({x['frequency_hz']:.0f} Hz) order "
                                                           f"{_o(x['order'])} at {x['rpm']:.0f} rpm" for x in xs[:4]), xs))
         else:
-            skipped["resonance_crossings"] = (f"listed, not judged ({len(xs)} inside the speed range; "
+            skipped["resonance_crossings"] = (f"listed, not judged ({len(xs)} inside {lo:.0f}-{hi:.0f} rpm; "
                                               "criteria.resonance_crossings_max judges them)")
     _supplier_criteria(model, s, out, skipped)
     return out, skipped

@@ -7,10 +7,10 @@ from __future__ import annotations
 
 import base64
 import datetime as _dt
+import math
 from pathlib import Path
 
 from .._version import __version__
-from ..core.results import number_text
 
 #: what each standard plot shows (file name -> caption); a plot not listed gets its file name
 CAPTIONS = {
@@ -57,11 +57,26 @@ CAPTIONS = {
                      "would climb out, the cord tension along the wrap, and the jump torque against the installation tension.",
 }
 
+def eng(v: float) -> str:
+    """A number as an engineer writes it: plain from 1e-3 to 1e6 (6 significant digits, no "-0"),
+    beyond in engineering notation, the exponent a multiple of 3 (2.43e5 -> 243e3, 1e-5 -> 10e-6)."""
+    v = float(v) + 0.0
+    text = f"{v:.6g}"
+    if v == 0 or not math.isfinite(v) or (1e-3 <= abs(v) < 1e6 and "e" not in text):
+        return "0" if v == 0 else text
+    e = 3 * math.floor(math.log10(abs(v)) / 3)
+    m = float(f"{v / 10 ** e:.4g}")
+    if abs(m) >= 1000:                    # rounding carried into the next group (999.96e3 -> 1e6)
+        m, e = m / 1000, e + 3
+    return f"{m:g}e{e}"
+
+
 def _value(v, unit):
     if isinstance(v, bool) or v is None:
         return str(v)
     if isinstance(v, (int, float)):
-        return number_text(float(v), unit)
+        text = eng(v)
+        return text + (f" ({v * 30 / math.pi:.5g} rpm)" if unit == "rad/s" else "")
     if isinstance(v, (list, tuple)):
         from .overview import compact
 
@@ -237,7 +252,7 @@ def _diag(d) -> dict:
     e["unit"] = "" if unit in ("", "1") else f" {unit}"
     for k in ("value", "limit"):
         if isinstance(e.get(k), float):
-            e[k] = f"{e[k]:.4g}"
+            e[k] = eng(e[k])
     return e
 
 
