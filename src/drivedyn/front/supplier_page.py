@@ -335,10 +335,11 @@ def margins_sentence(summary: dict) -> str:
     if w:
         rpm = f" at {abs(w) * RPM:.0f} rpm"
     text = (f"Slip margins: the run's slip_margin ({run['value']:.2f} on {run['where']}{rpm}) is creep theory's load "
-            "multiplier at gross slip for the run's own mean loads and speed; duty_slip_factor "
-            f"({duty['value']:.2f}, {duty['where']}) is the same multiplier over every duty row at the arm's static "
-            "running balance (the sign-off slip factor)")
+            "multiplier at gross slip for the run's own mean loads and span tensions; duty_slip_factor "
+            f"({duty['value']:.2f}, {duty['where']}) is the same multiplier at each duty row's loads (with the "
+            "supplier's drag on the idlers and tensioner) and the arm's static running balance: the sign-off slip "
+            "factor")
     if dyn:
-        text += (f"; duty_dynamic_slip_margin ({dyn['value']:.2f}, {dyn['where']}) the run's margin of each row held "
-                 "in the rotational model")
-    return text + ". They differ where the states differ (the row's speed and load, the arm's position, the friction law)."
+        text += (f"; duty_dynamic_slip_margin ({dyn['value']:.2f}, {dyn['where']}) is the run's margin of each row "
+                 "held in the rotational model")
+    return text + ". They differ as their speeds, loads and tensions differ."
