@@ -49,9 +49,9 @@ def page(tmp_path_factory):
 def _tables(text):
     """{heading: [[cell, ...], ...]} of the page's h2-headed tables (header row first)."""
     out = {}
-    for m in re.finditer(r"<h2[^>]*>(.*?)</h2>\s*<table[^>]*>(.*?)</table>", text, re.S):
-        rows = [[_html.unescape(re.sub(r"<[^>]+>", "", c)).strip() for c in re.findall(r"<t[hd][^>]*>(.*?)</t[hd]>", r, re.S)]
-                for r in re.findall(r"<tr[^>]*>(.*?)</tr>", m.group(2), re.S)]
+    for m in re.finditer(r"<h2[^>]*>(.*?)</h2>\s*<table[^>]*>(.*?)</table>", text, re.DOTALL):
+        rows = [[_html.unescape(re.sub(r"<[^>]+>", "", c)).strip() for c in re.findall(r"<t[hd][^>]*>(.*?)</t[hd]>", r, re.DOTALL)]
+                for r in re.findall(r"<tr[^>]*>(.*?)</tr>", m.group(2), re.DOTALL)]
         out[re.sub(r"<[^>]+>", "", m.group(1)).strip()] = rows
     return out
 
@@ -122,9 +122,9 @@ def test_life_shares_by_row_with_their_speeds(page):
 
 
 def test_engineering_numbers_no_exponent_padding_no_minus_zero(page):
-    text = re.sub(r"<pre>.*?</pre>", "", page[0], flags=re.S)          # the model file as written stays as it is
+    text = re.sub(r"<pre>.*?</pre>", "", page[0], flags=re.DOTALL)          # the model file as written stays as it is
     text = re.sub(r"data:image/[^\"]+", "", text)
-    cells = [_html.unescape(re.sub(r"<[^>]+>", "", c)) for c in re.findall(r"<td[^>]*>(.*?)</td>", text, re.S)]
+    cells = [_html.unescape(re.sub(r"<[^>]+>", "", c)) for c in re.findall(r"<td[^>]*>(.*?)</td>", text, re.DOTALL)]
     assert not [c for c in cells if re.search(r"\de[+-]0?\d", c) and re.search(r"e\+|e-0", c)], "exponent"
     assert not [c for c in cells if re.search(r"(?<![\w.])-0(?:\.0+)?(?![\d.])", c)], "-0"
 
@@ -133,7 +133,7 @@ def test_the_runs_and_the_duty_cycles_slip_margins_said_apart(page):
     text, s, _ = page
     crit = s["criteria"]
     assert "slip_margin" in crit and "duty_slip_factor" in crit
-    m = re.search(r'<p class="note margins">(.*?)</p>', text, re.S)
+    m = re.search(r'<p class="note margins">(.*?)</p>', text, re.DOTALL)
     assert m, "no sentence relating the run's slip margin and the duty cycle's"
     said = _html.unescape(m.group(1))
     assert f"{crit['slip_margin']['value']:.2f}" in said and f"{crit['duty_slip_factor']['value']:.2f}" in said

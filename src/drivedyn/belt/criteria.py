@@ -75,8 +75,9 @@ def _supplier_criteria(model, s, out, skipped):
         if sfs:
             v, n, rpm, conv = min(sfs)
             out.append(Criterion("duty_slip_factor", v, c.slip_margin_min, "1", "min",
-                                 "smallest slip safety factor of the duty cycle (the torque that slips the pulley "
-                                 "over its whole wrap over the torque it carries)",
+                                 "smallest sign-off slip factor of the duty cycle: per pulley and row the smaller of "
+                                 "the fixed arm's (the supplier's) and the running arm's slip safety factor (the torque "
+                                 "that slips the pulley over its whole wrap over the torque it carries)",
                                  f"{n} at {rpm:.0f} rpm ({conv.replace('_', ' ')})"))
         lost = [f"{r['crank_speed'] * RPM:.0f} rpm" for r in duty["rows"] if r["running_arm"] is None]
         out.append(Criterion("duty_rows_carried", len(lost), 0, "", "max",
@@ -109,7 +110,7 @@ def _supplier_criteria(model, s, out, skipped):
               for e in tol if e["slip_factor_fixed"] is not None or e["slip_factor_running"] is not None]
         v, where = min(sf) if sf else (math.inf, "no pulley carries a torque")
         out.append(Criterion("tolerance_slip_factor", v, c.slip_margin_min, "1", "min",
-                             "smallest slip safety factor of the duty cycle at any belt length of the tolerance "
+                             "smallest sign-off slip factor of the duty cycle at any belt length of the tolerance "
                              "band and wear", f"{where} belt"))
         lost = [f"{e['position']}: {len(e['rows_not_carried'])}" for e in tol if e["rows_not_carried"]]
         out.append(Criterion("tolerance_rows_carried", sum(len(e["rows_not_carried"]) for e in tol), 0, "", "max",

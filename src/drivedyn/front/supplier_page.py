@@ -12,8 +12,6 @@ theory, in practice the smaller); it is what the verdict's duty_slip_factor judg
 """
 from __future__ import annotations
 
-import math
-
 from .overview import DEG, RPM, _f
 
 SIGN_OFF = ("sign-off slip factor: the smaller of the fixed-arm (the supplier's) and the running-arm factor of the "
@@ -52,8 +50,8 @@ def results(summary: dict) -> list[list[str]]:
     b = sup.get("belt") or {}
     if b.get("effective_length"):
         part = f"{b.get('ribs') or ''}{b.get('profile') or ''}{b['effective_length'] * 1e3:.0f}"
-        out.append(["belt", part, "", f"nominal effective length {_mm(b['effective_length'])} mm +- "
-                    f"{_mm(b['length_tolerance'])} mm, wear allowance {100 * b['wear_allowance']:.2f} %"])
+        out.append(["belt", part, "", (f"nominal effective length {_mm(b['effective_length'])} mm +- "
+                    f"{_mm(b['length_tolerance'])} mm, wear allowance {100 * b['wear_allowance']:.2f} %")])
     pos = next(iter((sup.get("positions") or {}).items()), None)
     if pos:
         name, t = pos
@@ -63,8 +61,8 @@ def results(summary: dict) -> list[list[str]]:
         if "installed" in t:
             r = t["installed"]
             out.append(["installed tension", f"{r['tension']:.1f} N", "",
-                        f"the part installed: the arm at {r['rel'] * DEG:.2f} deg from the free arm, where the "
-                        f"required belt length is the part's"])
+                        (f"the part installed: the arm at {r['rel'] * DEG:.2f} deg from the free arm, where the "
+                        f"required belt length is the part's")])
     life = sup.get("life")
     if life:
         c = crit.get("belt_life")
@@ -82,8 +80,8 @@ def results(summary: dict) -> list[list[str]]:
         if fixed:
             v, n, w = min(fixed)
             out.append(["smallest fixed-arm slip factor", f"{v:.2f}", "",
-                        f"{n} at {w * RPM:.0f} rpm: the supplier's convention, not signed on (the arm's running "
-                        "balance slackens the spans)"])
+                        (f"{n} at {w * RPM:.0f} rpm: the supplier's convention, not signed on (the arm's running "
+                        "balance slackens the spans)")])
         n_rows = len(duty["rows"])
         lost = [r for r in duty["rows"] if r["running_arm"] is None]
         out.append(["duty rows carried", f"{n_rows - len(lost)} of {n_rows}", f"{n_rows} of {n_rows}",
@@ -121,8 +119,8 @@ def _arm_rows(sup, crit) -> list[list[str]]:
         if a is not None:
             out.append([f"tensioner {n} running", f"{_f(a, '{:.2f}')} .. {_f(b, '{:.2f}')} deg",
                         f"{_f(_rel(pos, hi), '{:.1f}')} .. {_f(_rel(pos, lo), '{:.1f}')} deg",
-                        f"arm from the free arm over the duty cycle, against its stops (free-arm side .. load stop)"
-                        f"{clear}"])
+                        (f"arm from the free arm over the duty cycle, against its stops (free-arm side .. load stop)"
+                        f"{clear}")])
         else:
             out.append([f"tensioner {n} running", f"{_f(min(tr) * DEG, '{:.2f}')} .. {_f(max(tr) * DEG, '{:.2f}')} deg",
                         f"{_f(lo * DEG, '{:.1f}')} .. {_f(hi * DEG, '{:.1f}')} deg",
@@ -230,9 +228,7 @@ def _duty(sup, duty) -> list[dict]:
     conv = ("fixed arm | running arm. Fixed arm (the supplier's convention): the span into the tensioner held at "
             f"{duty['design_tension']:.1f} N; running arm: the installed belt length kept and the arm at its running "
             "balance (creep theory; none: the row has no running balance, see its note)")
-    arms = []
-    for n in rows[0]["arm_stops"]:
-        arms.append(n)
+    arms = list(rows[0]["arm_stops"])
     span_rows = [lead(r) + [pair(r, "spans", sp) for sp in spans] + [r["note"] or "-"] for r in rows]
     hub_rows = []
     for r in rows:
