@@ -214,8 +214,8 @@ def evaluate(model, result):
         if loaded:
             v, n = min(loaded)
             out.append(Criterion("slip_margin", v, c.slip_margin_min, "1", "min",
-                                 "smallest slip margin (friction capacity over transmitted torque) of a pulley "
-                                 "that carries torque", n))
+                                 "smallest slip margin of a pulley that carries torque: creep theory's load "
+                                 "multiplier at gross slip for the run's mean loads and span tensions", n))
 
     # span tension less its centrifugal part
     m = model.belt.mass_per_length

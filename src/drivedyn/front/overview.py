@@ -267,18 +267,22 @@ def duty_dynamic_table(sup: dict) -> dict | None:
     dyn, duty = sup.get("duty_dynamic"), sup.get("duty")
     if dyn and duty and duty["rows"]:
         names = list(duty["rows"][0]["fixed_arm"]["hub_load"])
+        rel = {n: t["rows"]["mean"]["rel"] * DEG for n, t in (sup.get("positions") or {}).items() if "mean" in t["rows"]}
         rows = []
         for e in dyn:
             if e["status"] == "failed":
                 rows.append([f"{e['crank_speed'] * RPM:.0f}"] + ["-"] * (len(names) + 2) + [f"failed: {e['note']}"])
                 continue
-            arm = "; ".join(f"{n} {lo * DEG:.2f} .. {hi * DEG:.2f}" for n, (lo, hi) in e["arm_travel"].items())
+            # the arm from the free arm (the positions table's convention) where the table gives the drawn arm's
+            arm = "; ".join(f"{n} {_range(rel[n] - hi * DEG, rel[n] - lo * DEG, '{:.2f}')}" if n in rel
+                            else f"{n} {_range(lo * DEG, hi * DEG, '{:.2f}')} (travel)" for n, (lo, hi) in e["arm_travel"].items())
             rows.append([f"{e['crank_speed'] * RPM:.0f}"]
                         + [f"{e['hub_load_mean'][n]:.0f} / {e['hub_load_peak'][n]:.0f}" for n in names]
                         + [_f(min(e["slip_margin"].values(), default=None), "{:.2f}"), arm or "-",
                            e["status"] + (f" ({', '.join(e['diagnostics'])})" if e["diagnostics"] else "")])
         return {"title": "duty cycle from the dynamics: hub loads mean / peak", "head": [
-            "crank (rpm)"] + [f"{n} (N)" for n in names] + ["min slip margin (dynamic)", "arm travel (deg)", "status"],
+            "crank (rpm)"] + [f"{n} (N)" for n in names] + ["min slip margin (dynamic)", "arm from the free arm (deg)",
+                                                             "status"],
             "rows": rows, "note": "the rotational model held at each row's speed with its loads and the crank's "
                                   "declared orders (docs/supplier-report.md); slip margin: each held run's own (creep "
                                   "theory at its mean loads), beside the static sign-off slip factor"}
