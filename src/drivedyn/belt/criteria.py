@@ -33,6 +33,17 @@ def speed_range(ds, summary, driver) -> tuple[float, float]:
     return (float(n.min()), float(n.max())) if n.size else (0.0, 0.0)
 
 
+def judged_speed_range(model, ds, summary, driver) -> tuple[float, float]:
+    """The crank speeds the rotational resonances are listed over (rpm): the run's, widened to the
+    duty cycle's rows where the model has one (the drive runs at those speeds in service)."""
+    lo, hi = speed_range(ds, summary, driver)
+    dc = getattr(model, "duty_cycle", None)
+    if dc is not None and dc.rows:
+        w = [abs(r.crank_speed) * RPM for r in dc.rows]
+        lo, hi = (min(w), max(w)) if hi <= 0 else (min(lo, min(w)), max(hi, max(w)))
+    return lo, hi
+
+
 def add_supplier(model, result) -> None:
     """summary.supplier: the supplier's report tables (supplier.py), for a model that asks for them."""
     from . import supplier
@@ -64,8 +75,9 @@ def _supplier_criteria(model, s, out, skipped):
         if sfs:
             v, n, rpm, conv = min(sfs)
             out.append(Criterion("duty_slip_factor", v, c.slip_margin_min, "1", "min",
-                                 "smallest slip safety factor of the duty cycle (the torque that slips the pulley "
-                                 "over its whole wrap over the torque it carries)",
+                                 "smallest sign-off slip factor of the duty cycle: per pulley and row the smaller of "
+                                 "the fixed arm's (the supplier's) and the running arm's slip safety factor (the torque "
+                                 "that slips the pulley over its whole wrap over the torque it carries)",
                                  f"{n} at {rpm:.0f} rpm ({conv.replace('_', ' ')})"))
         lost = [f"{r['crank_speed'] * RPM:.0f} rpm" for r in duty["rows"] if r["running_arm"] is None]
         out.append(Criterion("duty_rows_carried", len(lost), 0, "", "max",
@@ -98,7 +110,7 @@ def _supplier_criteria(model, s, out, skipped):
               for e in tol if e["slip_factor_fixed"] is not None or e["slip_factor_running"] is not None]
         v, where = min(sf) if sf else (math.inf, "no pulley carries a torque")
         out.append(Criterion("tolerance_slip_factor", v, c.slip_margin_min, "1", "min",
-                             "smallest slip safety factor of the duty cycle at any belt length of the tolerance "
+                             "smallest sign-off slip factor of the duty cycle at any belt length of the tolerance "
                              "band and wear", f"{where} belt"))
         lost = [f"{e['position']}: {len(e['rows_not_carried'])}" for e in tol if e["rows_not_carried"]]
         out.append(Criterion("tolerance_rows_carried", sum(len(e["rows_not_carried"]) for e in tol), 0, "", "max",
@@ -202,8 +214,8 @@ def evaluate(model, result):
         if loaded:
             v, n = min(loaded)
             out.append(Criterion("slip_margin", v, c.slip_margin_min, "1", "min",
-                                 "smallest slip margin (friction capacity over transmitted torque) of a pulley "
-                                 "that carries torque", n))
+                                 "smallest slip margin of a pulley that carries torque: creep theory's load "
+                                 "multiplier at gross slip for the run's mean loads and span tensions", n))
 
     # span tension less its centrifugal part
     m = model.belt.mass_per_length
@@ -293,16 +305,17 @@ def evaluate(model, result):
     modes = s.get("modes", {}).get("frequencies_hz")
     if modes:
         orders = flapmod.excited_orders(model, driver, c.flap_amplitude_min, c.flap_orders)
-        lo, hi = speed_range(ds, s, driver)
+        lo, hi = judged_speed_range(model, ds, s, driver)
+        over = "the run's speeds" + (" and the duty cycle's" if model.duty_cycle is not None else "")
         xs = [{"mode": i + 1, "order": k, "rpm": 60 * f / k, "frequency_hz": f}
               for i, f in enumerate(modes) for k in orders if lo <= 60 * f / k <= hi]
         if c.resonance_crossings_max is not None:
             out.append(Criterion("resonance_crossings", len(xs), c.resonance_crossings_max, "", "max",
-                                 "crossings of the drive's rotational modes by the crank orders inside the run's "
-                                 "speed range", "; ".join(f"mode {x['mode']} ({x['frequency_hz']:.0f} Hz) order "
+                                 f"crossings of the drive's rotational modes by the crank orders inside "
+                                 f"{lo:.0f}-{hi:.0f} rpm ({over})", "; ".join(f"mode {x['mode']} ({x['frequency_hz']:.0f} Hz) order "
                                                           f"{_o(x['order'])} at {x['rpm']:.0f} rpm" for x in xs[:4]), xs))
         else:
-            skipped["resonance_crossings"] = (f"listed, not judged ({len(xs)} inside the speed range; "
+            skipped["resonance_crossings"] = (f"listed, not judged ({len(xs)} inside {lo:.0f}-{hi:.0f} rpm; "
                                               "criteria.resonance_crossings_max judges them)")
     _supplier_criteria(model, s, out, skipped)
     return out, skipped

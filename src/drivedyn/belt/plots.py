@@ -169,7 +169,7 @@ def plot_hub_loads(ds, ax=None):
     for nm in names:
         hx = float(ds["hub_force_x"].sel(pulley=nm).values[-1])
         hy = float(ds["hub_force_y"].sel(pulley=nm).values[-1])
-        ang = np.degrees(np.arctan2(hy, hx))
+        ang = round(float(np.degrees(np.arctan2(hy, hx)))) % 360     # 0-360, as the positions table (no "-0")
         style, tail = _twin_style(twin, nm)
         ax.plot(t, ds["hub_load"].sel(pulley=nm), label=f"{nm} (towards {ang:.0f} deg){tail}",
                 color=colour(ds, nm), **style)
@@ -208,7 +208,7 @@ def plot_energy(ds, ax=None):
     D = ds["dissipated"]
     for k, m in enumerate(ds["mechanism"].values):
         if float(np.abs(D.sel(mechanism=m)).max()) > 0:
-            b.plot(t, D.sel(mechanism=m), label=f"{m}", color=f"C{k % 10}")
+            b.plot(t, D.sel(mechanism=m), label=str(m).replace("_", " "), color=f"C{k % 10}")
     b.plot(t, ds["energy_residual"], label="residual (integration error)", ls="--", color="0.3")
     b.set_ylabel("energy (J)")
     b.set_xlabel("time (s)")
@@ -252,13 +252,16 @@ def plot_spectrum(ds, driver, ax):
         ax[0].text(0.5, 0.5, "the span tensions do not vary", transform=ax[0].transAxes, ha="center", va="center")
     ax[0].set_ylabel("tension (N)")
     ax[0].set_title("spectrum of the tight span's tension (steady window)")
+    held = prescribed(ds)
     for nm in ds["pulley"].values:
         for a, var in ((ax[1], "speed"), (ax[2], "hub_load")):
+            if var == "speed" and str(nm) in held:
+                continue
             y = peaks(amp(ds[var].sel(pulley=nm).values))
             if np.any(y > 0):       # a pulley held at a constant speed has none to draw on a log axis
                 a.semilogy(fb, y, color=colour(ds, nm), lw=0.8, label=str(nm))
     ax[1].set_ylabel("speed (rad/s)")
-    ax[1].set_title("spectra of the pulley speeds")
+    ax[1].set_title("spectra of the pulley speeds" + (f" ({', '.join(held)}: prescribed, left out)" if held else ""))
     ax[2].set_ylabel("hub load (N)")
     ax[2].set_title("spectra of the hub loads")
     ax[2].set_xlabel("frequency (Hz)")
@@ -286,6 +289,15 @@ def plot_spectrum(ds, driver, ax):
         # at full resolution, not the drawn blocks
         _label_peaks(a, f, a_tight, fd, _segment_passing(ds, driver, fd))
     return True
+
+
+def prescribed(ds) -> list[str]:
+    """The pulleys whose speed the model prescribes (speed_time): their speed spectrum is round-off."""
+    if "model_toml" not in ds.attrs:
+        return []
+    from ..core.model import loads
+
+    return [p.name for p in loads(ds.attrs["model_toml"]).pulleys if p.speed_time is not None]
 
 
 def _segment_passing(ds, driver, fd):
@@ -390,12 +402,15 @@ def _mean_tensions(ds):
 
 
 def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), rpm_max=None, flap=None,
-                  speed_range=None, own_orders=None, free_rotor_hz=()):
+                  speed_range=None, own_orders=None, free_rotor_hz=(), duty_range=None, counted=None):
     """Campbell diagram: the drive's rotational modes (horizontal; one-way clutches locked, and
     dotted with their rotors free) and the spans' first flap frequencies (``flap``: {span: (rpm,
-    Hz)}, belt/steady/flap.py) against the orders of the driver's rotation (k x driver speed); crossings
-    inside ``speed_range`` (rpm, shaded) are resonances the run passes through. ``own_orders``:
-    {label: order in driver orders} of accessories' own excitations (an A/C compressor's pistons)."""
+    Hz)}, belt/steady/flap.py) against the orders of the driver's rotation (k x driver speed).
+    ``speed_range``: the run's (rpm; a line where it is one speed), ``duty_range``: the duty cycle's
+    crank speeds (shaded; the axis covers them). Circles mark the mode crossings the verdict lists:
+    of the ``counted`` orders (default: all drawn) inside the run's and the duty cycle's range.
+    ``own_orders``: {label: order in driver orders} of accessories' own excitations (an A/C
+    compressor's pistons)."""
     ax = plotting.ax_or_new(ax)
     for f in free_rotor_hz:
         ax.axhline(f, color="C0", lw=0.9, ls=":", alpha=0.8)
@@ -403,14 +418,24 @@ def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), r
                 fontsize=7, color="C0", alpha=0.8, transform=ax.get_yaxis_transform())
     w = np.abs(ds["speed"].sel(pulley=driver).values)
     rpm_run = float(w.max()) * 30 / np.pi if len(w) else 0.0
-    top_rpm = rpm_max or max(1.25 * rpm_run, 1.0)
+    top_rpm = rpm_max or max(1.25 * rpm_run, 1.08 * duty_range[1] if duty_range else 0.0, 1.0)
     orders = sorted(set(orders))
+    counted = orders if counted is None else sorted(set(counted))
     flap = flap or {}
     f_flap = [float(np.max(f)) for _, f in flap.values() if len(f)]
     f_top = max([1.1 * f for f in list(frequencies_hz) + list(free_rotor_hz) + f_flap]
                 + [max(orders or [1]) * top_rpm / 60 * 0.6])
+    if duty_range is not None:
+        ax.axvspan(*duty_range, color="0.88", zorder=0, label=f"duty cycle: {duty_range[0]:.0f}-{duty_range[1]:.0f} rpm")
     if speed_range is not None:
-        ax.axvspan(*speed_range, color="0.9", zorder=0, label=f"run: {speed_range[0]:.0f}-{speed_range[1]:.0f} rpm")
+        lo, hi = speed_range
+        if hi - lo < 0.005 * max(hi, 1.0):      # one speed: a line (a band of no width is not drawn)
+            ax.axvline(hi, color="0.45", lw=1.0, ls="-.", zorder=0, label=f"run: {hi:.0f} rpm")
+        else:
+            ax.axvspan(lo, hi, color="0.78", zorder=0, alpha=0.6, label=f"run: {lo:.0f}-{hi:.0f} rpm")
+    judged = [x for x in (speed_range, duty_range) if x is not None]
+    j_lo = min((x[0] for x in judged), default=0.0)
+    j_hi = max((x[1] for x in judged), default=top_rpm)
     for f in frequencies_hz:
         if f > f_top:
             continue
@@ -418,6 +443,7 @@ def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), r
         ax.text(top_rpm * 0.99, f, f" {f:.1f} Hz", va="bottom", ha="right", fontsize=8, color="C0")
     n = np.array([0.0, top_rpm])
     lines = [(k, f"{k:g}", "0.4") for k in orders] + [(k, lab, "C4") for lab, k in (own_orders or {}).items()]
+    marked = False
     for k, lab, col in lines:
         ax.plot(n, k * n / 60, color=col, lw=0.8, ls="--")
         y = k * top_rpm / 60
@@ -425,11 +451,16 @@ def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), r
             ax.text(top_rpm, y, f" {lab}", fontsize=8, color=col, va="center")
         else:
             ax.text(60 * f_top / k, f_top, f"{lab} ", fontsize=8, color=col, va="top", ha="right")
+        if k not in counted:
+            continue
         for f in frequencies_hz:   # resonance: order k at the speed where k n / 60 = f
-            if 60 * f / k <= top_rpm:
-                ax.plot(60 * f / k, f, "o", color="C3", ms=5)
+            if j_lo <= 60 * f / k <= j_hi:
+                ax.plot(60 * f / k, f, "o", color="C3", ms=5,
+                        label=None if marked else "mode crossed by a declared order (listed in the verdict)")
+                marked = True
     from .steady.flap import crossings
 
+    squares = False
     for i, (span, (rpm, f)) in enumerate(flap.items()):
         rpm, f = np.asarray(rpm), np.asarray(f)
         style = dict(color=f"C{(i + 1) % 10}", lw=1.6)
@@ -438,14 +469,17 @@ def plot_campbell(ds, frequencies_hz, driver, ax=None, orders=(1, 2, 3, 4, 6), r
         else:
             ax.axhline(f[0], ls="-.", label=f"flap {span}", **style)
         fl = {"speed_rpm": rpm.tolist(), "spans": {span: {"f1": f.tolist()}}}
-        for x in crossings(fl, orders, speed_range or (0, top_rpm)):
-            ax.plot(x["rpm"], x["frequency_hz"], "s", mfc="none", mec="C3", ms=7)
+        for x in crossings(fl, counted, speed_range or (0, top_rpm)):
+            ax.plot(x["rpm"], x["frequency_hz"], "s", mfc="none", mec="C3", ms=7,
+                    label=None if squares else "flap crossed in the run")
+            squares = True
     ax.set_xlim(0, top_rpm * 1.08)
     ax.set_ylim(0, f_top)
     ax.set_xlabel(f"{driver} speed (rpm)")
     ax.set_ylabel("frequency (Hz)")
-    ax.set_title("Campbell diagram: rotational modes (blue; dotted: clutch overrunning),\n"
-                 "span flap f1 (coloured; squares: crossings in the run), orders of the driver (dashed)", fontsize=9)
+    said = "orders of the driver (dashed" + ("" if counted else "; the crank declares none: no crossing counted") + ")"
+    ax.set_title("Campbell diagram: rotational modes (blue" + ("; dotted: clutch overrunning" if free_rotor_hz else "")
+                 + ")" + (", span flap f1 (coloured)" if flap else "") + ",\n" + said, fontsize=9)
     if ax.get_legend_handles_labels()[0]:
         _legend(ax)        # beside the axes: inside, it hid the top modes' and orders' labels
     ax.grid(alpha=0.3)
@@ -548,8 +582,14 @@ def _figures(ds, driver):
                for p in model.pulleys for h in (getattr(p, "load_harmonics", None) or []) if p.name in names}
         fig, ax = _fig(1, 5)
         fig.subplots_adjust(top=1 - 0.85 / fig.get_figheight())     # a two-line title and the status line above it
+        dc = model.duty_cycle
+        duty = None
+        if dc is not None and dc.rows:
+            w = [abs(r.crank_speed) * 30 / np.pi for r in dc.rows]
+            duty = (min(w), max(w))
         plot_campbell(ds, md.frequencies_hz, driver, ax=ax[0], orders=orders, flap=flap, own_orders=own,
-                      speed_range=speed_range(ds, {}, driver), free_rotor_hz=md.free_rotor_hz)
+                      speed_range=speed_range(ds, {}, driver), free_rotor_hz=md.free_rotor_hz, duty_range=duty,
+                      counted=excited_orders(model, driver, model.criteria.flap_amplitude_min, model.criteria.flap_orders))
         return fig
 
     def runup():

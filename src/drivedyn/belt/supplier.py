@@ -367,7 +367,7 @@ def report_lines(data) -> list[str]:
         names = list(data.get("pulleys") or du["rows"][0]["fixed_arm"]["hub_load"])
         lines += ["", f"duty cycle: hub loads N (fixed arm: the span into the tensioner held at "
                       f"{du['design_tension']:.1f} N, hub = vector sum of T | running arm: belt length kept, "
-                      "T - m v^2), smallest slip safety factor"]
+                      "T - m v^2), smallest slip safety factor fixed | running arm (the sign-off factor: the smaller of the two)"]
         lines.append(f"{'rpm':>6s} {'share':>6s} " + " ".join(f"{n[:11]:>11s}" for n in names) + f" {'min SF':>14s}")
         for r in du["rows"]:
             fa, ra = r["fixed_arm"], r["running_arm"]

@@ -280,6 +280,11 @@ def _print_overview(console, result):
         console.print(f"verdict: [{style}]{v['verdict']}[/{style}]")
     if v["note"]:
         console.print(_text(f"not judged: {v['note']}"), soft_wrap=not console.is_terminal)
+    from .supplier_page import margins_sentence
+
+    said = margins_sentence(result.summary)
+    if said:
+        console.print(_text(said), style="dim", soft_wrap=not console.is_terminal)
     for tb in tables(result):
         if not tb["rows"]:
             continue

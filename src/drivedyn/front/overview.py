@@ -26,10 +26,13 @@ def verdict_table(summary: dict) -> dict:
             "rows": rows, "note": note, "verdict": verdict}
 
 
-def tables(result) -> list[dict]:
-    """The per-object tables of a result (after the verdict)."""
+def tables(result, supplier=True) -> list[dict]:
+    """The per-object tables of a result (after the verdict); ``supplier=False``: a belt drive's without
+    the supplier report's static tables (report.html lays them out first, supplier_page.py)."""
     fn = {"belt-drive": _belt, "gear-train": _gears, "span-stability": _span, "toothed-mesh": _toothed}.get(result.kind)
     try:
+        if fn is _belt:
+            return _belt(result, supplier)
         return fn(result) if fn else []
     except Exception as exc:      # a partial result may lack what a table needs: say so, never fail the output
         return [{"title": "results", "head": [], "rows": [], "note": f"no overview ({exc})"}]
@@ -63,7 +66,7 @@ def _resolution_note(s) -> str:
     return ""
 
 
-def _belt(result) -> list[dict]:
+def _belt(result, supplier=True) -> list[dict]:
     from ..belt.dynamics.frequencies import judged
 
     s, ds = result.summary, result.ds
@@ -93,13 +96,15 @@ def _belt(result) -> list[dict]:
         fy = ds["hub_force_y"].values[sel, k].mean() if sel is not None and sel.any() else np.nan
         rows.append([name, _range(w.min(), w.max()), _f(None if slip is None else 100 * slip, "{:.2f}"),
                      _f(margin, "{:.2f}"), _f(float(np.mean(hub)), "{:.0f}"), _f(peak, "{:.0f}"),
-                     _f(math.degrees(math.atan2(fy, fx)) if np.isfinite(fx) else None, "{:.0f}")])
+                     _f(round(math.degrees(math.atan2(fy, fx))) % 360 if np.isfinite(fx) else None, "{:.0f}")])
     where = "over the run-up" if ru else "over the steady window"
     out.append({"title": f"pulleys ({where})",
-                "head": ["pulley", "speed (rpm)", "slip (%)" + (" largest bin" if ru else ""), "slip margin",
+                "head": ["pulley", "speed (rpm)", "slip (%)" + (" largest bin" if ru else ""), "run's slip margin",
                          "hub load mean (N)", "peak (N)", "direction (deg)"],
                 "rows": rows,
-                "note": "slip margin: friction capacity over transmitted torque, for the pulleys that carry torque"
+                "note": "run's slip margin: creep theory's load multiplier at gross slip for the run's mean loads, "
+                        "for the pulleys that carry torque"
+                        + ("; the duty cycle's sign-off slip factors are in their own table" if s.get("supplier", {}).get("duty") else "")
                         + ("; judged per bin in a run-up" if ru else "")
                         + "; direction: of the mean hub force on the pulley, counter-clockwise from +x"})
     if s.get("teeth"):
@@ -128,6 +133,9 @@ def _belt(result) -> list[dict]:
         from ..core.model import loads
 
         model = loads(ds.attrs["model_toml"]) if "model_toml" in ds.attrs else None
+        # the drawn arm's angle from the free arm (the supplier's convention), where a positions table gives it
+        free_arm = {n: t["rows"]["mean"]["rel"] * DEG for n, t in (s.get("supplier") or {}).get("positions", {}).items()
+                    if "mean" in t["rows"]}
         rows = []
         for name, e in tens.items():
             p = next((p for p in model.pulleys if p.name == name), None) if model is not None else None
@@ -135,44 +143,51 @@ def _belt(result) -> list[dict]:
             arm = "arm_travel" in ds and name in ds["arm"].values.tolist() if "arm" in ds.coords else False
             if arm:
                 q = ds["arm_travel"].sel(arm=name).values[sel]
-                psi = ds["arm_angle"].sel(arm=name).values[sel]
-                rows.append([name, _range(psi.min() * DEG, psi.max() * DEG, "{:.1f}"),
+                psi = ds["arm_angle"].sel(arm=name).values[sel] * DEG % 360      # 0-360, as the positions table
+                rel = free_arm.get(name)
+                rows.append([name, _range(psi.min(), psi.max(), "{:.1f}"),
+                             _range(rel - q.max() * DEG, rel - q.min() * DEG, "{:.2f}") if rel is not None else "-",
                              _range(q.min() * DEG, q.max() * DEG, "{:.2f}"),
                              _range(t.stops[0] * DEG, t.stops[1] * DEG, "{:.0f}") if t is not None else "-",
                              _f(e.get("hub_load"), "{:.0f}"), _f(e.get("hub_load_max"), "{:.0f}")])
             else:
                 q = ds["slider_travel"].sel(slider=name).values[sel] if "slider_travel" in ds else np.array([np.nan])
-                rows.append([name, "-", _range(q.min() * 1e3, q.max() * 1e3, "{:.2f}") + " mm",
+                rows.append([name, "-", "-", _range(q.min() * 1e3, q.max() * 1e3, "{:.2f}") + " mm",
                              _range(t.stops[0] * 1e3, t.stops[1] * 1e3, "{:.1f}") + " mm" if t is not None else "-",
                              _f(e.get("hub_load"), "{:.0f}"), _f(e.get("hub_load_max"), "{:.0f}")])
         out.append({"title": f"tensioners ({where})",
-                    "head": ["tensioner", "arm angle (deg)", "travel (deg)", "stops (deg)", "hub load mean (N)",
-                             "peak (N)"], "rows": rows,
-                    "note": "arm angle: of the arm about its pivot, counter-clockwise from +x, as drawn in belt.png; "
-                            "travel: from the drawn position, into the belt positive"})
+                    "head": ["tensioner", "arm angle (deg)", "from the free arm (deg)", "travel (deg)", "stops (deg)",
+                             "hub load mean (N)", "peak (N)"], "rows": rows,
+                    "note": "arm angle: of the arm about its pivot, counter-clockwise from +x (0-360), as drawn in "
+                            "belt.png; from the free arm: as in the positions table; travel: from the drawn position, "
+                            "into the belt positive, and its stops"})
     modes = s.get("modes", {}).get("frequencies_hz") or []
     if modes:
-        from ..belt.criteria import speed_range
+        from ..belt.criteria import judged_speed_range, speed_range
         from ..belt.steady.flap import excited_orders
 
-        orders = []
+        orders, model = [], None
         if "model_toml" in ds.attrs:
             from ..core.model import loads
 
-            orders = excited_orders(loads(ds.attrs["model_toml"]), driver)
-        lo, hi = speed_range(ds, s, driver) if sel is not None else (0, 0)
+            model = loads(ds.attrs["model_toml"])
+            orders = excited_orders(model, driver)
+        lo, hi = ((judged_speed_range(model, ds, s, driver) if model is not None else speed_range(ds, s, driver))
+                  if sel is not None else (0, 0))
         rows = []
         for i, f in enumerate(modes):
             cross = [f"order {k:g} at {60 * f / k:.0f} rpm" for k in orders if lo <= 60 * f / k <= hi]
             rows.append([str(i + 1), f"{f:.1f}", "; ".join(cross) or "-"])
         out.append({"title": "rotational modes (linearised, spans EA/L)", "head": ["mode", "frequency (Hz)",
-                    f"crossed by the crank's orders in {lo:.0f}-{hi:.0f} rpm"], "rows": rows, "note": ""})
+                    f"crossed by the crank's orders in {lo:.0f}-{hi:.0f} rpm"], "rows": rows,
+                    "note": "" if orders else "the crank declares no speed orders: no crossing to list"})
     inst = _installation(s, ds)
     if inst:
         out.append(inst)
     if ru:
         out.append(runup_table(s))
-    out += supplier_tables(s.get("supplier") or {})
+    sup = s.get("supplier") or {}
+    out += supplier_tables(sup) if supplier else [t for t in [duty_dynamic_table(sup)] if t]
     return out
 
 
@@ -226,27 +241,15 @@ def supplier_tables(sup: dict) -> list[dict]:
                         + [f"{fa['hub_load'][n]:.0f} | " + (f"{ra['hub_load'][n]:.0f}" if ra else "-") for n in names]
                         + [f"{_f(sf, '{:.2f}')} | {_f(sfr, '{:.2f}')}", r["note"] or "-"])
         out.append({"title": "duty cycle: hub loads, fixed arm | running arm", "head": [
-            "crank (rpm)", "share (%)"] + [f"{n} (N)" for n in names] + ["min slip factor", "note"], "rows": rows,
+            "crank (rpm)", "share (%)"] + [f"{n} (N)" for n in names] + ["min slip factor fixed | running", "note"],
+            "rows": rows,
             "note": f"fixed arm (the supplier's convention): the span into the tensioner held at "
                     f"{duty['design_tension']:.1f} N, hub loads the vector sum of T; running arm: the installed "
-                    "belt length kept, hub loads from T - m v^2 (docs/supplier-report.md)"})
-    dyn = sup.get("duty_dynamic")
-    if dyn and duty and duty["rows"]:
-        names = list(duty["rows"][0]["fixed_arm"]["hub_load"])
-        rows = []
-        for e in dyn:
-            if e["status"] == "failed":
-                rows.append([f"{e['crank_speed'] * RPM:.0f}"] + ["-"] * (len(names) + 2) + [f"failed: {e['note']}"])
-                continue
-            arm = "; ".join(f"{n} {lo * DEG:.2f} .. {hi * DEG:.2f}" for n, (lo, hi) in e["arm_travel"].items())
-            rows.append([f"{e['crank_speed'] * RPM:.0f}"]
-                        + [f"{e['hub_load_mean'][n]:.0f} / {e['hub_load_peak'][n]:.0f}" for n in names]
-                        + [_f(min(e["slip_margin"].values(), default=None), "{:.2f}"), arm or "-",
-                           e["status"] + (f" ({', '.join(e['diagnostics'])})" if e["diagnostics"] else "")])
-        out.append({"title": "duty cycle from the dynamics: hub loads mean / peak", "head": [
-            "crank (rpm)"] + [f"{n} (N)" for n in names] + ["min slip margin", "arm travel (deg)", "status"],
-            "rows": rows, "note": "the rotational model held at each row's speed with its loads and the crank's "
-                                  "declared orders (docs/supplier-report.md)"})
+                    "belt length kept, hub loads from T - m v^2 (docs/supplier-report.md); the sign-off slip factor is "
+                    "the smaller of the two (the verdict's duty_slip_factor)"})
+    dyn = duty_dynamic_table(sup)
+    if dyn:
+        out.append(dyn)
     life = sup.get("life")
     if life:
         out.append({"title": "belt life (rib fatigue)", "head": ["B10 (h)", "target (h)", "pulley shares", "row shares"],
@@ -257,6 +260,33 @@ def supplier_tables(sup: dict) -> list[dict]:
                             "effective diameter lies in 79.6-175 mm" + ("" if life["in_range"] else
                             f"; outside it here ({', '.join(life['out_of_range'])}): expect about 0.55 x")})
     return out
+
+
+def duty_dynamic_table(sup: dict) -> dict | None:
+    """The duty rows held in the rotational model (belt/supplier.py's dynamic_duty)."""
+    dyn, duty = sup.get("duty_dynamic"), sup.get("duty")
+    if dyn and duty and duty["rows"]:
+        names = list(duty["rows"][0]["fixed_arm"]["hub_load"])
+        rel = {n: t["rows"]["mean"]["rel"] * DEG for n, t in (sup.get("positions") or {}).items() if "mean" in t["rows"]}
+        rows = []
+        for e in dyn:
+            if e["status"] == "failed":
+                rows.append([f"{e['crank_speed'] * RPM:.0f}"] + ["-"] * (len(names) + 2) + [f"failed: {e['note']}"])
+                continue
+            # the arm from the free arm (the positions table's convention) where the table gives the drawn arm's
+            arm = "; ".join(f"{n} {_range(rel[n] - hi * DEG, rel[n] - lo * DEG, '{:.2f}')}" if n in rel
+                            else f"{n} {_range(lo * DEG, hi * DEG, '{:.2f}')} (travel)" for n, (lo, hi) in e["arm_travel"].items())
+            rows.append([f"{e['crank_speed'] * RPM:.0f}"]
+                        + [f"{e['hub_load_mean'][n]:.0f} / {e['hub_load_peak'][n]:.0f}" for n in names]
+                        + [_f(min(e["slip_margin"].values(), default=None), "{:.2f}"), arm or "-",
+                           e["status"] + (f" ({', '.join(e['diagnostics'])})" if e["diagnostics"] else "")])
+        return {"title": "duty cycle from the dynamics: hub loads mean / peak", "head": [
+            "crank (rpm)"] + [f"{n} (N)" for n in names] + ["min slip margin (dynamic)", "arm from the free arm (deg)",
+                                                             "status"],
+            "rows": rows, "note": "the rotational model held at each row's speed with its loads and the crank's "
+                                  "declared orders (docs/supplier-report.md); slip margin: each held run's own (creep "
+                                  "theory at its mean loads), beside the static sign-off slip factor"}
+    return None
 
 
 def _installation(s, ds) -> dict | None:

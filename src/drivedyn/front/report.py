@@ -7,10 +7,10 @@ from __future__ import annotations
 
 import base64
 import datetime as _dt
+import math
 from pathlib import Path
 
 from .._version import __version__
-from ..core.results import number_text
 
 #: what each standard plot shows (file name -> caption); a plot not listed gets its file name
 CAPTIONS = {
@@ -57,11 +57,26 @@ CAPTIONS = {
                      "would climb out, the cord tension along the wrap, and the jump torque against the installation tension.",
 }
 
+def eng(v: float) -> str:
+    """A number as an engineer writes it: plain from 1e-3 to 1e6 (6 significant digits, no "-0"),
+    beyond in engineering notation, the exponent a multiple of 3 (2.43e5 -> 243e3, 1e-5 -> 10e-6)."""
+    v = float(v) + 0.0
+    text = f"{v:.6g}"
+    if v == 0 or not math.isfinite(v) or (1e-3 <= abs(v) < 1e6 and "e" not in text):
+        return "0" if v == 0 else text
+    e = 3 * math.floor(math.log10(abs(v)) / 3)
+    m = float(f"{v / 10 ** e:.4g}")
+    if abs(m) >= 1000:                    # rounding carried into the next group (999.96e3 -> 1e6)
+        m, e = m / 1000, e + 3
+    return f"{m:g}e{e}"
+
+
 def _value(v, unit):
     if isinstance(v, bool) or v is None:
         return str(v)
     if isinstance(v, (int, float)):
-        return number_text(float(v), unit)
+        text = eng(v)
+        return text + (f" ({v * 30 / math.pi:.5g} rpm)" if unit == "rad/s" else "")
     if isinstance(v, (list, tuple)):
         from .overview import compact
 
@@ -141,14 +156,14 @@ def _figures(files, captions=None) -> list[dict]:
 
 
 def render(title, kind, status, message, diagnostics, headline, results, figures, model_rows, model_toml, source="",
-           extra="", table=None, model_heading="Model", verdict=None, tables=(), model_note="") -> str:
+           extra="", table=None, model_heading="Model", verdict=None, tables=(), model_note="", supplier=None) -> str:
     from jinja2 import Environment, PackageLoader, select_autoescape
 
     env = Environment(loader=PackageLoader("drivedyn.front", "templates"), autoescape=select_autoescape(["html", "j2"]))
     return env.get_template("report.html.j2").render(
         title=title, kind=kind, status=status, message=message, diagnostics=diagnostics, headline=headline, results=results,
         figures=figures, model_rows=model_rows, model_toml=model_toml, source=source, extra=extra, table=table,
-        model_heading=model_heading, verdict=verdict, tables=list(tables), model_note=model_note,
+        model_heading=model_heading, verdict=verdict, tables=list(tables), model_note=model_note, supplier=supplier,
         version=__version__, written=_dt.datetime.now().isoformat(timespec="seconds"))
 
 
@@ -159,8 +174,15 @@ def write_report(result, outdir, files, model=None, source="") -> Path:
     outdir = Path(outdir)
     if model is None and "model_toml" in result.ds.attrs:
         model = loads(result.ds.attrs["model_toml"])
+    from . import supplier_page
     from .overview import tables, verdict_table
 
+    # a drive with a supplier's report: its results and tables first, the dynamics after them
+    supplier = None
+    if result.kind == "belt-drive" and supplier_page.wanted(result.summary):
+        supplier = {"results": supplier_page.results(result.summary),
+                    "tables": supplier_page.tables(result.summary, model),
+                    "margins": supplier_page.margins_sentence(result.summary)}
     flat = {k: v for k, v in result.flat_summary().items()
             if not (k.startswith(("runup.", "flap.")) and isinstance(v, list))}
     html = render(
@@ -170,7 +192,8 @@ def write_report(result, outdir, files, model=None, source="") -> Path:
         results=_rows(flat, result.units), figures=_figures(files),
         model_rows=_model_rows(model) if model is not None else [],
         model_toml=dumps(model) if model is not None else "", source=str(source),
-        verdict=verdict_table(result.summary), tables=tables(result), model_note=model_note(result))
+        verdict=verdict_table(result.summary), tables=tables(result, supplier=supplier is None),
+        model_note=model_note(result), supplier=supplier)
     from ..core.outputs import write_text
 
     return write_text(outdir / "report.html", html)
@@ -212,5 +235,5 @@ def _diag(d) -> dict:
     e["unit"] = "" if unit in ("", "1") else f" {unit}"
     for k in ("value", "limit"):
         if isinstance(e.get(k), float):
-            e[k] = f"{e[k]:.4g}"
+            e[k] = eng(e[k])
     return e

@@ -41,8 +41,11 @@ def runup_slip(result):
 def slip_margin(result, model, sysm, sel):
     """pulleys.<name>.slip_margin: the load multiplier at gross-slip onset by creep theory
     (steady/creep.py) for the run's mean loads in the window (inertia torques J dw/dt included, so that
-    an accelerating drive counts what its belt transmits)."""
-    from ..steady.creep import steady_state
+    an accelerating drive counts what its belt transmits), from the run's own tension level: the belt
+    creep theory counts is the one that carries the window's mean span tensions on the layout (the
+    model's belt.length is the unstretched belt on pitch circles, not sunk into the grooves as creep
+    theory counts it: on examples/fead-ag0868.toml its spans read 160 N slacker than the run's)."""
+    from ..steady.creep import drive_of, length_of, steady_state
 
     if result.summary.get("runup"):
         # a run-up is judged bin by bin (slip_runup): one margin over the swept window says nothing
@@ -57,6 +60,13 @@ def slip_margin(result, model, sysm, sel):
     loads = ds["torque_applied"].values[sel].mean(axis=0) - J * acc
     d = int(np.argmax(np.abs(w.mean(axis=0)) * np.abs(sysm.layout.rho)))
     speed = float(w.mean(axis=0)[d] * sysm.layout.rho[d])
+    T = ds["span_tension"].values[sel].mean(axis=0) if "span_tension" in ds else None
+    creep = drive_of(model, sysm.layout)
+    c = model.belt.mass_per_length * speed ** 2
+    if (T is not None and [str(x) for x in ds["span"].values] == list(creep.span_names)
+            and np.all(np.isfinite(T)) and np.all(T > c)):
+        L0 = length_of(creep, T, c, speed >= 0)
+        model = model.model_copy(update={"belt": model.belt.model_copy(update={"length": L0, "pretension": None})})
     try:
         st = steady_state(model, sysm.layout, loads=loads, speed=speed)
     except ModelError:       # a slack belt: the run's own diagnostics say what happened
