@@ -85,6 +85,8 @@ class Rot(NamedTuple):
     crout: np.ndarray
     cse: np.ndarray
     csx: np.ndarray
+    ct0: np.ndarray          # (nc, N, nspan): belt rolled onto each span's circles as their tangent points move (m)
+    ct1: np.ndarray
 
 
 #: Gauss-Legendre nodes and weights on [0, 1] for the belt's depth along a slip arc (steady/creep.py uses
@@ -208,7 +210,8 @@ def _periodic_row(tab, a, j, th, P):
 
 
 @njit(cache=True, inline="always")
-def _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, th, om, L, Ld, dx, dy, wrap, rin, rout):
+def _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, ct0, ct1, th, om, L, Ld, t0, t1, dx, dy, wrap, rin,
+                    rout):
     """The non-circular pulleys' share of the geometry at their angles th (rates om): span lengths (and
     rates), directions, wraps and the effective radii rin, rout (|rho| on a circle). Called after
     ``_geometry``, which normalised the directions: they are normalised again."""
@@ -229,6 +232,8 @@ def _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, th, om, L, Ld,
             Ld[j] += dv * w
             dx[j] += _periodic_row(cdx, a, j, t, P)[0]
             dy[j] += _periodic_row(cdy, a, j, t, P)[0]
+            t0[j] += _periodic_row(ct0, a, j, t, P)[0]
+            t1[j] += _periodic_row(ct1, a, j, t, P)[0]
         for j in range(nk):
             wrap[j] += _periodic_row(cw, a, j, t, P)[0]
         rin[k] = _periodic(crin, a, t, P)[0]
@@ -251,8 +256,8 @@ def geometry(R, q, qd, L, Ld, t0, t1, dx, dy, wrap, th, om, rin, rout):
     """``_geometry`` and ``_curve_geometry`` on the Rot record."""
     _geometry(R.L, R.dx, R.dy, R.wrap, R.q0, R.dq, R.tL, R.t0, R.t1, R.tdx, R.tdy, R.tw, q, qd, L, Ld, t0, t1,
               dx, dy, wrap)
-    _curve_geometry(R.rho, R.cpul, R.cP, R.cL, R.cdx, R.cdy, R.cw, R.crin, R.crout, th, om, L, Ld, dx, dy, wrap,
-                    rin, rout)
+    _curve_geometry(R.rho, R.cpul, R.cP, R.cL, R.cdx, R.cdy, R.cw, R.crin, R.crout, R.ct0, R.ct1, th, om, L, Ld, t0, t1,
+                    dx, dy, wrap, rin, rout)
 
 
 class RotState(NamedTuple):
@@ -654,6 +659,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     cw0, cw1 = RS.cw0, RS.cw1
     cpul, cP, csig, cper, cL, cdx, cdy, cw, crin, crout, cse, csx = (R.cpul, R.cP, R.csig, R.cper, R.cL, R.cdx, R.cdy,
                                                                     R.cw, R.crin, R.crout, R.cse, R.csx)
+    ct0, ct1 = R.ct0, R.ct1
     rin, rout, thb = RW.rin, RW.rout, RW.thb
     wsw = RS.wsum
     dzw = RS.dz
@@ -663,7 +669,8 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     # the geometry of this state: after the first step, the one the last step left (the travel
     # moves only in the tensioners' stage, whose geometry the belt's stage computes)
     _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap)
-    _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, S.th, om, L, Ld, dx, dy, wrap, rin, rout)
+    _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, ct0, ct1, S.th, om, L, Ld, t0, t1, dx, dy, wrap,
+                            rin, rout)
     interval = steps * h
     work = out_work[k0 - 1] if k0 > 0 else 0.0
     for ks in range(k0, k1):
@@ -749,7 +756,8 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 wm[k] = wrap[k]
             # --- the belt: fluxes through the wraps at the new speeds, contents updated
             _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap)
-            _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, S.th, om, L, Ld, dx, dy, wrap, rin, rout)
+            _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, ct0, ct1, S.th, om, L, Ld, t0, t1, dx, dy, wrap,
+                            rin, rout)
             P_fr = 0.0
             for k in range(nk):
                 wm[k] = 0.5 * (wm[k] + wrap[k])      # the wraps at the step's middle
@@ -798,7 +806,12 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                             fb[k] = csig[a] * pr[k] * (_arc_position(csx, cper, a, thb[k], cP[a])
                                                        - _arc_position(csx, cper, a, S.th[k], cP[a])) / h
                     Wc[k] += h * (fa[k] - fb[k]) + m0w[k] - m1w[k]
-                    P_fr += (T[k] * (fb[k] * (1.0 + eo) * h + m1w[k]) - T[ji] * (fa[k] * (1.0 + ei) * h + m0w[k])) / h \
+                    # the spans' power at the tangent points: tension x the belt's speed there, the curve's
+                    # surface speed omega h (on a circle the flux's; a pitch curve's tangent points move along
+                    # the spans, whose strain energy books that work)
+                    sg = 1.0 if rho[k] >= 0.0 else -1.0
+                    P_fr += (T[k] * (sg * rout[k] * om[k] * pr[k] * (1.0 + eo) * h + m1w[k])
+                             - T[ji] * (sg * rin[k] * om[k] * pr[k] * (1.0 + ei) * h + m0w[k])) / h \
                         - tq[k] * om[k] - (eb[k] - ebw[k]) / h
                     continue
                 # the belt arrives in adhesion: it moves with the pulley at the friction's radius

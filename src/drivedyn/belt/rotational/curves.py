@@ -39,7 +39,8 @@ class Curves:
 def empty_fields(nk, ns) -> dict:
     z = np.zeros
     return dict(cpul=np.zeros(0, dtype=np.int64), cP=z(0), csig=z(0), cper=z(0), cL=z((0, 4, ns)), cdx=z((0, 4, ns)),
-                cdy=z((0, 4, ns)), cw=z((0, 4, nk)), crin=z((0, 4)), crout=z((0, 4)), cse=z((0, 4)), csx=z((0, 4)))
+                cdy=z((0, 4, ns)), cw=z((0, 4, nk)), crin=z((0, 4)), crout=z((0, 4)), cse=z((0, 4)), csx=z((0, 4)),
+                ct0=z((0, 4, ns)), ct1=z((0, 4, ns)))
 
 
 def kernel_fields(curves: Curves | None, nk, ns) -> dict:
@@ -54,6 +55,7 @@ def period(q) -> float:
 def tables(model, lay) -> Curves | None:
     """The curves' tables about the circle layout ``lay`` (its centres: the tensioners at rest)."""
     from ...mechanics.curve_layout import layout_at
+    from ..steady.modes import rolled_on
 
     ps = model.pulleys
     idx = [j for j, q in enumerate(ps) if q.pitch_curve is not None]
@@ -81,7 +83,8 @@ def tables(model, lay) -> Curves | None:
     f.update(cpul=np.array(idx, dtype=np.int64), cP=np.zeros(nc), csig=np.zeros(nc), cper=np.zeros(nc),
              cL=np.zeros((nc, NODES, ns)), cdx=np.zeros((nc, NODES, ns)), cdy=np.zeros((nc, NODES, ns)),
              cw=np.zeros((nc, NODES, nk)), crin=np.zeros((nc, NODES)), crout=np.zeros((nc, NODES)),
-             cse=np.zeros((nc, NODES)), csx=np.zeros((nc, NODES)))
+             cse=np.zeros((nc, NODES)), csx=np.zeros((nc, NODES)), ct0=np.zeros((nc, NODES, ns)),
+             ct1=np.zeros((nc, NODES, ns)))
     for a, j in enumerate(idx):
         P = period(ps[j])
         c = curves[j]
@@ -103,6 +106,11 @@ def tables(model, lay) -> Curves | None:
             # on average), that drift taken off
             f["cse"][a, i] = c.cumulative(cl.spans[j - 1].phi1) + per * th
             f["csx"][a, i] = c.cumulative(cl.spans[j].phi0) + per * th
+            # the circles' tangent points move round them as the curve turns: the belt rolled onto them
+            # (steady/modes.rolled_on; the curve's own ends are its fluxes'), from the rest angles
+            r0, r1 = rolled_on(base, cl)
+            r0[j], r1[(j - 1) % nk] = 0.0, 0.0
+            f["ct0"][a, i], f["ct1"][a, i] = r0, r1
         # the own angles are continuous over the table, but a support point may be returned a turn away
         for key in ("cse", "csx"):
             row = f[key][a]
