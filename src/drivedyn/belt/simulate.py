@@ -17,6 +17,13 @@ def run(model, progress=None):
         from .rotational.simulate import run as run_rotational
 
         return run_rotational(drive, progress)
+    curved = next((k for k, p in enumerate(model.pulleys) if p.pitch_curve is not None), None)
+    if curved is not None:
+        from ..core.errors import ModelError
+
+        raise ModelError(f"pulley {model.pulleys[curved].name!r}: the segment model lays the belt on circles; "
+                         "simulation.model = \"rotational\" drives a synchronous belt through its pitch curves",
+                         field=f"pulleys[{curved}].pitch_curve")
     from .segments.simulate import run as run_segments
 
     return run_segments(drive, progress)

@@ -1,6 +1,8 @@
 """The ``drivedyn study`` command: a progress bar and a report around :func:`run_study`."""
 from __future__ import annotations
 
+import math
+
 from pathlib import Path
 
 
@@ -143,7 +145,7 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
         return 1
     from .study_report import study_unit
 
-    console.print(escape(f"best: {opt.objective} = {o.objective:.6g}"))
+    console.print(escape(f"best: {opt.objective} = {o.objective:.6g}" + _against_start(o)))
     for k, v in o.values.items():
         unit, scale = study_unit(study, k)
         console.print(escape(f"  {k} = {v * scale:.6g} {unit}".rstrip()) if isinstance(v, float) else escape(f"  {k} = {v}"))
@@ -157,6 +159,15 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
     console.print(escape(f"wrote {res.path}, {Path(res.path).parent / 'best.toml'}"
                          + (f" and {len(res.plots)} plot(s)" if res.plots else "")))
     return 0
+
+
+def _against_start(o) -> str:
+    """'; the base file's design: 206.3 (the best 24 % of it)': the optimum against the design it started from."""
+    st = o.start
+    if not st or not math.isfinite(st.get("objective", math.nan)):
+        return ""
+    share = f" (the best {100 * o.objective / st['objective']:.3g} % of it)" if st["objective"] else ""
+    return f"; the base file's design: {st['objective']:.6g}{share}" + ("" if st["feasible"] else ", infeasible")
 
 
 def _shown(study, label, v) -> str:

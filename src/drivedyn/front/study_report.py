@@ -5,6 +5,8 @@ case of the largest; the study's plots and the study file. The page is report.py
 """
 from __future__ import annotations
 
+import math
+
 from pathlib import Path
 
 import numpy as np
@@ -227,6 +229,11 @@ def write_optimisation_report(res, study, study_file, outdir, hits=()) -> Path:
     else:
         status, message = ("warning" if hits else "success"), f"best {opt.objective} = {o.objective:.6g}"
         rows.append({"key": f"objective ({opt.sense}): {opt.objective}", "value": f"{o.objective:.6g}", "unit": ""})
+        st = o.start
+        if st and math.isfinite(st.get("objective", math.nan)):
+            rows.append({"key": "the base file's design (no parameter changed)" + ("" if st["feasible"] else ", infeasible"),
+                         "value": f"{st['objective']:.6g}" + (f" (the best: {100 * o.objective / st['objective']:.3g} %)"
+                                                              if st["objective"] else ""), "unit": ""})
         for k, v in o.values.items():
             unit, scale = study_unit(study, k)
             rows.append({"key": k, "value": f"{v * scale:.6g}" if isinstance(v, float) else str(v), "unit": unit})

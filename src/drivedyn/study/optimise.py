@@ -53,6 +53,7 @@ class Optimum:
     constraints: dict                  # key -> {"value", "min", "max", "margin"}
     evaluations: list = field(default_factory=list)   # Evaluation, in order
     history: list = field(default_factory=list)
+    start: dict | None = None          # the design as the base file gives it: objective, feasible, constraints
 
 
 def _matches(summary: dict, pattern: str) -> list:
@@ -209,9 +210,26 @@ def run_optimise(study, execute) -> Optimum:
                            callback=lambda *a, **k: stop[0] is not None)
     if stop[0] is not None:
         raise stop[0]
+    start = _start(study, execute, opt, units_seen)
     if best["case"] is None:
-        return Optimum(None, math.nan, None, {}, evaluations, history)
-    return Optimum(dict(best["case"].values), best["objective"], best["case"].toml, best["cons"], evaluations, history)
+        return Optimum(None, math.nan, None, {}, evaluations, history, start)
+    return Optimum(dict(best["case"].values), best["objective"], best["case"].toml, best["cons"], evaluations, history,
+                   start)
+
+
+def _start(study, execute, opt, units) -> dict | None:
+    """The design the optimisation started from, the base file with its overrides and no parameter changed
+    (the round sprocket of an ovality study, the shipped tensioner): evaluated once, beside the designs
+    (not one of them), so that what the optimum gains is said against it. None when it does not run."""
+    cases = resolve(study, Design([p.label for p in study.spec.parameters], False, {}, [{}]), lambda _s, _c: {})
+    case = cases[0]
+    if case.toml is None:
+        return None
+    rec = execute([case], probe=True).get(case.key)
+    if rec is None or rec.get("status") not in COMPLETED:
+        return None
+    _score, feasible, cons, obj = judge(opt, rec, units)
+    return {"objective": obj, "feasible": feasible, "constraints": cons, "status": rec.get("status")}
 
 
 #: an optimum closer than this share of its range (in the range's own scale) to a bound sits on it
