@@ -39,6 +39,15 @@ force). A tooth starts to climb when
 with T_local the mean tension at the tooth; phi is the steepest contact angle (to the groove axis)
 met while the seated tooth, pressed on its flank, lifts out of the groove (``exit_path``: the
 boundary of the tooth's free region in the groove, found with the exact contours).
+A belt supported under its cord by a radial stiffness k_r per length (its lands, teeth and the
+pulley's surface) sinks by delta = T / (R k_r) under the wrap's pressure T / R; a pitch of cord then
+spans p / (R - delta) of the pulley, which on the pitch circle is p (1 + delta / R): the pulley sees
+the cord in series with that sinking (delta measured from T_ref, as e),
+
+    1 / EA_eff = 1 / EA + 1 / (R^2 k_r)                                            (4)
+
+(k_r infinite: the cord on the pitch circle, EA_eff = EA).
+
 The jump torque is the smallest torque at which (3) holds for some tooth. It is the onset of
 climbing of a rigid tooth: a deflected tooth (rotated flank), centrifugal tension and the belt's
 own bending lower it; phi <= rho is self-locking (no finite jump torque in this model).
@@ -66,6 +75,7 @@ class Chain:
     land_nodes: int = 4        # points per land where friction acts (the angle discretisation)
     slip_scale: float = 1e-6   # u_s (m)
     clearance: float = 0.0     # c, sideways play of a seated tooth before it bears on a flank (m)
+    radial_stiffness: float = float("inf")  # k_r, the belt's support under its cord per length (N/m^2)
 
     def nodes(self):
         """Node positions s (m), tooth flags and land lengths l_k carried by each node."""
@@ -109,9 +119,14 @@ class Sharing:
         return 0.5 * (self.tension_in + self.tension_out)[self.tooth]
 
 
+def cord_stiffness(chain) -> float:
+    """The cord's stiffness along the pitch circle (N), (4): EA in series with the belt's sinking."""
+    return 1.0 / (1.0 / chain.cord_stiffness + 1.0 / (chain.radius ** 2 * chain.radial_stiffness))
+
+
 def _state(chain, s, tooth, trib, d, T1, T2, T_ref):
     L = np.diff(s)
-    a = chain.cord_stiffness / L
+    a = cord_stiffness(chain) / L
     Te = T_ref + a * (d[:-1] - d[1:] - chain.pitch_error * L / chain.pitch)
     Tin = np.concatenate([[T1], Te])
     Tout = np.concatenate([Te, [T2]])
