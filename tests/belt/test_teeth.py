@@ -237,6 +237,21 @@ def test_the_example_cam_drive_runs_with_its_teeth_and_phase_error(tmp_path):
     assert "phase_error_pp" in teeth["pulleys"]["CAM1"]
     files = {p.name for p in drivedyn.api.plot(res, tmp_path)}
     assert {"teeth.png", "phase_error.png"} <= files
+    # no slip read on a grooved pulley (a tooth's deflection read as a friction drive's slip was +-10 %):
+    # the pulley table says teeth, the slip panel of speeds.png draws only the back-side idler
+    import matplotlib.pyplot as plt
+
+    from drivedyn.belt.plots import plot_slip
+    from drivedyn.front.overview import tables
+
+    pulleys = next(t for t in tables(res) if t["title"].startswith("pulleys"))
+    rows = {r[0]: r for r in pulleys["rows"]}
+    assert all(rows[n][2:4] == ["teeth", "teeth"] for n in ("CRK", "CAM1", "CAM2"))
+    assert rows["TEN"][2] not in ("teeth", "-")           # the idler's slip, a friction contact's
+    fig, ax = plt.subplots()
+    plot_slip(res.ds, res.summary["driver"], ax=ax)
+    assert [ln.get_label() for ln in ax.get_lines() if not ln.get_label().startswith("_")] == ["TEN"]
+    plt.close(fig)
 
 
 def test_a_torque_ramp_climbs_at_the_quasi_static_jump_torque(tmp_path):
