@@ -114,8 +114,10 @@ def sinking(contact, pressure: float) -> tuple[float, float]:
     (N/m) by the contact law (``contact``: the model's, per length: stiffness_linear c2 p +
     stiffness_quadratic c1 p^2), and the law's tangent there, c2 + 2 c1 delta (N/m^2): the radial
     stiffness of mechanics/teeth/loadshare.py's eq. 4."""
+    from .placement import penetration
+
     c1, c2 = contact.stiffness_quadratic, contact.stiffness_linear
-    delta = pressure / c2 if c1 == 0 else (-c2 + math.sqrt(c2 * c2 + 4 * c1 * pressure)) / (2 * c1)
+    delta = float(penetration(pressure, c1, c2))
     return delta, c2 + 2 * c1 * delta
 
 
