@@ -193,6 +193,17 @@ def test_tooth_loads_balance_the_belt_torque_and_the_span_tensions(crawl):
     assert abs(belt) == pytest.approx(10.0 + 0.6 * 2 * math.pi * 0.5, rel=0.02)   # load + viscous at 30 rpm
 
 
+def test_the_tooth_load_map_holds_the_wrap_one_tooth_per_slot(crawl):
+    """Every sample fills, per grooved pulley, one run of adjacent groove slots, as many as teeth in
+    mesh: a tooth is counted at its groove (by its own angle, 20 of the 500 samples split the wrap
+    where the grooves sat at the slots' edges: two neighbours in one slot, a hole beside them)."""
+    _, res = crawl
+    fin = np.isfinite(res.ds["tooth_load"].values)                 # (time, pulley, slot)
+    runs = (fin & ~np.roll(fin, 1, axis=2)).sum(axis=2)
+    assert np.all(runs == 1)
+    assert np.array_equal(fin.sum(axis=2), res.ds["teeth_in_mesh"].values)
+
+
 def test_no_creep_the_speed_ratio_is_the_tooth_ratio(crawl):
     """The driven pulley turns 22/44 of the driver over the run: what is left is the change of the
     teeth's deflection between start and end (bounded by the largest tooth load over k_t), not creep,
