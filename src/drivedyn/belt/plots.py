@@ -113,22 +113,32 @@ def plot_speeds(ds, ax=None):
 
 
 def plot_slip(ds, driver, ax=None):
+    """Each friction contact's slip against the driver; grooved pulleys left out (their teeth do not
+    slip: what they show against the driver is the teeth's deflection, phase_error.png)."""
     ax = plotting.ax_or_new(ax)
     t = ds["time"].values
     _window(ds, ax)
     r = ds["pulley_radius"]
     vd = np.abs(ds["speed"].sel(pulley=driver) * r.sel(pulley=driver)).values
     ok = vd > 0.05 * max(np.max(vd), 1e-12)
+    grooved = set(ds["toothed_pulley"].values.tolist()) if "toothed_pulley" in ds.coords else set()
+    shown = 0
     for nm in ds["pulley"].values:
-        if nm == driver:
+        if nm == driver or nm in grooved:
             continue
+        shown += 1
         v = np.abs(ds["speed"].sel(pulley=nm) * r.sel(pulley=nm)).values
         sl = np.where(ok, 1 - v / np.where(ok, vd, 1), np.nan)
         ax.plot(t, 100 * sl, label=f"{nm}", color=colour(ds, nm))
     ax.set_ylabel("slip (%)")
     who = "the driver" if str(driver) == "driver" else f"the driver {driver}"
     ax.set_title(f"slip against {who}: 1 - |w r| / |w_d r_d|")
-    _legend(ax)
+    left = sorted(map(str, grooved - {driver}))
+    if left:
+        ax.text(0.01, 0.97, f"grooved pulleys ({', '.join(left)}) left out: their teeth do not slip "
+                "(transmission error: phase_error.png)", transform=ax.transAxes, va="top", fontsize=8)
+    if shown:
+        _legend(ax)
     ax.grid(alpha=0.3)
 
 

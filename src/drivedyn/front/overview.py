@@ -78,10 +78,17 @@ def _belt(result, supplier=True) -> list[dict]:
     torques = {n: abs(p.get("torque_mean") or 0.0) for n, p in pulleys.items()}
     big = max(torques.values(), default=0.0)
     rows = []
+    # a grooved pulley carries its load by its teeth: no slip, and its speed against the driver's is the
+    # teeth's deflection (the teeth table and phase_error.png say what moves)
+    grooved = set((s.get("teeth") or {}).get("pulleys", {}))
     for k, name in enumerate(ds["pulley"].values.tolist() if "pulley" in ds.coords else []):
         p = pulleys.get(name, {})
         w = np.abs(ds["speed"].values[sel, k]) * RPM if sel is not None and sel.any() else np.array([np.nan])
-        if ru:
+        if name in grooved:
+            slip, margin = None, None
+            peak = (max(ru.get("hub_load_max", {}).get(name, [np.nan])) if ru else
+                    float(np.max(ds["hub_load"].values[sel, k])) if sel is not None and sel.any() else None)
+        elif ru:
             slips = [v for v in ru.get("slip", {}).get(name, []) if v is not None]
             slip = max(slips, key=abs) if slips else (0.0 if name == driver else None)
             margin = None
@@ -94,8 +101,10 @@ def _belt(result, supplier=True) -> list[dict]:
         hub = ds["hub_load"].values[sel, k] if sel is not None and sel.any() else np.array([np.nan])
         fx = ds["hub_force_x"].values[sel, k].mean() if sel is not None and sel.any() else np.nan
         fy = ds["hub_force_y"].values[sel, k].mean() if sel is not None and sel.any() else np.nan
-        rows.append([name, _range(w.min(), w.max()), _f(None if slip is None else 100 * slip, "{:.2f}"),
-                     _f(margin, "{:.2f}"), _f(float(np.mean(hub)), "{:.0f}"), _f(peak, "{:.0f}"),
+        rows.append([name, _range(w.min(), w.max()),
+                     "teeth" if name in grooved else _f(None if slip is None else 100 * slip, "{:.2f}"),
+                     "teeth" if name in grooved else _f(margin, "{:.2f}"), _f(float(np.mean(hub)), "{:.0f}"),
+                     _f(peak, "{:.0f}"),
                      _f(round(math.degrees(math.atan2(fy, fx))) % 360 if np.isfinite(fx) else None, "{:.0f}")])
     where = "over the run-up" if ru else "over the steady window"
     out.append({"title": f"pulleys ({where})",
@@ -106,6 +115,8 @@ def _belt(result, supplier=True) -> list[dict]:
                         "for the pulleys that carry torque"
                         + ("; the duty cycle's sign-off slip factors are in their own table" if s.get("supplier", {}).get("duty") else "")
                         + ("; judged per bin in a run-up" if ru else "")
+                        + ("; teeth: a grooved pulley, no slip (its teeth's loads and jump margin in the teeth table)"
+                           if grooved else "")
                         + "; direction: of the mean hub force on the pulley, counter-clockwise from +x"})
     if s.get("teeth"):
         out.append(_teeth_table(s["teeth"]))
@@ -212,7 +223,7 @@ def _teeth_table(th: dict) -> dict:
                     f"play {th['play'] * 1e3:.3g} mm ({th['play_source']}), flank {math.degrees(th['flank_angle']):.2f} "
                     f"deg; at: the groove position counter-clockwise from +x; jump margin: hold T p / R over the outward "
                     "push Q tan(phi - rho) (below 1 a tooth climbs); speed ratio: turns of the pulley over the first "
-                    "grooved pulley's over the run; the slip column above is a friction drive's and reads deflection"}
+                    "grooved pulley's over the run (what differs from the tooth ratio is the teeth's change of deflection)"}
 
 
 def supplier_tables(sup: dict) -> list[dict]:

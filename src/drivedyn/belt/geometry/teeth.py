@@ -107,3 +107,26 @@ def chain_radius(radius: float, model) -> float:
     t = model.belt.teeth
     x = catalogue.entry(t.profile).pitch / t.nodes_per_tooth / (2 * radius)
     return radius * x / math.tan(x)
+
+
+def sinking(contact, pressure: float) -> tuple[float, float]:
+    """(delta, k_r): how far the belt's cord sinks into its support under the wrap's pressure T / R
+    (N/m) by the contact law (``contact``: the model's, per length: stiffness_linear c2 p +
+    stiffness_quadratic c1 p^2), and the law's tangent there, c2 + 2 c1 delta (N/m^2): the radial
+    stiffness of mechanics/teeth/loadshare.py's eq. 4."""
+    from .placement import penetration
+
+    c1, c2 = contact.stiffness_quadratic, contact.stiffness_linear
+    delta = float(penetration(pressure, c1, c2))
+    return delta, c2 + 2 * c1 * delta
+
+
+def installed_tension(model, layout, placed: float) -> float:
+    """The tension at which a toothed belt's cord runs on the pitch circles as installed: a belt given
+    by its length, that length stretched onto the pitch path (the continuum's, EA strain^e, not the
+    segment chain's placement, whose polygon moves it by O(l^2)); else ``placed`` (the pretension)."""
+    b = model.belt
+    if b.length is None:
+        return placed
+    strain = max(layout.length / b.length - 1.0, 0.0)
+    return b.axial_stiffness * strain ** b.axial_exponent

@@ -202,18 +202,16 @@ def _build(model, drive, settle: bool, before_settle=None) -> BeltSystem:
     P = pulleys_record(model.pulleys, running_senses(model, layout))
     if model.belt.teeth is not None:
         # the chain carries its teeth at the grooves' spacing riding at these contact radii; placed on the
-        # pitch circles, it settles onto them (equilibrium.relax) with the belt's tension (geometry/teeth.py)
-        from ..geometry.teeth import chain_radius
+        # pitch circles, it settles onto them (equilibrium.relax) with the belt's tension (geometry/teeth.py),
+        # lifted by the contact's static penetration at the installation tension: the catalogue's pitch
+        # circle is where the cord runs as installed. Along the wrap the chain sinks more or less with the
+        # local tension, as a belt on its radial support does (mechanics/teeth/loadshare.py, eq. 4).
+        from ..geometry.teeth import chain_radius, installed_tension, sinking
 
+        T_in = installed_tension(model, layout, init.tension)
         for j, q in enumerate(model.pulleys):
             if q.teeth:
-                # and, as the belt's cord does not sink into its grooves, lifted by the contact's static
-                # penetration at the installation tension (N per segment T l / r = c1 p^2 + c2 p), which
-                # would otherwise widen the chain's spacing by l p / r per segment
-                Nseg = init.tension * init.seg_length / q.radius
-                c1, c2 = float(pl.contact.c1[0]), float(pl.contact.c2[0])
-                pen = Nseg / c2 if c1 == 0 else (-c2 + math.sqrt(c2 * c2 + 4 * c1 * Nseg)) / (2 * c1)
-                P.r[j] = chain_radius(q.radius, model) + pen
+                P.r[j] = chain_radius(q.radius, model) + sinking(model.contact, T_in / q.radius)[0]
     A = arms_record(drawn, drive.senses)   # travel measured from the drawn centres
     span_mid = np.array([sp.midpoint for sp in layout.spans])
     span_geo = np.array([[*sp.midpoint, math.cos(sp.angle), math.sin(sp.angle)] for sp in layout.spans])

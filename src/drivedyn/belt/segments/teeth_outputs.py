@@ -3,8 +3,9 @@ mesh through time (a map per pulley over the groove positions), the margin to a 
 (jump), the jumps, the teeth in mesh, and the balance of the tooth loads against the belt torque.
 
 A groove position is the pulley's fixed-frame angle cut into its groove count (slot k covers
-[k, k + 1) x 360 / z deg counter-clockwise from +x): a tooth in mesh sits in one slot, so each sample
-fills the wrap's slots and leaves the others empty (NaN)."""
+[k, k + 1) x 360 / z deg counter-clockwise from +x): a tooth in mesh is counted in the slot of its
+groove's centre, so each sample fills the wrap's slots, one tooth each, and leaves the others empty
+(NaN)."""
 from __future__ import annotations
 
 import math
@@ -32,6 +33,7 @@ class TeethRecorder:
         self.belt_torque = np.zeros((ns, self.nk))     # sum of Q d of the teeth, instantaneous
         self.climb = float(C.tclimb)
         self.teeth = np.flatnonzero(np.asarray(C.tk) > 0)
+        self.gphase = np.asarray(C.gphase, dtype=float)
 
     def sample(self, k, S, W):
         i = self.teeth
@@ -39,8 +41,11 @@ class TeethRecorder:
         on = j >= 0
         i, j = i[on], j[on]
         q = W.tooth_q[i]
-        ang = np.arctan2(S.y[i] - S.cy[j], S.x[i] - S.cx[j]) % (2 * math.pi)
-        slot = np.minimum((ang / (2 * math.pi) * self.z[j]).astype(np.int64), self.z[j] - 1)
+        # the slot of the tooth's groove (its centre th + phase + g 2 pi / z): the tooth's own angle, its
+        # groove's +- its deflection, would put two neighbours in one slot and leave a hole beside them
+        # where the grooves sit at the slots' edges
+        z = self.z[j]
+        slot = (np.floor((S.th[j] + self.gphase[j]) * z / (2 * math.pi)).astype(np.int64) + W.tooth_g[i]) % z
         self.load[k, j, slot] = q
         np.add.at(self.in_mesh[k], j, 1)
         d = np.hypot(S.x[i] - S.cx[j], S.y[i] - S.cy[j])

@@ -13,7 +13,7 @@ from ...mechanics.teeth.loadshare import Chain, jump_margin, jump_torque, solve,
 def tooth_table(model, layout, unstretched_length: float, tensions: dict, T0: float) -> dict:
     """``tensions``: per pulley name (T_in, T_out, torque) of the steady state; T0 the belt's tension at
     rest. Returns the belt's tooth data and a row per grooved pulley."""
-    from ..geometry.teeth import belt_teeth
+    from ..geometry.teeth import belt_teeth, sinking
 
     bt = belt_teeth(model, layout.length)
     p0 = unstretched_length / bt.count        # the belt's pitch unstretched
@@ -25,14 +25,18 @@ def tooth_table(model, layout, unstretched_length: float, tensions: dict, T0: fl
         if not q.teeth:
             continue
         n = teeth_in_mesh(q.teeth, float(layout.wrap[j]))
+        # the pitch error at the installation tension T0, the belt's pitch at rest against the grooves
+        # (the segment model's chain rides, as installed, on the pitch circle), and about T0 the belt's
+        # sinking into its support in series with the cord (loadshare.py, eq. 4)
         chain = Chain(teeth=n, pitch=bt.pitch, radius=q.radius, tooth_stiffness=bt.stiffness,
-                      cord_stiffness=model.belt.axial_stiffness, friction=0.0, pitch_error=p0 - bt.pitch,
-                      clearance=0.5 * bt.play)
+                      cord_stiffness=model.belt.axial_stiffness, friction=0.0,
+                      pitch_error=out["belt_pitch_at_rest"] - bt.pitch, clearance=0.5 * bt.play,
+                      radial_stiffness=sinking(model.contact, T0 / q.radius)[1])
         T_in, T_out, M = tensions.get(q.name, (T0, T0, 0.0))
         tight, slack = max(T_in, T_out), max(min(T_in, T_out), 0.0)
         row = {"teeth": q.teeth, "teeth_in_mesh": n, "tension_tight": tight, "tension_slack": slack, "torque": M}
         try:
-            sh = solve(chain, tight, slack, 0.0)
+            sh = solve(chain, tight, slack, T0)
             row["max_tooth_load"] = float(max(abs(sh.tooth_load)))
             if bt.climb > 0:
                 push = abs(sh.tooth_load) * bt.climb
