@@ -214,6 +214,10 @@ def test_no_creep_the_speed_ratio_is_the_tooth_ratio(crawl):
     ({"pulleys.driven.side": "back"}, "belt's back"),
     ({"simulation.method": "implicit"}, "semi-implicit"),
     ({"belt.teeth.profile": "HTD7M"}, "unknown profile"),
+    # a GT2 3M belt (its catalogue contour self-intersects: the pair's play cannot be found): one line, not
+    # the geometry library's traceback
+    ({"belt.teeth.profile": "GT2-3M", "pulleys.driver.radius": "10.5042 mm", "pulleys.driven.radius": "21.0085 mm"},
+     "give belt.teeth.play"),
 ])
 def test_bad_toothed_drives_are_refused_in_one_line(tmp_path, change, says):
     path = tmp_path / "htd.toml"

@@ -84,6 +84,10 @@ def belt_teeth(model, path_length: float | None = None) -> BeltTeeth | None:
             play, phi = _pair_data(name, min(zs))
         except ValueError as exc:
             raise ModelError(f"the {name} pair on {min(zs)} grooves: {exc}", field="belt.teeth") from None
+        except Exception as exc:  # noqa: BLE001  (a contour the geometry library cannot intersect: say so)
+            raise ModelError(f"the {name} pair on {min(zs)} grooves: its contours could not be intersected "
+                             f"({type(exc).__name__}: {str(exc).splitlines()[0][:120]}); give belt.teeth.play and "
+                             "belt.teeth.flank_angle", field="belt.teeth") from None
         pair_src = f"the {name} pair's contours on {min(zs)} grooves"
     play_, psrc = (t.play, "belt.teeth.play") if t.play is not None else (play, pair_src)
     phi_, fsrc = (t.flank_angle, "belt.teeth.flank_angle") if t.flank_angle is not None else (phi, pair_src)
