@@ -79,6 +79,21 @@ def test_no_creep_the_speed_ratio_over_the_window_is_the_tooth_ratio(crawl):
     assert lag.max() < 2 * stretch + 1e-5 * res.ds["angle"].values[-1, 0] * 28e-3
 
 
+def test_a_pitch_difference_leaves_the_tooth_ratio(crawl):
+    """A driven pulley 0.3 % larger than its grooves' pitch radius (within the 0.5 % the model allows): the
+    belt still passes one belt pitch per groove, so the speed ratio stays the tooth ratio 22/44 (within
+    1e-9), where the radii's ratio would put it 0.3 % off (a friction belt's kinematics)."""
+    model, _ = crawl
+    r = 56.0225e-3 * 1.003
+    bigger = drivedyn.replace(model, {"pulleys.driven.radius": r, "belt.axial_damping": 20.0, "simulation.duration": 1.0,
+                                      "output.steady_window": [0.9, 1.0]})
+    res = drivedyn.run(bigger)
+    th = res.ds["angle"].sel(time=slice(0.9, 1.0)).values
+    ratio = (th[-1, 1] - th[0, 1]) / (th[-1, 0] - th[0, 0])
+    assert abs(ratio - 0.5) < 1e-9, ratio
+    assert abs(28.0113e-3 / r - 0.5) > 1e-3
+
+
 def test_the_energy_balance_closes_with_the_chains(crawl, tmp_path):
     """Work in = dissipation + energy change within 1e-3 of the work over the window, at a crawl and with
     a crank order that makes the chains work (their energy counted from the rest state)."""
