@@ -196,25 +196,12 @@ def _periodic(tab, a, th, P):
 
 
 @njit(cache=True, inline="always")
-def _periodic_row(tab, a, j, th, P):
-    """``_periodic`` of tab[a, :, j]."""
-    n = tab.shape[1]
-    d = P / n
-    x = (th % P) / d
-    i = int(math.floor(x))
-    wm, w0, w1, w2, dm, d0, d1, d2 = _cubic(x - i)
-    im, i1, i2 = (i - 1) % n, (i + 1) % n, (i + 2) % n
-    i = i % n
-    v = wm * tab[a, im, j] + w0 * tab[a, i, j] + w1 * tab[a, i1, j] + w2 * tab[a, i2, j]
-    return v, (dm * tab[a, im, j] + d0 * tab[a, i, j] + d1 * tab[a, i1, j] + d2 * tab[a, i2, j]) / d
-
-
-@njit(cache=True, inline="always")
 def _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, ct0, ct1, th, om, L, Ld, t0, t1, dx, dy, wrap, rin,
                     rout):
     """The non-circular pulleys' share of the geometry at their angles th (rates om): span lengths (and
-    rates), directions, wraps and the effective radii rin, rout (|rho| on a circle). Called after
-    ``_geometry``, which normalised the directions: they are normalised again."""
+    rates), directions, rolled-on belt, wraps and the effective radii rin, rout (|rho| on a circle).
+    Called after ``_geometry``, which normalised the directions: they are normalised again. One set of
+    cubic weights per curve serves all its tables (they share the nodes)."""
     nk = rho.shape[0]
     for k in range(nk):
         rin[k] = abs(rho[k])
@@ -223,25 +210,32 @@ def _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, ct0, ct1, th, 
     if nc == 0:
         return
     ns = L.shape[0]
+    n = cL.shape[1]
     for a in range(nc):
         k = cpul[a]
-        t, w, P = th[k], om[k], cP[a]
+        P = cP[a]
+        d = P / n
+        x = (th[k] % P) / d
+        i = int(math.floor(x))
+        wm, w0, w1, w2, dm, d0, d1, d2 = _cubic(x - i)
+        im, i1, i2 = (i - 1) % n, (i + 1) % n, (i + 2) % n
+        i = i % n
+        rate = om[k] / d
         for j in range(ns):
-            v, dv = _periodic_row(cL, a, j, t, P)
-            L[j] += v
-            Ld[j] += dv * w
-            dx[j] += _periodic_row(cdx, a, j, t, P)[0]
-            dy[j] += _periodic_row(cdy, a, j, t, P)[0]
-            t0[j] += _periodic_row(ct0, a, j, t, P)[0]
-            t1[j] += _periodic_row(ct1, a, j, t, P)[0]
+            L[j] += wm * cL[a, im, j] + w0 * cL[a, i, j] + w1 * cL[a, i1, j] + w2 * cL[a, i2, j]
+            Ld[j] += (dm * cL[a, im, j] + d0 * cL[a, i, j] + d1 * cL[a, i1, j] + d2 * cL[a, i2, j]) * rate
+            dx[j] += wm * cdx[a, im, j] + w0 * cdx[a, i, j] + w1 * cdx[a, i1, j] + w2 * cdx[a, i2, j]
+            dy[j] += wm * cdy[a, im, j] + w0 * cdy[a, i, j] + w1 * cdy[a, i1, j] + w2 * cdy[a, i2, j]
+            t0[j] += wm * ct0[a, im, j] + w0 * ct0[a, i, j] + w1 * ct0[a, i1, j] + w2 * ct0[a, i2, j]
+            t1[j] += wm * ct1[a, im, j] + w0 * ct1[a, i, j] + w1 * ct1[a, i1, j] + w2 * ct1[a, i2, j]
         for j in range(nk):
-            wrap[j] += _periodic_row(cw, a, j, t, P)[0]
-        rin[k] = _periodic(crin, a, t, P)[0]
-        rout[k] = _periodic(crout, a, t, P)[0]
+            wrap[j] += wm * cw[a, im, j] + w0 * cw[a, i, j] + w1 * cw[a, i1, j] + w2 * cw[a, i2, j]
+        rin[k] = wm * crin[a, im] + w0 * crin[a, i] + w1 * crin[a, i1] + w2 * crin[a, i2]
+        rout[k] = wm * crout[a, im] + w0 * crout[a, i] + w1 * crout[a, i1] + w2 * crout[a, i2]
     for j in range(ns):
-        n = math.sqrt(dx[j] * dx[j] + dy[j] * dy[j])
-        dx[j] /= n
-        dy[j] /= n
+        nn = math.sqrt(dx[j] * dx[j] + dy[j] * dy[j])
+        dx[j] /= nn
+        dy[j] /= nn
 
 
 @njit(cache=True, inline="always")
