@@ -565,7 +565,7 @@ def test_the_wraps_cells_conserve_the_belt():
                        RT.SLIP_PASSES, False, *o)
         assert RS.u.sum() + RS.W.sum() == pytest.approx(total0, rel=1e-12, abs=0)
     assert abs(S.om[0]) > 0.9 * 3000 * math.pi / 30      # at speed
-    RK.geometry(R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap)
+    RK.geometry(R, S.q, S.qd, RW.L, RW.Ld, RW.t0, RW.t1, RW.dx, RW.dy, RW.wrap, S.th, S.om, RW.rin, RW.rout)
     for k in range(nk):
         r, c = abs(R.rho[k]), R.m * (R.rho[k] * S.om[k]) ** 2
         cells = sum(RK._content(T, c, r, R.p0[k], R.EA, R.c1, R.c2) for T in RS.Tc[k, :R.ncell[k]])
