@@ -41,6 +41,10 @@ and slip prediction of serpentine belt drives; creep as Kong & Parker, J. Appl. 
   wrap's belt on its pulley and a third of each adjoining span's (the diagonal of a span's
   consistent mass), on the pulley's rotation and on a tensioner's travel.
 
+- A synchronous belt (``[belt.teeth]``): the grooved wraps are quasi-static tooth chains, the belt
+  passing one pitch per groove (teeth.py); a grooved pitch curve carries the belt past its tangent
+  points by their arc positions and pulls on its effective radii (curves.py).
+
 Not in it: the spans' transverse motion (flap: belt/steady/flap.py), the belt's own axial waves (the
 spans are massless springs) and polygon effects (none: it is the continuum).
 """

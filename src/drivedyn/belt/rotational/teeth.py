@@ -5,9 +5,9 @@ one belt pitch p0 (unstretched) per groove: no creep and no slip, the mean speed
 ratio by construction. Between the wrap's tangent points the belt is the shear-lag chain of
 mechanics/teeth/loadshare.py without play or land friction (the linear case, Gerbert's): the n teeth
 in mesh (loadshare.teeth_in_mesh) are springs k_t between the tension member (EA, one pitch p0
-between teeth) and their grooves (the pitch p_g = 2 pi r / z apart), the chain unloaded when the
-belt sits at the grooves unstretched; the end pieces from the tangent points to the first and last
-tooth are free belt. Massless, it answers the two span tensions at its ends at once: its ends move by
+between teeth) and their grooves (the pitch p_g = 2 pi r / z apart), its teeth unloaded at the rest
+tension (the belt's pitch at rest against the grooves', within the teeth's play, taken by the play);
+the end pieces from the tangent points to the first and last tooth are free belt. Massless, it answers the two span tensions at its ends at once: its ends move by
 
     x_first = ga dT_in + gb dT_out,    x_last = gc dT_in + gd dT_out
 
@@ -109,7 +109,6 @@ def add_teeth(ds, summary, model, sysm, sel):
     and when, the smallest jump margin, the speed ratio against the tooth ratio and the phase error."""
     from ...core.results import variable
     from ..dynamics.phase import phase_error, phase_rows
-    from ..geometry.teeth import belt_teeth
 
     lay, wraps, bt = sysm.layout, sysm.wraps, sysm.belt_teeth
     names = list(lay.names)
@@ -153,11 +152,10 @@ def add_teeth(ds, summary, model, sysm, sel):
     ds["phase_error"] = variable(pe, ("time", "toothed_pulley"), "deg",
                                  f"angle of the pulley against its tooth ratio to {names[tp[0]]}, in {names[tp[0]]}'s degrees "
                                  "(transmission error; from its value at the start)")
-    bt2 = belt_teeth(model, lay.length)
-    out = {"profile": bt2.profile, "pitch": bt2.pitch, "count": bt2.count, "count_source": bt2.count_source,
-           "tooth_stiffness": bt2.stiffness, "tooth_stiffness_source": bt2.stiffness_source, "play": 0.0,
-           "play_source": "the rotational model's chain has no play", "flank_angle": bt2.flank_angle,
-           "flank_angle_source": bt2.flank_source, "climb_factor": bt2.climb, "model": "rotational chain",
+    out = {"profile": bt.profile, "pitch": bt.pitch, "count": bt.count, "count_source": bt.count_source,
+           "tooth_stiffness": bt.stiffness, "tooth_stiffness_source": bt.stiffness_source, "play": 0.0,
+           "play_source": "the rotational model's chain has no play", "flank_angle": bt.flank_angle,
+           "flank_angle_source": bt.flank_source, "climb_factor": bt.climb, "model": "rotational chain",
            "jumps": None, "pulleys": {}}
     for a, w in enumerate(wraps):
         L = load[sel, a]
