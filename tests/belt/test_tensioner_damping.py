@@ -24,6 +24,7 @@ import math
 
 import numpy as np
 import pytest
+from numba import njit
 
 import drivedyn
 from drivedyn.belt.dynamics import _bodies as BK
@@ -51,6 +52,14 @@ def accessory(slider=None, arm=None, **top):
     return from_dict(d)
 
 
+@njit
+def _arms_step(na, pulley, kind, par, tab_off, tab_x, tab_y, q, qd, cx, cy, cvx, cvy, hx, hy, h):
+    """The kernels' tensioner stage in a function of the test's own: the stage is inlined where the models
+    call it, some of them compiled without numba's reference counting, and called from Python as it is
+    after one of those compiles (the test suite's order) it crashed the process."""
+    return BK._step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, q, qd, cx, cy, cvx, cvy, hx, hy, h)
+
+
 class Stage:
     """The tensioner stage alone on the model's record, its hub force given per step: the pulley's
     force along the slide (N, + into the belt)."""
@@ -67,8 +76,8 @@ class Stage:
         A, j = self.A, self.j
         self.hx[j] = F * A.par[0, BK.ARM_DX]
         self.hy[j] = F * A.par[0, BK.ARM_DY]
-        return BK._step_arms(A.na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y, self.q, self.qd,
-                             *self.c, self.hx, self.hy, h)
+        return _arms_step(A.na, A.pulley, A.kind, A.par, A.tab_off, A.tab_x, A.tab_y, self.q, self.qd,
+                          *self.c, self.hx, self.hy, h)
 
 
 def imposed_cycle_energy(model, q0, amp, freq, cycles=3, steps=8000):

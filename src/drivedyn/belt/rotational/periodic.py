@@ -130,7 +130,10 @@ class _Drive:
             k += arr.size
         R = self.sysm.R
         for j in np.flatnonzero(R.grooved):      # a tooth chain's energy follows from its end tensions
-            RS.eb[j] = RK._chain_energy(R.ga[j], R.gb[j], R.gc[j], R.gd[j], R.trest, RS.cw0[j], RS.cw1[j])
+            # (_kernels._chain_energy's formula: its inlined kernel is not called from Python)
+            d0, d1 = RS.cw0[j] - R.trest, RS.cw1[j] - R.trest
+            x0, x1 = R.ga[j] * d0 + R.gb[j] * d1, R.gc[j] * d0 + R.gd[j] * d1
+            RS.eb[j] = 0.5 * ((RS.cw1[j] + R.trest) * x1 - (RS.cw0[j] + R.trest) * x0)
         # the belt rolled onto the span ends is a function of the travel: no spurious transfer at
         # the next step when an iterate moves the tensioner
         RW = self.RW
