@@ -124,3 +124,17 @@ def test_the_cam_drive_runs_up_periodically_with_its_teeth():
     assert set(ru["span_tension_max"]) == {"CRK-CAM1", "CAM1-CAM2", "CAM2-TEN", "TEN-CRK"}
     crit = res.summary["criteria"]
     assert "jump_margin" in crit and "tooth_jumps" not in crit
+
+
+def test_the_phase_error_is_judged_against_its_limit(crawl):
+    """criteria.phase_error_max judges the largest peak-to-peak transmission error (summary.teeth): a crank
+    order makes one; below the run's own it fails, above it passes; without a limit it is not judged."""
+    model, _ = crawl
+    excited = drivedyn.replace(model, {"pulleys.driver.speed_orders": [{"order": 2, "angle": 0.01}]})
+    res = drivedyn.run(excited)
+    pp = res.summary["teeth"]["pulleys"]["driven"]["phase_error_pp"]
+    assert pp > 1e-4 and "phase_error" not in res.summary["criteria"]
+    for limit, ok in ((0.5 * pp, False), (2 * pp, True)):
+        r = drivedyn.run(drivedyn.replace(excited, {"criteria.phase_error_max": math.radians(limit)}))
+        crit = r.summary["criteria"]["phase_error"]
+        assert crit["value"] == pytest.approx(pp) and crit["limit"] == pytest.approx(limit) and crit["pass"] is ok

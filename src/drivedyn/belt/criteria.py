@@ -148,6 +148,14 @@ def _teeth_criteria(c, teeth, out, skipped):
         where = f"last at t = {teeth['last_jump_time']:.4g} s on {teeth['last_jump_pulley']}" if teeth["jumps"] else "none"
         out.append(Criterion("tooth_jumps", teeth["jumps"], c.tooth_jumps_max, "", "max",
                              "teeth that changed groove during the run (jumped)", where))
+    pe = max(((p["phase_error_pp"], n) for n, p in teeth["pulleys"].items() if p.get("phase_error_pp") is not None),
+             default=None)
+    if c.phase_error_max is None:
+        skipped["phase_error"] = "no phase error limit given (criteria.phase_error_max)"
+    elif pe:
+        out.append(Criterion("phase_error", pe[0], math.degrees(c.phase_error_max), "deg", "max",
+                             "largest peak-to-peak transmission error of a grooved pulley against the first, in its "
+                             "degrees, over the steady window", pe[1]))
     peak = max(((p["max_tooth_load"], n) for n, p in teeth["pulleys"].items()), default=None)
     if c.tooth_load_max is None:
         skipped["tooth_load"] = "no rated tooth load given (criteria.tooth_load_max)"

@@ -961,6 +961,10 @@ class Criteria(Spec):
     """Synchronous belt: teeth that may change groove (jump) during the run."""
     tooth_load_max: quantity("N", gt=0) | None = None
     """Synchronous belt: the rated load of one tooth, whole width (the belt maker's); none: not judged."""
+    phase_error_max: quantity("rad", gt=0) | None = None
+    """Synchronous belt: the largest peak-to-peak transmission (phase) error of a grooved pulley against the first
+    grooved pulley (the crank), in the crank's angle, over the steady window (a valve timing's tolerance, the
+    engine maker's); none: not judged."""
     flap_crossings_max: Annotated[int, Field(ge=0)] = 0
     """Crossings of a span's first transverse (flap) mode by an excited order allowed in the run's speed range."""
     flap_speed_margin: quantity("1", ge=0, lt=1) = 0.1
