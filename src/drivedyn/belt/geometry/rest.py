@@ -30,7 +30,7 @@ def belt_content(model, lay: Layout, T: float) -> float:
     return (lay.length - sunk) / (1 + T / EA)
 
 
-def _tension_at(model, lay: Layout, L0: float) -> float:
+def tension_at(model, lay: Layout, L0: float) -> float:
     """Uniform tension at rest at which the path of ``lay`` holds L0 (0 when it is slack)."""
     f = lambda T: belt_content(model, lay, T) - L0
     if f(0.0) <= 0:
@@ -50,7 +50,7 @@ def rest_state(model, L0: float, drawn: Layout | None = None, sense=None):
     idx = TN.indices(model)
     if not idx:
         lay = drawn or compute_layout(model)
-        return np.zeros(0), _tension_at(model, lay, L0), lay
+        return np.zeros(0), tension_at(model, lay, L0), lay
     sense = TN.senses(model) if sense is None else sense
 
     def at(qv):
@@ -59,7 +59,7 @@ def rest_state(model, L0: float, drawn: Layout | None = None, sense=None):
 
     def loads(qv):
         lay = at(qv)
-        return TN.generalised_loads(model, idx, sense, qv, lay.hub_load_static(_tension_at(model, lay, L0)))
+        return TN.generalised_loads(model, idx, sense, qv, lay.hub_load_static(tension_at(model, lay, L0)))
 
     ts = [model.pulleys[j].tensioner for j in idx]
     if len(idx) == 1:
@@ -78,4 +78,4 @@ def rest_state(model, L0: float, drawn: Layout | None = None, sense=None):
             raise ModelError(f"no static equilibrium of the tensioners found ({sol.message})", field="pulleys")
         qv = sol.x
     lay = at(qv)
-    return qv, _tension_at(model, lay, L0), lay
+    return qv, tension_at(model, lay, L0), lay

@@ -22,10 +22,13 @@ from numba.extending import register_jitable
 
 from ..dynamics import _bodies as BK
 from ..steady._wraps import sunk_depth, wrap_axial_stiffness
+from .teeth import chain_energy
 
-# plain Python in _wraps (check uses them without numba): compiled and inlined where called here
+# plain Python in _wraps (check uses them without numba) and teeth.py (the periodic run-up's state):
+# compiled and inlined where called here
 register_jitable(inline="always")(sunk_depth)
 register_jitable(inline="always")(wrap_axial_stiffness)
+register_jitable(inline="always")(chain_energy)
 
 
 class Rot(NamedTuple):
@@ -579,16 +582,6 @@ def _return_map(nk, EA, m, mu, u, vs, L, wrap, slip, h, passes, grooved):
     return P
 
 
-@njit(cache=True, inline="always")
-def _chain_energy(ga, gb, gc, gd, T0, t_in, t_out):
-    """Energy of a tooth chain (J) held at end tensions t_in, t_out, counted from the rest state (both
-    ends at T0): the work of its end tensions over the ends' motions (linear: the mean of each end's
-    tension at rest and now)."""
-    x0 = ga * (t_in - T0) + gb * (t_out - T0)
-    x1 = gc * (t_in - T0) + gd * (t_out - T0)
-    return 0.5 * ((t_out + T0) * x1 - (t_in + T0) * x0)
-
-
 @njit(cache=True)
 def energy(R, P, A, S, RS, RW):
     """Mechanical energy (J): pulleys, rotors and arms; tensioner springs; the spans' and the
@@ -722,7 +715,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                         ebw[k] = eb[k]
                         cw0[k] = T[(k - 1) % nk]
                         cw1[k] = T[k]
-                        eb[k] = _chain_energy(ga[k], gb[k], gc[k], gd[k], trest, cw0[k], cw1[k])
+                        eb[k] = chain_energy(ga[k], gb[k], gc[k], gd[k], trest, cw0[k], cw1[k])
             for k in range(nk):
                 ji = (k - 1) % nk
                 vw = rho[k] * om[k]

@@ -32,8 +32,17 @@ class Curves:
 
     fields: dict
     pulleys: list          # pulley index per curve
-    arcs0: np.ndarray      # (nk,) belt on each pulley at the rest angles (m)
-    spans0: np.ndarray     # (nspan,) span lengths at the rest angles (m)
+    base: object           # mechanics.curve_layout.CurveLayout at the rest angles
+
+    @property
+    def arcs0(self) -> np.ndarray:
+        """(nk,) belt on each pulley at the rest angles (m)."""
+        return np.array(self.base.arc)
+
+    @property
+    def spans0(self) -> np.ndarray:
+        """(nspan,) span lengths at the rest angles (m)."""
+        return self.base.span_lengths
 
 
 def empty_fields(nk, ns) -> dict:
@@ -115,28 +124,12 @@ def tables(model, lay) -> Curves | None:
         for key in ("cse", "csx"):
             row = f[key][a]
             row -= c.perimeter * np.round((row - row[0]) / c.perimeter)
-    return Curves(f, idx, np.array(base.arc), base.span_lengths)
+    return Curves(f, idx, base)
 
 
 def rest_tension(model, curves: Curves, L0) -> float:
     """The uniform tension at rest (N) at which the path on the curves at their rest angles holds the
-    unstretched belt L0 (the belt sunk into the smooth pulleys as rest.belt_content sinks it)."""
-    from ...core._roots import find_root
-    from ..geometry.placement import penetration
+    unstretched belt L0: rest.tension_at on that layout (the belt sunk into the smooth pulleys)."""
+    from ..geometry.rest import tension_at
 
-    EA = model.belt.axial_stiffness
-    r = np.array([q.radius for q in model.pulleys])
-    smooth = np.array([not q.teeth for q in model.pulleys], dtype=float)
-    wrap = curves.arcs0 / r
-
-    def excess(T):
-        sunk = float(np.sum(smooth * wrap * penetration(T / r, model.contact.stiffness_quadratic,
-                                                         model.contact.stiffness_linear)))
-        return (curves.spans0.sum() + curves.arcs0.sum() - sunk) / (1 + T / EA) - L0
-
-    if excess(0.0) <= 0:
-        raise ModelError("the belt is slack at rest on the pitch curves: belt.length too long", field="belt")
-    hi = 1.0
-    while excess(hi) > 0:
-        hi *= 2
-    return find_root(excess, 0.0, hi, xtol=1e-10, rtol=1e-13)
+    return tension_at(model, curves.base, L0)

@@ -27,6 +27,7 @@ import numpy as np
 from ...core.errors import ModelError, Stopped, stop_reason
 from ...core.limits import bytes_problem, steps_problem
 from . import _kernels as RK
+from . import teeth as TT
 from ..geometry.drive import resolve
 from . import simulate as RT
 from ..dynamics.frequencies import add_flap_and_modes
@@ -130,10 +131,7 @@ class _Drive:
             k += arr.size
         R = self.sysm.R
         for j in np.flatnonzero(R.grooved):      # a tooth chain's energy follows from its end tensions
-            # (_kernels._chain_energy's formula: its inlined kernel is not called from Python)
-            d0, d1 = RS.cw0[j] - R.trest, RS.cw1[j] - R.trest
-            x0, x1 = R.ga[j] * d0 + R.gb[j] * d1, R.gc[j] * d0 + R.gd[j] * d1
-            RS.eb[j] = 0.5 * ((RS.cw1[j] + R.trest) * x1 - (RS.cw0[j] + R.trest) * x0)
+            RS.eb[j] = TT.chain_energy(R.ga[j], R.gb[j], R.gc[j], R.gd[j], R.trest, RS.cw0[j], RS.cw1[j])
         # the belt rolled onto the span ends is a function of the travel: no spurious transfer at
         # the next step when an iterate moves the tensioner
         RW = self.RW

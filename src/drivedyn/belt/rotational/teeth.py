@@ -49,6 +49,15 @@ class Wrap:
         return np.stack([np.asarray(t_in) - self.Te, np.asarray(t_out) - self.Te], axis=-1) @ self.X.T
 
 
+def chain_energy(ga, gb, gc, gd, T0, t_in, t_out):
+    """Energy of a tooth chain (J) held at end tensions t_in, t_out, counted from the rest state (both
+    ends at T0): the work of its end tensions over the ends' motions (linear: the mean of each end's
+    tension at rest and now). Plain Python: the kernel compiles it inline (_kernels.py)."""
+    x0 = ga * (t_in - T0) + gb * (t_out - T0)
+    x1 = gc * (t_in - T0) + gd * (t_out - T0)
+    return 0.5 * ((t_out + T0) * x1 - (t_in + T0) * x0)
+
+
 def chains(model, lay, L0, bt, T0) -> list[Wrap]:
     """The grooved wraps' chains; ``bt``: geometry.teeth.BeltTeeth, ``L0`` the unstretched belt (m), ``T0``
     the tension at rest, at which the teeth sit unloaded."""
