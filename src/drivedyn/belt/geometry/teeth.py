@@ -31,6 +31,13 @@ class BeltTeeth:
     nodes: int              # segments per tooth
     damping_ratio: float
 
+    def summary(self) -> dict:
+        """The belt's tooth data as a run's summary["teeth"] opens (both dynamic models' teeth outputs)."""
+        return {"profile": self.profile, "pitch": self.pitch, "count": self.count, "count_source": self.count_source,
+                "tooth_stiffness": self.stiffness, "tooth_stiffness_source": self.stiffness_source, "play": self.play,
+                "play_source": self.play_source, "flank_angle": self.flank_angle, "flank_angle_source": self.flank_source,
+                "climb_factor": self.climb, "pulleys": {}}
+
 
 @functools.lru_cache(maxsize=32)
 def _pair_data(profile: str, z: int) -> tuple[float, float]:

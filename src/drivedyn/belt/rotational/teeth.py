@@ -161,11 +161,8 @@ def add_teeth(ds, summary, model, sysm, sel):
     ds["phase_error"] = variable(pe, ("time", "toothed_pulley"), "deg",
                                  f"angle of the pulley against its tooth ratio to {names[tp[0]]}, in {names[tp[0]]}'s degrees "
                                  "(transmission error; from its value at the start)")
-    out = {"profile": bt.profile, "pitch": bt.pitch, "count": bt.count, "count_source": bt.count_source,
-           "tooth_stiffness": bt.stiffness, "tooth_stiffness_source": bt.stiffness_source, "play": 0.0,
-           "play_source": "the rotational model's chain has no play", "flank_angle": bt.flank_angle,
-           "flank_angle_source": bt.flank_source, "climb_factor": bt.climb, "model": "rotational chain",
-           "jumps": None, "pulleys": {}}
+    out = {**bt.summary(), "play": 0.0, "play_source": "the rotational model's chain has no play",
+           "model": "rotational chain", "jumps": None}
     for a, w in enumerate(wraps):
         L = load[sel, a]
         absL = np.abs(np.where(np.isfinite(L), L, 0.0))

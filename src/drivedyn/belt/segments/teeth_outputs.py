@@ -97,10 +97,7 @@ def summary(ds, rec: TeethRecorder, sel, sysm, model) -> dict:
 
     bt = belt_teeth(model, sysm.layout.length)
     names = list(sysm.layout.names)
-    out = {"profile": bt.profile, "pitch": bt.pitch, "count": bt.count, "count_source": bt.count_source,
-           "tooth_stiffness": bt.stiffness, "tooth_stiffness_source": bt.stiffness_source, "play": bt.play,
-           "play_source": bt.play_source, "flank_angle": bt.flank_angle, "flank_angle_source": bt.flank_source,
-           "climb_factor": bt.climb, "pulleys": {}}
+    out = bt.summary()
     th = ds["angle"].values
     for m, name in enumerate(ds["toothed_pulley"].values.tolist()):
         j = names.index(name)
