@@ -283,3 +283,46 @@ def test_an_eccentric_arm_balances_the_spans_moment_about_its_pivot():
     M = (c[0] - pivot[0]) * F[1] - (c[1] - pivot[1]) * F[0]
     spring = 1.6 - 2.0 * t["travel_mean"]
     assert abs(t["travel_mean"]) < 0.5 and abs(abs(M) - spring) < 0.01 * spring, (M, spring, t["travel_mean"])
+
+
+def test_a_stop_is_stable_at_steps_its_explicit_spring_could_not_take():
+    """The stops' spring is implicit in the tensioner stage: a slider pressed onto its stop (1e6 N/m on
+    0.5 kg, 1414 rad/s) at a step 5x the explicit scheme's bound 2 / omega comes to rest at the static
+    penetration and stays there."""
+    kstop, qmax = 1e6, 0.01
+    m = accessory(slider={"damping": 5.0, "stops": ["-0.05 m", f"{qmax} m"], "stop_stiffness": f"{kstop} N/m"})
+    st = Stage(m)
+    h = 5 * 2 / math.sqrt(kstop / MASS)
+    F = 400.0                                        # with the spring's load, onto the upper stop
+    q_ref = (F + PRELOAD + kstop * qmax) / (kstop + RATE)       # F + P - k q = k_stop (q - q_max)
+    st.q[0] = qmax + 1e-4
+    for _ in range(4000):
+        st.step(F, h)
+        assert abs(st.q[0] - q_ref) < 1e-3, st.q[0]     # bounded: the explicit stop diverged here
+    assert st.q[0] == pytest.approx(q_ref, abs=1e-9) and abs(st.qd[0]) < 1e-9, (st.q[0], q_ref)
+
+
+@pytest.mark.parametrize("h_omega", [0.02, 0.3, 1.0, 5.0, 50.0])
+def test_a_bounce_on_the_stop_books_what_it_takes(h_omega):
+    """A free slider (no spring, no damping) thrown onto its undamped stop at 1 m/s. At a step that
+    resolves the stop (h omega < 1/2) the explicit stop gives back what it took to O((h omega)^2) of
+    the impact's energy; at a longer one (backward Euler) the slider still comes back, and what the
+    stage books as dissipated is what the rebound lacks, to round-off."""
+    kstop, qmax, v0 = 1e6, 0.01, 1.0
+    m = accessory(slider={"preload": "1e-9 N", "rate": "1e-9 N/m", "stops": ["-0.05 m", f"{qmax} m"],
+                          "stop_stiffness": f"{kstop} N/m", "stop_damping": "1e-9 N*s/m"})
+    st = Stage(m)
+    h = h_omega / math.sqrt(kstop / MASS)
+    st.q[0], st.qd[0] = 0.0, v0
+    D = 0.0
+    for _ in range(int(0.03 / h) + 10):
+        D += h * st.step(0.0, h)
+        if st.q[0] < qmax and st.qd[0] < 0:          # off the stop, on its way back
+            break
+    assert st.qd[0] < 0, "the slider did not come back off its stop"
+    K1 = 0.5 * MASS * st.qd[0] ** 2
+    K0 = 0.5 * MASS * v0 ** 2
+    if h_omega < 0.5:
+        assert abs(K1 - K0) < h_omega ** 2 * K0 and abs(D) < 1e-9 * K0, (K1, D, K0)
+    else:
+        assert K1 + D == pytest.approx(K0, rel=1e-9) and D > 0, (K1, D, K0)

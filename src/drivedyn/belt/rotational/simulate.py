@@ -222,7 +222,8 @@ def build(drive) -> RotSystem:
 def _omega_bound(R, P, A, rest_q, T) -> float:
     """An upper bound of the fastest mode (rad/s): for each DOF, twice its diagonal stiffness over
     its inertia (Gershgorin: the span springs couple neighbours with off-diagonal terms no larger
-    than the diagonal ones)."""
+    than the diagonal ones). The arms' stops are left out: their spring is implicit in the arm
+    stage (``_step_arms``), stable at any step."""
     nk = R.nk
     kspan = R.EA / R.L
     w2 = 0.0
@@ -237,7 +238,7 @@ def _omega_bound(R, P, A, rest_q, T) -> float:
         j = A.pulley[a]
         _, _, jx, jy = BK.arm_centre(A, a, float(rest_q[a]))
         g2 = jx * jx + jy * jy
-        ka = (kspan[j] + kspan[(j - 1) % nk]) * g2 * 2 + A.par[a, BK.ARM_RATE] + A.par[a, BK.ARM_KSTOP]
+        ka = (kspan[j] + kspan[(j - 1) % nk]) * g2 * 2 + A.par[a, BK.ARM_RATE]
         w2 = max(w2, 2 * ka / A.par[a, BK.ARM_IN])
     return math.sqrt(w2)
 
