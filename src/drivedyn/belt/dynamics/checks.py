@@ -50,6 +50,10 @@ def slip_margin(result, model, sysm, sel):
     if result.summary.get("runup"):
         # a run-up is judged bin by bin (slip_runup): one margin over the swept window says nothing
         return
+    if model.belt.teeth is not None:
+        # creep theory would take the grooved wraps for friction wraps: a synchronous belt's teeth carry
+        # the load, judged by their jump margin (summary["teeth"]); its smooth idlers carry none
+        return
     ds = result.ds
     t = ds["time"].values[sel]
     w = ds["speed"].values[sel]
