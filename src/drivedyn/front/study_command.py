@@ -156,6 +156,14 @@ def _optimise(study, study_file, out, scheduler, workers, plots, quiet, console,
         bounds = " ".join(f"{side} {c[side]:.4g}" for side in ("min", "max") if side in c)
         if "value" in c:
             console.print(escape(f"  constraint {key}: {c['value']:.4g} ({bounds}, margin {c['margin']:.4g})"))
+    sr = getattr(res, "speed_range", None)
+    if sr is not None:
+        u = f" {sr.unit}" if sr.unit not in ("", "1") else ""
+        console.print(escape(f"through the speed range ({sr.rpm[0]:.0f}-{sr.rpm[-1]:.0f} rpm, {len(sr.rpm)} bins), {sr.quantity}: "
+                             f"the base file's design {min(sr.base):.4g}-{max(sr.base):.4g}{u}, the best "
+                             f"{min(sr.best):.4g}-{max(sr.best):.4g}{u}; better in "
+                             f"{sum((b < a) if opt.sense == 'minimise' else (b > a) for a, b in zip(sr.base, sr.best))} "
+                             f"of {len(sr.rpm)} bins (the table: report.html)"))
     console.print(escape(f"wrote {res.path}, {Path(res.path).parent / 'best.toml'}"
                          + (f" and {len(res.plots)} plot(s)" if res.plots else "")))
     return 0

@@ -247,8 +247,18 @@ def write_optimisation_report(res, study, study_file, outdir, hits=()) -> Path:
     text = res.ds.attrs.get("study_toml", "") if getattr(res, "ds", None) is not None else ""
     captions = {Path(p).name: "the best feasible objective against the designs evaluated; dots: each feasible design"
                 for p in res.plots or []}
+    tables = []
+    sr = getattr(res, "speed_range", None)
+    if sr is not None:
+        tables.append({"title": f"through the speed range: {sr.quantity}" + (f" ({sr.unit})" if sr.unit else ""),
+                       "head": ["crank speed (rpm)", "the base file's design", "the best design", "best / base"],
+                       "rows": [[f"{r:.0f}", _num(a), _num(b), f"{b / a:.3g}" if a else "-"]
+                                for r, a, b in zip(sr.rpm, sr.base, sr.best)],
+                       "note": "each design run once more in full, its run-up read bin by bin"})
+        captions["speed_range.png"] = (f"{sr.quantity} in each crank-speed bin: the base file's design against the "
+                                       "best design")
     html = render(title=f"optimisation: {study.name or Path(study_file).stem}", kind="optimisation study",
-                  status=status, message=message, diagnostics=diags, headline=rows, results=[],
+                  status=status, message=message, diagnostics=diags, headline=rows, results=[], tables=tables,
                   figures=_figures(res.plots, captions), model_rows=params, model_toml=text, source=str(study_file),
                   model_heading="Design space")
     return write_text(Path(outdir) / "report.html", html)

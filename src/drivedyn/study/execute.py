@@ -226,7 +226,7 @@ def run_optimisation(study, out=None, *, client=None, scheduler=None, workers=No
 
     from .collect import assemble, write_dataset
     from .design import Design
-    from .optimise import plot_convergence, run_optimise
+    from .optimise import plot_convergence, plot_speed_range, run_optimise, speed_range
 
     if not isinstance(study, Study):
         study = load_study(study)
@@ -287,13 +287,18 @@ def run_optimisation(study, out=None, *, client=None, scheduler=None, workers=No
         counts[s] = int((ds["status"].values == s).sum())
     counts["total"] = len(cases)
     files = []
+    # a run-up objective: the base file's design and the best through the speed range (two more runs)
+    sr = speed_range(optimum, study.spec.optimise.objective) if study.spec.optimise.evaluate == "run" else None
     if plots and study.spec.plots.enabled:
         (out / "plots").mkdir(exist_ok=True)
         unit = next((r.get("units", {}).get(study.spec.optimise.objective, "") for r in records.values()), "")
         files.append(plot_convergence(optimum, out / "plots" / "optimise.png", study.spec.optimise.objective,
                                       study.spec.optimise.sense, unit))
+        if sr is not None:
+            files.append(plot_speed_range(sr, out / "plots" / "speed_range.png"))
     run = StudyRun(ds, path, counts, files)
     run.optimum = optimum
+    run.speed_range = sr
     return run
 
 

@@ -229,7 +229,82 @@ def _start(study, execute, opt, units) -> dict | None:
     if rec is None or rec.get("status") not in COMPLETED:
         return None
     _score, feasible, cons, obj = judge(opt, rec, units)
-    return {"objective": obj, "feasible": feasible, "constraints": cons, "status": rec.get("status")}
+    return {"objective": obj, "feasible": feasible, "constraints": cons, "status": rec.get("status"),
+            "toml": case.toml}
+
+
+#: the run-up's order tables behind ``runup.order_peaks.<kind>.<name>.<order>.amplitude``
+ORDER_TABLES = {"span_tension": ("runup_tension_order", "span"), "hub_load": ("runup_hub_load_order", "pulley"),
+                "arm_travel": ("runup_arm_travel_order", "arm")}
+
+
+class SpeedRange(NamedTuple):
+    """An objective read off a run-up, bin by bin, for the base file's design and the best one."""
+    quantity: str            # what the rows hold, in words
+    unit: str
+    rpm: list
+    base: list
+    best: list
+
+
+def speed_range(opt: Optimum, objective: str) -> SpeedRange | None:
+    """For an objective that is a run-up's peak or a run-up table's entry (``runup.order_peaks.*`` or
+    ``runup.span_tension_max.<span>``, ...): the base file's design and the best design run once more
+    in full, and the objective's quantity read in each crank-speed bin of both, so that a report shows
+    the gain through the speed range, not at its worst bin alone. None for any other objective or
+    when either run fails."""
+    from ..api import run
+    from ..core.errors import SolverError
+    from ..core.model import loads
+
+    parts = objective.split(".")
+    if parts[0] != "runup" or opt.toml is None or not opt.start or not opt.start.get("toml"):
+        return None
+    if parts[1] == "order_peaks" and (len(parts) != 6 or parts[2] not in ORDER_TABLES or parts[5] != "amplitude"):
+        return None
+    if parts[1] != "order_peaks" and len(parts) != 3:
+        return None
+    rows = []
+    for toml in (opt.start["toml"], opt.toml):
+        try:
+            res = run(loads(toml, source="the optimisation's design"))
+        except (ModelError, SolverError):
+            return None
+        ru = res.summary.get("runup") or {}
+        if parts[1] == "order_peaks":
+            var, dim = ORDER_TABLES[parts[2]]
+            if var not in res.ds:
+                return None
+            da = res.ds[var].sel({dim: parts[3], "order": float(parts[4])})
+            vals, unit = [float(v) for v in da.values], str(res.ds[var].attrs.get("units", ""))
+            what = f"{parts[2].replace('_', ' ')} {parts[3]}, order {parts[4]} amplitude"
+        else:
+            table = ru.get(parts[1])
+            if not isinstance(table, dict) or not isinstance(table.get(parts[2]), list):
+                return None
+            vals, unit = [float(v) for v in table[parts[2]]], str(res.units.get(objective, ""))
+            what = f"{parts[1].replace('_', ' ')} {parts[2]}"
+        rows.append((list(ru.get("speed_rpm", [])), vals))
+    (rpm0, base), (rpm1, best) = rows
+    if rpm0 != rpm1 or len(base) != len(rpm0):
+        return None
+    return SpeedRange(what, unit, rpm0, base, best)
+
+
+def plot_speed_range(sr: SpeedRange, path: Path) -> Path:
+    """The objective's quantity per crank-speed bin, the base file's design against the best."""
+    from ..core.plotting import figure, savefig
+
+    fig, axes = figure()
+    ax = axes[0, 0]
+    ax.plot(sr.rpm, sr.base, "o-", ms=3, label="the base file's design")
+    ax.plot(sr.rpm, sr.best, "s-", ms=3, label="the best design")
+    ax.set_xlabel("crank speed (rpm)")
+    ax.set_ylabel(sr.quantity + (f" ({sr.unit})" if sr.unit else ""))
+    ax.set_title("through the speed range: the base file's design against the best")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, frameon=False)
+    return savefig(fig, path)
 
 
 #: an optimum closer than this share of its range (in the range's own scale) to a bound sits on it
