@@ -273,9 +273,10 @@ def speed_range(opt: Optimum, objective: str) -> SpeedRange | None:
         ru = res.summary.get("runup") or {}
         if parts[1] == "order_peaks":
             var, dim = ORDER_TABLES[parts[2]]
-            if var not in res.ds:
+            try:
+                da = res.ds[var].sel({dim: parts[3], "order": float(parts[4])})
+            except (KeyError, ValueError):       # no such table, name or order in this run
                 return None
-            da = res.ds[var].sel({dim: parts[3], "order": float(parts[4])})
             vals, unit = [float(v) for v in da.values], str(res.ds[var].attrs.get("units", ""))
             what = f"{parts[2].replace('_', ' ')} {parts[3]}, order {parts[4]} amplitude"
         else:
