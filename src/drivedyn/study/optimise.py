@@ -233,11 +233,6 @@ def _start(study, execute, opt, units) -> dict | None:
             "toml": case.toml}
 
 
-#: the run-up's order tables behind ``runup.order_peaks.<kind>.<name>.<order>.amplitude``
-ORDER_TABLES = {"span_tension": ("runup_tension_order", "span"), "hub_load": ("runup_hub_load_order", "pulley"),
-                "arm_travel": ("runup_arm_travel_order", "arm")}
-
-
 class SpeedRange(NamedTuple):
     """An objective read off a run-up, bin by bin, for the base file's design and the best one."""
     quantity: str            # what the rows hold, in words
@@ -254,13 +249,14 @@ def speed_range(opt: Optimum, objective: str) -> SpeedRange | None:
     the gain through the speed range, not at its worst bin alone. None for any other objective or
     when either run fails."""
     from ..api import run
+    from ..belt.dynamics.runup import ORDER_VARIABLES
     from ..core.errors import SolverError
     from ..core.model import loads
 
     parts = objective.split(".")
     if parts[0] != "runup" or opt.toml is None or not opt.start or not opt.start.get("toml"):
         return None
-    if parts[1] == "order_peaks" and (len(parts) != 6 or parts[2] not in ORDER_TABLES or parts[5] != "amplitude"):
+    if parts[1] == "order_peaks" and (len(parts) != 6 or parts[2] not in ORDER_VARIABLES or parts[5] != "amplitude"):
         return None
     if parts[1] != "order_peaks" and len(parts) != 3:
         return None
@@ -272,7 +268,7 @@ def speed_range(opt: Optimum, objective: str) -> SpeedRange | None:
             return None
         ru = res.summary.get("runup") or {}
         if parts[1] == "order_peaks":
-            var, dim = ORDER_TABLES[parts[2]]
+            var, dim = ORDER_VARIABLES[parts[2]]
             try:
                 da = res.ds[var].sel({dim: parts[3], "order": float(parts[4])})
             except (KeyError, ValueError):       # no such table, name or order in this run

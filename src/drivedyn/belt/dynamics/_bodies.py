@@ -412,11 +412,12 @@ def _step_arms(na, pulley, kind, par, tab_off, tab_x, tab_y, sq, sqd, cx, cy, cv
         stiff = h * h * ks > 0.25 * par[a, ARM_IN]
         Qf = (Qs if stiff else Q) + Qh              # the stop's explicit load only where it is resolved
         fv = par[a, ARM_FV]
+        fr0 = par[a, ARM_FRIC] + par[a, ARM_FSHARE] * abs(Qs)
         kimp = 0.0
         qs = 0.0
         for _ in range(2):      # free; again with the stop at the new travel if it lands beyond one
             v = sqd[a] + hI * (Qf + kimp * (qs - q))
-            fr = par[a, ARM_FRIC] + par[a, ARM_FSHARE] * abs(Qs)
+            fr = fr0
             if v >= 0.0:       # moving into the belt
                 c = par[a, ARM_VISC]
             else:              # away from it: the asymmetric damper's loading sense

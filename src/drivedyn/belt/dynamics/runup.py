@@ -25,6 +25,11 @@ from ...core.results import variable
 RPM = 60 / (2 * math.pi)
 
 
+
+#: the order cuts behind ``runup.order_peaks.<key>``: key -> (the Dataset's variable, its member dimension)
+ORDER_VARIABLES = {"span_tension": ("runup_tension_order", "span"), "hub_load": ("runup_hub_load_order", "pulley"),
+                   "arm_travel": ("runup_arm_travel_order", "arm")}
+
 def crank_index(model):
     """The prescribed-speed pulley whose mean speed changes by more than 10 % (a run-up), or None."""
     for j, p in enumerate(model.pulleys):
@@ -216,10 +221,11 @@ def runup_tables(model, t, ten, hub, speed, r, spans, pulleys, travel=None, bin_
     # order cuts of every span, hub load and arm: each order's largest amplitude over the run and
     # the crank speed where it peaks (the whole cuts: runup_*_order in results.nc, runup.png)
     peaks = {}
-    for key, name, names in (("span_tension", "runup_tension_order", spans), ("hub_load", "runup_hub_load_order", pulleys),
-                             ("arm_travel", "runup_arm_travel_order", travel[1] if travel is not None else [])):
+    members = {"span": spans, "pulley": pulleys, "arm": travel[1] if travel is not None else []}
+    for key, (name, dim) in ORDER_VARIABLES.items():
         if name not in var:
             continue
+        names = members[dim]
         a = var[name].values
         peaks[key] = {str(nm): {f"{k:g}": {"amplitude": float(a[:, o, q].max()),
                                            "rpm": float(centre[int(np.argmax(a[:, o, q]))])}
