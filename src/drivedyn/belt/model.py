@@ -1267,6 +1267,8 @@ def integrator(model) -> str:
         return method
     if model.belt.teeth is not None:
         return "semi-implicit"      # the teeth are explicit springs (segments/_teeth.py)
+    if any(p.pitch_curve is not None for p in model.pulleys):
+        return "semi-implicit"      # the contact on a turning curve (segments/_curves.py)
     if model.simulation.rotation_scaling is True:
         return "semi-implicit"
     if model.friction.law == "threlfall" and _accessory_parts(model.pulleys):

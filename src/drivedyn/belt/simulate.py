@@ -18,12 +18,13 @@ def run(model, progress=None):
 
         return run_rotational(drive, progress)
     curved = next((k for k, p in enumerate(model.pulleys) if p.pitch_curve is not None), None)
-    if curved is not None:
+    if curved is not None and model.simulation.method in ("implicit", "rkf45"):
         from ..core.errors import ModelError
 
-        raise ModelError(f"pulley {model.pulleys[curved].name!r}: the segment model lays the belt on circles; "
-                         "simulation.model = \"rotational\" drives a synchronous belt through its pitch curves",
-                         field=f"pulleys[{curved}].pitch_curve")
+        # the non-circular contact is in the semi-implicit scheme's contact stage (segments/_curves.py)
+        raise ModelError(f"pulley {model.pulleys[curved].name!r} has a pitch curve, which the segment model drives "
+                         f"with the semi-implicit scheme, not {model.simulation.method!r}: leave simulation.method "
+                         "out (\"auto\") or set it to \"semi-implicit\"", field="simulation.method")
     from .segments.simulate import run as run_segments
 
     return run_segments(drive, progress)

@@ -6,6 +6,7 @@ from numba import njit
 
 from ..dynamics._bodies import (FAST)
 from .records import STAGE_PY
+from ._curves import contact_at
 from ._laws import normal_force
 
 
@@ -158,21 +159,33 @@ def static_forces(B, Ct, P, S, W):
     W.fy, W.mz (used by equilibrium.relax). Through the plain arrays, as ``joint_forces`` (the
     records' compiled wrapper and flattened arguments: 3.7 s of a first run's compile)."""
     joint_forces(B, S, W, 0.0)
-    _static_contacts(B.n, P.nk, B.m, B.g, S.x, S.y, S.cx, S.cy, P.r, Ct.c1, Ct.c2, Ct.bc, Ct.pmax, W.fx, W.fy)
+    _static_contacts(B.n, P.nk, B.m, B.g, S.x, S.y, S.cx, S.cy, P.r, Ct.c1, Ct.c2, Ct.bc, Ct.pmax, W.fx, W.fy,
+                     Ct.ccur, Ct.creach, Ct.crad, S.th)
 
 
 @njit(cache=True, no_cfunc_wrapper=True)
-def _static_contacts(n, nk, m, g, x, y, pcx, pcy, pr, c1, c2, bc, pmax, fx, fy):
-    """``static_forces``' contact normal forces and gravity, added to fx, fy."""
+def _static_contacts(n, nk, m, g, x, y, pcx, pcy, pr, c1, c2, bc, pmax, fx, fy, ccur, creach, crad, th):
+    """``static_forces``' contact normal forces and gravity, added to fx, fy; a non-circular pulley's
+    along its curve's normal (segments/_curves.py)."""
     for i in range(n):
         for j in range(nk):
             rx = x[i] - pcx[j]
             ry = y[i] - pcy[j]
             d2 = rx * rx + ry * ry
-            if d2 >= pr[j] * pr[j]:
+            if d2 >= creach[j] * creach[j]:
                 continue
             dist = math.sqrt(d2)
-            N, _ = normal_force(c1[i], c2[i], bc[i], pmax, pr[j] - dist, 0.0, 0.0)
-            fx[i] += N * rx / dist
-            fy[i] += N * ry / dist
+            if ccur[j] < 0:
+                N, _ = normal_force(c1[i], c2[i], bc[i], pmax, pr[j] - dist, 0.0, 0.0)
+                fx[i] += N * rx / dist
+                fy[i] += N * ry / dist
+                continue
+            rc, tb, cb = contact_at(crad, ccur[j], rx, ry, th[j])
+            if rc <= dist:
+                continue
+            N, _ = normal_force(c1[i], c2[i], bc[i], pmax, (rc - dist) * cb, 0.0, 0.0)
+            erx = rx / dist
+            ery = ry / dist
+            fx[i] += N * cb * (erx + tb * ery)
+            fy[i] += N * cb * (ery - tb * erx)
         fy[i] -= m[i] * g

@@ -6,6 +6,7 @@ from numba import njit
 
 from ..dynamics._bodies import (_spring_energy)
 from .records import STAGE
+from ._curves import contact_at
 from ._laws import contact_energy
 
 
@@ -89,7 +90,7 @@ def energy(B, Ct, P, A, S):
     return _energy(B.n, B.eax, B.eb, B.hl, B.turn, B.g, B.iscale, B.m, B.inertia, B.kax, B.kb, S.x, S.y, S.phi, S.c,
                    S.s, S.vx, S.vy, S.w, Ct, P.nk, S.cx, S.cy, P.r, P.mode, P.inertia, S.om, P.cl_kind, P.cl_ir, P.cl_k,
                    S.omr, S.dcp, A.na, A.inertia, A.tab_off, A.tab_x, A.tab_y, A.preload, A.rate, A.qmin, A.qmax,
-                   A.kstop, S.q, S.qd)
+                   A.kstop, S.q, S.qd, S.th)
 
 
 @njit(cache=True, inline="always")
@@ -98,13 +99,13 @@ def _energy_of(B, Ct, P, A, S):
     return _energy(B.n, B.eax, B.eb, B.hl, B.turn, B.g, B.iscale, B.m, B.inertia, B.kax, B.kb, S.x, S.y, S.phi, S.c,
                    S.s, S.vx, S.vy, S.w, Ct, P.nk, S.cx, S.cy, P.r, P.mode, P.inertia, S.om, P.cl_kind, P.cl_ir, P.cl_k,
                    S.omr, S.dcp, A.na, A.inertia, A.tab_off, A.tab_x, A.tab_y, A.preload, A.rate, A.qmin, A.qmax,
-                   A.kstop, S.q, S.qd)
+                   A.kstop, S.q, S.qd, S.th)
 
 
 @njit(cache=True, no_cfunc_wrapper=True)
 def _energy(n, eax, eb, hl, turn, g, iscale, m, inertia, kax, kb, x, y, phi, c, s, vx, vy, w, Ct, nk, pcx, pcy, pr,
             pmode, pinertia, om, cl_kind, cl_ir, cl_k, omr, dcp, na, a_inertia, tab_off, tab_x, tab_y, preload, rate,
-            qmin, qmax, kstop, q, qd):
+            qmin, qmax, kstop, q, qd, th):
     """``energy`` on the arrays it reads: the time loop calls it with these alone (the records
     passed whole flattened to 670 arguments)."""
     E = 0.0
@@ -123,7 +124,11 @@ def _energy(n, eax, eb, hl, turn, g, iscale, m, inertia, kax, kb, x, y, phi, c, 
         for j in range(nk):
             rx = x[i] - pcx[j]
             ry = y[i] - pcy[j]
-            p = pr[j] - math.sqrt(rx * rx + ry * ry)
+            if Ct.ccur[j] < 0:
+                p = pr[j] - math.sqrt(rx * rx + ry * ry)
+            else:
+                rc, tb, cb = contact_at(Ct.crad, Ct.ccur[j], rx, ry, th[j])
+                p = (rc - math.sqrt(rx * rx + ry * ry)) * cb
             if p > 0.0:
                 E += contact_energy(Ct, i, p)
     for j in range(nk):

@@ -7,13 +7,17 @@ from numba import njit
 from .records import LAW_ELASTIC_PLASTIC, STAGE
 from ._laws import _bristle, clipped_power, friction, normal_force
 from ._motion import _contact_candidate, _turn
+from ._curves import contact_at
 
 
 # the semi-implicit contact stage's per-segment rows of ``sq`` (Q_*, n): its contact pulley's
 # offset (x, y, squared length), that pulley's centre velocity, radius and speed (a segment without
 # one gets a stand-in that gives p = 0: no force), 1 in contact; the normal force, the unit normal,
-# friction's arm, the slip before friction, the friction force; the contact damping's and friction's power
-(Q_RX, Q_RY, Q_D2, Q_PVX, Q_PVY, Q_R, Q_OM, Q_ON, Q_N, Q_NX, Q_NY, Q_ARM, Q_WS, Q_T, Q_PC, Q_PF, NQ) = range(17)
+# friction's arm, the slip before friction, the friction force; the contact damping's and friction's power;
+# on a non-circular pulley tan and cos of its normal's angle to the radius (0 and 1 on a circle) and the
+# normal force's arm about the axis (segments/_curves.py)
+(Q_RX, Q_RY, Q_D2, Q_PVX, Q_PVY, Q_R, Q_OM, Q_ON, Q_N, Q_NX, Q_NY, Q_ARM, Q_WS, Q_T, Q_PC, Q_PF, Q_TB, Q_CB, Q_NA,
+ NQ) = range(20)
 
 
 @njit(**STAGE)
@@ -50,16 +54,32 @@ def _contacts_semi(n, nk, h, hg, hvb, hm_, hi_, fx, fy, mz, Ct, S, pr, cand_j, c
     qt = sq[Q_T]
     qpc = sq[Q_PC]
     qpf = sq[Q_PF]
+    qtb = sq[Q_TB]
+    qcb = sq[Q_CB]
+    qna = sq[Q_NA]
+    ccur, crad, th = Ct.ccur, Ct.crad, S.th
     for i in range(n):          # the contact test
-        j, rx, ry, d2 = _contact_candidate(i, nk, x, y, pcx, pcy, pr, cand_j, cand_skip, hvb)
+        j, rx, ry, d2 = _contact_candidate(i, nk, x, y, pcx, pcy, Ct.creach, cand_j, cand_skip, hvb)
+        rj = 0.0
+        tb = 0.0
+        cb = 1.0
+        if j >= 0:
+            if ccur[j] >= 0:        # a curve: within its reach, in contact where inside it
+                rj, tb, cb = contact_at(crad, ccur[j], rx, ry, th[j])
+                if rj * rj <= d2:
+                    j = -1
+            else:
+                rj = pr[j]
         sj[i] = j
+        qtb[i] = tb
+        qcb[i] = cb
         if j >= 0:
             qrx[i] = rx
             qry[i] = ry
             qd2[i] = d2
             qpvx[i] = pvx[j]
             qpvy[i] = pvy[j]
-            qr[i] = pr[j]
+            qr[i] = rj
             qom[i] = om[j]
             qon[i] = 1.0
         else:
@@ -75,18 +95,24 @@ def _contacts_semi(n, nk, h, hg, hvb, hm_, hi_, fx, fy, mz, Ct, S, pr, cand_j, c
         hm = hm_[i]
         dist = math.sqrt(qd2[i])
         inv = 1.0 / dist
-        nx = qrx[i] * inv
-        ny = qry[i] * inv
-        p = qr[i] - dist
-        # velocities relative to the pulley centre (a tensioner moves it)
+        erx = qrx[i] * inv
+        ery = qry[i] * inv
+        tb = qtb[i]
+        cb = qcb[i]
+        nx = cb * (erx + tb * ery)
+        ny = cb * (ery - tb * erx)
+        p = (qr[i] - dist) * cb
+        # velocities relative to the pulley centre (a tensioner moves it), and to a curve's surface
+        # moving along its normal, omega d e_psi . n = -omega d sin(mu)
         rvx = vx[i] + hm * fx[i] - qpvx[i]
         rvy = vy[i] + hm * fy[i] - hg - qpvy[i]
-        vn = rvx * nx + rvy * ny
+        vn = rvx * nx + rvy * ny + qom[i] * dist * tb * cb
         N, db = normal_force(c1[i], c2[i], bc[i], pmax, p, vn, hm)
         Np = max(N, 0.0)
         vn_new = vn + hm * Np
         qpc[i] = db * vn_new * vn_new if N > 0.0 else clipped_power(c1[i], c2[i], p, vn)
-        arm = dist if centre else qr[i]
+        arm = (dist if centre else qr[i]) * cb
+        qna[i] = dist * tb * cb
         qn[i] = Np
         qnx[i] = nx
         qny[i] = ny
@@ -150,7 +176,7 @@ def _contacts_semi(n, nk, h, hg, hvb, hm_, hi_, fx, fy, mz, Ct, S, pr, cand_j, c
             tq = 0.0
             hx = 0.0
             hy = 0.0
-        tq += qarm[i] * qt[i]
+        tq += qarm[i] * qt[i] - qna[i] * qn[i]
         hx += qrx[i]
         hy += qry[i]
     if jr >= 0:

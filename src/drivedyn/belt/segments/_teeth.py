@@ -20,6 +20,7 @@ import math
 from numba import njit
 
 from .records import STAGE
+from ._curves import contact_at, table_at
 
 
 @njit(**STAGE)
@@ -45,13 +46,20 @@ def _teeth(n, nk, t, Ct, S, pr, fx, fy, jfk, jdx, jdy, tq, tqs, tj, tg, thold, t
             ex = S.x[i] - S.cx[j]
             ey = S.y[i] - S.cy[j]
             e2 = ex * ex + ey * ey
-            lim = pr[j] + band
+            lim = Ct.creach[j] + band
             if e2 < lim * lim:
                 jn = j
                 d2 = e2
                 dx = ex
                 dy = ey
                 break
+        rc = 0.0
+        tb = 0.0
+        cb = 1.0
+        if jn >= 0 and Ct.ccur[jn] >= 0:      # a grooved curve: within band of it
+            rc, tb, cb = contact_at(Ct.crad, Ct.ccur[jn], dx, dy, S.th[jn])
+            if d2 >= (rc + band) * (rc + band):
+                jn = -1
         if jn < 0:
             tj[i] = -1
             tq[i] = 0.0
@@ -61,10 +69,23 @@ def _teeth(n, nk, t, Ct, S, pr, fx, fy, jfk, jdx, jdy, tq, tqs, tj, tg, thold, t
         d = math.sqrt(d2)
         ca = dx / d
         sa = dy / d
-        dth = two_pi / Ct.gz[j]
-        rel = math.atan2(dy, dx) - S.th[j] - Ct.gphase[j]
-        g = math.floor(rel / dth + 0.5)
-        u = pr[j] * (rel - g * dth)
+        a = Ct.ccur[j]
+        if a < 0:
+            dth = two_pi / Ct.gz[j]
+            rel = math.atan2(dy, dx) - S.th[j] - Ct.gphase[j]
+            g = math.floor(rel / dth + 0.5)
+            u = pr[j] * (rel - g * dth)
+            R = pr[j]
+        else:
+            # the arc position of the normal's foot on the pitch curve (segments/_curves.py), grooves one
+            # groove pitch apart from gphase (m) along it; the deflection along the chain's curve
+            phi = math.atan2(dy, dx) - S.th[j]
+            rp = table_at(Ct.cpr, a, phi)[0]
+            sa_ = table_at(Ct.carc, a, phi)[0] + Ct.cper[a] * phi + (d - rp) * tb - Ct.gphase[j]
+            sp = two_pi * Ct.cper[a] / Ct.gz[j]
+            g = math.floor(sa_ / sp + 0.5)
+            u = (sa_ - g * sp) * rc / rp
+            R = 1.0 / table_at(Ct.ckap, a, phi)[0] + rc - rp    # the chain's radius of curvature
         gi = int(g) % Ct.gz[j]
         if tj[i] == j and tg[i] != gi:
             tstat[1] += 1.0          # a jump: the tooth sits in another groove than a step ago
@@ -72,7 +93,10 @@ def _teeth(n, nk, t, Ct, S, pr, fx, fy, jfk, jdx, jdy, tq, tqs, tj, tg, thold, t
             tstat[3] = j
         tj[i] = j
         tg[i] = gi
-        vrel = -(S.vx[i] - S.cvx[j]) * sa + (S.vy[i] - S.cvy[j]) * ca - S.om[j] * d
+        # the tooth acts along the curve's tangent tau = cos(mu) (e_psi + tan(mu) e_r): on a circle e_psi
+        txx = cb * (-sa + tb * ca)
+        tyy = cb * (ca + tb * sa)
+        vrel = (S.vx[i] - S.cvx[j]) * txx + (S.vy[i] - S.cvy[j]) * tyy - S.om[j] * d * cb
         if u > hp:
             Q = k * (u - hp) + Ct.tc[i] * vrel
         elif u < -hp:
@@ -82,7 +106,7 @@ def _teeth(n, nk, t, Ct, S, pr, fx, fy, jfk, jdx, jdy, tq, tqs, tj, tg, thold, t
         ib = i + 1 if i + 1 < n else 0
         T = 0.5 * (max(jfk[i] * math.sqrt(jdx[i] * jdx[i] + jdy[i] * jdy[i]), 0.0)
                    + max(jfk[ib] * math.sqrt(jdx[ib] * jdx[ib] + jdy[ib] * jdy[ib]), 0.0))
-        hold = T * Ct.tpitch / pr[j]
+        hold = T * Ct.tpitch / R
         tqs[i] = Q
         if Ct.tclimb > 0.0:
             qmax = hold / Ct.tclimb
@@ -94,9 +118,9 @@ def _teeth(n, nk, t, Ct, S, pr, fx, fy, jfk, jdx, jdy, tq, tqs, tj, tg, thold, t
                 tstat[4] += 1.0
         tq[i] = Q
         thold[i] = hold
-        fx[i] += Q * sa
-        fy[i] -= Q * ca
-        tq_belt[j] += Q * d
-        hubx[j] -= Q * sa
-        huby[j] += Q * ca
+        fx[i] -= Q * txx
+        fy[i] -= Q * tyy
+        tq_belt[j] += Q * d * cb
+        hubx[j] += Q * txx
+        huby[j] += Q * tyy
     tstat[0] += 1.0

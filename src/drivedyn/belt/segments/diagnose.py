@@ -149,7 +149,15 @@ def _on_pulley(ds, sysm, frames, j):
     """Mask (frames, segments) of segment centres inside pulley j's contact radius, the pulley
     where its tensioner holds it at each frame."""
     c = _centre_at(ds, sysm, frames, j)
-    d = np.hypot(ds["belt_x"].values[frames] - c[:, :1], ds["belt_y"].values[frames] - c[:, 1:])
+    rx, ry = ds["belt_x"].values[frames] - c[:, :1], ds["belt_y"].values[frames] - c[:, 1:]
+    d = np.hypot(rx, ry)
+    C = sysm.contact
+    a = int(C.ccur[j]) if len(C.ccur) else -1
+    if a >= 0:      # a pitch curve, turned by the pulley's angle at the frames
+        from ._curves import table_values
+
+        th = np.interp(ds["frame_time"].values[frames], ds["time"].values, ds["angle"].values[:, j])
+        return d < table_values(C.cpr, a, np.arctan2(ry, rx) - th[:, None])[0]
     return d < sysm.model.pulleys[j].radius
 
 

@@ -50,6 +50,18 @@ class Contact(NamedTuple):
     gz: np.ndarray = np.zeros(0, dtype=np.int64)   # per pulley: grooves (0: smooth)
     gphase: np.ndarray = np.zeros(0)    # per pulley: angle of groove 0 at theta = 0 (rad)
     teeth: bool = False                 # any tooth
+    # non-circular pulleys (``pulleys[].pitch_curve``; segments/_curves.py): per pulley its curve's row
+    # in the tables (-1: a circle) and the radius within which a segment may touch it (the contact
+    # radius of a circle); per curve, tables over one turn of its own angle (uniform, periodic cubic):
+    # the contact curve's radius, the pitch curve's radius, its curvature and the periodic part of
+    # the arc position on it (S - perimeter phi / 2 pi), and perimeter / 2 pi
+    ccur: np.ndarray = np.zeros(0, dtype=np.int64)
+    creach: np.ndarray = np.zeros(0)
+    crad: np.ndarray = np.zeros((0, 4))
+    cpr: np.ndarray = np.zeros((0, 4))
+    ckap: np.ndarray = np.zeros((0, 4))
+    carc: np.ndarray = np.zeros((0, 4))
+    cper: np.ndarray = np.zeros(0)
 
 
 # A stage of the time loop (``_advance``) is a function of its own, compiled once, not inlined into

@@ -212,11 +212,15 @@ def _build(model, drive, settle: bool, before_settle=None) -> BeltSystem:
         for j, q in enumerate(model.pulleys):
             if q.teeth:
                 P.r[j] = chain_radius(q.radius, model) + sinking(model.contact, T_in / q.radius)[0]
+    # the pulleys' contact as the kernels read it: the radii above, the non-circular ones' curves (_curves.py)
+    from ._curves import tables as curve_tables
+
+    contact = pl.contact._replace(**curve_tables(model, P.r))
     A = arms_record(drawn, drive.senses)   # travel measured from the drawn centres
     span_mid = np.array([sp.midpoint for sp in layout.spans])
     span_geo = np.array([[*sp.midpoint, math.cos(sp.angle), math.sin(sp.angle)] for sp in layout.spans])
     track = np.array(model.output.segments, dtype=np.int64)
-    sysm = BeltSystem(drawn, layout, init, pl.belt, pl.contact, P, A, span_mid, span_geo, track, pl.step,
+    sysm = BeltSystem(drawn, layout, init, pl.belt, contact, P, A, span_mid, span_geo, track, pl.step,
                       pl.step_limit, rest)
     if before_settle is not None:
         before_settle(sysm)
@@ -259,12 +263,28 @@ def groove_phases(C, P, x, y) -> np.ndarray:
     """Per grooved pulley, the angle of its groove 0 (pulley at theta = 0) that seats the placed belt's
     teeth in mesh best: the circular mean of their angles over the groove spacing, so that a belt
     whose pitch fits the grooves starts with every tooth centred."""
+    from ._curves import penetrations, table_values
+
     ph = np.zeros(len(C.gz))
     teeth = np.flatnonzero(C.tk > 0)
     for j, z in enumerate(C.gz):
         if z == 0:
             continue
         dx, dy = x[teeth] - P.cx[j], y[teeth] - P.cy[j]
+        a = int(C.ccur[j])
+        if a >= 0:      # a curve: the arc positions of the teeth's feet on it (m, _curves.py), one groove pitch apart
+            p = penetrations(C, P, j, dx, dy)[0]
+            on = p > -C.tband
+            if not on.any():
+                continue
+            phi = np.arctan2(dy[on], dx[on])
+            d = np.hypot(dx[on], dy[on])
+            rc, drc = table_values(C.crad, a, phi)
+            rp = table_values(C.cpr, a, phi)[0]
+            s_ = table_values(C.carc, a, phi)[0] + C.cper[a] * phi + (d - rp) * drc / rc
+            sp = 2 * math.pi * C.cper[a] / z
+            ph[j] = float(np.angle(np.mean(np.exp(2j * math.pi * s_ / sp)))) * sp / (2 * math.pi)
+            continue
         on = dx * dx + dy * dy < (P.r[j] + C.tband) ** 2
         if not on.any():
             continue
@@ -312,7 +332,8 @@ def _place(model, drive) -> Placed:
         bc=model.contact.damping * l * ones,
         mu=mu, pmax=damping_depth(model, init), law=int(LAWS[model.friction.law]),
         dv=float(model.friction.velocity_threshold), dmax=float(model.friction.displacement_limit),
-        centre=model.friction.radius == "centre")
+        centre=model.friction.radius == "centre",
+        ccur=np.full(len(model.pulleys), -1, dtype=np.int64), creach=np.array([q.radius for q in model.pulleys]))
     C = _with_teeth(model, layout, B, C)
     limit = stability_limit(model, init, B, C, scaled)
     if B.implicit:
@@ -566,14 +587,14 @@ def hub_at_rest(sysm, x, y, cx, cy) -> np.ndarray:
     """Force (nk, 2) of the belt at rest (x, y segment centres) on each pulley: minus the contact
     normal forces of eq. 9 (no velocity, no friction at rest)."""
     C, P = sysm.contact, sysm.pulleys
+    from ._curves import penetrations
+
     out = np.zeros((P.nk, 2))
     for j in range(P.nk):
-        rx, ry = x - cx[j], y - cy[j]
-        d = np.hypot(rx, ry)
-        p = P.r[j] - d
+        p, nx, ny = penetrations(C, P, j, x - cx[j], y - cy[j])
         on = p > 0
         N = C.c1[on] * p[on] ** 2 + C.c2[on] * p[on]
-        out[j] = -np.array([np.sum(N * rx[on] / d[on]), np.sum(N * ry[on] / d[on])])
+        out[j] = -np.array([np.sum(N * nx[on]), np.sum(N * ny[on])])
     return out
 
 
