@@ -129,14 +129,15 @@ def equilibrium(model, drawn=None, sense=None) -> Equilibrium:
     drawn = drawn or compute_layout(model)
     belt = model.belt
     EA, e, n = belt.axial_stiffness, belt.axial_exponent, belt.segments
+    dL = _curves_length(model, drawn)
     if belt.length is not None:       # installed by length: the drawn layout may leave it slack
         L0_chain = L_eff = belt.length
-        T_drawn = EA * max(drawn.length / L_eff - 1, 0.0) ** e
+        T_drawn = EA * max((drawn.length + dL) / L_eff - 1, 0.0) ** e
     else:
         init0 = initial_state(model, drawn)
         L0_chain = init0.seg_length * n                  # the installed (unstretched) chain length
         # continuum calibration: the discrete chain at the drawn layout has init0.tension on path L(0)
-        L_eff = drawn.length / (1 + (init0.tension / EA) ** (1 / e))
+        L_eff = (drawn.length + dL) / (1 + (init0.tension / EA) ** (1 / e))
         T_drawn = init0.tension
 
     def centres(qv):
@@ -157,7 +158,7 @@ def equilibrium(model, drawn=None, sense=None) -> Equilibrium:
         return generalised_loads(model, idx, sense, qv, lay.hub_load_static(tension(m, lay)))
 
     def t_cont(m, lay):
-        strain = lay.length / L_eff - 1
+        strain = (lay.length + dL) / L_eff - 1
         return EA * max(strain, 0.0) ** e
 
     T = [model.pulleys[j].tensioner for j in idx]
@@ -205,6 +206,20 @@ def equilibrium(model, drawn=None, sense=None) -> Equilibrium:
     angle = np.array([arm_angle(model, j, q, s) for j, q, s in zip(idx, qv, sense)])
     return Equilibrium(moved, qv, init.tension, np.array([spring_load(t, q) for t, q in zip(T, qv)]),
                        np.array([float(np.hypot(*hub[j])) for j in idx]), angle, J)
+
+
+def _curves_length(model, drawn) -> float:
+    """What the pulleys' pitch curves (at their rest angles) add to the circles' path length at the drawn
+    centres (m; 0 without curves): the continuum equilibrium takes it as constant over the tensioners'
+    travel (its change with the travel is of second order), the discrete placement walks the curves."""
+    if not any(p.pitch_curve is not None for p in model.pulleys):
+        return 0.0
+    from ...mechanics.curve_layout import layout_at as curve_layout
+
+    ps = model.pulleys
+    cl = curve_layout([p.name for p in ps], drawn.centers, [p.curve for p in ps], [p.side for p in ps],
+                      orientation=drawn.orientation)
+    return float(cl.length - drawn.length)
 
 
 def arm_angle(model, j, q, s) -> float:
