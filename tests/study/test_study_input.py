@@ -41,6 +41,8 @@ objective = "pulleys.driven.slip"
     # NaN and infinite bounds (a NaN constraint marked every design feasible), seeds numpy refuses,
     # populations past the cases a study may have: refused before anything runs
     (OK.replace("values = [500.0, 600.0]", 'range = ["nan", 30.0]\nnum = 2'), "must be a finite number"),
+    # a reversed range (every sampled design then failed as infeasible, exit 1, late)
+    (OPT.replace("range = [400.0, 600.0]", "range = [600.0, 400.0]"), "parameters[0].range: [600.0, 400.0] is [low, high]"),
     (OPT + 'constraints = [{ key = "spans.*.tension_min", max = "nan N" }]\n', "must be a finite number"),
     (OPT + 'seed = -1\n', "must lie in [0, 2^32)"),
     (OPT + 'sense = ["maximise"]\n', "optimise.sense"),       # a list: a TypeError (unhashable) before

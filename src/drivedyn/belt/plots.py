@@ -352,10 +352,19 @@ def draw_drive(ds, frame, ax, vmax=None):
     """Pulleys and the belt at one frame, segments coloured by the element force."""
     import matplotlib.patches as mpatches
 
+    curves = _pitch_curves(ds)
     for j in range(ds.sizes["pulley"]):
         nm = ds["pulley"].values[j]
-        ax.add_patch(mpatches.Circle((float(ds["pulley_x"][j]), float(ds["pulley_y"][j])), float(ds["pulley_radius"][j]),
-                                     fill=False, lw=1.4, color=colour(ds, nm)))
+        cx, cy = float(ds["pulley_x"][j]), float(ds["pulley_y"][j])
+        if j in curves:     # a pitch curve, turned by the pulley's angle at the frame, and its reference line
+            th = float(np.interp(float(ds["frame_time"][frame]), ds["time"].values, ds["angle"].values[:, j]))
+            phi = np.linspace(0, 2 * math.pi, 361)
+            r = curves[j].radii(phi)
+            ax.plot(cx + r * np.cos(phi + th), cy + r * np.sin(phi + th), lw=1.4, color=colour(ds, nm))
+            ax.plot([cx, cx + r[0] * math.cos(th)], [cy, cy + r[0] * math.sin(th)], lw=0.8, color=colour(ds, nm))
+        else:
+            ax.add_patch(mpatches.Circle((cx, cy), float(ds["pulley_radius"][j]), fill=False, lw=1.4,
+                                         color=colour(ds, nm)))
         ax.annotate(str(nm), (float(ds["pulley_x"][j]), float(ds["pulley_y"][j])), ha="center", va="center",
                     fontsize=7, color=colour(ds, nm))
     _draw_arms(ds, frame, ax)
@@ -370,6 +379,15 @@ def draw_drive(ds, frame, ax, vmax=None):
     ax.set_ylabel("y (m)")
     ax.set_title(f"belt at t = {float(ds['frame_time'][frame]):.3f} s (colour: element force, N)")
     return sc
+
+
+def _pitch_curves(ds) -> dict:
+    """{pulley index: its pitch curve} of the run's model (mechanics/pitch_curves.py), {} without."""
+    if "model_toml" not in ds.attrs or "pitch_curve" not in ds.attrs["model_toml"] or "angle" not in ds:
+        return {}
+    from ..core.model import loads
+
+    return {j: p.curve for j, p in enumerate(loads(ds.attrs["model_toml"]).pulleys) if p.pitch_curve is not None}
 
 
 def _draw_arms(ds, frame, ax):

@@ -516,6 +516,11 @@ def study_from_dict(data: dict, source: str = "study", root=".", text: str | Non
         for x in tuple(p.range or ()) + tuple(v for v in (p.mean, p.std) if v is not None):
             if not isinstance(to_number(x, unit), float):
                 raise ModelError(f"{source}: parameters[{k}]: range, mean and std must be numbers, got {x!r}")
+        if p.range is not None:
+            lo, hi = (to_number(x, unit) for x in p.range)
+            if not lo < hi:     # a reversed range left every sampled design infeasible, the study failing late
+                raise ModelError(f"{source}: parameters[{k}].range: [{p.range[0]}, {p.range[1]}] is [low, high] with "
+                                 f"low below high, got {lo:g} >= {hi:g}" + (f" {unit}" if unit else ""))
         if p.scale == "log" and p.range is not None:
             lo, hi = (to_number(x, unit) for x in p.range)
             if not (lo > 0 and hi > 0):
