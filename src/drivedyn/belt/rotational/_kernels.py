@@ -90,6 +90,7 @@ class Rot(NamedTuple):
     csx: np.ndarray
     ct0: np.ndarray          # (nc, N, nspan): belt rolled onto each span's circles as their tangent points move (m)
     ct1: np.ndarray
+    cA: np.ndarray           # (nc, N): the belt's arc on the curve (its wrap's length on the pitch line, m)
 
 
 #: Gauss-Legendre nodes and weights on [0, 1] for the belt's depth along a slip arc (steady/creep.py uses
@@ -248,6 +249,29 @@ def _arc_position(tab, per, a, th, P):
     return _periodic(tab, a, th, P)[0] - per[a] * th
 
 
+@njit(cache=True, inline="always")
+def _wrap_arcs(rho, wrap, cpul, cP, cA, th, aw, rr):
+    """Each wrap's arc and pressure radius at the pulleys' angles th (RotWork.aw, rr): a circle's |rho|
+    wrap and |rho|, a pitch curve's tabulated arc and arc / wrap."""
+    for k in range(rho.shape[0]):
+        r = abs(rho[k])
+        aw[k] = r * wrap[k]
+        rr[k] = r
+    for a in range(cpul.shape[0]):
+        k = cpul[a]
+        aw[k] = _periodic(cA, a, th[k], cP[a])[0]
+        rr[k] = aw[k] / wrap[k]
+
+
+@njit(cache=True, inline="always")
+def _curve_of(cpul, k):
+    """The curve row of pulley k, -1 for a circle."""
+    for a in range(cpul.shape[0]):
+        if cpul[a] == k:
+            return a
+    return -1
+
+
 @njit(cache=True)
 def geometry(R, q, qd, L, Ld, t0, t1, dx, dy, wrap, th, om, rin, rout):
     """``_geometry`` and ``_curve_geometry`` on the Rot record."""
@@ -319,6 +343,9 @@ class RotWork(NamedTuple):
     rin: np.ndarray          # per pulley: effective radius where the belt arrives and leaves (m; |rho| on a circle)
     rout: np.ndarray
     thb: np.ndarray          # per pulley: its angle at the step's start (rad)
+    aw: np.ndarray           # per wrap: its arc (m; |rho| wrap on a circle, the curve's arc on a pitch curve)
+    rr: np.ndarray           # per wrap: the radius its pressure (T - m v^2) / r reads (|rho|; arc / wrap on a curve)
+    awb: np.ndarray          # per wrap: its arc at the step's start (m)
 
 
 @njit(cache=True, inline="always")
@@ -342,7 +369,7 @@ def _content_sum(T, n, c, r, p0, EA, c1, c2):
 
 @njit(cache=True, inline="always")
 def _cells_respond(nk, ncell, EA, c1, c2, m, mu, dmax, rho, om, wrap, zc, Tc, Kc, Fc, Xc, Yc, cp, ca, cb, cc, cd,
-                   Tw0, Tw1, ew, dz):
+                   Tw0, Tw1, ew, dz, aw, rr):
     """Per wrap, the elastic response of its belt's cells to tension changes at its ends: nodes at the
     cells' centres joined by the belt (EA_w / ds, EA_w the wrap's axial stiffness with its sinking,
     ``wrap_axial_stiffness``), each held to the rim by its bristles, K = mu (T - m v^2) / (r Delta_max)
@@ -351,10 +378,10 @@ def _cells_respond(nk, ncell, EA, c1, c2, m, mu, dmax, rho, om, wrap, zc, Tc, Kc
     the ends' compliances, and the tensions the wrap's belt holds at its ends (Tw0, Tw1)."""
     for k in range(nk):
         n = ncell[k]
-        r = abs(rho[k])
+        r = rr[k]
         vw = rho[k] * om[k]
         c = m * vw * vw
-        ds = r * wrap[k] / n
+        ds = aw[k] / n
         Tbar = 0.5 * (Tc[k, 0] + Tc[k, n - 1]) - c
         e = wrap_axial_stiffness(EA, c1, c2, Tbar / r if Tbar > 0.0 else 0.0, r)
         ew[k] = e
@@ -438,7 +465,7 @@ def _cells_couple(nk, EA, L, u, T, ca, cb, cc, cd, Tw0, Tw1, bm, bv, off, m0, m1
 
 
 @njit(cache=True, inline="always")
-def _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Fc, Tw0, Tw1, ew, eb, dz):
+def _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Fc, Tw0, Tw1, ew, eb, dz, aw):
     """The cells after the wraps' ends met the span tensions T: each node moves by X dT_first + Y dT_last,
     its tension by the mean of the belt's change on either side, its bristle by its motion, to at most
     Delta_max (beyond, the belt slides). eb: the bristles' energy per wrap (J). What the stretch changed
@@ -449,8 +476,7 @@ def _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Fc, Tw0, Tw1, e
         ji = (k - 1) % nk
         d0 = T[ji] - Tw0[k]
         d1 = T[k] - Tw1[k]
-        r = abs(rho[k])
-        ds = r * wrap[k] / n
+        ds = aw[k] / n
         kb = ew[k] / ds
         left = d0
         e = 0.0
@@ -525,6 +551,35 @@ def _cell_transport(k, n, r, ds, phi, Tf, c, p0, EA, c1, c2, zc, Tc, buf, wsum, 
     w1c = _content_sum(Tc[k], n, c, r, p0, EA, c1, c2)
     wsum[k] = w1c
     return abs(phi) * ds * _content(Tf, c, r, p0, EA, c1, c2) - (w1c - w0c) * ds - let_out
+
+
+@njit(cache=True, inline="always")
+def _cell_transport_curve(k, n, r, ds0, ds1, de, Tf, c, p0, EA, c1, c2, zc, Tc, buf, wsum, let_out):
+    """``_cell_transport`` on a pitch curve: the rim carries the cells by the arc de past the entry
+    (signed, belt order positive) while the wrap's arc goes from n ds0 to n ds1 (the curve passes its
+    two tangent points at different rates): cell j's belt was at (j + 1/2) ds1 - de of the old cells,
+    each cell its own cubic. Returns (the belt that came in past the entry, the belt that left past the
+    exit), unstretched m: belt conserved as there."""
+    w0c = wsum[k]
+    T0 = Tc[k, 0]
+    for arr in range(2):
+        A = zc if arr == 0 else Tc
+        fresh = 0.0 if arr == 0 else Tf
+        below = fresh if de >= 0.0 else A[k, 0]
+        beyond = A[k, n - 1]
+        for j in range(n):
+            x = ((j + 0.5) * ds1 - de) / ds0 - 0.5
+            fx = math.floor(x)
+            i = int(fx)
+            wm, w0, w1, w2 = _cubic(x - fx)[:4]
+            buf[j] = (wm * _at(A, k, i - 1, n, below, beyond) + w0 * _at(A, k, i, n, below, beyond)
+                      + w1 * _at(A, k, i + 1, n, below, beyond) + w2 * _at(A, k, i + 2, n, below, beyond))
+        for j in range(n):
+            A[k, j] = buf[j]
+    w1c = _content_sum(Tc[k], n, c, r, p0, EA, c1, c2)
+    wsum[k] = w1c
+    gin = de * _content(Tf if de >= 0.0 else T0, c, r, p0, EA, c1, c2)
+    return gin, gin - (w1c * ds1 - w0c * ds0) - let_out
 
 
 @njit(cache=True, inline="always")
@@ -646,8 +701,9 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     cw0, cw1 = RS.cw0, RS.cw1
     cpul, cP, csig, cper, cL, cdx, cdy, cw, crin, crout, cse, csx = (R.cpul, R.cP, R.csig, R.cper, R.cL, R.cdx, R.cdy,
                                                                     R.cw, R.crin, R.crout, R.cse, R.csx)
-    ct0, ct1 = R.ct0, R.ct1
+    ct0, ct1, cA = R.ct0, R.ct1, R.cA
     rin, rout, thb = RW.rin, RW.rout, RW.thb
+    aw, rr, awb = RW.aw, RW.rr, RW.awb
     wsw = RS.wsum
     dzw = RS.dz
     om, q, qd = S.om, S.q, S.qd
@@ -658,6 +714,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap)
     _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, ct0, ct1, S.th, om, L, Ld, t0, t1, dx, dy, wrap,
                             rin, rout)
+    _wrap_arcs(rho, wrap, cpul, cP, cA, S.th, aw, rr)
     interval = steps * h
     work = out_work[k0 - 1] if k0 > 0 else 0.0
     for ks in range(k0, k1):
@@ -688,7 +745,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 T[j] = EA * eps + bax * ex
             if dmax > 0.0:         # the wraps' belt gives where the spans pull (its cells)
                 _cells_respond(nk, ncell, EA, c1, c2, m, mu, dmax, rho, om, wrap, zc, Tc, Kc, Fc, Xc, Yc, cpw, ca, cb,
-                               ccw, cd, Tw0, Tw1, eww, dzw)
+                               ccw, cd, Tw0, Tw1, eww, dzw, aw, rr)
                 _cells_couple(nk, EA, L, u, T, ca, cb, ccw, cd, Tw0, Tw1, bm, bv, offw, m0w, m1w)
             elif chain:            # the grooved wraps' tooth chains give where the spans pull
                 _cells_couple(nk, EA, L, u, T, ga, gb, gc, gd, cw0, cw1, bm, bv, offw, m0w, m1w)
@@ -708,7 +765,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
             if dmax > 0.0:
                 for k in range(nk):
                     ebw[k] = eb[k]
-                _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Fc, Tw0, Tw1, eww, eb, dzw)
+                _cells_update(nk, ncell, dmax, rho, wrap, T, zc, Tc, Xc, Yc, Fc, Tw0, Tw1, eww, eb, dzw, aw)
             elif chain:
                 for k in range(nk):
                     if grooved[k]:
@@ -741,10 +798,12 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
             diss_cl = BK._step_pulleys(t, h, tq, hubx, huby, P, S, W)
             for k in range(nk):
                 wm[k] = wrap[k]
+                awb[k] = aw[k]
             # --- the belt: fluxes through the wraps at the new speeds, contents updated
             _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap)
             _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, ct0, ct1, S.th, om, L, Ld, t0, t1, dx, dy, wrap,
                             rin, rout)
+            _wrap_arcs(rho, wrap, cpul, cP, cA, S.th, aw, rr)
             P_fr = 0.0
             for k in range(nk):
                 wm[k] = 0.5 * (wm[k] + wrap[k])      # the wraps at the step's middle
@@ -756,6 +815,44 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 ei = Ti / EA
                 eo = To / EA
                 r = abs(rho[k])
+                a = _curve_of(cpul, k) if not grooved[k] else -1
+                if a >= 0:
+                    # a smooth pitch curve: the rim carries its surface past the arriving and the leaving
+                    # tangent points by the arcs de, dx (their arc positions' change: r omega h on a circle)
+                    de = csig[a] * (_arc_position(cse, cper, a, thb[k], cP[a]) - _arc_position(cse, cper, a, S.th[k], cP[a]))
+                    dxa = csig[a] * (_arc_position(csx, cper, a, thb[k], cP[a]) - _arc_position(csx, cper, a, S.th[k], cP[a]))
+                    sg = 1.0 if rho[k] >= 0.0 else -1.0
+                    if dmax > 0.0:
+                        n = ncell[k]
+                        Tf = T[ji] if de >= 0.0 else T[k]
+                        gin, out = _cell_transport_curve(k, n, rr[k], awb[k] / n, aw[k] / n, de, Tf, c, p0[k], EA, c1, c2,
+                                                         zc, Tc, cpw, wsw, m1w[k] - m0w[k])
+                        fa[k] = gin / h
+                        fb[k] = out / h
+                        Wc[k] += h * (fa[k] - fb[k]) + m0w[k] - m1w[k]
+                        P_fr += (T[k] * (fb[k] * (1.0 + eo) * h + m1w[k]) - T[ji] * (fa[k] * (1.0 + ei) * h + m0w[k])) / h \
+                            - tq[k] * om[k] - (eb[k] - ebw[k]) / h
+                    else:
+                        # the belt stuck to the rim follows the arc's change at once (the steady content at the
+                        # arc of the step's start and end); what creep has yet to settle relaxes over a passage
+                        t_a, t_b = (Ti, To) if de >= 0.0 else (To, Ti)
+                        w0 = 2.0 * wm[k] - wrap[k]      # the wrap at the step's start
+                        Weq0 = wrap_content(awb[k] / w0, w0, t_a, t_b, c, mu[k], EA, c1, c2)
+                        Weq = wrap_content(rr[k], wrap[k], t_a, t_b, c, mu[k], EA, c1, c2)
+                        renew = 1.0 - math.exp(-abs(de) / aw[k])
+                        dW = Weq - Weq0 + (Weq0 - Wc[k]) * renew
+                        if de >= 0.0:
+                            fa[k] = de / h / (1.0 + ei)
+                            fb[k] = fa[k] - dW / h
+                        else:
+                            fb[k] = dxa / h / (1.0 + eo)
+                            fa[k] = fb[k] + dW / h
+                        Wc[k] += dW
+                        P_fr += T[k] * fb[k] * (1.0 + eo) - T[ji] * fa[k] * (1.0 + ei) - tq[k] * om[k]
+                    # the tangent points move along the spans as the curve turns (the spans' strain energy
+                    # books that work): the belt's speed there is the flux's plus theirs
+                    P_fr += T[k] * (sg * rout[k] * om[k] - dxa / h) - T[ji] * (sg * rin[k] * om[k] - de / h)
+                    continue
                 if dmax > 0.0:
                     # the rim carries the wrap's cells (their belt stuck to it) by vw h: fresh belt in at the
                     # arriving span's tension, and out the content the cells' shift passed the exit: belt
@@ -845,7 +942,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                 # the exchanges above left unbooked (the arc rolled on or off as a tensioner moves, the
                 # centrifugal unloading's lift) comes from the two spans, half each: belt is conserved
                 for k in range(nk):
-                    wn = wsw[k] * abs(rho[k]) * wrap[k] / ncell[k]
+                    wn = wsw[k] * aw[k] / ncell[k]
                     res = wn - Wc[k]
                     u[(k - 1) % nk] -= 0.5 * res
                     u[k] -= 0.5 * res

@@ -49,7 +49,7 @@ def empty_fields(nk, ns) -> dict:
     z = np.zeros
     return dict(cpul=np.zeros(0, dtype=np.int64), cP=z(0), csig=z(0), cper=z(0), cL=z((0, 4, ns)), cdx=z((0, 4, ns)),
                 cdy=z((0, 4, ns)), cw=z((0, 4, nk)), crin=z((0, 4)), crout=z((0, 4)), cse=z((0, 4)), csx=z((0, 4)),
-                ct0=z((0, 4, ns)), ct1=z((0, 4, ns)))
+                ct0=z((0, 4, ns)), ct1=z((0, 4, ns)), cA=z((0, 4)))
 
 
 def kernel_fields(curves: Curves | None, nk, ns) -> dict:
@@ -72,10 +72,10 @@ def tables(model, lay) -> Curves | None:
         return None
     nk = len(ps)
     for j in idx:
-        if not ps[j].teeth:
-            raise ModelError(f"pulley {ps[j].name!r}: the rotational model drives through a pitch curve on a grooved "
-                             "pulley (a synchronous belt's sprocket); a smooth one's creep on a turning curve is not "
-                             "modelled: give it teeth, or leave pitch_curve out", field=f"pulleys[{j}].pitch_curve")
+        if not ps[j].teeth and model.friction.radius == "centre":
+            raise ModelError(f"pulley {ps[j].name!r}: the rotational model reads a smooth pitch curve's friction at its "
+                             "contact radius: friction.radius = \"centre\" (the belt's depth in the groove) is not "
+                             "modelled on a turning curve; leave friction.radius out", field="friction.radius")
         for other in ((j - 1) % nk, (j + 1) % nk):
             if other in idx and other != j:
                 raise ModelError(f"pulleys {ps[j].name!r} and {ps[other].name!r} are both non-circular and share a span: the "
@@ -93,7 +93,7 @@ def tables(model, lay) -> Curves | None:
              cL=np.zeros((nc, NODES, ns)), cdx=np.zeros((nc, NODES, ns)), cdy=np.zeros((nc, NODES, ns)),
              cw=np.zeros((nc, NODES, nk)), crin=np.zeros((nc, NODES)), crout=np.zeros((nc, NODES)),
              cse=np.zeros((nc, NODES)), csx=np.zeros((nc, NODES)), ct0=np.zeros((nc, NODES, ns)),
-             ct1=np.zeros((nc, NODES, ns)))
+             ct1=np.zeros((nc, NODES, ns)), cA=np.zeros((nc, NODES)))
     for a, j in enumerate(idx):
         P = period(ps[j])
         c = curves[j]
@@ -109,6 +109,7 @@ def tables(model, lay) -> Curves | None:
             d = np.array([[math.cos(sp.angle), math.sin(sp.angle)] for sp in cl.spans])
             f["cdx"][a, i], f["cdy"][a, i] = d[:, 0] - d_c[:, 0], d[:, 1] - d_c[:, 1]
             f["cw"][a, i] = cl.wrap - lay.wrap
+            f["cA"][a, i] = cl.arc[j]
             f["crin"][a, i] = cl.spans[j - 1].radius1
             f["crout"][a, i] = cl.spans[j].radius0
             # arc positions of the tangent points (own angle psi - theta: S falls by perimeter / 2 pi per radian

@@ -316,6 +316,14 @@ def new_states(sysm: RotSystem):
         span0 = sysm.curves.spans0
         for w in sysm.wraps:
             Wc[w.pulley] = sysm.curves.arcs0[w.pulley] / (1 + T / EA)
+        grooved = {w.pulley for w in sysm.wraps}
+        for j in sysm.curves.pulleys:       # a smooth curve's belt as a circle's, on its arc
+            if j in grooved:
+                continue
+            arc, wrap = sysm.curves.arcs0[j], sysm.curves.base.wrap[j]
+            wsum[j] = R.ncell[j] * RK._content(T, 0.0, arc / wrap, R.p0[j], EA, c1, c2)
+            Wc[j] = (wsum[j] * arc / R.ncell[j] if R.dmax > 0.0 else
+                     RK.wrap_content(arc / wrap, wrap, T, T, 0.0, R.mu[j], EA, c1, c2))
     RS = RK.RotState(u=span0 / (1 + T / EA), W=Wc, ud=z(nk), vs=z(nk), t0=z(nk), t1=z(nk), Tp=np.full(nk, T), ed=z(nk),
                      eb=z(nk), zc=z((nk, nc)), Tc=np.full((nk, nc), T), dz=z((nk, nc)), wsum=wsum,
                      cw0=np.full(nk, T), cw1=np.full(nk, T))
@@ -325,7 +333,7 @@ def new_states(sysm: RotSystem):
                     Xc=z((nk, nc)), Yc=z((nk, nc)), Kc=z((nk, nc)), Fc=z((nk, nc)), cp=z(nc), ca=z(nk), cb=z(nk), cc=z(nk),
                     cd=z(nk), eb0=z(nk),
                     Tw0=z(nk), Tw1=z(nk), ew=z(nk), off=z(nk), m0=z(nk), m1=z(nk), rin=np.abs(R.rho), rout=np.abs(R.rho),
-                    thb=z(nk))
+                    thb=z(nk), aw=np.abs(R.rho) * R.wrap, rr=np.abs(R.rho), awb=np.abs(R.rho) * R.wrap)
     return S, W, RS, RW
 
 
