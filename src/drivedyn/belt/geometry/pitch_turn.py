@@ -5,8 +5,8 @@ lengths, wraps and effective radii against the crank's angle (mechanics/curve_tu
 The pulley turned is the crank (the one with a prescribed speed), else the first non-circular one; the
 others turn with it at their mean speed ratios (teeth x pitch on toothed pulleys, else the curves'
 perimeters), over as many of its turns as make every non-circular curve turn whole turns. The rotational
-model drives a synchronous belt through the curves (rotational/curves.py), the segment model friction and
-timing belts alike (segments/_curves.py).
+model (rotational/curves.py) and the segment model (segments/_curves.py) drive friction and timing belts
+through the curves.
 """
 from __future__ import annotations
 
@@ -106,7 +106,6 @@ def turn_lines(data: dict) -> list:
         w, ri, ro = p["wrap"], p["radius_in"], p["radius_out"]
         out.append(f"  {name:14s} {math.degrees(w['min']):7.2f}-{math.degrees(w['max']):<7.2f} "
                    f"{ri['min'] * mm:8.3f}-{ri['max'] * mm:<8.3f} {ro['min'] * mm:8.3f}-{ro['max'] * mm:<8.3f}")
-    out.append("  (r_eff: the span's distance from the pulley's centre where the belt arrives and leaves.) The segment "
-               "model drives the belt on the turning curves; the rotational model (simulation.model = \"rotational\") "
-               "a synchronous belt's.")
+    out.append("  (r_eff: the span's distance from the pulley's centre where the belt arrives and leaves.) Both dynamic "
+               "models (simulation.model = \"segments\", \"rotational\") drive the belt on the turning curves.")
     return out

@@ -1,4 +1,4 @@
-"""Non-circular grooved pulleys (``pulleys[].pitch_curve``) in the rotational model: the belt path on the
+"""Non-circular pulleys (``pulleys[].pitch_curve``) in the rotational model: the belt path on the
 turning curves, tabulated over one period of each curve's angle.
 
 A grooved curve carries the belt on its pitch line, one belt pitch per groove, so the belt that passes a
@@ -11,6 +11,14 @@ the common tangents of mechanics/curve_layout.py at each tabulated angle, the ot
 rest angles (a span between two curves would need both angles: refused); the kernel reads them by a
 periodic cubic (rotational/_kernels.py: ``_curve_geometry``). The tensioners' travel tables stay those of
 the circles and the two add (the travel's effect on the curves' tangents is of second order).
+
+A smooth (friction) curve carries its wrap's belt stuck to its rim past the two tangent points at their
+own rates, the arcs dS_in and dS_out its turn moves past them (the wrap's arc, tabulated too, changes by
+their difference): the elastic-plastic law's cells are carried by dS_in at the entry and stretched to
+the new arc (rotational/_kernels.py: ``_cell_transport_curve``, each cell its own cubic); with
+Threlfall's law the steady content follows the arc at once and only creep's unsettled part relaxes over
+a passage. The belt's speed at a tangent point is the flux's plus the point's own motion along its span
+(omega h less dS / dt), which the creep power books.
 """
 from __future__ import annotations
 

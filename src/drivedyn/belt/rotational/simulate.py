@@ -43,7 +43,8 @@ and slip prediction of serpentine belt drives; creep as Kong & Parker, J. Appl. 
 
 - A synchronous belt (``[belt.teeth]``): the grooved wraps are quasi-static tooth chains, the belt
   passing one pitch per groove (teeth.py); a grooved pitch curve carries the belt past its tangent
-  points by their arc positions and pulls on its effective radii (curves.py).
+  points by their arc positions and pulls on its effective radii (curves.py). So does a smooth one,
+  its wrap's belt stuck to the rim carried past the two tangent points at their own rates.
 
 Not in it: the spans' transverse motion (flap: belt/steady/flap.py), the belt's own axial waves (the
 spans are massless springs) and polygon effects (none: it is the continuum).
@@ -102,7 +103,7 @@ class RotSystem:
     omega_max: float       # bound on the fastest mode (rad/s)
     wraps: list = ()       # a synchronous belt's grooved wraps (teeth.Wrap)
     belt_teeth: object = None
-    curves: object = None  # non-circular grooved pulleys (curves.Curves)
+    curves: object = None  # non-circular pulleys (curves.Curves)
 
 
 def rolling_radii(model, lay: Layout, tension: float) -> np.ndarray:
@@ -167,7 +168,7 @@ def build(drive) -> RotSystem:
     idx, sense = list(drive.tensioners), list(drive.senses)
     belt = model.belt
     rest_q, T_rest, lay = drive.rest
-    curves = CV.tables(model, lay)      # non-circular grooved pulleys (None: all circles)
+    curves = CV.tables(model, lay)      # non-circular pulleys (None: all circles)
     if curves is not None:
         T_rest = CV.rest_tension(model, curves, L0)
     if not T_rest > 0:
