@@ -168,31 +168,33 @@ def test_an_oval_crank_sprocket_cancels_a_cam_torques_order(tmp_path):
     assert oval < 0.1 * round_, (oval, round_, e, p)
 
 
-def _smooth_5pk(law, e=None):
+def _smooth_5pk(law, e=None, sense=1.0):
     """The 5PK friction drive (examples/belt-5pk.toml) in the rotational model, its driver an oval of
-    ovality e turning at 150 rpm, a light driven pulley under 3 N m."""
+    ovality e turning at 150 rpm (sense -1: clockwise, the belt running against its order), a light
+    driven pulley under 3 N m against it."""
     m = drivedyn.load(drivedyn.example_path("belt-5pk"))
     m = drivedyn.replace(m, {
         "simulation.model": "rotational", "simulation.duration": 1.0, "output.steady_window": [0.2, 1.0],
         "gravity": 0.0, "friction.law": law, "pulleys.driver.torque_time": None,
-        "pulleys.driver.speed_time": [[0, 0], [0.1, 150 * math.pi / 30]], "pulleys.driven.torque_speed": None,
-        "pulleys.driven.torque": -3.0, "pulleys.driven.inertia": 0.002})
+        "pulleys.driver.speed_time": [[0, 0], [0.1, sense * 150 * math.pi / 30]], "pulleys.driven.torque_speed": None,
+        "pulleys.driven.torque": -3.0 * sense, "pulleys.driven.inertia": 0.002})
     if e is not None:
         m = drivedyn.replace(m, {"pulleys.driver.pitch_curve": {"kind": "oval", "ovality": e, "phase": 0.0}})
     return m
 
 
-@pytest.mark.parametrize("law", ["elastic-plastic", "threlfall"])
-def test_a_smooth_oval_pulley_in_the_rotational_model(law):
+@pytest.mark.parametrize("law, sense", [("elastic-plastic", 1.0), ("threlfall", 1.0), ("elastic-plastic", -1.0),
+                                         ("threlfall", -1.0)])
+def test_a_smooth_oval_pulley_in_the_rotational_model(law, sense):
     """Friction belts on a turning curve (the wraps' cells carried past its two tangent points at their
     own rates; with Threlfall's law the steady content following the arc): ovality 0 reproduces the
     round drive within 1e-9; an oval driver of ovality 0.02 turns the driven pulley with a 2nd-order speed
     ratio within 3 % of the kinematic closed form (0.0200; 0.0203 / 0.0201 when written, the segment model
     0.0204, tests/belt/test_segment_curves.py), and the energy balance closes to 1e-2 of the work in."""
-    a, b = drivedyn.run(_smooth_5pk(law)), drivedyn.run(_smooth_5pk(law, 0.0))
+    a, b = drivedyn.run(_smooth_5pk(law, sense=sense)), drivedyn.run(_smooth_5pk(law, 0.0, sense))
     assert np.max(np.abs(a.ds["span_tension"].values - b.ds["span_tension"].values)) < 1e-9 * 600
     assert np.max(np.abs(a.ds["speed"].values - b.ds["speed"].values)) < 1e-9 * 150 * math.pi / 30
-    res = drivedyn.run(_smooth_5pk(law, 0.02))
+    res = drivedyn.run(_smooth_5pk(law, 0.02, sense))
     assert res.success, res.message
     ds = res.ds
     sel = ds["time"].values > 0.2

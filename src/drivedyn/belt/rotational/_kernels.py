@@ -554,19 +554,18 @@ def _cell_transport(k, n, r, ds, phi, Tf, c, p0, EA, c1, c2, zc, Tc, buf, wsum, 
 
 
 @njit(cache=True, inline="always")
-def _cell_transport_curve(k, n, r, ds0, ds1, de, Tf, c, p0, EA, c1, c2, zc, Tc, buf, wsum, let_out):
-    """``_cell_transport`` on a pitch curve: the rim carries the cells by the arc de past the entry
-    (signed, belt order positive) while the wrap's arc goes from n ds0 to n ds1 (the curve passes its
-    two tangent points at different rates): cell j's belt was at (j + 1/2) ds1 - de of the old cells,
-    each cell its own cubic. Returns (the belt that came in past the entry, the belt that left past the
-    exit), unstretched m: belt conserved as there."""
+def _cell_transport_curve(k, n, r, ds0, ds1, de, dx, Tin, Tout, c, p0, EA, c1, c2, zc, Tc, buf, wsum, let_out):
+    """``_cell_transport`` on a pitch curve: the rim carries the cells by the arcs de past the entry and dx
+    past the exit (signed, belt order positive; they differ as the curve turns) while the wrap's arc goes
+    from n ds0 to n ds1: cell j's belt was at (j + 1/2) ds1 - de along the old cells, each cell its own
+    cubic; fresh belt (no bristle deflection) enters at the entry (tension Tin) when de > 0, at the exit
+    (Tout) when dx < 0. Returns (the belt that came in past the entry, the belt that left past the exit),
+    unstretched m, belt order positive: belt conserved as there."""
     w0c = wsum[k]
-    T0 = Tc[k, 0]
     for arr in range(2):
         A = zc if arr == 0 else Tc
-        fresh = 0.0 if arr == 0 else Tf
-        below = fresh if de >= 0.0 else A[k, 0]
-        beyond = A[k, n - 1]
+        below = (0.0 if arr == 0 else Tin) if de >= 0.0 else A[k, 0]
+        beyond = (0.0 if arr == 0 else Tout) if dx < 0.0 else A[k, n - 1]
         for j in range(n):
             x = ((j + 0.5) * ds1 - de) / ds0 - 0.5
             fx = math.floor(x)
@@ -578,8 +577,13 @@ def _cell_transport_curve(k, n, r, ds0, ds1, de, Tf, c, p0, EA, c1, c2, zc, Tc, 
             A[k, j] = buf[j]
     w1c = _content_sum(Tc[k], n, c, r, p0, EA, c1, c2)
     wsum[k] = w1c
-    gin = de * _content(Tf if de >= 0.0 else T0, c, r, p0, EA, c1, c2)
-    return gin, gin - (w1c * ds1 - w0c * ds0) - let_out
+    # the flux where fresh belt enters is its content; the other end's is what the wrap's balance leaves
+    dw = w1c * ds1 - w0c * ds0
+    if de >= 0.0:
+        gin = de * _content(Tin, c, r, p0, EA, c1, c2)
+        return gin, gin - dw - let_out
+    out = dx * _content(Tout if dx < 0.0 else Tc[k, n - 1], c, r, p0, EA, c1, c2)
+    return out + dw + let_out, out
 
 
 @njit(cache=True, inline="always")
@@ -824,9 +828,8 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                     sg = 1.0 if rho[k] >= 0.0 else -1.0
                     if dmax > 0.0:
                         n = ncell[k]
-                        Tf = T[ji] if de >= 0.0 else T[k]
-                        gin, out = _cell_transport_curve(k, n, rr[k], awb[k] / n, aw[k] / n, de, Tf, c, p0[k], EA, c1, c2,
-                                                         zc, Tc, cpw, wsw, m1w[k] - m0w[k])
+                        gin, out = _cell_transport_curve(k, n, rr[k], awb[k] / n, aw[k] / n, de, dxa, T[ji], T[k], c, p0[k],
+                                                         EA, c1, c2, zc, Tc, cpw, wsw, m1w[k] - m0w[k])
                         fa[k] = gin / h
                         fb[k] = out / h
                         Wc[k] += h * (fa[k] - fb[k]) + m0w[k] - m1w[k]
