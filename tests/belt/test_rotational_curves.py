@@ -218,3 +218,17 @@ def test_a_smooth_pitch_curve_with_friction_at_the_belts_centre_is_refused(tmp_p
                           "-o", str(tmp_path / "out")], capture_output=True, text=True)
     assert out.returncode == 2, out.stdout + out.stderr
     assert "friction.radius" in out.stderr and "Traceback" not in out.stderr
+
+
+def test_a_smooth_crank_curve_of_ovality_0_beside_a_tensioner_reproduces_the_round_drive():
+    """examples/fead-runup.toml's accessory drive (a clockwise crank with its orders, an automatic
+    tensioner, a back-side idler) held at 3000 rpm, its crank pulley an oval of ovality 0: the tensioner's
+    travel rolls belt on and off the curve's wrap as on the circle's, every number the round drive's."""
+    m = drivedyn.load(drivedyn.example_path("fead-runup"))
+    m = drivedyn.replace(m, {"simulation.model": "rotational", "simulation.duration": 0.4,
+                             "output.steady_window": [0.2, 0.4],
+                             "pulleys.crankshaft.speed_time": [[0, 0], [0.2, -3000 * math.pi / 30]]})
+    a = drivedyn.run(m)
+    b = drivedyn.run(drivedyn.replace(m, {"pulleys.crankshaft.pitch_curve": {"kind": "oval", "ovality": 0.0}}))
+    assert np.max(np.abs(a.ds["span_tension"].values - b.ds["span_tension"].values)) < 1e-9 * 1000
+    assert np.max(np.abs(a.ds["arm_angle"].values - b.ds["arm_angle"].values)) < 1e-9

@@ -91,6 +91,7 @@ class Rot(NamedTuple):
     ct0: np.ndarray          # (nc, N, nspan): belt rolled onto each span's circles as their tangent points move (m)
     ct1: np.ndarray
     cA: np.ndarray           # (nc, N): the belt's arc on the curve (its wrap's length on the pitch line, m)
+    cW: np.ndarray           # (nc, N): ... and its wrap angle (rad), the tensioners at rest
 
 
 #: Gauss-Legendre nodes and weights on [0, 1] for the belt's depth along a slip arc (steady/creep.py uses
@@ -250,16 +251,17 @@ def _arc_position(tab, per, a, th, P):
 
 
 @njit(cache=True, inline="always")
-def _wrap_arcs(rho, wrap, cpul, cP, cA, th, aw, rr):
+def _wrap_arcs(rho, wrap, cpul, cP, cA, cW, th, aw, rr):
     """Each wrap's arc and pressure radius at the pulleys' angles th (RotWork.aw, rr): a circle's |rho|
-    wrap and |rho|, a pitch curve's tabulated arc and arc / wrap."""
+    wrap and |rho|, a pitch curve's tabulated arc (plus what the tensioners' travel adds to its wrap, at
+    its mean radius) and arc / wrap."""
     for k in range(rho.shape[0]):
         r = abs(rho[k])
         aw[k] = r * wrap[k]
         rr[k] = r
     for a in range(cpul.shape[0]):
         k = cpul[a]
-        aw[k] = _periodic(cA, a, th[k], cP[a])[0]
+        aw[k] = _periodic(cA, a, th[k], cP[a])[0] + abs(rho[k]) * (wrap[k] - _periodic(cW, a, th[k], cP[a])[0])
         rr[k] = aw[k] / wrap[k]
 
 
@@ -345,7 +347,6 @@ class RotWork(NamedTuple):
     thb: np.ndarray          # per pulley: its angle at the step's start (rad)
     aw: np.ndarray           # per wrap: its arc (m; |rho| wrap on a circle, the curve's arc on a pitch curve)
     rr: np.ndarray           # per wrap: the radius its pressure (T - m v^2) / r reads (|rho|; arc / wrap on a curve)
-    awb: np.ndarray          # per wrap: its arc at the step's start (m)
 
 
 @njit(cache=True, inline="always")
@@ -705,9 +706,9 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     cw0, cw1 = RS.cw0, RS.cw1
     cpul, cP, csig, cper, cL, cdx, cdy, cw, crin, crout, cse, csx = (R.cpul, R.cP, R.csig, R.cper, R.cL, R.cdx, R.cdy,
                                                                     R.cw, R.crin, R.crout, R.cse, R.csx)
-    ct0, ct1, cA = R.ct0, R.ct1, R.cA
+    ct0, ct1, cA, cW = R.ct0, R.ct1, R.cA, R.cW
     rin, rout, thb = RW.rin, RW.rout, RW.thb
-    aw, rr, awb = RW.aw, RW.rr, RW.awb
+    aw, rr = RW.aw, RW.rr
     wsw = RS.wsum
     dzw = RS.dz
     om, q, qd = S.om, S.q, S.qd
@@ -718,7 +719,7 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
     _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap)
     _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, ct0, ct1, S.th, om, L, Ld, t0, t1, dx, dy, wrap,
                             rin, rout)
-    _wrap_arcs(rho, wrap, cpul, cP, cA, S.th, aw, rr)
+    _wrap_arcs(rho, wrap, cpul, cP, cA, cW, S.th, aw, rr)
     interval = steps * h
     work = out_work[k0 - 1] if k0 > 0 else 0.0
     for ks in range(k0, k1):
@@ -802,12 +803,11 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
             diss_cl = BK._step_pulleys(t, h, tq, hubx, huby, P, S, W)
             for k in range(nk):
                 wm[k] = wrap[k]
-                awb[k] = aw[k]
             # --- the belt: fluxes through the wraps at the new speeds, contents updated
             _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap)
             _curve_geometry(rho, cpul, cP, cL, cdx, cdy, cw, crin, crout, ct0, ct1, S.th, om, L, Ld, t0, t1, dx, dy, wrap,
                             rin, rout)
-            _wrap_arcs(rho, wrap, cpul, cP, cA, S.th, aw, rr)
+            _wrap_arcs(rho, wrap, cpul, cP, cA, cW, S.th, aw, rr)
             P_fr = 0.0
             for k in range(nk):
                 wm[k] = 0.5 * (wm[k] + wrap[k])      # the wraps at the step's middle
@@ -826,10 +826,14 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                     de = csig[a] * (_arc_position(cse, cper, a, thb[k], cP[a]) - _arc_position(cse, cper, a, S.th[k], cP[a]))
                     dxa = csig[a] * (_arc_position(csx, cper, a, thb[k], cP[a]) - _arc_position(csx, cper, a, S.th[k], cP[a]))
                     sg = 1.0 if rho[k] >= 0.0 else -1.0
+                    # what the curve's own turn changed of its arc and wrap this step (a tensioner's travel
+                    # rolls belt on and off as on a circle: the spans' rolled-on belt and the cells' balance)
+                    dA = _periodic(cA, a, S.th[k], cP[a])[0] - _periodic(cA, a, thb[k], cP[a])[0]
+                    dWr = _periodic(cW, a, S.th[k], cP[a])[0] - _periodic(cW, a, thb[k], cP[a])[0]
                     if dmax > 0.0:
                         n = ncell[k]
-                        gin, out = _cell_transport_curve(k, n, rr[k], awb[k] / n, aw[k] / n, de, dxa, T[ji], T[k], c, p0[k],
-                                                         EA, c1, c2, zc, Tc, cpw, wsw, m1w[k] - m0w[k])
+                        gin, out = _cell_transport_curve(k, n, rr[k], (aw[k] - dA) / n, aw[k] / n, de, dxa, T[ji], T[k], c,
+                                                         p0[k], EA, c1, c2, zc, Tc, cpw, wsw, m1w[k] - m0w[k])
                         fa[k] = gin / h
                         fb[k] = out / h
                         Wc[k] += h * (fa[k] - fb[k]) + m0w[k] - m1w[k]
@@ -839,10 +843,9 @@ def run_samples(k0, k1, steps, t, h, R, P, A, S, W, RS, RW, passes, with_energy,
                         # the belt stuck to the rim follows the arc's change at once (the steady content at the
                         # arc of the step's start and end); what creep has yet to settle relaxes over a passage
                         t_a, t_b = (Ti, To) if de >= 0.0 else (To, Ti)
-                        w0 = 2.0 * wm[k] - wrap[k]      # the wrap at the step's start
-                        Weq0 = wrap_content(awb[k] / w0, w0, t_a, t_b, c, mu[k], EA, c1, c2)
-                        Weq = wrap_content(rr[k], wrap[k], t_a, t_b, c, mu[k], EA, c1, c2)
-                        renew = 1.0 - math.exp(-abs(de) / aw[k])
+                        Weq = wrap_content(rr[k], wm[k], t_a, t_b, c, mu[k], EA, c1, c2)
+                        Weq0 = wrap_content((aw[k] - dA) / (wrap[k] - dWr), wm[k] - dWr, t_a, t_b, c, mu[k], EA, c1, c2)
+                        renew = 1.0 - math.exp(-abs(de) / (rr[k] * wm[k]))
                         dW = Weq - Weq0 + (Weq0 - Wc[k]) * renew
                         if de >= 0.0:
                             fa[k] = de / h / (1.0 + ei)

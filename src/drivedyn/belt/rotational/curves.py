@@ -57,7 +57,7 @@ def empty_fields(nk, ns) -> dict:
     z = np.zeros
     return dict(cpul=np.zeros(0, dtype=np.int64), cP=z(0), csig=z(0), cper=z(0), cL=z((0, 4, ns)), cdx=z((0, 4, ns)),
                 cdy=z((0, 4, ns)), cw=z((0, 4, nk)), crin=z((0, 4)), crout=z((0, 4)), cse=z((0, 4)), csx=z((0, 4)),
-                ct0=z((0, 4, ns)), ct1=z((0, 4, ns)), cA=z((0, 4)))
+                ct0=z((0, 4, ns)), ct1=z((0, 4, ns)), cA=z((0, 4)), cW=z((0, 4)))
 
 
 def kernel_fields(curves: Curves | None, nk, ns) -> dict:
@@ -101,7 +101,7 @@ def tables(model, lay) -> Curves | None:
              cL=np.zeros((nc, NODES, ns)), cdx=np.zeros((nc, NODES, ns)), cdy=np.zeros((nc, NODES, ns)),
              cw=np.zeros((nc, NODES, nk)), crin=np.zeros((nc, NODES)), crout=np.zeros((nc, NODES)),
              cse=np.zeros((nc, NODES)), csx=np.zeros((nc, NODES)), ct0=np.zeros((nc, NODES, ns)),
-             ct1=np.zeros((nc, NODES, ns)), cA=np.zeros((nc, NODES)))
+             ct1=np.zeros((nc, NODES, ns)), cA=np.zeros((nc, NODES)), cW=np.zeros((nc, NODES)))
     for a, j in enumerate(idx):
         P = period(ps[j])
         c = curves[j]
@@ -118,6 +118,7 @@ def tables(model, lay) -> Curves | None:
             f["cdx"][a, i], f["cdy"][a, i] = d[:, 0] - d_c[:, 0], d[:, 1] - d_c[:, 1]
             f["cw"][a, i] = cl.wrap - lay.wrap
             f["cA"][a, i] = cl.arc[j]
+            f["cW"][a, i] = cl.wrap[j]
             f["crin"][a, i] = cl.spans[j - 1].radius1
             f["crout"][a, i] = cl.spans[j].radius0
             # arc positions of the tangent points (own angle psi - theta: S falls by perimeter / 2 pi per radian

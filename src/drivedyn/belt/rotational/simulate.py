@@ -334,7 +334,7 @@ def new_states(sysm: RotSystem):
                     Xc=z((nk, nc)), Yc=z((nk, nc)), Kc=z((nk, nc)), Fc=z((nk, nc)), cp=z(nc), ca=z(nk), cb=z(nk), cc=z(nk),
                     cd=z(nk), eb0=z(nk),
                     Tw0=z(nk), Tw1=z(nk), ew=z(nk), off=z(nk), m0=z(nk), m1=z(nk), rin=np.abs(R.rho), rout=np.abs(R.rho),
-                    thb=z(nk), aw=np.abs(R.rho) * R.wrap, rr=np.abs(R.rho), awb=np.abs(R.rho) * R.wrap)
+                    thb=z(nk), aw=np.abs(R.rho) * R.wrap, rr=np.abs(R.rho))
     return S, W, RS, RW
 
 
