@@ -16,7 +16,9 @@
   ``Contact``  the contact and friction laws, per segment: c1 (N/m^2), c2 (N/m), b (N s/m),
                mu; the damping ramp depth p_max (m), the friction law id (LAW_*), Threlfall's
                Delta_v (m/s), the elastic-plastic Delta_max (m). Read by ``normal_force`` and
-               ``friction`` only: a new law is a new id there and its parameters here.
+               ``friction`` only: a new law is a new id there and its parameters here. Also the
+               teeth (``_teeth.py``) and the non-circular pulleys' curve tables (``_curves.py``:
+               the semi-implicit scheme's contact, the static contact, the energy).
   ``Pulleys``  nk pulleys: centres (m), contact radii (m), inertias and reciprocals, mode
                (0 dynamic, 1 prescribed speed), applied torque (constant, viscous, tables over
                time and speed, harmonics of the angle) and prescribed-speed tables (flattened,
