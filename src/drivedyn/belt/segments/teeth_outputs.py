@@ -33,7 +33,10 @@ class TeethRecorder:
         self.belt_torque = np.zeros((ns, self.nk))     # sum of Q d of the teeth, instantaneous
         self.climb = float(C.tclimb)
         self.teeth = np.flatnonzero(np.asarray(C.tk) > 0)
-        self.gphase = np.asarray(C.gphase, dtype=float)
+        self.gphase = np.asarray(C.gphase, dtype=float).copy()
+        for j, a in enumerate(np.asarray(C.ccur)):
+            if a >= 0:      # a pitch curve's groove phase is an arc (m, segments/_curves.py): as a mean angle
+                self.gphase[j] /= C.cper[a]
 
     def sample(self, k, S, W):
         i = self.teeth
