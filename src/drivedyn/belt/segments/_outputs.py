@@ -7,7 +7,6 @@ from numba import njit
 from ..dynamics._bodies import (_spring_energy)
 from .records import STAGE
 from ._curves import contact_at
-from ._laws import contact_energy
 
 
 @njit(**STAGE)
@@ -88,8 +87,8 @@ def energy(B, Ct, P, A, S):
     Python through the arrays (``_energy``), whose compiled wrapper is cheap (the records' was
     most of 4.5 s of a first run's compile)."""
     return _energy(B.n, B.eax, B.eb, B.hl, B.turn, B.g, B.iscale, B.m, B.inertia, B.kax, B.kb, S.x, S.y, S.phi, S.c,
-                   S.s, S.vx, S.vy, S.w, Ct, P.nk, S.cx, S.cy, P.r, P.mode, P.inertia, S.om, P.cl_kind, P.cl_ir, P.cl_k,
-                   S.omr, S.dcp, A.na, A.inertia, A.tab_off, A.tab_x, A.tab_y, A.preload, A.rate, A.qmin, A.qmax,
+                   S.s, S.vx, S.vy, S.w, Ct.c1, Ct.c2, Ct.ccur, Ct.crad, P.nk, S.cx, S.cy, P.r, P.mode, P.inertia,
+                   S.om, P.cl_kind, P.cl_ir, P.cl_k, S.omr, S.dcp, A.na, A.inertia, A.tab_off, A.tab_x, A.tab_y, A.preload, A.rate, A.qmin, A.qmax,
                    A.kstop, S.q, S.qd, S.th)
 
 
@@ -97,14 +96,14 @@ def energy(B, Ct, P, A, S):
 def _energy_of(B, Ct, P, A, S):
     """``energy`` in a kernel: the same stage, for the same argument types (compiled once)."""
     return _energy(B.n, B.eax, B.eb, B.hl, B.turn, B.g, B.iscale, B.m, B.inertia, B.kax, B.kb, S.x, S.y, S.phi, S.c,
-                   S.s, S.vx, S.vy, S.w, Ct, P.nk, S.cx, S.cy, P.r, P.mode, P.inertia, S.om, P.cl_kind, P.cl_ir, P.cl_k,
-                   S.omr, S.dcp, A.na, A.inertia, A.tab_off, A.tab_x, A.tab_y, A.preload, A.rate, A.qmin, A.qmax,
+                   S.s, S.vx, S.vy, S.w, Ct.c1, Ct.c2, Ct.ccur, Ct.crad, P.nk, S.cx, S.cy, P.r, P.mode, P.inertia,
+                   S.om, P.cl_kind, P.cl_ir, P.cl_k, S.omr, S.dcp, A.na, A.inertia, A.tab_off, A.tab_x, A.tab_y, A.preload, A.rate, A.qmin, A.qmax,
                    A.kstop, S.q, S.qd, S.th)
 
 
 @njit(cache=True, no_cfunc_wrapper=True)
-def _energy(n, eax, eb, hl, turn, g, iscale, m, inertia, kax, kb, x, y, phi, c, s, vx, vy, w, Ct, nk, pcx, pcy, pr,
-            pmode, pinertia, om, cl_kind, cl_ir, cl_k, omr, dcp, na, a_inertia, tab_off, tab_x, tab_y, preload, rate,
+def _energy(n, eax, eb, hl, turn, g, iscale, m, inertia, kax, kb, x, y, phi, c, s, vx, vy, w, c1, c2, ccur, crad, nk, pcx,
+            pcy, pr, pmode, pinertia, om, cl_kind, cl_ir, cl_k, omr, dcp, na, a_inertia, tab_off, tab_x, tab_y, preload, rate,
             qmin, qmax, kstop, q, qd, th):
     """``energy`` on the arrays it reads: the time loop calls it with these alone (the records
     passed whole flattened to 670 arguments)."""
@@ -124,13 +123,13 @@ def _energy(n, eax, eb, hl, turn, g, iscale, m, inertia, kax, kb, x, y, phi, c, 
         for j in range(nk):
             rx = x[i] - pcx[j]
             ry = y[i] - pcy[j]
-            if Ct.ccur[j] < 0:
+            if ccur[j] < 0:
                 p = pr[j] - math.sqrt(rx * rx + ry * ry)
             else:
-                rc, tb, cb = contact_at(Ct.crad, Ct.ccur[j], rx, ry, th[j])
+                rc, tb, cb = contact_at(crad, ccur[j], rx, ry, th[j])
                 p = (rc - math.sqrt(rx * rx + ry * ry)) * cb
-            if p > 0.0:
-                E += contact_energy(Ct, i, p)
+            if p > 0.0:     # (_laws.contact_energy on the contact's arrays: the record whole flattens to 50 arguments)
+                E += c1[i] * p * p * p / 3.0 + c2[i] * p * p / 2.0
     for j in range(nk):
         if pmode[j] == 0:
             E += 0.5 * pinertia[j] * om[j] * om[j]
