@@ -593,7 +593,8 @@ def test_the_cells_end_responses_solve_their_stiffness(ground):
     cp = np.zeros(n)
     ca, cb, cc, cd, Tw0, Tw1, ew = (np.zeros(nk) for _ in range(7))
     RK._cells_respond(nk, np.array([n]), EA, c1, c2, m, np.array([mu]), dmax, np.array([r]), np.zeros(nk),
-                      np.array([wrap]), zc, Tc, Kc, Fc, Xc, Yc, cp, ca, cb, cc, cd, Tw0, Tw1, ew, dz)
+                      np.array([wrap]), zc, Tc, Kc, Fc, Xc, Yc, cp, ca, cb, cc, cd, Tw0, Tw1, ew, dz, np.array([r * wrap]),
+                      np.array([r]))
     kb = ew[0] / ds
     A = np.diag(Kc[0] + 1e-6 * kb + kb * np.r_[1.0, np.full(n - 2, 2.0), 1.0]) \
         - kb * (np.eye(n, k=1) + np.eye(n, k=-1))
