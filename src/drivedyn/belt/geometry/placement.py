@@ -113,22 +113,26 @@ def _circle_through(a, b, c):
     return ax + ux, ay + uy, math.hypot(ux, uy)
 
 
-def _offset_curve(curve, offset):
-    """mechanics.pitch_curves.Table of ``curve`` offset along its outward normal by offset(kappa) (m; kappa
-    the curvature there)."""
-    from ...mechanics.pitch_curves import Table, curvature, normal
+def _curve_samples(curve, m: int = 720):
+    """(points (m, 2), outward normals (m, 2), curvature (m,)) of ``curve`` at m uniform own angles."""
+    from ...mechanics.pitch_curves import curvature, normal
 
+    phi = np.arange(m) * (2 * math.pi / m)
+    r = curve.radii(phi)
+    pts = np.column_stack([r * np.cos(phi), r * np.sin(phi)])
+    nrm = np.array([normal(curve, float(f)) for f in phi])
+    return pts, nrm, curvature(curve, phi)
+
+
+def _offset_curve(samples, offset):
+    """mechanics.pitch_curves.Table of the curve of ``samples`` (``_curve_samples``) offset along its outward
+    normal by offset(kappa) (m; kappa the curvature there, an array)."""
     from scipy.interpolate import CubicSpline
 
-    m = 720
-    phi = np.arange(m) * (2 * math.pi / m)
-    kap = curvature(curve, phi)
-    pts = np.empty((m, 2))
-    for k, f in enumerate(phi):
-        r = curve.r(float(f))[0]
-        nx, ny = normal(curve, float(f))
-        o = offset(float(kap[k]))
-        pts[k] = r * math.cos(f) + o * nx, r * math.sin(f) + o * ny
+    from ...mechanics.pitch_curves import Table
+
+    base, nrm, kap = samples
+    pts = base + offset(kap)[:, None] * nrm
     ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
     ang -= 2 * math.pi * np.floor(ang[0] / (2 * math.pi))
     rad = np.hypot(pts[:, 0], pts[:, 1])
@@ -213,6 +217,7 @@ def initial_state(model, layout: Layout) -> InitialState:
     sides = [p.side for p in model.pulleys]
 
     curved = any(p.pitch_curve is not None for p in model.pulleys)
+    samples = {j: _curve_samples(p.curve) for j, p in enumerate(model.pulleys) if p.pitch_curve is not None}
 
     def place(l, T):
         p0 = np.array([static_penetration(T, r, model.contact) for r in radii])
@@ -224,7 +229,7 @@ def initial_state(model, layout: Layout) -> InitialState:
             from ...mechanics.curve_layout import layout_at
 
             curves = [Circle(Re[j]) if q.pitch_curve is None else
-                      _offset_curve(q.curve, lambda k, p=p0[j]: math.sqrt((1 / k - p) ** 2 + l * l / 4) - 1 / k)
+                      _offset_curve(samples[j], lambda k, p=p0[j]: np.sqrt((1 / k - p) ** 2 + l * l / 4) - 1 / k)
                       for j, q in enumerate(model.pulleys)]
             cl = layout_at(names, layout.centers, curves, sides, orientation=layout.orientation)
             path = _CurvePath(cl)

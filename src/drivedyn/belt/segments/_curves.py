@@ -64,21 +64,24 @@ def contact_at(crad, a, rx, ry, th):
 
 
 def _offset_radius(curve, offset: float, nodes: int) -> np.ndarray:
-    """r(phi) at ``nodes`` uniform own angles of the curve offset along its outward normal by ``offset`` (m)."""
+    """r(phi) at ``nodes`` uniform own angles of the curve offset along its outward normal by ``offset`` (m):
+    the offset points at twice the nodes, resampled by the periodic cubic spline through them."""
+    from scipy.interpolate import CubicSpline
+
     from ...mechanics.pitch_curves import normal
 
-    m = 8 * nodes
+    m = 2 * nodes
     phi = np.arange(m) * (2 * math.pi / m)
-    pts = np.empty((m, 2))
-    for k, f in enumerate(phi):
-        r = curve.r(float(f))[0]
-        nx, ny = normal(curve, float(f))
-        pts[k] = r * math.cos(f) + offset * nx, r * math.sin(f) + offset * ny
+    r = curve.radii(phi)
+    nrm = np.array([normal(curve, float(f)) for f in phi])
+    pts = np.column_stack([r * np.cos(phi), r * np.sin(phi)]) + offset * nrm
+    # the offset curve's polar angle runs once round with phi (convex, offset small)
     ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    ang -= 2 * math.pi * np.floor(ang[0] / (2 * math.pi))
     rad = np.hypot(pts[:, 0], pts[:, 1])
+    cs = CubicSpline(np.append(ang, ang[0] + 2 * math.pi), np.append(rad, rad[0]), bc_type="periodic")
     grid = np.arange(nodes) * (2 * math.pi / nodes)
-    # the offset curve's polar angle runs once round with phi (convex, offset small): a periodic lookup
-    return np.interp(grid, ang - 2 * math.pi * np.floor(ang[0] / (2 * math.pi)), rad, period=2 * math.pi)
+    return cs(np.where(grid < ang[0], grid + 2 * math.pi, grid))
 
 
 def tables(model, contact_radius) -> dict:
