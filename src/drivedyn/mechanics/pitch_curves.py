@@ -352,6 +352,30 @@ def support(curve: PitchCurve, alpha: float, theta: float = 0.0) -> tuple[float,
     return phi, r / math.sqrt(1.0 + (dr / r) ** 2)
 
 
+def samples(curve: PitchCurve, m: int):
+    """(points (m, 2), outward unit normals (m, 2), curvature (m,)) at m uniform own angles, the curve unturned."""
+    phi = np.arange(m) * (TWO_PI / m)
+    r = curve.radii(phi)
+    pts = np.column_stack([r * np.cos(phi), r * np.sin(phi)])
+    return pts, np.array([normal(curve, float(f)) for f in phi]), curvature(curve, phi)
+
+
+def offset_radii(sampled, offset, grid) -> np.ndarray:
+    """The radius at the polar angles ``grid`` (rad) of the curve ``sampled`` (``samples``) offset along its
+    outward normals by ``offset`` (m: one number, or one per sample): the periodic cubic spline through the
+    offset points (a convex curve's small offset turns once round with it)."""
+    from scipy.interpolate import CubicSpline
+
+    pts, nrm, _ = sampled
+    pts = pts + np.reshape(offset, (-1, 1)) * nrm
+    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
+    ang -= TWO_PI * np.floor(ang[0] / TWO_PI)
+    rad = np.hypot(pts[:, 0], pts[:, 1])
+    cs = CubicSpline(np.append(ang, ang[0] + TWO_PI), np.append(rad, rad[0]), bc_type="periodic")
+    grid = np.asarray(grid, float)
+    return cs(np.where(grid < ang[0], grid + TWO_PI, grid))
+
+
 def arc_length(curve: PitchCurve, phi0: float, phi1: float) -> float:
     """Arc length from own angle phi0 to phi1 (signed: negative when phi1 < phi0)."""
     return curve.cumulative(phi1) - curve.cumulative(phi0)

@@ -21,7 +21,7 @@ from ...core._roots import find_root
 from ...core.errors import ModelError
 from . import walk
 from ...mechanics.layout import Layout, layout_from
-from ...mechanics.pitch_curves import Circle
+from ...mechanics.pitch_curves import Circle, samples as curve_samples
 
 
 @dataclass(frozen=True)
@@ -64,8 +64,6 @@ class _CurvePath(_Path):
     ARCS_PER_TURN = 256
 
     def __init__(self, lay):
-        from ...mechanics.pitch_curves import Circle
-
         rows, s0 = [], 0.0
         nk = len(lay.names)
         for k in range(nk):
@@ -113,34 +111,15 @@ def _circle_through(a, b, c):
     return ax + ux, ay + uy, math.hypot(ux, uy)
 
 
-def _curve_samples(curve, m: int = 720):
-    """(points (m, 2), outward normals (m, 2), curvature (m,)) of ``curve`` at m uniform own angles."""
-    from ...mechanics.pitch_curves import curvature, normal
-
-    phi = np.arange(m) * (2 * math.pi / m)
-    r = curve.radii(phi)
-    pts = np.column_stack([r * np.cos(phi), r * np.sin(phi)])
-    nrm = np.array([normal(curve, float(f)) for f in phi])
-    return pts, nrm, curvature(curve, phi)
-
-
-def _offset_curve(samples, offset):
-    """mechanics.pitch_curves.Table of the curve of ``samples`` (``_curve_samples``) offset along its outward
+def _offset_curve(sampled, offset):
+    """mechanics.pitch_curves.Table of the curve ``sampled`` (pitch_curves.samples) offset along its outward
     normal by offset(kappa) (m; kappa the curvature there, an array)."""
-    from scipy.interpolate import CubicSpline
+    from ...mechanics.pitch_curves import Table, offset_radii
 
-    from ...mechanics.pitch_curves import Table
-
-    base, nrm, kap = samples
-    pts = base + offset(kap)[:, None] * nrm
-    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
-    ang -= 2 * math.pi * np.floor(ang[0] / (2 * math.pi))
-    rad = np.hypot(pts[:, 0], pts[:, 1])
-    cs = CubicSpline(np.append(ang, ang[0] + 2 * math.pi), np.append(rad, rad[0]), bc_type="periodic")
     # 181 rows: the periodic spline's error (h^4 / 384 of r's 4th derivative) is 1e-10 m on an oval of
     # order 2 and ovality 0.02
     grid = np.linspace(0.0, 2 * math.pi, 181)
-    r = cs(np.where(grid < ang[0], grid + 2 * math.pi, grid))
+    r = offset_radii(sampled, offset(sampled[2]), grid)
     r[-1] = r[0]
     t = Table(np.column_stack([grid, r]).tolist())
     t._intervals = 90      # its arc lengths are not walked (_CurvePath): a coarse table serves layout_at
@@ -217,7 +196,7 @@ def initial_state(model, layout: Layout) -> InitialState:
     sides = [p.side for p in model.pulleys]
 
     curved = any(p.pitch_curve is not None for p in model.pulleys)
-    samples = {j: _curve_samples(p.curve) for j, p in enumerate(model.pulleys) if p.pitch_curve is not None}
+    samples = {j: curve_samples(p.curve, 720) for j, p in enumerate(model.pulleys) if p.pitch_curve is not None}
 
     def place(l, T):
         p0 = np.array([static_penetration(T, r, model.contact) for r in radii])

@@ -21,6 +21,7 @@ from numba import njit
 from numba.extending import register_jitable
 
 from ..dynamics import _bodies as BK
+from ..dynamics._cubic import _cubic, _periodic
 from ..steady._wraps import sunk_depth, wrap_axial_stiffness
 from .teeth import chain_energy
 
@@ -139,21 +140,6 @@ def _locate(q, q0, dq, ng):
 
 
 @njit(cache=True, inline="always")
-def _cubic(f):
-    """Weights of the 4-point Lagrange cubic through nodes -1, 0, 1, 2 at fraction f, and of its
-    derivative (per grid step)."""
-    wm = -f * (f - 1.0) * (f - 2.0) / 6.0
-    w0 = (f + 1.0) * (f - 1.0) * (f - 2.0) / 2.0
-    w1 = -(f + 1.0) * f * (f - 2.0) / 2.0
-    w2 = (f + 1.0) * f * (f - 1.0) / 6.0
-    dm = -(3.0 * f * f - 6.0 * f + 2.0) / 6.0
-    d0 = (3.0 * f * f - 4.0 * f - 1.0) / 2.0
-    d1 = -(3.0 * f * f - 2.0 * f - 2.0) / 2.0
-    d2 = (3.0 * f * f - 1.0) / 6.0
-    return wm, w0, w1, w2, dm, d0, d1, d2
-
-
-@njit(cache=True, inline="always")
 def _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld, t0, t1, dx, dy, wrap):
     """Span lengths L (and their rates Ld), the belt rolled onto each span's ends t0, t1 (from
     rest), span directions and wrap angles at tensioner travel q (rates qd): the rest geometry plus
@@ -184,20 +170,6 @@ def _geometry(Lr, dxr, dyr, wr, q0, dq, tL, tt0, tt1, tdx, tdy, tw, q, qd, L, Ld
         n = math.sqrt(dx[j] * dx[j] + dy[j] * dy[j])
         dx[j] /= n
         dy[j] /= n
-
-
-@njit(cache=True, inline="always")
-def _periodic(tab, a, th, P):
-    """The cubic through tab[a]'s four nodes about th on its period P (N nodes), and its derivative in th."""
-    n = tab.shape[1]
-    d = P / n
-    x = (th % P) / d
-    i = int(math.floor(x))
-    wm, w0, w1, w2, dm, d0, d1, d2 = _cubic(x - i)
-    im, i1, i2 = (i - 1) % n, (i + 1) % n, (i + 2) % n
-    i = i % n
-    v = wm * tab[a, im] + w0 * tab[a, i] + w1 * tab[a, i1] + w2 * tab[a, i2]
-    return v, (dm * tab[a, im] + d0 * tab[a, i] + d1 * tab[a, i1] + d2 * tab[a, i2]) / d
 
 
 @njit(cache=True, inline="always")
@@ -514,6 +486,13 @@ def _at(a, k, i, n, below, beyond):
 
 
 @njit(cache=True, inline="always")
+def _stencil(A, k, i, n, below, beyond, wm, w0, w1, w2):
+    """The cubic's weighted sum over wrap k's cells i-1 .. i+2 of A, ``below`` / ``beyond`` past its ends."""
+    return (wm * _at(A, k, i - 1, n, below, beyond) + w0 * _at(A, k, i, n, below, beyond)
+            + w1 * _at(A, k, i + 1, n, below, beyond) + w2 * _at(A, k, i + 2, n, below, beyond))
+
+
+@njit(cache=True, inline="always")
 def _cell_transport(k, n, r, ds, phi, Tf, c, p0, EA, c1, c2, zc, Tc, buf, wsum, let_out):
     """The rim carries wrap k's cells by phi cells (signed, belt order = the cells' order when
     positive): semi-Lagrangian, the cubic through the four cells about where each cell's belt was
@@ -538,15 +517,13 @@ def _cell_transport(k, n, r, ds, phi, Tf, c, p0, EA, c1, c2, zc, Tc, buf, wsum, 
         below, beyond = (fresh, A[k, n - 1]) if phi >= 0.0 else (A[k, 0], fresh)
         for j in range(jlo):
             i = j + b0
-            buf[j] = (wm * _at(A, k, i - 1, n, below, beyond) + w0 * _at(A, k, i, n, below, beyond)
-                      + w1 * _at(A, k, i + 1, n, below, beyond) + w2 * _at(A, k, i + 2, n, below, beyond))
+            buf[j] = _stencil(A, k, i, n, below, beyond, wm, w0, w1, w2)
         for j in range(jlo, jhi):
             i = j + b0
             buf[j] = wm * A[k, i - 1] + w0 * A[k, i] + w1 * A[k, i + 1] + w2 * A[k, i + 2]
         for j in range(jhi, n):
             i = j + b0
-            buf[j] = (wm * _at(A, k, i - 1, n, below, beyond) + w0 * _at(A, k, i, n, below, beyond)
-                      + w1 * _at(A, k, i + 1, n, below, beyond) + w2 * _at(A, k, i + 2, n, below, beyond))
+            buf[j] = _stencil(A, k, i, n, below, beyond, wm, w0, w1, w2)
         for j in range(n):
             A[k, j] = buf[j]
     w1c = _content_sum(Tc[k], n, c, r, p0, EA, c1, c2)
@@ -572,8 +549,7 @@ def _cell_transport_curve(k, n, r, ds0, ds1, de, dx, Tin, Tout, c, p0, EA, c1, c
             fx = math.floor(x)
             i = int(fx)
             wm, w0, w1, w2 = _cubic(x - fx)[:4]
-            buf[j] = (wm * _at(A, k, i - 1, n, below, beyond) + w0 * _at(A, k, i, n, below, beyond)
-                      + w1 * _at(A, k, i + 1, n, below, beyond) + w2 * _at(A, k, i + 2, n, below, beyond))
+            buf[j] = _stencil(A, k, i, n, below, beyond, wm, w0, w1, w2)
         for j in range(n):
             A[k, j] = buf[j]
     w1c = _content_sum(Tc[k], n, c, r, p0, EA, c1, c2)

@@ -27,6 +27,8 @@ import math
 import numpy as np
 from numba import njit
 
+from ..dynamics._cubic import _periodic
+
 #: table nodes over one turn: the cubic's error falls as (2 pi / N)^4; an oval of order 2 and ovality
 #: 0.04 on a 50 mm pitch radius is read within 1e-12 m at 1024
 TABLE_NODES = 1024
@@ -35,23 +37,7 @@ TABLE_NODES = 1024
 @njit(cache=True, inline="always")
 def table_at(tab, a, phi):
     """Row a of a periodic table over one turn at own angle phi: (value, derivative per radian)."""
-    n = tab.shape[1]
-    d = 2.0 * math.pi / n
-    x = (phi % (2.0 * math.pi)) / d
-    i = int(math.floor(x))
-    f = x - i
-    wm = -f * (f - 1.0) * (f - 2.0) / 6.0
-    w0 = (f + 1.0) * (f - 1.0) * (f - 2.0) / 2.0
-    w1 = -(f + 1.0) * f * (f - 2.0) / 2.0
-    w2 = (f + 1.0) * f * (f - 1.0) / 6.0
-    dm = -(3.0 * f * f - 6.0 * f + 2.0) / 6.0
-    d0 = (3.0 * f * f - 4.0 * f - 1.0) / 2.0
-    d1 = -(3.0 * f * f - 2.0 * f - 2.0) / 2.0
-    d2 = (3.0 * f * f - 1.0) / 6.0
-    im, i1, i2 = (i - 1) % n, (i + 1) % n, (i + 2) % n
-    i = i % n
-    v = wm * tab[a, im] + w0 * tab[a, i] + w1 * tab[a, i1] + w2 * tab[a, i2]
-    return v, (dm * tab[a, im] + d0 * tab[a, i] + d1 * tab[a, i1] + d2 * tab[a, i2]) / d
+    return _periodic(tab, a, phi, 2.0 * math.pi)
 
 
 @njit(cache=True, inline="always")
@@ -63,31 +49,10 @@ def contact_at(crad, a, rx, ry, th):
     return rc, tb, 1.0 / math.sqrt(1.0 + tb * tb)
 
 
-def _offset_radius(curve, offset: float, nodes: int) -> np.ndarray:
-    """r(phi) at ``nodes`` uniform own angles of the curve offset along its outward normal by ``offset`` (m):
-    the offset points at twice the nodes, resampled by the periodic cubic spline through them."""
-    from scipy.interpolate import CubicSpline
-
-    from ...mechanics.pitch_curves import normal
-
-    m = 2 * nodes
-    phi = np.arange(m) * (2 * math.pi / m)
-    r = curve.radii(phi)
-    nrm = np.array([normal(curve, float(f)) for f in phi])
-    pts = np.column_stack([r * np.cos(phi), r * np.sin(phi)]) + offset * nrm
-    # the offset curve's polar angle runs once round with phi (convex, offset small)
-    ang = np.unwrap(np.arctan2(pts[:, 1], pts[:, 0]))
-    ang -= 2 * math.pi * np.floor(ang[0] / (2 * math.pi))
-    rad = np.hypot(pts[:, 0], pts[:, 1])
-    cs = CubicSpline(np.append(ang, ang[0] + 2 * math.pi), np.append(rad, rad[0]), bc_type="periodic")
-    grid = np.arange(nodes) * (2 * math.pi / nodes)
-    return cs(np.where(grid < ang[0], grid + 2 * math.pi, grid))
-
-
 def tables(model, contact_radius) -> dict:
     """The Contact record's curve fields for ``model`` with the pulleys' contact radii (m; P.r, the
     chain's radius on a grooved circle): ccur -1 and the reach its radius on a circle."""
-    from ...mechanics.pitch_curves import curvature
+    from ...mechanics.pitch_curves import curvature, offset_radii, samples
 
     ps = model.pulleys
     nk = len(ps)
@@ -103,7 +68,8 @@ def tables(model, contact_radius) -> dict:
         c = ps[j].curve
         ccur[j] = a
         off = float(contact_radius[j]) - c.mean_radius
-        crad[a] = _offset_radius(c, off, N)
+        # the offset points at twice the nodes, resampled at the nodes
+        crad[a] = offset_radii(samples(c, 2 * N), off, grid)
         cpr[a] = c.radii(grid)
         ckap[a] = curvature(c, grid)
         per = c.perimeter / (2 * math.pi)
